@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# One-command set-up on Debian 12: install packages (if missing), configure and
+# build in Release, then either render the default scene or run the test suite.
+#   scripts/quickstart.sh render   → images in out/
+#   scripts/quickstart.sh test     → ctest, the whole suite
+# Idempotent: a second run installs nothing and rebuilds only what changed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mode=${1:-render}
+build=${RSL_BUILD_DIR:-build}
+
+packages=(build-essential cmake ninja-build pkg-config ccache
+  libembree-dev libglfw3-dev libglm-dev libopenexr-dev libeigen3-dev libtinygltf-dev catch2
+  libtbb-dev libstb-dev nlohmann-json3-dev libcli11-dev libimgui-dev libfmt-dev
+  libgl-dev libegl-dev libgl1-mesa-dri xvfb xauth)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "== installing: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+echo "== configure + build ($build, Release)"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" --parallel "$(nproc)"
+
+case "$mode" in
+  render)
+    scripts/render-default.sh "$build"
+    ;;
+  test)
+    cd "$build"
+    ctest --output-on-failure --parallel "$(nproc)" --timeout 900
+    ;;
+  *)
+    echo "usage: $0 render|test" >&2
+    exit 2
+    ;;
+esac

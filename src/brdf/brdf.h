@@ -1,0 +1,27 @@
+#pragma once
+// BRDF models, shared by every renderer. ρ(ω_i, ω_o) is evaluated in the local
+// shading frame (z = normal, x = tangent for anisotropic models), *without*
+// the cosine: renderers fold in cos θ_i themselves.
+#include <memory>
+#include <string>
+
+#include "src/core/math.h"
+#include "src/core/scene.h"
+
+namespace rsl {
+
+class Brdf {
+public:
+    virtual ~Brdf() = default;
+    // ω_i, ω_o unit, local frame. Returns 0 when either is below the horizon.
+    virtual Color eval(const Vec3& wi, const Vec3& wo) const = 0;
+    // Isotropic models depend on φ_i − φ_o only (3D tables); others need 4D tables.
+    virtual bool isotropic() const = 0;
+    virtual std::string model() const = 0;
+};
+
+// Builds a model from a scene material; throws rsl::Error naming the material
+// and the bad parameter (unknown model, missing/out-of-range value).
+std::shared_ptr<const Brdf> make_brdf(const MaterialDesc& material);
+
+}  // namespace rsl

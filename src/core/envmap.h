@@ -1,0 +1,90 @@
+#pragma once
+// Environment maps. Everything downstream works on a cube map of 6×N×N texels
+// with exact per-texel solid angles.
+//
+// World convention (pinned by tests/core/envmap_test.cpp): +Y is up. A
+// latitude-longitude image has row 0 at the top (+Y); pixel (u, v) of a W×H map
+// is the direction with polar angle θ = π (v + ½) / H from +Y and longitude
+// φ = 2π (u + ½) / W, d = (sinθ cosφ, cosθ, sinθ sinφ)... see docs/CONVENTIONS.md
+// for the exact formula, which latlong_direction() implements.
+//
+// Cube faces are in OpenGL order +X, −X, +Y, −Y, +Z, −Z with OpenGL's (s, t)
+// orientation; texel (i, j) of face f covers s ∈ [−1 + 2i/N, −1 + 2(i+1)/N],
+// t likewise for j.
+#include <array>
+#include <filesystem>
+#include <vector>
+
+#include "src/core/image.h"
+#include "src/core/math.h"
+
+namespace rsl {
+
+Vec3 latlong_direction(float u, float v);  // u, v in [0, 1] image coordinates
+Vec2 latlong_coords(const Vec3& dir);      // inverse, u in [0, 1), v in [0, 1]
+
+struct CubeTexel {
+    int face = 0, i = 0, j = 0;
+};
+
+class CubeMap {
+public:
+    CubeMap() = default;
+    explicit CubeMap(int n);  // black map
+
+    int resolution() const { return n_; }
+    int texel_count() const { return 6 * n_ * n_; }
+    int index(int face, int i, int j) const { return (face * n_ + j) * n_ + i; }
+    CubeTexel texel(int index) const;
+
+    // Direction through face coordinates (s, t) ∈ [−1, 1]² of a face (not normalized → normalized).
+    static Vec3 face_direction(int face, float s, float t);
+    Vec3 texel_direction(int index) const;  // unit direction through the texel center
+    CubeTexel texel_of(const Vec3& dir) const;
+    int index_of(const Vec3& dir) const;
+
+    // Exact solid angle of a texel (sum over the map is 4π to float precision).
+    float solid_angle(int index) const { return solid_angle_[index]; }
+    const std::vector<float>& solid_angles() const { return solid_angle_; }
+
+    Color& radiance(int index) { return radiance_[index]; }
+    const Color& radiance(int index) const { return radiance_[index]; }
+    const std::vector<Color>& radiances() const { return radiance_; }
+    std::vector<Color>& radiances() { return radiance_; }
+
+    // Nearest-texel radiance in a direction.
+    Color lookup(const Vec3& dir) const { return radiance_[index_of(dir)]; }
+
+    // ∫ L dω = Σ L_k Ω_k, per channel, accumulated in double.
+    DVec3 energy() const;
+
+    // Indices of the (up to) 4 edge-adjacent texels, across face borders too.
+    std::array<int, 4> neighbors(int index) const;
+
+private:
+    int n_ = 0;
+    std::vector<Color> radiance_;
+    std::vector<float> solid_angle_;
+};
+
+// Exact solid angle of the face rectangle [s0, s1] × [t0, t1] (unit cube face at distance 1).
+double cube_face_solid_angle(double s0, double t0, double s1, double t1);
+
+// Resamples a lat-long image (any size) into a cube map of 6×n×n texels,
+// supersampled so that energy is preserved within 1% of the source.
+CubeMap cube_from_latlong(const Image& latlong, int n);
+// A cube map stored as an image in OpenEXR's vertical-strip layout (width w, height 6w).
+CubeMap cube_from_strip(const Image& strip, int n);
+// Any supported environment file (.exr or .hdr; lat-long 2:1 or cube strip 1:6) → cube map.
+CubeMap load_environment(const std::filesystem::path& path, int n);
+
+// Energy of a lat-long image as the integral it represents (per-pixel solid angles).
+DVec3 latlong_energy(const Image& latlong);
+
+// Rotated environment: L'(d) = L(R⁻¹ d), i.e. content at direction d moves to R d.
+CubeMap rotate(const CubeMap& map, const Mat3& rotation);
+
+// Lat-long image of a cube map (for previews and for writing environments as EXR).
+Image cube_to_latlong(const CubeMap& map, int width);
+
+}  // namespace rsl

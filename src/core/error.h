@@ -1,0 +1,48 @@
+#pragma once
+// Errors that reach the user name the file (or parameter) and what is wrong.
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+#include <fmt/std.h>
+
+namespace rsl {
+
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// "path: message" — the one shape of every input error.
+template <typename... Args>
+[[noreturn]] void throw_file_error(const std::filesystem::path& path, fmt::format_string<Args...> format,
+                                   Args&&... args) {
+    throw Error(fmt::format("{}: {}", path.string(), fmt::format(format, std::forward<Args>(args)...)));
+}
+
+template <typename... Args>
+[[noreturn]] void throw_error(fmt::format_string<Args...> format, Args&&... args) {
+    throw Error(fmt::format(format, std::forward<Args>(args)...));
+}
+
+// CHECK-style invariant that prints both sides, as pbrt's CHECK_EQ does.
+#define RSL_CHECK(cond)                                                                                   \
+    do {                                                                                                  \
+        if (!(cond)) ::rsl::throw_error("{}:{}: check failed: {}", __FILE__, __LINE__, #cond);            \
+    } while (0)
+#define RSL_CHECK_OP(a, op, b)                                                                            \
+    do {                                                                                                  \
+        auto&& rsl_a_ = (a);                                                                              \
+        auto&& rsl_b_ = (b);                                                                              \
+        if (!(rsl_a_ op rsl_b_))                                                                          \
+            ::rsl::throw_error("{}:{}: check failed: {} {} {} ({} vs {})", __FILE__, __LINE__, #a, #op, #b, \
+                               rsl_a_, rsl_b_);                                                           \
+    } while (0)
+#define RSL_CHECK_EQ(a, b) RSL_CHECK_OP(a, ==, b)
+#define RSL_CHECK_LE(a, b) RSL_CHECK_OP(a, <=, b)
+#define RSL_CHECK_LT(a, b) RSL_CHECK_OP(a, <, b)
+#define RSL_CHECK_GE(a, b) RSL_CHECK_OP(a, >=, b)
+#define RSL_CHECK_GT(a, b) RSL_CHECK_OP(a, >, b)
+
+}  // namespace rsl

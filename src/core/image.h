@@ -1,0 +1,47 @@
+#pragma once
+// Float images and their files: OpenEXR (read/write), Radiance .hdr (read),
+// tone-mapped PNG (write). Readers validate everything and throw rsl::Error
+// naming the file; writers are atomic.
+#include <filesystem>
+#include <vector>
+
+#include "src/core/math.h"
+
+namespace rsl {
+
+struct Image {
+    int width = 0, height = 0;
+    int channels = 3;           // 3 (RGB) or 4 (RGBA, alpha = coverage)
+    std::vector<float> pixels;  // row-major, row 0 at the top, interleaved channels
+
+    Image() = default;
+    Image(int w, int h, int c = 3) : width(w), height(h), channels(c), pixels(size_t(w) * h * c, 0.0f) {}
+
+    float* at(int x, int y) { return &pixels[(size_t(y) * width + x) * channels]; }
+    const float* at(int x, int y) const { return &pixels[(size_t(y) * width + x) * channels]; }
+    Color rgb(int x, int y) const { const float* p = at(x, y); return Color(p[0], p[1], p[2]); }
+    void set_rgb(int x, int y, const Color& c) { float* p = at(x, y); p[0] = c.r; p[1] = c.g; p[2] = c.b; }
+};
+
+// Reads .exr or .hdr by content (magic number), not by extension; a file whose
+// extension disagrees with its content is refused as mislabeled. Rejects NaN,
+// Inf and negative radiance with the pixel position.
+Image read_hdr_image(const std::filesystem::path& path);
+Image read_exr(const std::filesystem::path& path);
+Image read_radiance_hdr(const std::filesystem::path& path);
+
+void write_exr(const std::filesystem::path& path, const Image& image);
+
+struct ToneMap {
+    float exposure = 0.0f;  // stops: pixel × 2^exposure
+    bool auto_exposure = false;  // scale so the 99th luminance percentile maps to ~0.9
+};
+// Tone-mapped 8-bit sRGB PNG (RGB, or RGBA when the image has alpha).
+void write_png(const std::filesystem::path& path, const Image& image, const ToneMap& tone = {});
+// 8-bit sRGB encoding of a linear value in [0, 1].
+unsigned char linear_to_srgb8(float v);
+
+// Writes PATH (.exr) and its PNG preview beside it (same stem, .png).
+void write_exr_and_png(const std::filesystem::path& exr_path, const Image& image, const ToneMap& tone = {});
+
+}  // namespace rsl

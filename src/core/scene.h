@@ -1,0 +1,133 @@
+#pragma once
+// A dynamic scene: rigid parts (from glTF nodes or OBJ files) with animation,
+// an environment map with its rotation, materials, local lights, a camera.
+// Loaded from a JSON scene file (schema in README.md) or from a single mesh.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "src/core/math.h"
+#include "src/core/mesh.h"
+
+namespace rsl {
+
+// glTF-style keyframe track (times in seconds).
+enum class Interpolation { Step, Linear, CubicSpline };
+struct Vec3Track {
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<float> times;
+    std::vector<Vec3> values;
+    Vec3 sample(float t) const;  // clamps outside [times.front(), times.back()]
+};
+struct QuatTrack {
+    Interpolation interpolation = Interpolation::Linear;  // Linear = slerp
+    std::vector<float> times;
+    std::vector<Quat> values;
+    Quat sample(float t) const;
+};
+
+struct Transform {
+    Vec3 translation{0};
+    Quat rotation{1, 0, 0, 0};
+    Vec3 scale{1};
+    Mat4 matrix() const;
+};
+
+struct SceneNode {
+    std::string name;
+    int parent = -1;
+    Transform rest;  // local transform when not animated
+    std::optional<Vec3Track> translation;
+    std::optional<QuatTrack> rotation;
+    std::optional<Vec3Track> scale;
+    Transform local_at(float t) const;
+};
+
+// A material: BRDF model name and its parameters, as the scene file gives them
+// (validated by the BRDF module, which owns the meaning of each parameter).
+struct MaterialDesc {
+    std::string name;
+    std::string model = "lambert";
+    std::map<std::string, std::vector<float>> params;  // scalars are 1-vectors, RGB are 3-vectors
+    std::filesystem::path file;  // measured BRDFs (MERL .binary)
+};
+
+struct Part {
+    std::string name;
+    TriangleMesh mesh;  // in the part's frame
+    int node = -1;      // scene node giving its transform
+    int material = 0;   // index into Scene::materials
+};
+
+struct LocalLight {
+    float radius = 0.05f;
+    Color power{1};  // RGB radiant power (W); radiance of the sphere = power / (4π² a²)
+    Vec3 position{0};
+    std::optional<Vec3Track> path;
+    Vec3 position_at(float t) const { return path ? path->sample(t) : position; }
+};
+
+struct EnvironmentDesc {
+    std::filesystem::path file;
+    int resolution = 32;  // cube map N
+    Vec3 rotation_axis{0, 1, 0};
+    float rotation_degrees = 0;            // at t = 0
+    float rotation_degrees_per_second = 0;
+    std::filesystem::path second_file;     // optional: blend towards this map over time
+    float blend_period_seconds = 0;
+    Mat3 rotation_at(float t) const;
+};
+
+struct Camera {
+    Vec3 position{0, 1, 4}, target{0, 0.5f, 0}, up{0, 1, 0};
+    float fov_y_degrees = 40;
+    int width = 640, height = 480;
+    std::optional<Vec3Track> position_path, target_path;
+    Vec3 position_at(float t) const { return position_path ? position_path->sample(t) : position; }
+    Vec3 target_at(float t) const { return target_path ? target_path->sample(t) : target; }
+};
+
+struct AnimationRange {
+    float start = 0, end = 0, fps = 24;
+};
+
+// Precomputation settings (fields/). Defaults follow the paper.
+struct PrecomputeSettings {
+    int svdf_resolution = 32;
+    int svdf_clusters = 256;
+    int svdf_vectors = 8;
+    int svdf_supersampling = 4;  // rays per texel side
+    int ovdf_shells = 16;
+    float ovdf_inner_radius = 0.4f;  // × bounding radius
+    float ovdf_outer_radius = 6.0f;
+    int ovdf_cube_resolution = 32;
+    int ovdf_vdt_resolution = 32;
+    int ovdf_vectors = 8;
+};
+
+struct Scene {
+    std::string name;
+    std::filesystem::path source;  // the file it was loaded from
+    std::vector<SceneNode> nodes;
+    std::vector<Part> parts;
+    std::vector<MaterialDesc> materials;
+    std::vector<LocalLight> lights;
+    EnvironmentDesc environment;
+    Camera camera;
+    AnimationRange animation;
+    PrecomputeSettings precompute;
+
+    Mat4 node_world_at(int node, float t) const;  // product of ancestors' local transforms
+    Mat4 part_transform_at(int part, float t) const { return node_world_at(parts[part].node, t); }
+    size_t vertex_count() const;
+};
+
+// Loads a JSON scene file, a .gltf/.glb (one part per mesh node, node
+// animation), or a single .obj (one part). Throws rsl::Error naming the file.
+Scene load_scene(const std::filesystem::path& path);
+// Parts, nodes and animation of a glTF file, appended to `scene`.
+void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material);
+
+}  // namespace rsl
