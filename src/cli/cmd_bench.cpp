@@ -1,0 +1,80 @@
+// `rsl bench [NAMES...]`: run registered benchmarks, JSON lines on stdout.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include <fmt/core.h>
+
+#include "src/cli/bench.h"
+#include "src/cli/command.h"
+#include "src/core/atomic_file.h"
+#include "src/core/error.h"
+
+namespace rsl::cli {
+
+std::vector<Benchmark>& benchmark_registry() {
+    static std::vector<Benchmark> registry;
+    return registry;
+}
+
+namespace {
+std::vector<nlohmann::json>& collected() {
+    static std::vector<nlohmann::json> results;
+    return results;
+}
+}  // namespace
+
+void bench_emit(nlohmann::json result) {
+    std::fputs((result.dump() + "\n").c_str(), stdout);
+    std::fflush(stdout);
+    collected().push_back(std::move(result));
+}
+
+namespace {
+struct BenchArgs {
+    std::vector<std::string> names;
+    bool quick = false;
+    bool list = false;
+    std::string json_out;
+    std::string shared = std::string(RSL_SOURCE_DIR) + "/../shared/assets";
+    std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
+};
+
+RegisterCommand bench_command({"bench",
+    "Run benchmarks; one JSON object per result line on stdout (timings, rates, memory, errors).",
+    90, [](CLI::App& app) {
+        auto args = std::make_shared<BenchArgs>();
+        app.add_option("names", args->names, "Benchmarks to run (default: all); see --list");
+        app.add_flag("--list", args->list, "List the benchmarks and exit");
+        app.add_flag("--quick", args->quick, "Smaller cases (smoke test)");
+        app.add_option("--json-out", args->json_out, "Also write all results as a JSON array to this file");
+        app.add_option("--shared-assets", args->shared, "Folder of real probes/meshes (optional)")->capture_default_str();
+        app.add_option("--generated-assets", args->generated, "The project's generated assets")->capture_default_str();
+        app.callback([args] {
+            auto& registry = benchmark_registry();
+            std::sort(registry.begin(), registry.end(),
+                      [](const Benchmark& a, const Benchmark& b) { return a.name < b.name; });
+            if (args->list) {
+                for (auto& b : registry) fmt::print("{:<16} {}\n", b.name, b.description);
+                return;
+            }
+            for (auto& name : args->names)
+                if (std::none_of(registry.begin(), registry.end(), [&](auto& b) { return b.name == name; }))
+                    throw_error("unknown benchmark '{}' (see rsl bench --list)", name);
+            BenchOptions options{args->quick, args->shared, args->generated};
+            bench_emit({{"bench", "machine"},
+                        {"hardware_threads", std::thread::hardware_concurrency()},
+                        {"quick", args->quick}});
+            for (auto& b : registry) {
+                if (!args->names.empty() &&
+                    std::find(args->names.begin(), args->names.end(), b.name) == args->names.end())
+                    continue;
+                b.run(options);
+            }
+            if (!args->json_out.empty())
+                write_file_atomically(args->json_out, nlohmann::json(collected()).dump(2));
+        });
+    }});
+}  // namespace
+}  // namespace rsl::cli
