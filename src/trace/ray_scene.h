@@ -1,6 +1,8 @@
 #pragma once
 // Embree 3 scene of rigid parts: one BVH per part (built once, in the part's
 // frame) placed by instances, so that moving parts change only transforms.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -16,6 +18,23 @@ struct RayHit {
     int instance = -1;   // which instance (part)
     int triangle = -1;   // triangle index within the part's mesh
     float u = 0, v = 0;  // barycentrics: p = (1−u−v)·p0 + u·p1 + v·p2
+    Vec3 geometric_normal{0};  // world space, unit, (p1−p0)×(p2−p0) orientation
+};
+
+// Self-intersection offset for a ray leaving a surface point p on the side of
+// the unit normal n (see docs/TRUTH.md). The offset is scale-aware: a fixed
+// fraction of the scene's size (so a contact between parts leaks only at that
+// scale) plus a few float ULPs of |p| (so points far from the origin, whose
+// coordinates are coarse, still leave their own surface).
+struct RayOffset {
+    float scene_scale = 1;  // e.g. the scene's bounding-box diagonal
+    static constexpr float kRelativeToScene = 1e-5f;
+    static constexpr float kRelativeToPosition = 1.0f / (1 << 17);  // ≈ 64 ULPs
+    float distance(const Vec3& p) const {
+        const float coord = std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
+        return kRelativeToScene * scene_scale + kRelativeToPosition * coord;
+    }
+    Vec3 origin(const Vec3& p, const Vec3& n) const { return p + n * distance(p); }
 };
 
 class RayScene {
@@ -24,11 +43,20 @@ public:
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;
+    RayScene(RayScene&&) noexcept;
+    RayScene& operator=(RayScene&&) noexcept;
 
     int add_mesh(const TriangleMesh& mesh);                   // → mesh id (prototype BVH)
     int add_instance(int mesh_id, const Mat4& part_to_world);  // → instance id
     void set_transform(int instance_id, const Mat4& part_to_world);
     void commit();  // after adding or moving; rebuilds only the top level
+
+    int mesh_count() const;
+    int instance_count() const;
+    int instance_mesh(int instance_id) const;
+    const Mat4& instance_transform(int instance_id) const;
+    // Diagonal of the world-space bounding box of every instance (after commit).
+    float world_diagonal() const;
 
     // Thread-safe queries (after commit). Directions need not be unit for
     // occluded(); t ranges are in units of the direction's length.
@@ -39,6 +67,9 @@ public:
     // visible[k] = 1 when dirs[k] reaches t_far unoccluded.
     void occluded_batch(const Vec3& origin, const Vec3* dirs, int count, float t_near, float t_far,
                         uint8_t* visible) const;
+    // Same with a t_far per ray (rays towards a sphere light end on its surface).
+    void occluded_batch(const Vec3& origin, const Vec3* dirs, const float* t_fars, int count,
+                        float t_near, uint8_t* visible) const;
 
 private:
     struct Impl;
