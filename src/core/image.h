@@ -32,6 +32,21 @@ Image read_radiance_hdr(const std::filesystem::path& path);
 
 void write_exr(const std::filesystem::path& path, const Image& image);
 
+// OpenEXR's standard `envmap` attribute: how a file's pixels map to directions.
+enum class EnvmapKind { None, LatLong, Cube };
+
+struct ExrWriteOptions {
+    bool half = false;                    // store 16-bit half instead of 32-bit float
+    EnvmapKind envmap = EnvmapKind::None;  // written as the `envmap` attribute when not None
+};
+void write_exr(const std::filesystem::path& path, const Image& image, const ExrWriteOptions& options);
+// The `envmap` attribute of an EXR file's header (None when absent).
+EnvmapKind read_exr_envmap_kind(const std::filesystem::path& path);
+
+// Throws rsl::Error naming `path` and the first pixel (x, y, channel) whose
+// value is NaN, infinite or negative. Readers call it; writers may too.
+void check_radiance(const std::filesystem::path& path, const Image& image);
+
 struct ToneMap {
     float exposure = 0.0f;  // stops: pixel × 2^exposure
     bool auto_exposure = false;  // scale so the 99th luminance percentile maps to ~0.9
