@@ -27,6 +27,7 @@ struct TriangleMesh {
     std::vector<Vec3> normals;    // per vertex, unit
     std::vector<Vec4> tangents;   // per vertex: xyz unit tangent ⟂ normal, w = handedness ±1
     std::vector<uint32_t> indices;  // 3 per triangle
+    size_t degenerate_dropped = 0;  // degenerate triangles validate_and_complete removed when loading
 
     size_t vertex_count() const { return positions.size(); }
     size_t triangle_count() const { return indices.size() / 3; }
@@ -46,7 +47,9 @@ void compute_tangents(TriangleMesh& mesh);
 
 // Checks indices, NaN/Inf positions, empty meshes; throws rsl::Error naming
 // `source`. Drops degenerate triangles (zero area) and reports how many via the
-// return value; computes normals/tangents when missing or invalid.
+// return value (also added to mesh.degenerate_dropped); drops vertices no
+// triangle uses; computes normals/tangents when missing or invalid (per vertex:
+// valid given ones are kept, renormalized).
 size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& source);
 
 // Wavefront OBJ (v, vn, f with any of v, v/t, v//n, v/t/n; negative indices;

@@ -1,0 +1,417 @@
+// glTF 2.0 (.gltf and .glb) through tinygltf: node hierarchy, one rigid part
+// per mesh node, node animation. Every index and byte range in the file is
+// checked before it is read, so corrupt files give an rsl::Error naming the file.
+//
+// tinygltf's implementation lives in this translation unit. Images are not
+// needed, so stb is left out; any other file that includes tiny_gltf.h must
+// define the same three TINYGLTF_NO_* macros (they change inline defaults).
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <fstream>
+
+#include <glm/gtx/matrix_decompose.hpp>
+
+#include "src/core/error.h"
+#include "src/core/scene.h"
+
+namespace rsl {
+
+namespace {
+
+// Images (textures) are irrelevant to this renderer: accept and drop them.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+int component_count(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR: return 1;
+        case TINYGLTF_TYPE_VEC2: return 2;
+        case TINYGLTF_TYPE_VEC3: return 3;
+        case TINYGLTF_TYPE_VEC4: return 4;
+        default: return 0;
+    }
+}
+
+// Reads checked accessors into flat arrays.
+class AccessorReader {
+public:
+    AccessorReader(const tinygltf::Model& model, const std::filesystem::path& path) : model_(model), path_(path) {}
+
+    // Components as floats (integer components are normalized when the
+    // accessor says so, as glTF specifies).
+    std::vector<float> floats(int accessor_index, int expected_type, const std::string& what) const {
+        const Range r = checked_range(accessor_index, what);
+        const tinygltf::Accessor& a = model_.accessors[accessor_index];
+        if (a.type != expected_type)
+            throw_file_error(path_, "{}: accessor {} has {} components per element, expected {}", what, accessor_index,
+                             component_count(a.type), component_count(expected_type));
+        const int n = component_count(a.type);
+        std::vector<float> out(a.count * n);
+        for (size_t e = 0; e < a.count; ++e) {
+            const unsigned char* element = r.data + e * r.stride;
+            for (int c = 0; c < n; ++c) out[e * n + c] = read_float(element + c * r.component_size, a);
+        }
+        return out;
+    }
+
+    std::vector<uint32_t> indices(int accessor_index, const std::string& what) const {
+        const Range r = checked_range(accessor_index, what);
+        const tinygltf::Accessor& a = model_.accessors[accessor_index];
+        if (a.type != TINYGLTF_TYPE_SCALAR) throw_file_error(path_, "{}: index accessor {} is not SCALAR", what, accessor_index);
+        std::vector<uint32_t> out(a.count);
+        for (size_t e = 0; e < a.count; ++e) {
+            const unsigned char* p = r.data + e * r.stride;
+            switch (a.componentType) {
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[e] = *p; break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: out[e] = load<uint16_t>(p); break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: out[e] = load<uint32_t>(p); break;
+                default:
+                    throw_file_error(path_, "{}: index accessor {} has component type {}, not an unsigned integer",
+                                     what, accessor_index, a.componentType);
+            }
+        }
+        return out;
+    }
+
+    size_t count(int accessor_index, const std::string& what) const {
+        check_accessor_index(accessor_index, what);
+        return model_.accessors[accessor_index].count;
+    }
+
+private:
+    struct Range {
+        const unsigned char* data = nullptr;  // first element
+        size_t stride = 0, component_size = 0;
+    };
+
+    template <typename T>
+    static T load(const unsigned char* p) {
+        T value;
+        std::memcpy(&value, p, sizeof(T));
+        return value;
+    }
+
+    float read_float(const unsigned char* p, const tinygltf::Accessor& a) const {
+        const bool norm = a.normalized;
+        switch (a.componentType) {
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
+            case TINYGLTF_COMPONENT_TYPE_BYTE: {
+                const float v = float(load<int8_t>(p));
+                return norm ? std::max(v / 127.0f, -1.0f) : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+                const float v = float(*p);
+                return norm ? v / 255.0f : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_SHORT: {
+                const float v = float(load<int16_t>(p));
+                return norm ? std::max(v / 32767.0f, -1.0f) : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                const float v = float(load<uint16_t>(p));
+                return norm ? v / 65535.0f : v;
+            }
+            default: return std::numeric_limits<float>::quiet_NaN();  // refused in checked_range
+        }
+    }
+
+    void check_accessor_index(int accessor_index, const std::string& what) const {
+        if (accessor_index < 0 || size_t(accessor_index) >= model_.accessors.size())
+            throw_file_error(path_, "{}: accessor index {} is out of range ({} accessors)", what, accessor_index,
+                             model_.accessors.size());
+    }
+
+    // The accessor's bytes, after checking that accessor, buffer view and
+    // buffer exist and that every element lies inside them.
+    Range checked_range(int accessor_index, const std::string& what) const {
+        check_accessor_index(accessor_index, what);
+        const tinygltf::Accessor& a = model_.accessors[accessor_index];
+        const std::string where = fmt::format("{}: accessor {}", what, accessor_index);
+        if (a.sparse.isSparse) throw_file_error(path_, "{} is sparse, which is not supported", where);
+        const int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
+        const int components = component_count(a.type);
+        if (component_size <= 0 || components == 0)
+            throw_file_error(path_, "{} has an unsupported component type {} or type {}", where, a.componentType, a.type);
+        if (a.count == 0) throw_file_error(path_, "{} is empty", where);
+        if (a.bufferView < 0 || size_t(a.bufferView) >= model_.bufferViews.size())
+            throw_file_error(path_, "{}: buffer view {} is out of range ({} views)", where, a.bufferView,
+                             model_.bufferViews.size());
+        const tinygltf::BufferView& view = model_.bufferViews[a.bufferView];
+        if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
+            throw_file_error(path_, "{}: buffer {} is out of range ({} buffers)", where, view.buffer, model_.buffers.size());
+        const std::vector<unsigned char>& buffer = model_.buffers[view.buffer].data;
+        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+            throw_file_error(path_, "{}: buffer view {} (bytes {}..{}) overruns buffer {} of {} bytes", where,
+                             a.bufferView, view.byteOffset, view.byteOffset + view.byteLength, view.buffer,
+                             buffer.size());
+        const size_t element_size = size_t(component_size) * components;
+        const size_t stride = view.byteStride ? view.byteStride : element_size;
+        if (stride < element_size) throw_file_error(path_, "{}: byte stride {} < element size {}", where, stride, element_size);
+        const size_t last_byte = a.byteOffset + stride * (a.count - 1) + element_size;
+        if (a.byteOffset > view.byteLength || last_byte > view.byteLength)
+            throw_file_error(path_, "{}: {} elements from byte {} overrun buffer view {} of {} bytes", where, a.count,
+                             a.byteOffset, a.bufferView, view.byteLength);
+        return Range{buffer.data() + view.byteOffset + a.byteOffset, stride, size_t(component_size)};
+    }
+
+    const tinygltf::Model& model_;
+    const std::filesystem::path& path_;
+};
+
+tinygltf::Model read_model(const std::filesystem::path& path) {
+    char magic[4] = {};
+    {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw_file_error(path, "cannot open");
+        in.read(magic, 4);
+    }
+    const bool binary_content = std::string_view(magic, 4) == "glTF";
+    const std::string extension = path.extension().string();
+    const bool binary_name = extension == ".glb" || extension == ".GLB";
+    if (binary_content != binary_name)
+        throw_file_error(path, "mislabeled: the content is {} glTF but the name says {}",
+                         binary_content ? "binary" : "text (JSON)", binary_name ? "binary (.glb)" : "text (.gltf)");
+
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skip_image, nullptr);
+    tinygltf::Model model;
+    std::string error, warning;
+    const bool ok = binary_name ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
+                                : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
+    if (!ok) {
+        while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
+        throw_file_error(path, "not a valid glTF 2.0 file: {}", error.empty() ? "unknown error" : error);
+    }
+    return model;
+}
+
+Transform rest_transform(const tinygltf::Node& node, const std::filesystem::path& path) {
+    Transform t;
+    if (node.matrix.size() == 16) {
+        Mat4 m;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) m[c][r] = float(node.matrix[4 * c + r]);  // column-major, as glTF
+        Vec3 skew;
+        Vec4 perspective;
+        if (!glm::decompose(m, t.scale, t.rotation, t.translation, skew, perspective))
+            throw_file_error(path, "node '{}': matrix is not a rigid transform with scale", node.name);
+        return t;
+    }
+    if (node.translation.size() == 3) t.translation = Vec3(node.translation[0], node.translation[1], node.translation[2]);
+    if (node.scale.size() == 3) t.scale = Vec3(node.scale[0], node.scale[1], node.scale[2]);
+    if (node.rotation.size() == 4)  // glTF stores (x, y, z, w)
+        t.rotation = glm::normalize(Quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
+                                         float(node.rotation[2])));
+    return t;
+}
+
+// Triangle list of one primitive, expanding strips and fans.
+std::vector<uint32_t> triangle_indices(int mode, std::vector<uint32_t> corners) {
+    if (mode == TINYGLTF_MODE_TRIANGLES || mode == -1) {
+        corners.resize(corners.size() / 3 * 3);
+        return corners;
+    }
+    std::vector<uint32_t> out;
+    for (size_t k = 2; k < corners.size(); ++k) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            const bool odd = k % 2 == 1;  // keep the winding consistent
+            out.insert(out.end(), {corners[k - 2 + odd], corners[k - 1 - odd], corners[k]});
+        } else {  // fan
+            out.insert(out.end(), {corners[0], corners[k - 1], corners[k]});
+        }
+    }
+    return out;
+}
+
+bool is_triangle_mode(int mode) {
+    return mode == -1 || mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+           mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+// Converts a loaded, unchecked tinygltf model into scene nodes and parts.
+class GltfImporter {
+public:
+    GltfImporter(const tinygltf::Model& model, const std::filesystem::path& path)
+        : model_(model), path_(path), reader_(model, path) {}
+
+    void import_into(Scene& scene, int default_material) {
+        const int offset = int(scene.nodes.size());
+        import_nodes(scene, offset);
+        std::vector<std::optional<TriangleMesh>> converted(model_.meshes.size());
+        for (size_t n = 0; n < model_.nodes.size(); ++n) {
+            const int mesh_index = model_.nodes[n].mesh;
+            if (mesh_index < 0) continue;
+            if (size_t(mesh_index) >= model_.meshes.size())
+                throw_file_error(path_, "node {}: mesh index {} is out of range ({} meshes)", n, mesh_index,
+                                 model_.meshes.size());
+            if (!converted[mesh_index]) converted[mesh_index] = merged_mesh(mesh_index);
+            if (converted[mesh_index]->indices.empty()) continue;  // only points/lines: not a surface
+            Part part;
+            part.name = scene.nodes[offset + n].name;
+            part.mesh = *converted[mesh_index];
+            part.mesh.name = part.name;
+            part.node = offset + int(n);
+            part.material = default_material;
+            scene.parts.push_back(std::move(part));
+        }
+        for (size_t a = 0; a < model_.animations.size(); ++a) import_animation(a, scene, offset);
+    }
+
+private:
+    void import_nodes(Scene& scene, int offset) {
+        for (size_t n = 0; n < model_.nodes.size(); ++n) {
+            const tinygltf::Node& source = model_.nodes[n];
+            SceneNode node;
+            node.name = source.name.empty() ? fmt::format("node{}", n) : source.name;
+            node.rest = rest_transform(source, path_);
+            scene.nodes.push_back(std::move(node));
+        }
+        for (size_t n = 0; n < model_.nodes.size(); ++n) {
+            for (int child : model_.nodes[n].children) {
+                if (child < 0 || size_t(child) >= model_.nodes.size())
+                    throw_file_error(path_, "node {}: child index {} is out of range ({} nodes)", n, child,
+                                     model_.nodes.size());
+                SceneNode& c = scene.nodes[offset + child];
+                if (c.parent >= 0) throw_file_error(path_, "node {} has two parents", child);
+                c.parent = offset + int(n);
+            }
+        }
+        // A cycle would make node_world_at loop: walk up from every node.
+        for (size_t n = 0; n < model_.nodes.size(); ++n) {
+            size_t steps = 0;
+            for (int p = scene.nodes[offset + n].parent; p >= 0; p = scene.nodes[p].parent)
+                if (++steps > model_.nodes.size()) throw_file_error(path_, "node {} is its own ancestor", n);
+        }
+    }
+
+    // All triangle primitives of a glTF mesh merged into one validated mesh.
+    TriangleMesh merged_mesh(int mesh_index) {
+        const tinygltf::Mesh& source = model_.meshes[mesh_index];
+        TriangleMesh mesh;
+        mesh.name = source.name.empty() ? fmt::format("mesh{}", mesh_index) : source.name;
+        bool any_normals = false, any_tangents = false;
+        for (size_t p = 0; p < source.primitives.size(); ++p) {
+            const tinygltf::Primitive& primitive = source.primitives[p];
+            if (!is_triangle_mode(primitive.mode)) continue;
+            const std::string what = fmt::format("mesh '{}' primitive {}", mesh.name, p);
+            const auto attribute = [&](const char* name) {
+                auto it = primitive.attributes.find(name);
+                return it == primitive.attributes.end() ? -1 : it->second;
+            };
+            const int position_accessor = attribute("POSITION");
+            if (position_accessor < 0) throw_file_error(path_, "{} has no POSITION attribute", what);
+            const std::vector<float> positions = reader_.floats(position_accessor, TINYGLTF_TYPE_VEC3, what + " POSITION");
+            const size_t count = positions.size() / 3;
+            const size_t base = mesh.positions.size();
+            for (size_t v = 0; v < count; ++v) mesh.positions.emplace_back(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+
+            // Zero normals/tangents mark missing ones: validation computes them.
+            mesh.normals.resize(base + count, Vec3(0));
+            if (const int a = attribute("NORMAL"); a >= 0) {
+                const std::vector<float> normals = reader_.floats(a, TINYGLTF_TYPE_VEC3, what + " NORMAL");
+                if (normals.size() != positions.size())
+                    throw_file_error(path_, "{}: {} normals for {} positions", what, normals.size() / 3, count);
+                for (size_t v = 0; v < count; ++v) mesh.normals[base + v] = Vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+                any_normals = true;
+            }
+            mesh.tangents.resize(base + count, Vec4(0));
+            if (const int a = attribute("TANGENT"); a >= 0) {
+                const std::vector<float> tangents = reader_.floats(a, TINYGLTF_TYPE_VEC4, what + " TANGENT");
+                if (tangents.size() / 4 != count)
+                    throw_file_error(path_, "{}: {} tangents for {} positions", what, tangents.size() / 4, count);
+                for (size_t v = 0; v < count; ++v)
+                    mesh.tangents[base + v] = Vec4(tangents[4 * v], tangents[4 * v + 1], tangents[4 * v + 2], tangents[4 * v + 3]);
+                any_tangents = true;
+            }
+
+            std::vector<uint32_t> corners;
+            if (primitive.indices >= 0) {
+                corners = reader_.indices(primitive.indices, what + " indices");
+                for (size_t i = 0; i < corners.size(); ++i)
+                    if (corners[i] >= count)
+                        throw_file_error(path_, "{}: index {} is {}, out of range for {} vertices", what, i, corners[i], count);
+            } else {
+                corners.resize(count);
+                for (size_t v = 0; v < count; ++v) corners[v] = uint32_t(v);
+            }
+            for (uint32_t& i : corners) i += uint32_t(base);
+            const std::vector<uint32_t> triangles = triangle_indices(primitive.mode, std::move(corners));
+            mesh.indices.insert(mesh.indices.end(), triangles.begin(), triangles.end());
+        }
+        if (!any_normals) mesh.normals.clear();
+        if (!any_tangents) mesh.tangents.clear();
+        if (!mesh.indices.empty()) validate_and_complete(mesh, path_);
+        return mesh;
+    }
+
+    Interpolation interpolation(const std::string& name, const std::string& what) const {
+        if (name.empty() || name == "LINEAR") return Interpolation::Linear;
+        if (name == "STEP") return Interpolation::Step;
+        if (name == "CUBICSPLINE") return Interpolation::CubicSpline;
+        throw_file_error(path_, "{}: unknown interpolation '{}'", what, name);
+    }
+
+    void import_animation(size_t animation_index, Scene& scene, int offset) {
+        const tinygltf::Animation& animation = model_.animations[animation_index];
+        for (size_t c = 0; c < animation.channels.size(); ++c) {
+            const tinygltf::AnimationChannel& channel = animation.channels[c];
+            const std::string what = fmt::format("animation {} channel {}", animation_index, c);
+            if (channel.target_path == "weights") continue;  // morph targets: not rigid motion
+            if (channel.target_node < 0 || size_t(channel.target_node) >= model_.nodes.size())
+                throw_file_error(path_, "{}: target node {} is out of range ({} nodes)", what, channel.target_node,
+                                 model_.nodes.size());
+            if (channel.sampler < 0 || size_t(channel.sampler) >= animation.samplers.size())
+                throw_file_error(path_, "{}: sampler {} is out of range ({} samplers)", what, channel.sampler,
+                                 animation.samplers.size());
+            const tinygltf::AnimationSampler& sampler = animation.samplers[channel.sampler];
+            const Interpolation mode = interpolation(sampler.interpolation, what);
+            const std::vector<float> times = reader_.floats(sampler.input, TINYGLTF_TYPE_SCALAR, what + " input");
+            for (size_t k = 0; k < times.size(); ++k) {
+                if (!std::isfinite(times[k]) || (k > 0 && times[k] < times[k - 1]))
+                    throw_file_error(path_, "{}: key time {} ({}) is not finite and increasing", what, k, times[k]);
+            }
+            const size_t expected = mode == Interpolation::CubicSpline ? 3 * times.size() : times.size();
+            SceneNode& node = scene.nodes[offset + channel.target_node];
+            const bool is_rotation = channel.target_path == "rotation";
+            if (!is_rotation && channel.target_path != "translation" && channel.target_path != "scale")
+                throw_file_error(path_, "{}: unknown target path '{}'", what, channel.target_path);
+            const std::vector<float> values =
+                reader_.floats(sampler.output, is_rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, what + " output");
+            const size_t n = is_rotation ? 4 : 3;
+            if (values.size() / n != expected)
+                throw_file_error(path_, "{}: {} output values for {} key times ({} interpolation)", what,
+                                 values.size() / n, times.size(), sampler.interpolation);
+            for (float v : values)
+                if (!std::isfinite(v)) throw_file_error(path_, "{}: output value is not finite", what);
+            if (is_rotation) {
+                QuatTrack track{mode, times, {}};
+                for (size_t k = 0; k < expected; ++k)  // glTF (x, y, z, w) → glm (w, x, y, z)
+                    track.values.emplace_back(values[4 * k + 3], values[4 * k], values[4 * k + 1], values[4 * k + 2]);
+                node.rotation = std::move(track);
+            } else {
+                Vec3Track track{mode, times, {}};
+                for (size_t k = 0; k < expected; ++k) track.values.emplace_back(values[3 * k], values[3 * k + 1], values[3 * k + 2]);
+                (channel.target_path == "translation" ? node.translation : node.scale) = std::move(track);
+            }
+        }
+    }
+
+    const tinygltf::Model& model_;
+    const std::filesystem::path& path_;
+    AccessorReader reader_;
+};
+
+}  // namespace
+
+void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material) {
+    const tinygltf::Model model = read_model(path);
+    GltfImporter(model, path).import_into(scene, default_material);
+}
+
+}  // namespace rsl

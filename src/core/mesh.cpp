@@ -1,0 +1,200 @@
+// Triangle-mesh geometry: bounds, normals, tangents, validation.
+#include "src/core/mesh.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "src/core/error.h"
+
+namespace rsl {
+
+namespace {
+
+bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// A usable unit vector: finite and of length ≈ 1 (files sometimes store
+// unnormalized normals; those are renormalized, zero ones recomputed).
+bool is_usable_direction(const Vec3& v) {
+    if (!is_finite(v)) return false;
+    return glm::dot(v, v) > 1e-12f;
+}
+
+// Twice the triangle's area vector (its direction is the face normal).
+Vec3 doubled_area_vector(const TriangleMesh& mesh, size_t triangle) {
+    const Vec3& a = mesh.positions[mesh.indices[3 * triangle]];
+    const Vec3& b = mesh.positions[mesh.indices[3 * triangle + 1]];
+    const Vec3& c = mesh.positions[mesh.indices[3 * triangle + 2]];
+    return glm::cross(b - a, c - a);
+}
+
+// Area threshold below which a triangle counts as degenerate: relative to the
+// mesh's size so that the test does not depend on its units.
+float degenerate_area_threshold(const TriangleMesh& mesh, float area_epsilon) {
+    const Bounds b = mesh.bounds();
+    if (b.empty()) return 0;
+    const Vec3 diagonal = b.hi - b.lo;
+    return area_epsilon * glm::dot(diagonal, diagonal);
+}
+
+bool is_degenerate(const TriangleMesh& mesh, size_t triangle, float threshold) {
+    const uint32_t i0 = mesh.indices[3 * triangle], i1 = mesh.indices[3 * triangle + 1],
+                   i2 = mesh.indices[3 * triangle + 2];
+    if (i0 == i1 || i1 == i2 || i0 == i2) return true;
+    const float area = 0.5f * glm::length(doubled_area_vector(mesh, triangle));
+    return !(area > threshold);  // also catches NaN
+}
+
+// Area-weighted face normals summed per vertex (not normalized).
+std::vector<Vec3> accumulated_face_normals(const TriangleMesh& mesh) {
+    std::vector<Vec3> sum(mesh.vertex_count(), Vec3(0));
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const Vec3 n = doubled_area_vector(mesh, t);  // |n| = 2 × area: the weight
+        for (int k = 0; k < 3; ++k) sum[mesh.indices[3 * t + k]] += n;
+    }
+    return sum;
+}
+
+// The tangent the mesh uses at a vertex with unit normal n: the world X axis
+// projected into the tangent plane, or the world Z axis within ~8° of ±X, where
+// the projection of X vanishes. (A continuous tangent field on a closed surface
+// must have singular points; this places them in two small polar caps.)
+Vec3 tangent_for_normal(const Vec3& n) {
+    constexpr float kPolarCos = 0.99f;
+    const Vec3 axis = std::abs(n.x) < kPolarCos ? Vec3(1, 0, 0) : Vec3(0, 0, 1);
+    return glm::normalize(axis - n * glm::dot(n, axis));
+}
+
+// Removes vertices no triangle references (degenerate triangles leave them
+// behind) and renumbers the indices.
+void drop_unreferenced_vertices(TriangleMesh& mesh) {
+    constexpr uint32_t kUnused = ~0u;
+    std::vector<uint32_t> new_index(mesh.vertex_count(), kUnused);
+    for (uint32_t i : mesh.indices) new_index[i] = 0;
+    uint32_t next = 0;
+    for (size_t v = 0; v < new_index.size(); ++v) {
+        if (new_index[v] == kUnused) continue;
+        new_index[v] = next;
+        mesh.positions[next] = mesh.positions[v];
+        if (v < mesh.normals.size()) mesh.normals[next] = mesh.normals[v];
+        if (v < mesh.tangents.size()) mesh.tangents[next] = mesh.tangents[v];
+        ++next;
+    }
+    if (next == mesh.vertex_count()) return;
+    mesh.positions.resize(next);
+    if (mesh.normals.size() > next) mesh.normals.resize(next);
+    if (mesh.tangents.size() > next) mesh.tangents.resize(next);
+    for (uint32_t& i : mesh.indices) i = new_index[i];
+}
+
+}  // namespace
+
+Bounds TriangleMesh::bounds() const {
+    Bounds b;
+    for (const Vec3& p : positions) b.extend(p);
+    return b;
+}
+
+BoundingSphere TriangleMesh::bounding_sphere() const {
+    BoundingSphere sphere;
+    const Bounds b = bounds();
+    if (b.empty()) return sphere;
+    sphere.center = b.center();
+    float r2 = 0;
+    for (const Vec3& p : positions) r2 = std::max(r2, glm::dot(p - sphere.center, p - sphere.center));
+    sphere.radius = std::sqrt(r2);
+    return sphere;
+}
+
+size_t TriangleMesh::count_degenerate_triangles(float area_epsilon) const {
+    const float threshold = degenerate_area_threshold(*this, area_epsilon);
+    size_t count = 0;
+    for (size_t t = 0; t < triangle_count(); ++t) count += is_degenerate(*this, t, threshold);
+    return count;
+}
+
+void compute_normals(TriangleMesh& mesh) {
+    std::vector<Vec3> sum = accumulated_face_normals(mesh);
+    for (Vec3& n : sum) n = is_usable_direction(n) ? glm::normalize(n) : Vec3(0, 1, 0);
+    mesh.normals = std::move(sum);
+}
+
+void compute_tangents(TriangleMesh& mesh) {
+    RSL_CHECK_EQ(mesh.normals.size(), mesh.vertex_count());
+    mesh.tangents.resize(mesh.vertex_count());
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) mesh.tangents[v] = Vec4(tangent_for_normal(mesh.normals[v]), 1.0f);
+}
+
+size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& source) {
+    if (mesh.positions.empty()) throw_file_error(source, "mesh '{}' has no vertices", mesh.name);
+    if (mesh.indices.size() % 3 != 0)
+        throw_file_error(source, "mesh '{}' has {} indices, not a multiple of 3", mesh.name, mesh.indices.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        const Vec3& p = mesh.positions[v];
+        if (!is_finite(p))
+            throw_file_error(source, "mesh '{}': vertex {} has a non-finite position ({}, {}, {})", mesh.name, v, p.x,
+                             p.y, p.z);
+    }
+    for (size_t i = 0; i < mesh.indices.size(); ++i) {
+        if (mesh.indices[i] >= mesh.vertex_count())
+            throw_file_error(source, "mesh '{}': index {} (triangle {}) is {}, out of range for {} vertices", mesh.name,
+                             i, i / 3, mesh.indices[i], mesh.vertex_count());
+    }
+
+    // Drop degenerate triangles: they have no normal and cast no shadow, and
+    // they would make area-weighted normals and Embree unhappy.
+    const float threshold = degenerate_area_threshold(mesh, 1e-12f);
+    size_t kept = 0;
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        if (is_degenerate(mesh, t, threshold)) continue;
+        for (int k = 0; k < 3; ++k) mesh.indices[3 * kept + k] = mesh.indices[3 * t + k];
+        ++kept;
+    }
+    const size_t dropped = mesh.triangle_count() - kept;
+    mesh.indices.resize(3 * kept);
+    mesh.degenerate_dropped += dropped;
+    if (kept == 0)
+        throw_file_error(source, "mesh '{}' has no triangles{}", mesh.name,
+                         dropped ? fmt::format(" ({} degenerate triangles dropped)", dropped) : "");
+    drop_unreferenced_vertices(mesh);
+
+    // Normals: keep valid given ones (renormalized); fill missing or invalid
+    // ones with area-weighted normals.
+    if (mesh.normals.size() != mesh.vertex_count()) {
+        compute_normals(mesh);
+    } else {
+        std::vector<Vec3> computed;
+        for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+            Vec3& n = mesh.normals[v];
+            if (is_usable_direction(n)) {
+                n = glm::normalize(n);
+                continue;
+            }
+            if (computed.empty()) {
+                computed = accumulated_face_normals(mesh);
+            }
+            n = is_usable_direction(computed[v]) ? glm::normalize(computed[v]) : Vec3(0, 1, 0);
+        }
+    }
+
+    // Tangents: keep valid given ones, orthogonalized against the normal;
+    // otherwise use the mesh-wide rule of compute_tangents.
+    if (mesh.tangents.size() != mesh.vertex_count()) {
+        compute_tangents(mesh);
+    } else {
+        for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+            const Vec3& n = mesh.normals[v];
+            Vec4& t = mesh.tangents[v];
+            Vec3 xyz(t);
+            xyz -= n * glm::dot(n, xyz);
+            const bool usable = is_usable_direction(xyz) && glm::dot(xyz, xyz) > 1e-8f && std::isfinite(t.w);
+            if (usable) {
+                t = Vec4(glm::normalize(xyz), t.w < 0 ? -1.0f : 1.0f);
+            } else {
+                t = Vec4(tangent_for_normal(n), 1.0f);
+            }
+        }
+    }
+    return dropped;
+}
+
+}  // namespace rsl

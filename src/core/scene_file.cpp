@@ -1,0 +1,520 @@
+// Scene loading: JSON scene files (docs/SCENE_FORMAT.md), or a single
+// .gltf/.glb/.obj with defaults. Every error names the file and the key.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "src/core/error.h"
+#include "src/core/scene.h"
+
+namespace rsl {
+
+namespace {
+
+using Json = nlohmann::json;
+
+std::string lowercase_extension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+MaterialDesc builtin_default_material() {
+    MaterialDesc m;
+    m.name = "default";
+    m.model = "lambert";
+    m.params["albedo"] = {0.7f, 0.7f, 0.7f};
+    return m;
+}
+
+// Time range covered by every keyed track in the scene ([0, 0] when static).
+std::pair<float, float> keyed_time_range(const Scene& scene) {
+    float lo = 1e30f, hi = -1e30f;
+    auto cover = [&](const std::vector<float>& times) {
+        if (times.empty()) return;
+        lo = std::min(lo, times.front());
+        hi = std::max(hi, times.back());
+    };
+    for (const SceneNode& n : scene.nodes) {
+        if (n.translation) cover(n.translation->times);
+        if (n.rotation) cover(n.rotation->times);
+        if (n.scale) cover(n.scale->times);
+    }
+    for (const LocalLight& l : scene.lights)
+        if (l.path) cover(l.path->times);
+    if (scene.camera.position_path) cover(scene.camera.position_path->times);
+    if (scene.camera.target_path) cover(scene.camera.target_path->times);
+    if (lo > hi) return {0.0f, 0.0f};
+    return {lo, hi};
+}
+
+// World-space bounds of all parts at time t (transformed box corners).
+Bounds world_bounds_at(const Scene& scene, float t) {
+    Bounds world;
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        const Bounds local = scene.parts[p].mesh.bounds();
+        const Mat4 m = scene.part_transform_at(int(p), t);
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3 c((corner & 1) ? local.hi.x : local.lo.x, (corner & 2) ? local.hi.y : local.lo.y,
+                         (corner & 4) ? local.hi.z : local.lo.z);
+            world.extend(Vec3(m * Vec4(c, 1.0f)));
+        }
+    }
+    return world;
+}
+
+// A camera that sees the whole scene from the front (+Z), slightly above.
+void frame_camera(Scene& scene) {
+    const Bounds b = world_bounds_at(scene, scene.animation.start);
+    if (b.empty()) return;
+    const float radius = std::max(0.5f * glm::length(b.hi - b.lo), 1e-3f);
+    const float half_fov = glm::radians(scene.camera.fov_y_degrees) * 0.5f;
+    const float distance = 1.1f * radius / std::sin(half_fov);
+    scene.camera.target = b.center();
+    scene.camera.position = b.center() + distance * glm::normalize(Vec3(0, 0.35f, 1));
+    scene.camera.up = Vec3(0, 1, 0);
+}
+
+void finish_scene(Scene& scene, bool has_camera, bool has_animation) {
+    if (!has_animation) {
+        const auto [start, end] = keyed_time_range(scene);
+        scene.animation.start = start;
+        scene.animation.end = end;
+    }
+    if (!has_camera) frame_camera(scene);
+}
+
+// Reads one JSON scene file. Keys are checked against the schema as they are
+// read, so a misspelt key is an error instead of a silently ignored setting.
+class SceneFileReader {
+public:
+    explicit SceneFileReader(const std::filesystem::path& path) : path_(path), dir_(path.parent_path()) {}
+
+    Scene read() {
+        const Json root = parse_file();
+        if (!root.is_object()) fail("", "the top level must be a JSON object");
+        check_keys(root, "", {"name", "gltf", "parts", "materials", "part_materials", "environment", "lights", "camera",
+                              "animation", "precompute"});
+        scene_.source = path_;
+        scene_.name = root.contains("name") ? string_at(root, "name", "name") : path_.stem().string();
+        read_materials(root);
+        const Json part_materials = root.value("part_materials", Json::object());
+        if (!part_materials.is_object()) fail("part_materials", "expected an object (part name → material name)");
+        default_material_ = choose_default_material(part_materials);
+
+        if (root.contains("gltf")) {
+            const size_t first = scene_.parts.size();
+            load_gltf_into(existing_file(root["gltf"], "gltf"), scene_, default_material_);
+            assign_materials(first, part_materials);
+        }
+        if (root.contains("parts")) read_parts(root["parts"], part_materials);
+        if (scene_.parts.empty()) fail("", "the scene has no parts (give `gltf` or `parts`)");
+        check_part_material_names(part_materials);
+
+        if (root.contains("environment")) read_environment(root["environment"]);
+        if (root.contains("lights")) read_lights(root["lights"]);
+        if (root.contains("camera")) read_camera(root["camera"]);
+        if (root.contains("animation")) read_animation(root["animation"]);
+        if (root.contains("precompute")) read_precompute(root["precompute"]);
+        finish_scene(scene_, root.contains("camera"), root.contains("animation"));
+        return std::move(scene_);
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+        if (key.empty()) throw_file_error(path_, "{}", message);
+        throw_file_error(path_, "{}: {}", key, message);
+    }
+
+    Json parse_file() const {
+        std::ifstream in(path_, std::ios::binary);
+        if (!in) throw_file_error(path_, "cannot open");
+        std::ostringstream buffer;
+        buffer << in.rdbuf();
+        const std::string text = buffer.str();
+        try {
+            return Json::parse(text);
+        } catch (const Json::parse_error& e) {
+            // nlohmann reports a byte offset; people need a line and column.
+            const size_t byte = std::min<size_t>(e.byte, text.size());
+            const size_t line = 1 + std::count(text.begin(), text.begin() + byte, '\n');
+            const size_t line_start = text.rfind('\n', byte ? byte - 1 : 0);
+            const size_t column = line_start == std::string::npos ? byte : byte - line_start - 1;
+            throw_file_error(path_, "line {}, column {}: invalid JSON: {}", line, column, e.what());
+        }
+    }
+
+    void check_keys(const Json& object, const std::string& where, std::initializer_list<const char*> allowed) const {
+        for (const auto& [key, value] : object.items()) {
+            const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; });
+            if (!known) {
+                std::string list;
+                for (const char* a : allowed) list += fmt::format("{}{}", list.empty() ? "" : ", ", a);
+                fail(where.empty() ? key : where + "." + key, fmt::format("unknown key (expected one of: {})", list));
+            }
+        }
+    }
+
+    static std::string join(const std::string& where, const std::string& key) {
+        return where.empty() ? key : where + "." + key;
+    }
+
+    const Json& expect_object(const Json& j, const std::string& key) const {
+        if (!j.is_object()) fail(key, fmt::format("expected an object, got {}", j.type_name()));
+        return j;
+    }
+
+    float number(const Json& j, const std::string& key) const {
+        if (!j.is_number()) fail(key, fmt::format("expected a number, got {}", j.type_name()));
+        const float v = j.get<float>();
+        if (!std::isfinite(v)) fail(key, "value is not finite");
+        return v;
+    }
+    float number_at(const Json& object, const char* name, const std::string& where) const {
+        return number(object.at(name), join(where, name));
+    }
+    float positive_number_at(const Json& object, const char* name, const std::string& where) const {
+        const float v = number_at(object, name, where);
+        if (!(v > 0)) fail(join(where, name), fmt::format("must be positive, got {}", v));
+        return v;
+    }
+    int positive_int_at(const Json& object, const char* name, const std::string& where) const {
+        const Json& j = object.at(name);
+        if (!j.is_number_integer()) fail(join(where, name), fmt::format("expected an integer, got {}", j.dump()));
+        const long long v = j.get<long long>();
+        if (v <= 0 || v > (1 << 24)) fail(join(where, name), fmt::format("must be a positive integer, got {}", v));
+        return int(v);
+    }
+    std::string string_at(const Json& object, const char* name, const std::string& key) const {
+        const Json& j = object.at(name);
+        if (!j.is_string()) fail(key, fmt::format("expected a string, got {}", j.type_name()));
+        return j.get<std::string>();
+    }
+    std::vector<float> numbers(const Json& j, const std::string& key, size_t expected_count = 0) const {
+        std::vector<float> out;
+        if (j.is_number()) {
+            out.push_back(number(j, key));
+        } else if (j.is_array()) {
+            for (size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], fmt::format("{}[{}]", key, i)));
+        } else {
+            fail(key, fmt::format("expected a number or an array of numbers, got {}", j.type_name()));
+        }
+        if (expected_count && out.size() != expected_count)
+            fail(key, fmt::format("expected {} numbers, got {}", expected_count, out.size()));
+        return out;
+    }
+    Vec3 vec3(const Json& j, const std::string& key) const {
+        if (!j.is_array()) fail(key, fmt::format("expected an array of 3 numbers, got {}", j.type_name()));
+        const std::vector<float> v = numbers(j, key, 3);
+        return Vec3(v[0], v[1], v[2]);
+    }
+    Vec3 vec3_at(const Json& object, const char* name, const std::string& where) const {
+        return vec3(object.at(name), join(where, name));
+    }
+
+    std::filesystem::path existing_file(const Json& j, const std::string& key) const {
+        if (!j.is_string()) fail(key, fmt::format("expected a file name, got {}", j.type_name()));
+        const std::filesystem::path file = dir_ / j.get<std::string>();
+        if (!std::filesystem::is_regular_file(file)) fail(key, fmt::format("file {} does not exist", file.string()));
+        return file;
+    }
+
+    void read_materials(const Json& root) {
+        if (!root.contains("materials")) return;
+        const Json& materials = expect_object(root["materials"], "materials");
+        for (const auto& [name, entry] : materials.items()) {
+            const std::string where = "materials." + name;
+            expect_object(entry, where);
+            MaterialDesc m;
+            m.name = name;
+            for (const auto& [key, value] : entry.items()) {
+                if (key == "model") {
+                    m.model = string_at(entry, "model", join(where, key));
+                } else if (key == "file") {
+                    m.file = existing_file(value, join(where, key));
+                } else {
+                    m.params[key] = numbers(value, join(where, key));
+                }
+            }
+            material_index_[name] = int(scene_.materials.size());
+            scene_.materials.push_back(std::move(m));
+        }
+    }
+
+    int material_named(const std::string& name, const std::string& key) const {
+        auto it = material_index_.find(name);
+        if (it == material_index_.end()) fail(key, fmt::format("no material named '{}' in `materials`", name));
+        return it->second;
+    }
+
+    // `part_materials["*"]`, else a material named "default", else a built-in Lambert.
+    int choose_default_material(const Json& part_materials) {
+        if (part_materials.contains("*")) return material_named(string_at(part_materials, "*", "part_materials.*"), "part_materials.*");
+        if (auto it = material_index_.find("default"); it != material_index_.end()) return it->second;
+        scene_.materials.push_back(builtin_default_material());
+        return int(scene_.materials.size()) - 1;
+    }
+
+    // part_materials[part name] for the parts from first_part on (others keep the default).
+    void assign_materials(size_t first_part, const Json& part_materials) {
+        for (size_t p = first_part; p < scene_.parts.size(); ++p) {
+            Part& part = scene_.parts[p];
+            if (part_materials.contains(part.name)) {
+                const std::string key = "part_materials." + part.name;
+                part.material = material_named(string_at(part_materials, part.name.c_str(), key), key);
+            }
+        }
+    }
+
+    void check_part_material_names(const Json& part_materials) const {
+        for (const auto& [name, value] : part_materials.items()) {
+            if (name == "*") continue;
+            const bool found = std::any_of(scene_.parts.begin(), scene_.parts.end(),
+                                           [&](const Part& p) { return p.name == name; });
+            if (!found) fail("part_materials." + name, "no part has this name");
+        }
+    }
+
+    Transform read_transform(const Json& j, const std::string& where) const {
+        expect_object(j, where);
+        check_keys(j, where, {"translation", "rotation_axis_angle", "scale"});
+        Transform t;
+        if (j.contains("translation")) t.translation = vec3_at(j, "translation", where);
+        if (j.contains("rotation_axis_angle")) {
+            const std::vector<float> v = numbers(j["rotation_axis_angle"], join(where, "rotation_axis_angle"), 4);
+            const Vec3 axis(v[0], v[1], v[2]);
+            if (glm::length(axis) == 0 && v[3] != 0) fail(join(where, "rotation_axis_angle"), "the axis is zero");
+            if (v[3] != 0) t.rotation = glm::angleAxis(glm::radians(v[3]), glm::normalize(axis));
+        }
+        if (j.contains("scale")) {
+            const std::vector<float> s = numbers(j["scale"], join(where, "scale"));
+            if (s.size() == 1) t.scale = Vec3(s[0]);
+            else if (s.size() == 3) t.scale = Vec3(s[0], s[1], s[2]);
+            else fail(join(where, "scale"), "expected a number or 3 numbers");
+            if (!(t.scale.x > 0 && t.scale.y > 0 && t.scale.z > 0)) fail(join(where, "scale"), "must be positive");
+        }
+        return t;
+    }
+
+    void read_parts(const Json& parts, const Json& part_materials) {
+        if (!parts.is_array()) fail("parts", fmt::format("expected an array, got {}", parts.type_name()));
+        for (size_t i = 0; i < parts.size(); ++i) {
+            const std::string where = fmt::format("parts[{}]", i);
+            const Json& entry = expect_object(parts[i], where);
+            check_keys(entry, where, {"name", "obj", "gltf", "transform", "material"});
+            if (entry.contains("obj") == entry.contains("gltf")) fail(where, "give exactly one of `obj` and `gltf`");
+            // The entry's static transform is a node; the file's nodes hang below it.
+            SceneNode holder;
+            holder.rest = entry.contains("transform") ? read_transform(entry["transform"], where + ".transform") : Transform{};
+            const std::string name = entry.contains("name") ? string_at(entry, "name", where + ".name") : "";
+            const int holder_index = int(scene_.nodes.size());
+            const size_t first_part = scene_.parts.size();
+            if (entry.contains("obj")) {
+                const std::filesystem::path file = existing_file(entry["obj"], where + ".obj");
+                holder.name = name.empty() ? file.stem().string() : name;
+                scene_.nodes.push_back(holder);
+                Part part;
+                part.mesh = load_obj(file);
+                part.name = holder.name;
+                part.node = holder_index;
+                part.material = default_material_;
+                scene_.parts.push_back(std::move(part));
+            } else {
+                const std::filesystem::path file = existing_file(entry["gltf"], where + ".gltf");
+                holder.name = name.empty() ? file.stem().string() : name;
+                scene_.nodes.push_back(holder);
+                const size_t first_node = scene_.nodes.size();
+                load_gltf_into(file, scene_, default_material_);
+                for (size_t n = first_node; n < scene_.nodes.size(); ++n)
+                    if (scene_.nodes[n].parent < 0) scene_.nodes[n].parent = holder_index;
+                // A named entry names its part; several parts get "name/node".
+                const size_t added = scene_.parts.size() - first_part;
+                for (size_t p = first_part; p < scene_.parts.size() && !name.empty(); ++p)
+                    scene_.parts[p].name = added == 1 ? name : name + "/" + scene_.parts[p].name;
+            }
+            assign_materials(first_part, part_materials);
+            if (entry.contains("material")) {
+                const int m = material_named(string_at(entry, "material", where + ".material"), where + ".material");
+                for (size_t p = first_part; p < scene_.parts.size(); ++p) scene_.parts[p].material = m;
+            }
+        }
+    }
+
+    void read_environment(const Json& j) {
+        const std::string where = "environment";
+        expect_object(j, where);
+        check_keys(j, where, {"file", "resolution", "rotation", "second_file", "blend_period_seconds"});
+        EnvironmentDesc& env = scene_.environment;
+        if (!j.contains("file")) fail(where, "`file` is required");
+        env.file = existing_file(j["file"], "environment.file");
+        if (j.contains("resolution")) env.resolution = positive_int_at(j, "resolution", where);
+        if (j.contains("rotation")) {
+            const Json& r = expect_object(j["rotation"], "environment.rotation");
+            check_keys(r, "environment.rotation", {"axis", "degrees", "degrees_per_second"});
+            if (r.contains("axis")) {
+                env.rotation_axis = vec3_at(r, "axis", "environment.rotation");
+                if (glm::length(env.rotation_axis) == 0) fail("environment.rotation.axis", "the axis is zero");
+                env.rotation_axis = glm::normalize(env.rotation_axis);
+            }
+            if (r.contains("degrees")) env.rotation_degrees = number_at(r, "degrees", "environment.rotation");
+            if (r.contains("degrees_per_second"))
+                env.rotation_degrees_per_second = number_at(r, "degrees_per_second", "environment.rotation");
+        }
+        if (j.contains("second_file")) env.second_file = existing_file(j["second_file"], "environment.second_file");
+        if (j.contains("blend_period_seconds")) env.blend_period_seconds = positive_number_at(j, "blend_period_seconds", where);
+        if (!env.second_file.empty() && env.blend_period_seconds == 0)
+            fail("environment.blend_period_seconds", "required with `second_file`");
+    }
+
+    // {"times": [...], "<values_key>": [[x, y, z], ...]} → a linear track.
+    Vec3Track read_path(const Json& path, const std::vector<float>& times, const char* values_key,
+                        const std::string& where) const {
+        Vec3Track track;
+        track.times = times;
+        const Json& values = path.at(values_key);
+        const std::string key = join(where, values_key);
+        if (!values.is_array() || values.size() != times.size())
+            fail(key, fmt::format("expected an array of {} points (one per time)", times.size()));
+        for (size_t k = 0; k < values.size(); ++k) track.values.push_back(vec3(values[k], fmt::format("{}[{}]", key, k)));
+        return track;
+    }
+    std::vector<float> read_times(const Json& path, const std::string& where) const {
+        if (!path.contains("times")) fail(where, "`times` is required");
+        const std::vector<float> times = numbers(path["times"], join(where, "times"));
+        if (times.empty()) fail(join(where, "times"), "needs at least one time");
+        for (size_t k = 1; k < times.size(); ++k)
+            if (times[k] <= times[k - 1]) fail(join(where, "times"), "times must increase");
+        return times;
+    }
+
+    void read_lights(const Json& lights) {
+        if (!lights.is_array()) fail("lights", fmt::format("expected an array, got {}", lights.type_name()));
+        for (size_t i = 0; i < lights.size(); ++i) {
+            const std::string where = fmt::format("lights[{}]", i);
+            const Json& j = expect_object(lights[i], where);
+            check_keys(j, where, {"radius", "power", "position", "path"});
+            LocalLight light;
+            if (j.contains("radius")) light.radius = positive_number_at(j, "radius", where);
+            if (j.contains("power")) {
+                light.power = vec3_at(j, "power", where);
+                if (light.power.r < 0 || light.power.g < 0 || light.power.b < 0) fail(where + ".power", "must not be negative");
+            }
+            if (j.contains("position")) light.position = vec3_at(j, "position", where);
+            if (j.contains("path")) {
+                const Json& path = expect_object(j["path"], where + ".path");
+                check_keys(path, where + ".path", {"times", "positions"});
+                light.path = read_path(path, read_times(path, where + ".path"), "positions", where + ".path");
+                if (!j.contains("position")) light.position = light.path->values.front();
+            }
+            scene_.lights.push_back(light);
+        }
+    }
+
+    void read_camera(const Json& j) {
+        const std::string where = "camera";
+        expect_object(j, where);
+        check_keys(j, where, {"position", "target", "up", "fov_degrees", "width", "height", "path"});
+        Camera& c = scene_.camera;
+        if (j.contains("position")) c.position = vec3_at(j, "position", where);
+        if (j.contains("target")) c.target = vec3_at(j, "target", where);
+        if (j.contains("up")) c.up = vec3_at(j, "up", where);
+        if (j.contains("fov_degrees")) {
+            c.fov_y_degrees = positive_number_at(j, "fov_degrees", where);
+            if (c.fov_y_degrees >= 180) fail("camera.fov_degrees", "must be below 180");
+        }
+        if (j.contains("width")) c.width = positive_int_at(j, "width", where);
+        if (j.contains("height")) c.height = positive_int_at(j, "height", where);
+        if (j.contains("path")) {
+            const Json& path = expect_object(j["path"], "camera.path");
+            check_keys(path, "camera.path", {"times", "positions", "targets"});
+            const std::vector<float> times = read_times(path, "camera.path");
+            if (path.contains("positions")) c.position_path = read_path(path, times, "positions", "camera.path");
+            if (path.contains("targets")) c.target_path = read_path(path, times, "targets", "camera.path");
+        }
+        if (glm::length(c.position - c.target) == 0) fail("camera", "position and target coincide");
+    }
+
+    void read_animation(const Json& j) {
+        expect_object(j, "animation");
+        check_keys(j, "animation", {"start", "end", "fps"});
+        AnimationRange& a = scene_.animation;
+        if (j.contains("start")) a.start = number_at(j, "start", "animation");
+        if (j.contains("end")) a.end = number_at(j, "end", "animation");
+        if (j.contains("fps")) a.fps = positive_number_at(j, "fps", "animation");
+        if (a.end < a.start) fail("animation.end", fmt::format("{} is before start {}", a.end, a.start));
+    }
+
+    void read_precompute(const Json& j) {
+        expect_object(j, "precompute");
+        check_keys(j, "precompute", {"svdf", "ovdf"});
+        PrecomputeSettings& p = scene_.precompute;
+        if (j.contains("svdf")) {
+            const Json& s = expect_object(j["svdf"], "precompute.svdf");
+            const std::string w = "precompute.svdf";
+            check_keys(s, w, {"resolution", "clusters", "vectors", "supersampling"});
+            if (s.contains("resolution")) p.svdf_resolution = positive_int_at(s, "resolution", w);
+            if (s.contains("clusters")) p.svdf_clusters = positive_int_at(s, "clusters", w);
+            if (s.contains("vectors")) p.svdf_vectors = positive_int_at(s, "vectors", w);
+            if (s.contains("supersampling")) p.svdf_supersampling = positive_int_at(s, "supersampling", w);
+        }
+        if (j.contains("ovdf")) {
+            const Json& o = expect_object(j["ovdf"], "precompute.ovdf");
+            const std::string w = "precompute.ovdf";
+            check_keys(o, w, {"shells", "inner_radius", "outer_radius", "cube_resolution", "vdt_resolution", "vectors"});
+            if (o.contains("shells")) p.ovdf_shells = positive_int_at(o, "shells", w);
+            if (o.contains("inner_radius")) p.ovdf_inner_radius = positive_number_at(o, "inner_radius", w);
+            if (o.contains("outer_radius")) p.ovdf_outer_radius = positive_number_at(o, "outer_radius", w);
+            if (o.contains("cube_resolution")) p.ovdf_cube_resolution = positive_int_at(o, "cube_resolution", w);
+            if (o.contains("vdt_resolution")) p.ovdf_vdt_resolution = positive_int_at(o, "vdt_resolution", w);
+            if (o.contains("vectors")) p.ovdf_vectors = positive_int_at(o, "vectors", w);
+            if (p.ovdf_outer_radius <= p.ovdf_inner_radius)
+                fail("precompute.ovdf.outer_radius", "must be larger than inner_radius");
+        }
+    }
+
+    std::filesystem::path path_, dir_;
+    Scene scene_;
+    std::map<std::string, int> material_index_;
+    int default_material_ = 0;
+};
+
+// A bare mesh file: one part per mesh (node), a Lambert material, a framing camera.
+Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
+    Scene scene;
+    scene.source = path;
+    scene.name = path.stem().string();
+    scene.materials.push_back(builtin_default_material());
+    if (gltf) {
+        load_gltf_into(path, scene, 0);
+        if (scene.parts.empty()) throw_file_error(path, "no mesh node with triangles");
+    } else {
+        SceneNode node;
+        node.name = scene.name;
+        scene.nodes.push_back(node);
+        Part part;
+        part.mesh = load_obj(path);
+        part.name = scene.name;
+        part.node = 0;
+        scene.parts.push_back(std::move(part));
+    }
+    finish_scene(scene, false, false);
+    return scene;
+}
+
+}  // namespace
+
+Scene load_scene(const std::filesystem::path& path) {
+    if (!std::filesystem::exists(path)) throw_file_error(path, "no such file");
+    const std::string ext = lowercase_extension(path);
+    if (ext == ".json") return SceneFileReader(path).read();
+    if (ext == ".gltf" || ext == ".glb") return scene_from_mesh_file(path, true);
+    if (ext == ".obj") return scene_from_mesh_file(path, false);
+    throw_file_error(path, "unknown scene type '{}' (expected .json, .gltf, .glb or .obj)", ext);
+}
+
+}  // namespace rsl
