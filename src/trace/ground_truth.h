@@ -1,0 +1,94 @@
+#pragma once
+// The reference every error figure is measured against: direct lighting from
+// the whole environment map and every local light, with a shadow ray per
+// sample against all parts in their current poses (docs/TRUTH.md).
+//
+//   B(x, ω_o) = Σ_k L_k ρ(ω_k, ω_o) cos θ_k V(x, ω_k) Ω_k        (every cube-map texel k)
+//             + Σ_lights ∫_cone L_e ρ cos θ V dω                  (sphere lights)
+//
+// Cube-map texels carry their exact solid angles Ω_k; the environment's
+// rotation at t turns the texel directions (the map is not resampled). A sphere
+// light of radius a and power Φ is a uniform Lambertian emitter of radiance
+// L_e = Φ / (4π² a²), integrated over the cone it subtends with stratified
+// uniform-cone samples refined until two successive grids agree.
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "src/brdf/brdf.h"
+#include "src/core/envmap.h"
+#include "src/core/scene.h"
+#include "src/trace/posed_scene.h"
+#include "src/trace/progress.h"
+#include "src/trace/vertex_colors.h"
+
+namespace rsl {
+
+struct GroundTruthOptions {
+    // Sub-texel grid: S×S rays per texel, each with its own exact solid angle
+    // (midpoint rule on a finer grid of the same piecewise-constant map).
+    int texel_subdivision = 1;
+    bool environment = true;
+    bool local_lights = true;
+    // Sphere lights: grids of side 8, 16, 32, … up to light_max_side; stop
+    // when the luminance of two successive estimates differs by less than
+    // light_tolerance (relative).
+    float light_tolerance = 1e-3f;
+    int light_max_side = 64;
+};
+
+// The environment as the ground truth integrates it: one entry per (sub-)texel
+// with nonzero radiance, structure of arrays, directions already rotated.
+struct EnvironmentSamples {
+    std::vector<Vec3> directions;         // world space, unit
+    std::vector<Color> radiance_weights;  // L_k · Ω_k
+    size_t size() const { return directions.size(); }
+    static EnvironmentSamples from_cube(const CubeMap& map, const Mat3& rotation, int subdivision);
+};
+
+// Radiance of a uniform spherical emitter of radius a and RGB power Φ:
+// Φ = L · π · 4πa²  ⇒  L = Φ / (4π² a²).
+inline Color sphere_light_radiance(const LocalLight& light) {
+    return light.power / (4.0f * kPi * kPi * light.radius * light.radius);
+}
+
+class GroundTruth {
+public:
+    // `scene` must outlive this object. Builds one BVH per part and one BRDF
+    // per material; poses everything at t.
+    GroundTruth(const Scene& scene, const CubeMap& environment, float t, GroundTruthOptions options = {});
+
+    // Moves parts, environment, lights and camera to time t (no BVH rebuild).
+    void set_time(float t);
+    float time() const { return posed_.time(); }
+    const PosedScene& posed() const { return posed_; }
+    const Brdf& part_brdf(int part) const { return *materials_[scene_.parts[part].material]; }
+    Vec3 camera_position() const { return camera_; }
+    size_t environment_sample_count() const { return environment_.size(); }
+
+    // Outgoing radiance at x towards wo_world (unit, world space).
+    Color shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf& brdf) const;
+    // Every vertex of every part, towards the camera; all cores.
+    VertexColors shade_vertices(const ProgressCallback& progress = {}) const;
+    // Shadow rays traced so far by this object (all threads), for benchmarks.
+    uint64_t rays_traced() const { return rays_traced_.load(std::memory_order_relaxed); }
+
+private:
+    Color shade_environment(const SurfacePoint& x, const Vec3& origin, const Vec3& wo, const Brdf& brdf,
+                            uint64_t& rays) const;
+    Color shade_light(const SurfacePoint& x, const Vec3& origin, const Vec3& wo, const Brdf& brdf,
+                      const Vec3& center, float radius, const Color& radiance, uint64_t& rays) const;
+
+    const Scene& scene_;
+    CubeMap cube_;  // a copy: small (6N² colours) and it frees callers from lifetimes
+    GroundTruthOptions options_;
+    PosedScene posed_;
+    std::vector<std::shared_ptr<const Brdf>> materials_;
+    EnvironmentSamples environment_;
+    std::vector<Vec3> light_positions_;
+    Vec3 camera_{0};
+    mutable std::atomic<uint64_t> rays_traced_{0};
+};
+
+}  // namespace rsl

@@ -1,0 +1,53 @@
+#pragma once
+// Image formation shared by the ground truth and the RSL renderer, so that
+// images compare like for like: primary rays from the scene camera through a
+// regular S×S grid of sample positions in every pixel (S = 1: the pixel
+// center); a sample that hits a triangle takes a colour from the hit, the
+// pixel is the average over its samples (background counted as black unless a
+// background is given) and alpha is the covered fraction. EXR convention:
+// colour is premultiplied by coverage.
+#include <functional>
+
+#include "src/core/image.h"
+#include "src/core/scene.h"
+#include "src/trace/posed_scene.h"
+#include "src/trace/progress.h"
+#include "src/trace/vertex_colors.h"
+
+namespace rsl {
+
+// Pinhole camera at time t: row 0 at the top, vertical field of view from
+// Camera::fov_y_degrees, square pixels.
+struct PinholeCamera {
+    Vec3 eye{0}, forward{0, 0, -1}, right{1, 0, 0}, up{0, 1, 0};
+    float tan_half_fov_y = 0.36f;
+    int width = 640, height = 480;
+
+    static PinholeCamera at_time(const Camera& camera, float t, int width, int height);
+    // Unit direction through image position (px, py) in pixels: (0, 0) is the
+    // top-left corner of the image, (width, height) the bottom-right.
+    Vec3 direction(float px, float py) const;
+};
+
+struct ImageFormationOptions {
+    int samples_per_side = 1;  // S: S×S samples per pixel on a regular grid
+    bool opaque_background = false;
+    Color background{0};  // used when opaque_background: uncovered samples add this colour
+};
+
+// Colour of a primary-ray hit (called from worker threads).
+using HitShader = std::function<Color(const RayHit& hit, const Vec3& ray_direction)>;
+
+// Traces the image; every hit is coloured by `shade`. RGBA, all cores.
+Image trace_image(const PosedScene& scene, const PinholeCamera& camera, const ImageFormationOptions& options,
+                  const HitShader& shade, const ProgressCallback& progress = {});
+
+// Per-vertex colours interpolated with the hit's barycentrics.
+Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, const RayHit& hit);
+
+// The image of per-vertex colours (the like-for-like image of a vertex result).
+// `colors` must describe `scene`'s parts (checked).
+Image form_image(const PosedScene& scene, const PinholeCamera& camera, const VertexColors& colors,
+                 const ImageFormationOptions& options = {});
+
+}  // namespace rsl
