@@ -1,0 +1,190 @@
+// `rsl info FILE...`: what an environment map, mesh or scene file holds.
+// Other file kinds add themselves through RegisterInfoHandler (info.h).
+#include <algorithm>
+#include <cstdio>
+
+#include <fmt/core.h>
+
+#include "src/cli/command.h"
+#include "src/cli/info.h"
+#include "src/core/envmap.h"
+#include "src/core/error.h"
+#include "src/core/image.h"
+#include "src/core/scene.h"
+
+namespace rsl::cli {
+
+std::vector<InfoHandler>& info_handler_registry() {
+    static std::vector<InfoHandler> registry;
+    return registry;
+}
+
+std::string lowercase_extension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+namespace {
+
+std::string vec3_text(const Vec3& v) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", v.x, v.y, v.z); }
+std::string dvec3_text(const DVec3& v) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", v.x, v.y, v.z); }
+
+// ---- environment maps -----------------------------------------------------
+
+void print_environment(const std::filesystem::path& path) {
+    const Image image = read_hdr_image(path);
+    const char* layout = image.width == 2 * image.height ? "latitude-longitude"
+                         : image.height == 6 * image.width ? "cube (vertical strip)"
+                                                            : "unrecognized";
+    fmt::print("{}: environment map\n", path.string());
+    fmt::print("  image:             {} x {}, {} channels, {} layout\n", image.width, image.height, image.channels, layout);
+    constexpr int kResolution = 32;
+    const CubeMap cube = load_environment(path, kResolution);
+    fmt::print("  cube map:          6 x {} x {} texels\n", kResolution, kResolution);
+    const DVec3 energy = cube.energy();
+    fmt::print("  energy (∫L dω):    RGB {}\n", dvec3_text(energy));
+    if (image.width == 2 * image.height) fmt::print("  source energy:     RGB {}\n", dvec3_text(latlong_energy(image)));
+
+    int brightest = 0;
+    for (int k = 1; k < cube.texel_count(); ++k)
+        if (luminance(cube.radiance(k)) > luminance(cube.radiance(brightest))) brightest = k;
+    const Vec3 dir = cube.texel_direction(brightest);
+    const Color peak = cube.radiance(brightest);
+    fmt::print("  brightest texel:   direction {}, radiance {}\n", vec3_text(dir), vec3_text(peak));
+    const double total = luminance(Color(energy));
+    if (total > 0)
+        fmt::print("  its energy share:  {:.3g}% of the luminance in {:.3g}% of the sphere\n",
+                   100.0 * luminance(peak) * cube.solid_angle(brightest) / total,
+                   100.0 * cube.solid_angle(brightest) / (4 * kPi));
+}
+
+// ---- meshes and scenes ----------------------------------------------------
+
+void print_mesh_summary(const TriangleMesh& mesh, const char* indent) {
+    const Bounds b = mesh.bounds();
+    const BoundingSphere sphere = mesh.bounding_sphere();
+    fmt::print("{}vertices {}, triangles {}, degenerate triangles dropped {}\n", indent, mesh.vertex_count(),
+               mesh.triangle_count(), mesh.degenerate_dropped);
+    fmt::print("{}bounds {} .. {}, bounding sphere center {} radius {:.4g}\n", indent, vec3_text(b.lo), vec3_text(b.hi),
+               vec3_text(sphere.center), sphere.radius);
+}
+
+bool is_animated(const Scene& scene, int node) {
+    for (int n = node; n >= 0; n = scene.nodes[n].parent)
+        if (scene.nodes[n].translation || scene.nodes[n].rotation || scene.nodes[n].scale) return true;
+    return false;
+}
+
+void print_parts(const Scene& scene) {
+    size_t triangles = 0, dropped = 0;
+    for (const Part& p : scene.parts) {
+        triangles += p.mesh.triangle_count();
+        dropped += p.mesh.degenerate_dropped;
+    }
+    fmt::print("  parts:             {} ({} vertices, {} triangles, {} degenerate triangles dropped)\n",
+               scene.parts.size(), scene.vertex_count(), triangles, dropped);
+    for (size_t i = 0; i < scene.parts.size(); ++i) {
+        const Part& part = scene.parts[i];
+        const MaterialDesc& m = scene.materials.at(part.material);
+        const Vec3 origin(scene.part_transform_at(int(i), scene.animation.start)[3]);
+        fmt::print("    {:<16} {:>7} vertices {:>7} triangles  material {} ({}){}  at {}\n", part.name,
+                   part.mesh.vertex_count(), part.mesh.triangle_count(), m.name, m.model,
+                   is_animated(scene, part.node) ? "  animated" : "", vec3_text(origin));
+        print_mesh_summary(part.mesh, "      ");
+    }
+}
+
+void print_scene_body(const Scene& scene) {
+    print_parts(scene);
+    fmt::print("  materials:         {}\n", scene.materials.size());
+    for (const MaterialDesc& m : scene.materials) {
+        std::string params;
+        for (const auto& [key, values] : m.params) params += fmt::format(" {}={}", key, fmt::join(values, ","));
+        fmt::print("    {:<16} {}{}{}\n", m.name, m.model, params, m.file.empty() ? "" : " file " + m.file.string());
+    }
+    const EnvironmentDesc& env = scene.environment;
+    if (env.file.empty()) {
+        fmt::print("  environment:       none\n");
+    } else {
+        fmt::print("  environment:       {} (cube N = {}), rotation {}° + {}°/s about {}\n", env.file.string(),
+                   env.resolution, env.rotation_degrees, env.rotation_degrees_per_second, vec3_text(env.rotation_axis));
+        if (!env.second_file.empty())
+            fmt::print("                     blends to {} over {} s\n", env.second_file.string(), env.blend_period_seconds);
+    }
+    fmt::print("  lights:            {}\n", scene.lights.size());
+    for (const LocalLight& l : scene.lights)
+        fmt::print("    radius {:.4g}, power {} W, position {}{}\n", l.radius, vec3_text(l.power), vec3_text(l.position),
+                   l.path ? fmt::format(", path of {} keys", l.path->times.size()) : "");
+    const Camera& c = scene.camera;
+    fmt::print("  camera:            {} → {}, fov {}°, {} x {}{}\n", vec3_text(c.position), vec3_text(c.target),
+               c.fov_y_degrees, c.width, c.height, c.position_path || c.target_path ? ", keyed path" : "");
+    fmt::print("  animation:         {} .. {} s at {} fps\n", scene.animation.start, scene.animation.end,
+               scene.animation.fps);
+}
+
+void print_mesh_file(const std::filesystem::path& path) {
+    fmt::print("{}: mesh\n", path.string());
+    const Scene scene = load_scene(path);  // .obj: one part; glTF: one part per mesh node
+    fmt::print("  nodes:             {}\n", scene.nodes.size());
+    print_parts(scene);
+    if (scene.animation.end > scene.animation.start)
+        fmt::print("  animation:         {} .. {} s\n", scene.animation.start, scene.animation.end);
+}
+
+void print_scene_file(const std::filesystem::path& path) {
+    const Scene scene = load_scene(path);
+    fmt::print("{}: scene '{}'\n", path.string(), scene.name);
+    print_scene_body(scene);
+    const PrecomputeSettings& p = scene.precompute;
+    fmt::print("  precompute:        SVDF {}² x{} rays, {} clusters, {} vectors; OVDF {} shells {}..{} r, cube {}, VDT {}, {} vectors\n",
+               p.svdf_resolution, p.svdf_supersampling * p.svdf_supersampling, p.svdf_clusters, p.svdf_vectors,
+               p.ovdf_shells, p.ovdf_inner_radius, p.ovdf_outer_radius, p.ovdf_cube_resolution, p.ovdf_vdt_resolution,
+               p.ovdf_vectors);
+}
+
+bool has_extension(const std::filesystem::path& path, std::initializer_list<const char*> extensions) {
+    const std::string ext = lowercase_extension(path);
+    return std::any_of(extensions.begin(), extensions.end(), [&](const char* e) { return ext == e; });
+}
+
+RegisterInfoHandler environment_info({"environment", [](const auto& p) { return has_extension(p, {".exr", ".hdr"}); },
+                                      print_environment});
+RegisterInfoHandler mesh_info({"mesh", [](const auto& p) { return has_extension(p, {".obj", ".gltf", ".glb"}); },
+                               print_mesh_file});
+RegisterInfoHandler scene_info({"scene", [](const auto& p) { return has_extension(p, {".json"}); }, print_scene_file});
+
+// ---- the command ----------------------------------------------------------
+
+void run_info(const std::vector<std::filesystem::path>& files) {
+    size_t failed = 0;
+    for (const std::filesystem::path& file : files) {
+        const auto& handlers = info_handler_registry();
+        auto handler = std::find_if(handlers.begin(), handlers.end(), [&](const InfoHandler& h) { return h.accepts(file); });
+        try {
+            if (!std::filesystem::exists(file)) throw_file_error(file, "no such file");
+            if (handler == handlers.end()) throw_file_error(file, "unknown file type '{}'", lowercase_extension(file));
+            handler->print(file);
+        } catch (const Error& e) {
+            // Report every bad file, then fail once at the end.
+            std::fflush(stdout);
+            std::fprintf(stderr, "rsl: error: %s\n", e.what());
+            ++failed;
+        }
+    }
+    if (failed) throw_error("{} of {} files could not be read", failed, files.size());
+}
+
+RegisterCommand info_command(
+    {"info", "Print what a file holds (environment map, mesh, scene, ...)", 10, [](CLI::App& app) {
+         auto files = std::make_shared<std::vector<std::filesystem::path>>();
+         app.add_option("files", *files,
+                        "Files to describe: .exr/.hdr environment maps (size, layout, energy per channel, brightest "
+                        "direction), .obj/.gltf/.glb meshes (counts, bounds, degenerate triangles), .json scenes "
+                        "(parts, materials, environment, lights, camera, animation)")
+             ->required();
+         app.callback([files] { run_info(*files); });
+     }});
+
+}  // namespace
+}  // namespace rsl::cli
