@@ -1,0 +1,36 @@
+// `rsl assets`: generates the project's own assets (robot, kitchen, ground,
+// environments) so a fresh clone has everything the default scenes use.
+#include <fmt/core.h>
+
+#include "assets/generate/generate_all.h"
+#include "src/cli/command.h"
+
+namespace rsl::cli {
+namespace {
+
+void setup_assets(CLI::App& app) {
+    auto out = std::make_shared<std::string>("assets/generated");
+    auto force = std::make_shared<bool>(false);
+    app.add_option("--out", *out, "Folder to write the assets into")->capture_default_str();
+    app.add_flag("--force", *force, "Regenerate even when the folder's stamp matches this generator version");
+    app.footer(fmt::format(
+        "Writes robot.glb (12 parts, walk loop), ground.obj, kitchen.glb (5 parts), and sunsky/studio/overcast\n"
+        "lat-long environments as .exr with .png previews, then OUT/{} holding the generator version ({}).\n"
+        "Does nothing when that stamp is current. See assets/README.md.",
+        assets::kStampName, assets::kAssetsVersion));
+    app.callback([out, force] {
+        const assets::GenerateReport report = assets::generate_assets(*out, *force);
+        if (!report.regenerated) {
+            fmt::print("{}: up to date ({})\n", *out, assets::kAssetsVersion);
+            return;
+        }
+        for (const std::string& line : report.lines) fmt::print("{}/{}\n", *out, line);
+        fmt::print("{}: generated in {:.2f} s ({})\n", *out, report.seconds, assets::kAssetsVersion);
+    });
+}
+
+RegisterCommand assets_command({"assets", "Generate the project's own assets (robot, kitchen, environments)", 90,
+                                setup_assets});
+
+}  // namespace
+}  // namespace rsl::cli
