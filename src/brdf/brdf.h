@@ -2,8 +2,12 @@
 // BRDF models, shared by every renderer. ρ(ω_i, ω_o) is evaluated in the local
 // shading frame (z = normal, x = tangent for anisotropic models), *without*
 // the cosine: renderers fold in cos θ_i themselves.
+//
+// Models and their parameters are described in docs/BRDF.md; the concrete
+// classes are in analytic.h (closed-form models) and merl.h (measured).
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "src/core/math.h"
 #include "src/core/scene.h"
@@ -23,5 +27,11 @@ public:
 // Builds a model from a scene material; throws rsl::Error naming the material
 // and the bad parameter (unknown model, missing/out-of-range value).
 std::shared_ptr<const Brdf> make_brdf(const MaterialDesc& material);
+
+// The model names make_brdf accepts (the `model` key of a scene material).
+const std::vector<std::string>& brdf_model_names();
+
+// Mirror direction of ω about the normal (z) in the local frame.
+inline Vec3 mirror_about_normal(const Vec3& w) { return Vec3(-w.x, -w.y, w.z); }
 
 }  // namespace rsl

@@ -1,0 +1,109 @@
+#include "src/brdf/analytic.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rsl {
+namespace {
+
+bool above_horizon(const Vec3& wi, const Vec3& wo) { return wi.z > 0.0f && wo.z > 0.0f; }
+
+// Unit half vector, or nullopt-like zero when ω_i = −ω_o (impossible above the horizon).
+Vec3 half_vector(const Vec3& wi, const Vec3& wo) { return glm::normalize(wi + wo); }
+
+}  // namespace
+
+Color LambertBrdf::eval(const Vec3& wi, const Vec3& wo) const {
+    return above_horizon(wi, wo) ? albedo_ * kInvPi : Color(0.0f);
+}
+
+PhongBrdf::PhongBrdf(const Color& kd, const Color& ks, float exponent)
+    : diffuse_(kd * kInvPi), specular_(ks * ((exponent + 2.0f) / (2.0f * kPi))), exponent_(exponent) {}
+
+Color PhongBrdf::eval(const Vec3& wi, const Vec3& wo) const {
+    if (!above_horizon(wi, wo)) return Color(0.0f);
+    const float cos_alpha = std::max(glm::dot(wi, mirror_about_normal(wo)), 0.0f);
+    return diffuse_ + specular_ * std::pow(cos_alpha, exponent_);
+}
+
+double BlinnPhongBrdf::normalization(double n) {
+    // Albedo of cos^n θ_h at normal view: 2π ∫ cos^n(θ/2) cosθ sinθ dθ over [0, π/2]
+    // = 2π · 4 ∫_{1/√2}^{1} u^{n+1} (2u² − 1) du (u = cos(θ/2)), in closed form.
+    const double s = std::sqrt(0.5);
+    const double integral =
+        4.0 * (2.0 * (1.0 - std::pow(s, n + 4.0)) / (n + 4.0) - (1.0 - std::pow(s, n + 2.0)) / (n + 2.0));
+    return 1.0 / (2.0 * std::numbers::pi * integral);
+}
+
+BlinnPhongBrdf::BlinnPhongBrdf(const Color& kd, const Color& ks, float exponent)
+    : diffuse_(kd * kInvPi), specular_(ks * static_cast<float>(normalization(exponent))), exponent_(exponent) {}
+
+Color BlinnPhongBrdf::eval(const Vec3& wi, const Vec3& wo) const {
+    if (!above_horizon(wi, wo)) return Color(0.0f);
+    const float cos_h = std::max(half_vector(wi, wo).z, 0.0f);
+    return diffuse_ + specular_ * std::pow(cos_h, exponent_);
+}
+
+CookTorranceBrdf::CookTorranceBrdf(MicrofacetDistribution distribution, const Color& kd, const Color& f0,
+                                   float roughness)
+    : distribution_(distribution), kd_over_pi_(kd * kInvPi), f0_(f0), alpha_(roughness) {}
+
+std::string CookTorranceBrdf::model() const {
+    return distribution_ == MicrofacetDistribution::Beckmann ? "cook_torrance_beckmann" : "cook_torrance_ggx";
+}
+
+float CookTorranceBrdf::distribution(float cos_h) const {
+    if (cos_h <= 0.0f) return 0.0f;
+    const float c2 = cos_h * cos_h, a2 = alpha_ * alpha_;
+    if (distribution_ == MicrofacetDistribution::Beckmann) {
+        const float tan2 = (1.0f - c2) / c2;
+        return std::exp(-tan2 / a2) / (kPi * a2 * c2 * c2);
+    }
+    const float denom = c2 * (a2 - 1.0f) + 1.0f;
+    return a2 / (kPi * denom * denom);
+}
+
+float CookTorranceBrdf::smith_lambda(float cos_theta) const {
+    const float c2 = cos_theta * cos_theta;
+    const float tan2 = std::max(1.0f - c2, 0.0f) / c2;
+    if (tan2 == 0.0f) return 0.0f;
+    if (distribution_ == MicrofacetDistribution::Beckmann) {
+        // Exact Beckmann Λ (Walter et al. 2007): a = 1 / (α tanθ).
+        const float a = 1.0f / (alpha_ * std::sqrt(tan2));
+        if (a > 8.0f) return 0.0f;  // erf(a) = 1 and exp(−a²) ≈ 1e-28: Λ underflows to 0
+        return 0.5f * (std::erf(a) - 1.0f) + std::exp(-a * a) / (2.0f * a * std::sqrt(kPi));
+    }
+    return 0.5f * (std::sqrt(1.0f + alpha_ * alpha_ * tan2) - 1.0f);
+}
+
+Color CookTorranceBrdf::fresnel(float cos_theta) const {
+    const float m = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
+    const float m2 = m * m;
+    return f0_ + (Color(1.0f) - f0_) * (m2 * m2 * m);
+}
+
+Color CookTorranceBrdf::eval(const Vec3& wi, const Vec3& wo) const {
+    if (!above_horizon(wi, wo)) return Color(0.0f);
+    const Vec3 h = half_vector(wi, wo);
+    const float g = 1.0f / (1.0f + smith_lambda(wi.z) + smith_lambda(wo.z));
+    const Color specular = fresnel(glm::dot(wi, h)) * (distribution(h.z) * g / (4.0f * wi.z * wo.z));
+    const Color diffuse = kd_over_pi_ * (Color(1.0f) - fresnel(wi.z)) * (Color(1.0f) - fresnel(wo.z));
+    return diffuse + specular;
+}
+
+WardBrdf::WardBrdf(const Color& kd, const Color& ks, float alpha_x, float alpha_y, bool isotropic_model)
+    : diffuse_(kd * kInvPi),
+      specular_(ks / (kPi * alpha_x * alpha_y)),
+      inv_ax2_(1.0f / (alpha_x * alpha_x)),
+      inv_ay2_(1.0f / (alpha_y * alpha_y)),
+      isotropic_(isotropic_model) {}
+
+Color WardBrdf::eval(const Vec3& wi, const Vec3& wo) const {
+    if (!above_horizon(wi, wo)) return Color(0.0f);
+    const Vec3 h = wi + wo;  // unnormalized: the exponent is scale-invariant, h·h / h_z⁴ is not
+    const float hz2 = h.z * h.z;
+    const float exponent = -(h.x * h.x * inv_ax2_ + h.y * h.y * inv_ay2_) / hz2;
+    return diffuse_ + specular_ * (std::exp(exponent) * glm::dot(h, h) / (hz2 * hz2));
+}
+
+}  // namespace rsl

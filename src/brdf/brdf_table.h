@@ -1,0 +1,133 @@
+#pragma once
+// BRDF summed-area tables (RSL paper §4.2; frames and measure of DESIGN.md).
+//
+// A table holds, for each tabulated view direction (a "slice"), the texel
+// averages of ρ·cosθ_i on the equal-area N×N grid of light directions
+// (TexelSampler) and their summed-area table. Layout (docs/BRDF.md):
+//   isotropic models: V slices in the VIEW-ALIGNED frame (the view has azimuth
+//     0, i.e. lies in the +y half of the y-z plane; see to_view_aligned), at
+//     view plane radii |p(ω_o)| = (k + ½)/V, k = 0..V−1 (a 3D table);
+//   anisotropic models: V×V slices in the TANGENT frame, one per texel center
+//     of a V×V grid of view directions (a 4D table); grid points outside the
+//     disk use the direction at radius (V − ½)/V with the same azimuth, so the
+//     bilinear view interpolation is defined up to the horizon.
+//
+// SAT entry (a, b), 0 ≤ a, b ≤ N, is the sum of the texels (i, j) with i < a,
+// j < b: it sits on texel CORNERS. Bilinear interpolation between corners is
+// then the exact integral of the piecewise-constant table, so a square average
+// is exact for the table, continuous in center and size, and exact to float
+// precision for texel-aligned squares. Sums are accumulated in double and
+// stored in float, by default minus the slice's mean texel value times the
+// corner's area (Hensley et al. 2005), which keeps stored values small.
+#include <cstddef>
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "src/brdf/brdf.h"
+#include "src/core/hemisphere.h"
+
+namespace rsl {
+
+enum class SatStorage {
+    Float,            // S(a, b) in float
+    FloatMeanOffset,  // S(a, b) − μ·a·b in float, μ the slice's mean texel (per channel)
+};
+
+struct BrdfTableOptions {
+    int resolution = 32;             // N: light directions on the N×N equal-area grid
+    int view_samples = 32;           // V: isotropic V polar samples, anisotropic V×V directions
+    int interior_supersampling = 2;  // sub-samples per texel side inside the disk
+    int edge_supersampling = 8;      // ... on texels the horizon crosses
+    SatStorage storage = SatStorage::FloatMeanOffset;
+};
+
+// A batch of square lookups for one light and many vertices (structure of
+// arrays). Centers and views are in the table's frame; for isotropic tables
+// only view_z (cos θ_o) is read and view_x/view_y may be null.
+struct SquareQueries {
+    const float* center_x = nullptr;
+    const float* center_y = nullptr;
+    const float* half_edge = nullptr;  // per query, or null: uniform_half_edge for all
+    float uniform_half_edge = 0.0f;
+    const float* view_x = nullptr;
+    const float* view_y = nullptr;
+    const float* view_z = nullptr;
+    size_t count = 0;
+};
+struct ColorOutputs {
+    float* r = nullptr;
+    float* g = nullptr;
+    float* b = nullptr;
+};
+
+class BrdfTable {
+public:
+    // Tabulates `brdf` (multi-threaded over slices). The table does not keep the BRDF.
+    static std::shared_ptr<const BrdfTable> build(const Brdf& brdf, const BrdfTableOptions& options = {});
+
+    bool isotropic() const { return isotropic_; }
+    const BrdfTableOptions& options() const { return options_; }
+    const PlaneGrid& grid() const { return grid_; }
+    int slice_count() const { return static_cast<int>(slice_views_.size()); }
+    // The view direction slice s was tabulated for (table frame).
+    const Vec3& slice_view(int s) const { return slice_views_[s]; }
+    // The tabulated texel average of ρ·cos, texel (i, j) of slice s.
+    Color texel(int s, int i, int j) const { return texels_[static_cast<size_t>(s) * grid_.size() + grid_.index(i, j)]; }
+
+    // Average of ρ·cos over the axis-aligned square of center `center` and
+    // half-edge `half_edge` (plane units, table frame) for view direction `view`
+    // (table frame; iso tables read only view.z). The parts of the square
+    // outside [−1, 1]² count as 0; the average is over the full square area.
+    // Views are interpolated linearly (iso) / bilinearly (aniso) between slices;
+    // views below the horizon are clamped to it.
+    Color square_average(const Vec2& center, float half_edge, const Vec3& view) const;
+    // The same for one slice, without view interpolation.
+    Color slice_square_average(int s, const Vec2& center, float half_edge) const;
+    // Batched square_average: out[k] for queries k = 0..count−1. No allocation;
+    // split large batches across threads at the call site.
+    void square_average_batch(const SquareQueries& queries, const ColorOutputs& out) const;
+
+    // Raw storage (for the GL uploader): per slice (N+1)² corners × RGB floats,
+    // row b, column a at ((s·(N+1) + b)·(N+1) + a)·3; add offset(s)·a·b per
+    // channel to get S(a, b) (offsets are 0 with SatStorage::Float).
+    const std::vector<float>& sat_data() const { return sat_; }
+    const Color& offset(int s) const { return offsets_[s]; }
+    size_t memory_bytes() const;
+
+private:
+    struct Taps;
+    struct ViewWeights {
+        int slice[4];
+        float weight[4];
+        int count;
+    };
+    BrdfTable() = default;
+    Taps taps(float cx, float cy, float h) const;
+    Color slice_integral(int s, const Taps& t) const;
+    ViewWeights view_weights(float vx, float vy, float vz) const;
+    void store_slice(int s, const Color* texels);
+
+    bool isotropic_ = true;
+    BrdfTableOptions options_;
+    PlaneGrid grid_;
+    std::vector<Vec3> slice_views_;
+    std::vector<Color> texels_;  // slice-major texel averages
+    std::vector<float> sat_;
+    std::vector<Color> offsets_;
+};
+
+// The view-aligned frame of isotropic tables: rotates local direction w about
+// the normal so that the view `wo` gets azimuth 0 (φ from +y towards +x, as in
+// hemisphere.h). A view along the normal leaves w unchanged.
+inline Vec3 to_view_aligned(const Vec3& w, const Vec3& wo) {
+    const float len2 = wo.x * wo.x + wo.y * wo.y;
+    if (len2 < 1e-16f) return w;
+    const float s = 1.0f / std::sqrt(len2);
+    const float sx = wo.x * s, cy = wo.y * s;  // sin φ_o, cos φ_o
+    // New axes: y' = (sin φ, cos φ, 0), x' = y' × z = (cos φ, −sin φ, 0).
+    return Vec3(w.x * cy - w.y * sx, w.x * sx + w.y * cy, w.z);
+}
+
+}  // namespace rsl
