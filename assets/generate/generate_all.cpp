@@ -93,7 +93,7 @@ GenerateReport generate_assets(const fs::path& dir, bool force) {
             note(fmt::format("studio.exr/.png: {}x{} lat-long, three softboxes", kEnvironmentWidth, kEnvironmentHeight));
         },
         [&] {
-            write_environment(dir, "overcast", make_overcast(), 0.5f);
+            write_environment(dir, "overcast", make_overcast(), -0.5f);
             note(fmt::format("overcast.exr/.png: {}x{} lat-long, CIE overcast sky", kEnvironmentWidth,
                              kEnvironmentHeight));
         });
