@@ -5,6 +5,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
@@ -109,7 +110,8 @@ public:
 
         if (root.contains("gltf")) {
             const size_t first = scene_.parts.size();
-            load_gltf_into(existing_file(root["gltf"], "gltf"), scene_, default_material_);
+            const std::filesystem::path file = existing_file(root["gltf"], "gltf");
+            nested([&] { load_gltf_into(file, scene_, default_material_); }, "gltf");
             assign_materials(first, part_materials);
         }
         if (root.contains("parts")) read_parts(root["parts"], part_materials);
@@ -129,6 +131,17 @@ private:
     [[noreturn]] void fail(const std::string& key, const std::string& message) const {
         if (key.empty()) throw_file_error(path_, "{}", message);
         throw_file_error(path_, "{}: {}", key, message);
+    }
+
+    // Runs a loader of a file the scene names; its error (which names that
+    // file) is prefixed with the scene file and the key.
+    template <typename F>
+    std::invoke_result_t<F> nested(F&& load, const std::string& key) const {
+        try {
+            return load();
+        } catch (const Error& e) {
+            fail(key, e.what());
+        }
     }
 
     Json parse_file() const {
@@ -319,7 +332,7 @@ private:
                 holder.name = name.empty() ? file.stem().string() : name;
                 scene_.nodes.push_back(holder);
                 Part part;
-                part.mesh = load_obj(file);
+                part.mesh = nested([&] { return load_obj(file); }, where + ".obj");
                 part.name = holder.name;
                 part.node = holder_index;
                 part.material = default_material_;
@@ -329,7 +342,7 @@ private:
                 holder.name = name.empty() ? file.stem().string() : name;
                 scene_.nodes.push_back(holder);
                 const size_t first_node = scene_.nodes.size();
-                load_gltf_into(file, scene_, default_material_);
+                nested([&] { load_gltf_into(file, scene_, default_material_); }, where + ".gltf");
                 for (size_t n = first_node; n < scene_.nodes.size(); ++n)
                     if (scene_.nodes[n].parent < 0) scene_.nodes[n].parent = holder_index;
                 // A named entry names its part; several parts get "name/node".
