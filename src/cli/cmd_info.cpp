@@ -61,11 +61,9 @@ void print_environment(const std::filesystem::path& path) {
 
 // ---- meshes and scenes ----------------------------------------------------
 
-void print_mesh_summary(const TriangleMesh& mesh, const char* indent) {
+void print_mesh_bounds(const TriangleMesh& mesh, const char* indent) {
     const Bounds b = mesh.bounds();
     const BoundingSphere sphere = mesh.bounding_sphere();
-    fmt::print("{}vertices {}, triangles {}, degenerate triangles dropped {}\n", indent, mesh.vertex_count(),
-               mesh.triangle_count(), mesh.degenerate_dropped);
     fmt::print("{}bounds {} .. {}, bounding sphere center {} radius {:.4g}\n", indent, vec3_text(b.lo), vec3_text(b.hi),
                vec3_text(sphere.center), sphere.radius);
 }
@@ -88,10 +86,13 @@ void print_parts(const Scene& scene) {
         const Part& part = scene.parts[i];
         const MaterialDesc& m = scene.materials.at(part.material);
         const Vec3 origin(scene.part_transform_at(int(i), scene.animation.start)[3]);
-        fmt::print("    {:<16} {:>7} vertices {:>7} triangles  material {} ({}){}  at {}\n", part.name,
-                   part.mesh.vertex_count(), part.mesh.triangle_count(), m.name, m.model,
+        const std::string dropped = part.mesh.degenerate_dropped
+                                        ? fmt::format(" ({} degenerate dropped)", part.mesh.degenerate_dropped)
+                                        : "";
+        fmt::print("    {:<16} {:>7} vertices {:>7} triangles{}  material {} ({}){}  origin at {}\n", part.name,
+                   part.mesh.vertex_count(), part.mesh.triangle_count(), dropped, m.name, m.model,
                    is_animated(scene, part.node) ? "  animated" : "", vec3_text(origin));
-        print_mesh_summary(part.mesh, "      ");
+        print_mesh_bounds(part.mesh, "      ");
     }
 }
 
