@@ -88,9 +88,16 @@ Vec3 RegionStats::energy_centroid() const {
 void SquareFitter::gather(std::span<const FitTexel> texels, const RegionStats& stats, const Frame& frame,
                           std::span<const int> a, std::span<const int> b) {
     const size_t n = a.size() + b.size();
-    for (auto* v : {&x_, &y_, &side_, &inv_side_, &weight_, &omega_}) v->resize(n);
-    for (auto& v : u_) v.resize(n);
-    for (auto& v : v_) v.resize(n);
+    padded_count_ = (n + kLanes - 1) / kLanes * kLanes;
+    for (auto* v : {&x_, &y_, &side_, &inv_side_, &weight_, &omega_}) v->resize(padded_count_);
+    for (auto& v : u_) v.resize(padded_count_);
+    for (auto& v : v_) v.resize(padded_count_);
+    // Padding texels weigh nothing and cover nothing.
+    for (size_t k = n; k < padded_count_; ++k) {
+        x_[k] = y_[k] = weight_[k] = omega_[k] = 0.0f;
+        side_[k] = inv_side_[k] = 1.0f;
+        for (size_t j = 0; j < kTurns.size(); ++j) u_[j][k] = v_[j][k] = 0.0f;
+    }
     energy_norm2_ = glm::dot(stats.energy, stats.energy);
     squared_radiance_ = stats.squared_radiance;
     solid_angle_ = stats.solid_angle;
@@ -121,8 +128,9 @@ void SquareFitter::gather(std::span<const FitTexel> texels, const RegionStats& s
     }
 }
 
+// The hot loop of the fit (rsl_lightfit builds with -fno-math-errno: sqrt's
+// errno path would keep it from vectorizing).
 double SquareFitter::evaluate(float r, Vec2 offset) const {
-    const size_t n = x_.size();
     const float h = r / kSqrt2;  // half-edge of the square
     // A box far smaller than the disk is covered along the tangent direction
     // once r exceeds a few sides; for tiny disks this factor makes the covered
@@ -133,29 +141,35 @@ double SquareFitter::evaluate(float r, Vec2 offset) const {
         ou[j] = offset.x * kTurns[j].cos + offset.y * kTurns[j].sin;
         ov[j] = -offset.x * kTurns[j].sin + offset.y * kTurns[j].cos;
     }
-    double covered_weight = 0, disk_overlap = 0;
     const float* u0 = u_[0].data(); const float* u1 = u_[1].data();
     const float* u2 = u_[2].data(); const float* u3 = u_[3].data();
     const float* v0 = v_[0].data(); const float* v1 = v_[1].data();
     const float* v2 = v_[2].data(); const float* v3 = v_[3].data();
-    // Chunks keep the float partial sums short before they go into doubles.
-    constexpr size_t kChunk = 256;
-    for (size_t start = 0; start < n; start += kChunk) {
-        const size_t end = std::min(n, start + kChunk);
-        float square_sum = 0, disk_sum = 0;
-        for (size_t k = start; k < end; ++k) {
-            const float s = side_[k], is = inv_side_[k];
-            const float cover = box_overlap(std::abs(u0[k] - ou[0]), h, s, is) * box_overlap(std::abs(v0[k] - ov[0]), h, s, is) +
-                                box_overlap(std::abs(u1[k] - ou[1]), h, s, is) * box_overlap(std::abs(v1[k] - ov[1]), h, s, is) +
-                                box_overlap(std::abs(u2[k] - ou[2]), h, s, is) * box_overlap(std::abs(v2[k] - ov[2]), h, s, is) +
-                                box_overlap(std::abs(u3[k] - ou[3]), h, s, is) * box_overlap(std::abs(v3[k] - ov[3]), h, s, is);
-            square_sum += weight_[k] * cover;
-            const float dx = x_[k] - offset.x, dy = y_[k] - offset.y;
-            const float radius = std::sqrt(dx * dx + dy * dy);
-            disk_sum += omega_[k] * box_overlap(radius, r, s, is) * std::min(1.0f, tangential_scale * is);
-        }
-        covered_weight += square_sum;
-        disk_overlap += disk_sum;
+    const float *x = x_.data(), *y = y_.data(), *side = side_.data(), *inv_side = inv_side_.data();
+    const float *weight = weight_.data(), *omega = omega_.data();
+    // kLanes independent float sums (the arrays are padded to a multiple of
+    // kLanes with zero weights) let the compiler vectorize the loop; they go
+    // into doubles every kFlush texels so float sums stay short.
+    constexpr size_t kFlush = 32 * kLanes;
+    double covered_weight = 0, disk_overlap = 0;
+    for (size_t start = 0; start < padded_count_; start += kFlush) {
+        const size_t end = std::min(padded_count_, start + kFlush);
+        float square_sum[kLanes] = {}, disk_sum[kLanes] = {};
+        for (size_t base = start; base < end; base += kLanes)
+            for (size_t lane = 0; lane < kLanes; ++lane) {
+                const size_t k = base + lane;
+                const float s = side[k], is = inv_side[k];
+                const float cover =
+                    box_overlap(std::abs(u0[k] - ou[0]), h, s, is) * box_overlap(std::abs(v0[k] - ov[0]), h, s, is) +
+                    box_overlap(std::abs(u1[k] - ou[1]), h, s, is) * box_overlap(std::abs(v1[k] - ov[1]), h, s, is) +
+                    box_overlap(std::abs(u2[k] - ou[2]), h, s, is) * box_overlap(std::abs(v2[k] - ov[2]), h, s, is) +
+                    box_overlap(std::abs(u3[k] - ou[3]), h, s, is) * box_overlap(std::abs(v3[k] - ov[3]), h, s, is);
+                square_sum[lane] += weight[k] * cover;
+                const float dx = x[k] - offset.x, dy = y[k] - offset.y;
+                const float radius = std::sqrt(dx * dx + dy * dy);
+                disk_sum[lane] += omega[k] * box_overlap(radius, r, s, is) * std::min(1.0f, tangential_scale * is);
+            }
+        for (size_t lane = 0; lane < kLanes; ++lane) covered_weight += square_sum[lane], disk_overlap += disk_sum[lane];
     }
     covered_weight *= 1.0 / kTurns.size();
     const double r2 = double(r) * r;

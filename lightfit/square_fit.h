@@ -102,6 +102,8 @@ private:
     // box side and its inverse, weight E·L_k Ω_k, solid angle.
     std::vector<float> x_, y_, side_, inv_side_, weight_, omega_;
     std::array<std::vector<float>, kFitTurns.size()> u_, v_;
+    static constexpr size_t kLanes = 8;  // the SoA arrays are padded to a multiple of this
+    size_t padded_count_ = 0;
     float min_side_ = 0, max_side_ = 0, max_radius_ = 0;
 };
 
