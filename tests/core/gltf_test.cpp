@@ -5,6 +5,8 @@
 
 #include <cstring>
 #include <fstream>
+
+#include <unistd.h>
 #include <regex>
 #include <sstream>
 
@@ -20,8 +22,14 @@ using Json = nlohmann::json;
 
 namespace {
 
+// Per-process scratch folders (several builds may run the suite at once),
+// removed when the test program exits.
 std::filesystem::path temp_dir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / "rsl_gltf_test" / name;
+    static const struct Scratch {
+        std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("rsl_gltf_test_{}", ::getpid());
+        ~Scratch() { std::error_code ignored; std::filesystem::remove_all(dir, ignored); }
+    } scratch;
+    const auto dir = scratch.dir / name;
     std::filesystem::create_directories(dir);
     return dir;
 }

@@ -2,6 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+
+#include <unistd.h>
 #include <random>
 
 #include "src/core/error.h"
@@ -11,10 +13,15 @@ using namespace rsl;
 
 namespace {
 
+// Per-process scratch folder (several builds may run the suite at once),
+// removed when the test program exits.
 std::filesystem::path temp_dir() {
-    const auto dir = std::filesystem::temp_directory_path() / "rsl_mesh_test";
-    std::filesystem::create_directories(dir);
-    return dir;
+    static const struct Scratch {
+        std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("rsl_mesh_test_{}", ::getpid());
+        Scratch() { std::filesystem::create_directories(dir); }
+        ~Scratch() { std::error_code ignored; std::filesystem::remove_all(dir, ignored); }
+    } scratch;
+    return scratch.dir;
 }
 
 std::filesystem::path write_file(const std::string& name, const std::string& text) {

@@ -3,6 +3,8 @@
 
 #include <cstdlib>
 #include <fstream>
+
+#include <unistd.h>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -14,8 +16,14 @@ using namespace rsl;
 
 namespace {
 
+// Per-process scratch folders (several builds may run the suite at once),
+// removed when the test program exits.
 std::filesystem::path temp_dir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / "rsl_scene_test" / name;
+    static const struct Scratch {
+        std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("rsl_scene_test_{}", ::getpid());
+        ~Scratch() { std::error_code ignored; std::filesystem::remove_all(dir, ignored); }
+    } scratch;
+    const auto dir = scratch.dir / name;
     std::filesystem::create_directories(dir);
     return dir;
 }
