@@ -24,6 +24,11 @@ constexpr float kUpperArmLength = 0.28f;
 constexpr float kForearmLength = 0.25f;
 constexpr float kShoulderWidth = 0.27f;
 constexpr float kFootBelowAnkle = 0.08f;  // ankle to sole
+constexpr float kAnkleRadius = 0.045f;
+// The foot: a rounded box under the ankle, toes forward (+Z), in the shin's frame.
+constexpr Vec3 kFootHalfExtents(0.055f, 0.04f, 0.12f);
+constexpr float kFootRounding = 0.035f;
+constexpr Vec3 kFootCenter(0, -kShinLength - (kFootBelowAnkle - 0.04f), 0.05f);
 
 float radians(float degrees) { return degrees * kPi / 180.0f; }
 Quat about(Vec3 axis, float degrees) { return glm::angleAxis(radians(degrees), axis); }
@@ -82,10 +87,8 @@ TriangleMesh thigh_mesh() {
 }
 
 TriangleMesh shin_mesh() {
-    TriangleMesh m = hanging_limb(0.06f, 0.045f, kShinLength, kLegSpacing);
-    // The foot: sole 8 cm below the ankle, toes forward (+Z).
-    append_mesh(m, placed(rounded_box(Vec3(0.055f, 0.04f, 0.12f), 0.035f, kLegSpacing),
-                          Vec3(0, -kShinLength - (kFootBelowAnkle - 0.04f), 0.05f)));
+    TriangleMesh m = hanging_limb(0.06f, kAnkleRadius, kShinLength, kLegSpacing);
+    append_mesh(m, placed(rounded_box(kFootHalfExtents, kFootRounding, kLegSpacing), kFootCenter));
     return m;
 }
 
@@ -101,12 +104,19 @@ float knee_degrees(float p) {
     return 5.0f + 45.0f * swing * swing;
 }
 
-// Height of the hip joints above the lowest sole, from the legs' pose: the
-// body rides on whichever leg reaches lower (the stance leg), which gives the
-// bob of a real walk, twice per stride.
+// How far one leg reaches below its hip joint in a pose: the body rides on
+// whichever leg reaches lower (the stance leg), which gives the bob of a real
+// walk, twice per stride. The foot's rounded box is lowest at a corner of its
+// core box less the rounding radius; the ankle ball is checked too.
 float leg_reach(float p) {
-    const float hip = radians(hip_degrees(p)), knee = radians(knee_degrees(p));
-    return kThighLength * std::cos(hip) + kShinLength * std::cos(hip + knee) + kFootBelowAnkle;
+    const Quat hip = about(kX, hip_degrees(p)), knee = about(kX, knee_degrees(p));
+    const auto below_hip = [&](Vec3 in_shin) { return -(hip * (Vec3(0, -kThighLength, 0) + knee * in_shin)).y; };
+    float reach = below_hip(Vec3(0, -kShinLength, 0)) + kAnkleRadius;
+    const Vec3 core = kFootHalfExtents - kFootRounding;
+    for (float sy : {-1.0f, 1.0f})
+        for (float sz : {-1.0f, 1.0f})
+            reach = std::max(reach, below_hip(kFootCenter + Vec3(0, sy * core.y, sz * core.z)) + kFootRounding);
+    return reach;
 }
 
 constexpr float kHipBelowTorso = 0.02f;  // hip joints relative to the torso node
