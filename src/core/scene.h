@@ -1,7 +1,7 @@
 #pragma once
 // A dynamic scene: rigid parts (from glTF nodes or OBJ files) with animation,
 // an environment map with its rotation, materials, local lights, a camera.
-// Loaded from a JSON scene file (schema in README.md) or from a single mesh.
+// Loaded from a JSON scene file (schema in docs/SCENE_FORMAT.md) or from a single mesh.
 #include <filesystem>
 #include <map>
 #include <optional>
