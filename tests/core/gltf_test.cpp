@@ -5,10 +5,10 @@
 
 #include <cstring>
 #include <fstream>
-
-#include <unistd.h>
 #include <regex>
 #include <sstream>
+
+#include <unistd.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>

@@ -2,9 +2,9 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <random>
 
 #include <unistd.h>
-#include <random>
 
 #include "src/core/error.h"
 #include "src/core/mesh.h"

@@ -3,9 +3,9 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <random>
 
 #include <unistd.h>
-#include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 
