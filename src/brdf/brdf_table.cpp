@@ -176,11 +176,13 @@ BrdfTable::ViewWeights BrdfTable::view_weights(float vx, float vy, float vz) con
 
 Color BrdfTable::slice_square_average(int s, const Vec2& center, float half_edge) const {
     const Taps t = taps(center.x, center.y, half_edge);
+    if (t.clipped_area <= 0.0f) return Color(0.0f);
     return slice_integral(s, t) * t.inv_full_area;
 }
 
 Color BrdfTable::square_average(const Vec2& center, float half_edge, const Vec3& view) const {
     const Taps t = taps(center.x, center.y, half_edge);
+    if (t.clipped_area <= 0.0f) return Color(0.0f);  // entirely outside the table (FMA would leave ±ulp residues)
     const ViewWeights vw = view_weights(view.x, view.y, view.z);
     Color sum(0.0f);
     for (int k = 0; k < vw.count; ++k) sum += vw.weight[k] * slice_integral(vw.slice[k], t);
@@ -191,6 +193,10 @@ void BrdfTable::square_average_batch(const SquareQueries& q, const ColorOutputs&
     for (size_t k = 0; k < q.count; ++k) {
         const float h = q.half_edge ? q.half_edge[k] : q.uniform_half_edge;
         const Taps t = taps(q.center_x[k], q.center_y[k], h);
+        if (t.clipped_area <= 0.0f) {
+            out.r[k] = out.g[k] = out.b[k] = 0.0f;
+            continue;
+        }
         const ViewWeights vw = isotropic_ ? view_weights(0.0f, 0.0f, q.view_z[k])
                                           : view_weights(q.view_x[k], q.view_y[k], q.view_z[k]);
         Color sum(0.0f);
