@@ -1,0 +1,108 @@
+#include "src/brdf/material_library.h"
+
+#include <chrono>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "src/core/error.h"
+
+namespace rsl {
+
+MaterialLibrary::MaterialLibrary(BrdfTableOptions options) : options_(options) {}
+
+MaterialLibrary MaterialLibrary::from_scene(const Scene& scene, BrdfTableOptions options) {
+    MaterialLibrary library(options);
+    for (const MaterialDesc& m : scene.materials) library.add(m);
+    library.resize_parts(static_cast<int>(scene.parts.size()));
+    for (size_t p = 0; p < scene.parts.size(); ++p) library.assign(static_cast<int>(p), scene.parts[p].material);
+    return library;
+}
+
+std::string MaterialLibrary::identity(const MaterialDesc& desc) {
+    // Model, every parameter at full float precision, and the measured file.
+    std::string key = desc.model + "|" + desc.file.string();
+    for (const auto& [name, values] : desc.params) {
+        key += "|" + name + "=";
+        for (float v : values) key += fmt::format("{:a},", v);
+    }
+    return key;
+}
+
+std::shared_ptr<const MaterialLibrary::Shared> MaterialLibrary::obtain(const MaterialDesc& desc) {
+    const std::string key = identity(desc);
+    if (auto it = by_identity_.find(key); it != by_identity_.end())
+        if (auto alive = it->second.lock()) {
+            last_build_seconds_ = 0;
+            return alive;
+        }
+    auto brdf = make_brdf(desc);  // validates: throws before anything changes
+    const auto start = std::chrono::steady_clock::now();
+    auto table = BrdfTable::build(*brdf, options_);
+    last_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    auto shared = std::make_shared<const Shared>(Shared{std::move(brdf), std::move(table)});
+    by_identity_[key] = shared;
+    // Forget entries whose tables no material uses any more.
+    std::erase_if(by_identity_, [](const auto& entry) { return entry.second.expired(); });
+    return shared;
+}
+
+int MaterialLibrary::add(const MaterialDesc& desc) {
+    auto shared = obtain(desc);
+    materials_.push_back(Material{desc, std::move(shared), next_revision_++});
+    return material_count() - 1;
+}
+
+int MaterialLibrary::find(const std::string& name) const {
+    for (int m = 0; m < material_count(); ++m)
+        if (materials_[m].desc.name == name) return m;
+    return -1;
+}
+
+const MaterialLibrary::Material& MaterialLibrary::at(int material) const {
+    if (material < 0 || material >= material_count())
+        throw_error("material index {} out of range (the library has {} materials)", material, material_count());
+    return materials_[material];
+}
+
+void MaterialLibrary::set_parameter(int material, const std::string& key, const std::vector<float>& value) {
+    MaterialDesc desc = at(material).desc;
+    desc.params[key] = value;
+    replace(material, std::move(desc));
+}
+
+void MaterialLibrary::replace(int material, MaterialDesc desc) {
+    desc.name = at(material).desc.name;
+    auto shared = obtain(desc);  // may throw: the material keeps its old state
+    Material& m = materials_[material];
+    m.desc = std::move(desc);
+    m.shared = std::move(shared);
+    m.revision = next_revision_++;
+    std::erase_if(by_identity_, [](const auto& entry) { return entry.second.expired(); });
+}
+
+void MaterialLibrary::resize_parts(int parts, int material) {
+    at(material);  // validates the index
+    part_materials_.resize(parts, material);
+}
+
+void MaterialLibrary::assign(int part, int material) {
+    at(material);
+    if (part < 0 || part >= part_count())
+        throw_error("part index {} out of range (the library has {} parts)", part, part_count());
+    part_materials_[part] = material;
+}
+
+int MaterialLibrary::part_material(int part) const {
+    if (part < 0 || part >= part_count())
+        throw_error("part index {} out of range (the library has {} parts)", part, part_count());
+    return part_materials_[part];
+}
+
+int MaterialLibrary::distinct_table_count() const {
+    std::set<const BrdfTable*> tables;
+    for (const Material& m : materials_) tables.insert(m.shared->table.get());
+    return static_cast<int>(tables.size());
+}
+
+}  // namespace rsl
