@@ -19,6 +19,13 @@ bool is_usable_direction(const Vec3& v) {
     return glm::dot(v, v) > 1e-12f;
 }
 
+// Normalized, but a vector that is already unit to float precision is kept
+// bit for bit, so that files written from loaded meshes round-trip exactly.
+Vec3 unit(const Vec3& v) {
+    const float length2 = glm::dot(v, v);
+    return std::abs(length2 - 1.0f) < 1e-6f ? v : v / std::sqrt(length2);
+}
+
 // Twice the triangle's area vector (its direction is the face normal).
 Vec3 doubled_area_vector(const TriangleMesh& mesh, size_t triangle) {
     const Vec3& a = mesh.positions[mesh.indices[3 * triangle]];
@@ -166,7 +173,7 @@ size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& so
         for (size_t v = 0; v < mesh.vertex_count(); ++v) {
             Vec3& n = mesh.normals[v];
             if (is_usable_direction(n)) {
-                n = glm::normalize(n);
+                n = unit(n);
                 continue;
             }
             if (computed.empty()) {
@@ -185,10 +192,10 @@ size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& so
             const Vec3& n = mesh.normals[v];
             Vec4& t = mesh.tangents[v];
             Vec3 xyz(t);
-            xyz -= n * glm::dot(n, xyz);
+            if (std::abs(glm::dot(n, xyz)) > 1e-6f) xyz -= n * glm::dot(n, xyz);
             const bool usable = is_usable_direction(xyz) && glm::dot(xyz, xyz) > 1e-8f && std::isfinite(t.w);
             if (usable) {
-                t = Vec4(glm::normalize(xyz), t.w < 0 ? -1.0f : 1.0f);
+                t = Vec4(unit(xyz), t.w < 0 ? -1.0f : 1.0f);
             } else {
                 t = Vec4(tangent_for_normal(n), 1.0f);
             }
