@@ -455,7 +455,7 @@ TEST_CASE("overcast: the CIE overcast sky, smooth everywhere", "[assets]") {
 
 // ---------------------------------------------------------------- files
 
-TEST_CASE("rsl assets: writes every file, then a stamp; does nothing while the stamp matches", "[assets]") {
+TEST_CASE("rsl assets: writes every file, then a stamp, and does nothing while the stamp matches", "[assets]") {
     const GeneratedTree& t = tree();
     CHECK(t.first_report.regenerated);
     for (const std::string& name : generated_file_names()) CHECK(fs::file_size(t.generated / name) > 0);
