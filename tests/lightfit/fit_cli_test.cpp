@@ -1,0 +1,52 @@
+// `rsl fit` end to end: an EXR in, an RSL set and a preview out.
+#include <cstdlib>
+#include <filesystem>
+
+#include <unistd.h>
+
+#include <fmt/core.h>
+
+#include <catch2/catch.hpp>
+
+#include "lightfit/rsl.h"
+#include "src/core/envmap.h"
+#include "src/core/image.h"
+
+using namespace rsl;
+namespace fs = std::filesystem;
+
+namespace {
+
+int run(const std::string& arguments) {
+    const std::string command = std::string(RSL_RSL_EXECUTABLE) + " " + arguments + " > /dev/null 2>&1";
+    return std::system(command.c_str());
+}
+
+}  // namespace
+
+TEST_CASE("rsl fit writes K lights that keep the environment's energy, and a preview", "[lightfit][cli]") {
+    const fs::path dir = fs::temp_directory_path() / ("rsl_fit_cli_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    // A dim lat-long sky with one bright spot.
+    Image latlong(64, 32);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 64; ++x) latlong.set_rgb(x, y, Color(0.2f + 0.01f * y, 0.3f, 0.4f));
+    latlong.set_rgb(20, 8, Color(300.0f, 280.0f, 250.0f));
+    const fs::path env = dir / "sky.exr";
+    write_exr(env, latlong);
+
+    const fs::path lights = dir / "lights.json", preview = dir / "fit.png";
+    REQUIRE(run(fmt::format("fit {} --lights 12 --resolution 8 -o {} --preview {} --preview-width 64", env.string(),
+                            lights.string(), preview.string())) == 0);
+    const RslSet set = load_rsl_set(lights);
+    CHECK(set.lights.size() == 12);
+    CHECK(set.resolution == 8);
+    const DVec3 expected = load_environment(env, 8).energy(), got = set.total_energy();
+    for (int ch = 0; ch < 3; ++ch) CHECK(got[ch] == Approx(expected[ch]).epsilon(1e-5));
+    CHECK(fs::file_size(preview) > 100);
+
+    // Same-face with fewer lights than faces is refused, as is a missing file.
+    CHECK(run(fmt::format("fit {} --lights 3 --same-face -o {}", env.string(), lights.string())) != 0);
+    CHECK(run(fmt::format("fit {} --lights 3 -o {}", (dir / "missing.exr").string(), lights.string())) != 0);
+    fs::remove_all(dir);
+}
