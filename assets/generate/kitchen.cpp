@@ -43,7 +43,7 @@ TriangleMesh teapot_mesh() {
                            // the lid: a step in, a dome, and a knob on a short stem
                            {0.074f, 0.176f}, {0.072f, 0.184f}, {0.045f, 0.204f}, {0.014f, 0.212f},
                            {0.012f, 0.222f}, {0.022f, 0.228f}, {0.016f, 0.238f}, {0.0f, 0.238f}},
-                          0.03f);
+                          0.5f);  // large: corners round into one another, so the body curves smoothly
     TriangleMesh m = lathe(body, kTeapotSpacing);
 
     // Spout: a tapered tube with an open mouth (a bore down to a floor), its
@@ -62,7 +62,7 @@ TriangleMesh bowl_mesh() {
     p.rounded_polyline({{0.045f, 0.0f}, {0.05f, 0.012f}, {0.1f, 0.05f}, {0.13f, 0.095f},  // foot and outside
                         {0.124f, 0.098f},                                                   // rim
                         {0.096f, 0.058f}, {0.045f, 0.022f}, {0.0f, 0.018f}},                // inside
-                       0.012f);
+                       0.2f);
     return lathe(p, kBowlSpacing);
 }
 
