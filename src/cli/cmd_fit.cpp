@@ -20,7 +20,7 @@ struct FitArgs {
     int lights = 30;
     int resolution = 32;
     bool cross_face = false, same_face = false;
-    std::string merge_cost = "merged";
+    std::string merge_cost = "increase";
     double max_error = 0;
     int preview_width = 512;
 };
