@@ -39,7 +39,7 @@ struct BrdfTableOptions {
     int resolution = 32;             // N: light directions on the N×N equal-area grid
     int view_samples = 32;           // V: isotropic V polar samples, anisotropic V×V directions
     int interior_supersampling = 2;  // sub-samples per texel side inside the disk
-    int edge_supersampling = 8;      // ... on texels the horizon crosses
+    int edge_supersampling = 4;      // ... on texels the horizon crosses
     SatStorage storage = SatStorage::FloatMeanOffset;
 };
 

@@ -203,7 +203,7 @@ TEST_CASE("tabulated texels are texel averages, horizon texels included", "[brdf
                 }
             INFO(describe(m) << " slice " << s << ": peak " << peak << ", worst error inside " << worst_inside
                              << ", on the horizon " << worst_edge);
-            // Horizon texels: 8×8 sub-samples of a function that falls to 0 at
+            // Horizon texels: 4×4 sub-samples of a function that falls to 0 at
             // the rim; a center sample alone would be off by up to half the
             // texel's value. Inside: 2×2 midpoint rule on a lobe of width ≥ 0.2.
             CHECK(worst_edge <= 0.01 * peak);
