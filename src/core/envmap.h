@@ -2,15 +2,24 @@
 // Environment maps. Everything downstream works on a cube map of 6×N×N texels
 // with exact per-texel solid angles.
 //
-// World convention (pinned by tests/core/envmap_test.cpp): +Y is up. A
-// latitude-longitude image has row 0 at the top (+Y); pixel (u, v) of a W×H map
-// is the direction with polar angle θ = π (v + ½) / H from +Y and longitude
-// φ = 2π (u + ½) / W, d = (sinθ cosφ, cosθ, sinθ sinφ)... see docs/CONVENTIONS.md
-// for the exact formula, which latlong_direction() implements.
+// World convention (docs/CONVENTIONS.md, pinned by tests/core/envmap_test.cpp):
+// right-handed, +Y up. A latitude-longitude image has row 0 at the top (+Y)
+// and its columns span longitude φ ∈ [0, 2π) left to right. In continuous
+// image coordinates u, v ∈ [0, 1] (pixel (x, y) of a W×H map has its center at
+// u = (x + ½)/W, v = (y + ½)/H):
+//
+//   θ = π v (polar angle from +Y),  φ = 2π u,
+//   d = (sinθ sinφ, cosθ, −sinθ cosφ)
+//
+// so u = 0 (the left edge) is −Z, u = ¼ is +X, u = ½ (the center) is +Z and
+// u = ¾ is −X: OpenEXR's lat-long convention, the image seen from inside the
+// sphere. latlong_direction() implements it, latlong_coords() inverts it.
 //
 // Cube faces are in OpenGL order +X, −X, +Y, −Y, +Z, −Z with OpenGL's (s, t)
 // orientation; texel (i, j) of face f covers s ∈ [−1 + 2i/N, −1 + 2(i+1)/N],
-// t likewise for j.
+// t likewise for j. Face f at (s, t) is the direction
+//   +X: (1, −t, −s)  −X: (−1, −t, s)  +Y: (s, 1, t)
+//   −Y: (s, −1, −t)  +Z: (s, −t, 1)   −Z: (−s, −t, −1)      (normalized).
 #include <array>
 #include <filesystem>
 #include <vector>
@@ -58,7 +67,9 @@ public:
     // ∫ L dω = Σ L_k Ω_k, per channel, accumulated in double.
     DVec3 energy() const;
 
-    // Indices of the (up to) 4 edge-adjacent texels, across face borders too.
+    // Indices of the 4 edge-adjacent texels, across face borders too, in the
+    // order (i − 1, i + 1, j − 1, j + 1) as seen from this texel's face. Always 4
+    // distinct texels, and adjacency is symmetric.
     std::array<int, 4> neighbors(int index) const;
 
 private:
