@@ -1,0 +1,131 @@
+// `rsl render SCENE --time T -o out.exr`: the CPU runtime renderer
+// (docs/RENDERER.md). Per-vertex colours from the RSL sum, interpolated by
+// primary rays exactly as `rsl truth` does (form_image), written as EXR + PNG,
+// and optionally as per-vertex .rslv for `rsl compare`.
+#include <chrono>
+#include <cstdio>
+
+#include <fmt/core.h>
+
+#include "src/cli/command.h"
+#include "src/render/render_setup.h"
+#include "src/core/error.h"
+#include "src/trace/image_formation.h"
+
+namespace rsl::cli {
+namespace {
+
+struct RenderArgs {
+    std::string scene;
+    float time = 0;
+    std::string frames;
+    int lights = 30;
+    std::string backend = "cpu";
+    bool no_self = false, no_occluders = false, no_culling = false;
+    std::vector<std::string> materials;
+    std::string output;
+    std::string vertex_output;
+    int width = 0, height = 0;
+    int samples = 1;
+    float exposure = 0;
+    bool quiet = false;
+};
+
+// "A:B:STEP" → the times A, A + STEP, … ≤ B (inclusive within rounding).
+std::vector<float> parse_frames(const std::string& text) {
+    float a = 0, b = 0, step = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%f:%f:%f%c", &a, &b, &step, &tail) != 3 || !(step > 0) || b < a)
+        throw_error("--frames '{}': expected START:END:STEP with STEP > 0 and END ≥ START", text);
+    std::vector<float> times;
+    for (int i = 0;; ++i) {
+        const float t = a + float(i) * step;
+        if (t > b + 1e-4f * step) break;
+        times.push_back(t);
+    }
+    return times;
+}
+
+// out.exr, frame 7 → out.0007.exr
+std::filesystem::path numbered(const std::filesystem::path& path, int frame) {
+    std::filesystem::path result = path;
+    result.replace_filename(fmt::format("{}.{:04d}{}", path.stem().string(), frame, path.extension().string()));
+    return result;
+}
+
+void run_render(const RenderArgs& args) {
+    if (args.backend == "gl") throw_error("--backend gl: the GPU renderer is not built yet (issue 8); use --backend cpu");
+    if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
+    if (args.samples < 1) throw_error("--samples {}: expected at least 1", args.samples);
+    const std::filesystem::path output(args.output);
+    if (output.extension() != ".exr") throw_error("-o {}: expected an .exr path (a .png preview is written beside it)", args.output);
+
+    RenderOptions options;
+    options.environment_lights = args.lights;
+    options.self_visibility = !args.no_self;
+    options.occluders = !args.no_occluders;
+    options.occluder_culling = !args.no_culling;
+    options.material_override = parse_material_overrides(args.materials);
+
+    const RenderSetup setup = prepare_render(args.scene, options, !args.quiet);
+    const Scene& scene = *setup.scene;
+    Renderer renderer(scene, setup.environment_lights, setup.fields, options);
+
+    const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
+    const int width = args.width > 0 ? args.width : scene.camera.width;
+    const int height = args.height > 0 ? args.height : scene.camera.height;
+    PosedScene posed(scene, times.front());
+    VertexColors colors = renderer.make_output();
+    ImageFormationOptions formation;
+    formation.samples_per_side = args.samples;
+    ToneMap tone;
+    tone.exposure = args.exposure;
+    for (size_t f = 0; f < times.size(); ++f) {
+        const float t = times[f];
+        const auto start = std::chrono::steady_clock::now();
+        renderer.set_time(t);
+        renderer.shade(colors);
+        const auto shaded = std::chrono::steady_clock::now();
+        posed.set_time(t);
+        const Image image = form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, formation);
+        const auto formed = std::chrono::steady_clock::now();
+        const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
+        write_exr_and_png(exr, image, tone);
+        if (!args.vertex_output.empty())
+            write_vertex_colors(times.size() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output), colors);
+        const RenderStats& stats = renderer.stats();
+        fmt::print("t={:.3f}: {} vertices x {} lights, shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} culled) -> {}\n",
+                   t, stats.vertices, stats.lights,
+                   1e3 * std::chrono::duration<double>(shaded - start).count(),
+                   1e3 * std::chrono::duration<double>(formed - shaded).count(), stats.occluder_pairs,
+                   stats.occluder_pairs_culled, exr.string());
+    }
+}
+
+RegisterCommand render_command({"render",
+    "Render a scene with the RSL runtime (multi-product shading of moving parts, local lights).", 30,
+    [](CLI::App& app) {
+        auto args = std::make_shared<RenderArgs>();
+        app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
+        auto* time = app.add_option("--time,-t", args->time, "Time in seconds")->capture_default_str();
+        auto* frames = app.add_option("--frames", args->frames, "START:END:STEP: numbered frames OUT.NNNN.exr");
+        time->excludes(frames);
+        app.add_option("--lights,-k", args->lights, "Number of environment RSLs")->capture_default_str();
+        app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer)")
+            ->check(CLI::IsMember({"cpu", "gl"}))->capture_default_str();
+        app.add_flag("--no-self", args->no_self, "Switch self-visibility (SVDF) off");
+        app.add_flag("--no-occluders", args->no_occluders, "Switch the other parts' shadows (OVDF) off");
+        app.add_flag("--no-culling", args->no_culling, "Look every occluder up (for checking the culling)");
+        app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
+        app.add_option("-o,--output", args->output, "Image to write (.exr; a .png preview beside it)")->required();
+        app.add_option("--vertex-out", args->vertex_output, "Per-vertex colours (.rslv) for `rsl compare`");
+        app.add_option("--width", args->width, "Image width (default: the scene camera's)");
+        app.add_option("--height", args->height, "Image height (default: the scene camera's)");
+        app.add_option("--samples", args->samples, "S: SxS primary rays per pixel")->capture_default_str();
+        app.add_option("--exposure", args->exposure, "PNG exposure in stops")->capture_default_str();
+        app.add_flag("--quiet,-q", args->quiet, "No progress lines");
+        app.callback([args] { run_render(*args); });
+    }});
+
+}  // namespace
+}  // namespace rsl::cli

@@ -1,0 +1,61 @@
+#pragma once
+// Occluder culling: conservative tests that an occluder part cannot shadow any
+// point of a receiver part from a light. Bounding spheres only; a test that
+// says "cannot" must be right for every point of the receiver sphere and every
+// direction of the light, so that culling never changes an image (pinned by
+// tests/render/culling_test.cpp against brute-force rays).
+#include <algorithm>
+
+#include "src/core/math.h"
+#include "src/core/mesh.h"
+
+namespace rsl {
+
+// Whether a ray from some point of `receiver`, in some direction within
+// `half_angle` of the unit `direction`, can meet `occluder`.
+//
+// Such a ray y = x + sω stays in the region where the axial coordinate
+// a = (y − c)·d ≥ −r and the distance from the axis is ≤ r + (a + r)·tan β
+// (c, r: the receiver sphere; s·cos γ ≤ a + r and s·sin γ ≤ (a + r)·tan β).
+// The occluder sphere (center axial a_o, lateral q_o, radius R) can reach it
+// only if a_o + R ≥ −r and q_o − R ≤ r + (a_o + R + r)·tan β.
+inline bool may_shadow_direction(const BoundingSphere& receiver, const BoundingSphere& occluder,
+                                 const Vec3& direction, float half_angle) {
+    if (half_angle >= 0.5f * kPi - 1e-3f) return true;  // the cone is a half-space or more: keep
+    const Vec3 v = occluder.center - receiver.center;
+    const float axial = glm::dot(v, direction);
+    const float far_axial = axial + occluder.radius;
+    if (far_axial < -receiver.radius) return false;  // entirely behind the receiver
+    const float lateral = glm::length(v - axial * direction);
+    return lateral - occluder.radius <= receiver.radius + (far_axial + receiver.radius) * std::tan(half_angle);
+}
+
+// Whether a segment from some point of `receiver` to some point of a sphere
+// light (center, radius) can meet `occluder`. The segments lie in the convex
+// hull of the two spheres, which lies in the capsule of radius max(r, a)
+// around the segment between their centers.
+inline bool may_shadow_sphere_light(const BoundingSphere& receiver, const BoundingSphere& occluder,
+                                    const Vec3& light_center, float light_radius) {
+    const Vec3 axis = light_center - receiver.center;
+    const float length2 = glm::dot(axis, axis);
+    const Vec3 v = occluder.center - receiver.center;
+    const float s = length2 > 0.0f ? std::clamp(glm::dot(v, axis) / length2, 0.0f, 1.0f) : 0.0f;
+    const float distance = glm::length(v - s * axis);
+    return distance <= std::max(receiver.radius, light_radius) + occluder.radius;
+}
+
+// Whether the receiver sphere lies entirely outside an occluder field's reach
+// (beyond its outer shell the field is exactly 1).
+inline bool beyond_reach(const BoundingSphere& receiver, const BoundingSphere& reach) {
+    return glm::length(receiver.center - reach.center) - receiver.radius > reach.radius;
+}
+
+// A sphere moved by a rigid (possibly uniformly scaled) transform; for a
+// non-uniform scale the radius grows by the largest axis scale (conservative).
+inline BoundingSphere transform_sphere(const Mat4& m, const BoundingSphere& s) {
+    const Mat3 l(m);
+    const float scale = std::max({glm::length(l[0]), glm::length(l[1]), glm::length(l[2])});
+    return BoundingSphere{Vec3(m * Vec4(s.center, 1.0f)), s.radius * scale};
+}
+
+}  // namespace rsl

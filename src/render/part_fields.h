@@ -1,0 +1,50 @@
+#pragma once
+// The visibility fields the renderer multiplies in: per part, its SVDF (self-
+// visibility, vertex frames) and an occluder field (the shadow it casts on the
+// other parts, in its own frame).
+//
+// Occluder fields sit behind a small interface so that the renderer can use
+// the compressed OVDF (fields/ovdf.h) or, for measuring the OVDF's own error,
+// an exact stand-in.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fields/svdf.h"
+#include "src/core/mesh.h"
+#include "src/core/scene.h"
+
+namespace rsl {
+
+class OccluderField {
+public:
+    virtual ~OccluderField() = default;
+    // Visible fraction, as far as this part occludes, of the square of
+    // half-edge `half_edge` around the unit direction `light`, seen from
+    // `point`; both in the part's own frame.
+    virtual float visible_fraction(const Vec3& point, const Vec3& light, float half_edge) const = 0;
+    // In the part's frame: beyond this sphere the field is exactly 1 (the
+    // outer shell), so a receiver outside it can skip the lookup.
+    virtual BoundingSphere reach() const = 0;
+};
+
+struct PartFields {
+    std::vector<std::shared_ptr<const Svdf>> self;               // per part; null: no self-visibility
+    std::vector<std::shared_ptr<const OccluderField>> occluder;  // per part; null: casts no shadow
+};
+
+// Field parameters from a scene's precompute settings.
+SvdfParams svdf_params(const PrecomputeSettings& settings);
+
+struct FieldBakeOptions {
+    bool self_visibility = true;
+    bool occluders = true;
+    // Called with (what, fraction of that bake) from the baking thread.
+    std::function<void(const std::string& what, double fraction)> progress;
+};
+
+// Bakes the fields of every part of `scene` with its precompute settings.
+PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options);
+
+}  // namespace rsl

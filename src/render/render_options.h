@@ -1,0 +1,33 @@
+#pragma once
+// What the CPU runtime renderer computes and which approximations it uses
+// (docs/RENDERER.md). Every toggle exists so that one factor of the product
+// can be switched off and measured against the ground truth.
+#include <map>
+#include <string>
+
+#include "src/brdf/brdf_table.h"
+
+namespace rsl {
+
+struct RenderOptions {
+    int environment_lights = 30;     // K: RSLs fitted to the environment map
+    bool environment = true;         // shade with the environment's RSLs
+    bool local_lights = true;        // shade with the scene's sphere lights
+    bool self_visibility = true;     // multiply by the SVDF average
+    bool occluders = true;           // multiply by the other parts' OVDF averages
+    bool occluder_culling = true;    // skip occluders that cannot shadow (never changes the result)
+    // Per-part material override: part name → material name (scene materials).
+    std::map<std::string, std::string> material_override;
+    BrdfTableOptions brdf_table;     // resolution of the BRDF summed-area tables
+};
+
+// Counters of one shading pass (for `rsl render` and the benchmarks).
+struct RenderStats {
+    size_t vertices = 0;
+    size_t lights = 0;                 // environment RSLs + local lights
+    size_t lookups = 0;                // (vertex, light) pairs that reached the lookups
+    size_t occluder_pairs = 0;         // (receiver part, occluder part, light) triples considered
+    size_t occluder_pairs_culled = 0;  // ... of which culled
+};
+
+}  // namespace rsl

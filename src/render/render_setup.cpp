@@ -1,0 +1,65 @@
+#include "src/render/render_setup.h"
+
+#include <chrono>
+
+#include "fields/progress_report.h"
+#include "src/core/error.h"
+
+namespace rsl {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}  // namespace
+
+std::map<std::string, std::string> parse_material_overrides(const std::vector<std::string>& entries) {
+    std::map<std::string, std::string> overrides;
+    for (const std::string& entry : entries) {
+        const size_t eq = entry.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size())
+            throw_error("--material '{}': expected PART=MATERIAL", entry);
+        overrides[entry.substr(0, eq)] = entry.substr(eq + 1);
+    }
+    return overrides;
+}
+
+RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options, bool progress) {
+    return prepare_render(std::make_shared<Scene>(load_scene(scene_path)), options, progress);
+}
+
+RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, bool progress) {
+    RenderSetup setup;
+    setup.scene = std::move(scene);
+    const Scene& s = *setup.scene;
+    if (!s.environment.file.empty() && options.environment) {
+        auto start = std::chrono::steady_clock::now();
+        setup.environment = load_environment(s.environment.file, s.environment.resolution);
+        setup.environment_lights = fit_environment_lights(setup.environment, options.environment_lights);
+        setup.fit_seconds = seconds_since(start);
+        if (progress)
+            std::fprintf(stderr, "%s: %zu RSLs fitted in %.2f s\n", s.environment.file.string().c_str(),
+                         setup.environment_lights.lights.size(), setup.fit_seconds);
+    }
+    FieldBakeOptions bake;
+    bake.self_visibility = options.self_visibility;
+    bake.occluders = options.occluders;
+    std::unique_ptr<ProgressReport> report;
+    std::string current;
+    if (progress)
+        bake.progress = [&](const std::string& what, double fraction) {
+            if (what != current) {
+                if (report) report->finish("");
+                current = what;
+                report = std::make_unique<ProgressReport>(what, true);
+            }
+            report->update(fraction);
+        };
+    const auto start = std::chrono::steady_clock::now();
+    setup.fields = bake_part_fields(s, bake);
+    if (report) report->finish("");
+    setup.bake_seconds = seconds_since(start);
+    return setup;
+}
+
+}  // namespace rsl

@@ -1,0 +1,34 @@
+#pragma once
+// Everything a renderer needs before its first frame, from a scene file:
+// the scene, its environment as a cube map, the environment's RSL set and the
+// parts' visibility fields (baked on demand, with progress on stderr).
+// Shared by `rsl render`, `rsl bench render` and the error tables.
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "src/core/envmap.h"
+#include "src/render/renderer.h"
+
+namespace rsl {
+
+struct RenderSetup {
+    std::shared_ptr<Scene> scene;  // shared: renderers keep a reference to it
+    CubeMap environment;           // resolution 0 when the scene has none
+    RslSet environment_lights;
+    PartFields fields;
+    double fit_seconds = 0, bake_seconds = 0;
+};
+
+// "PART=MATERIAL" strings → overrides; throws rsl::Error on a malformed entry.
+std::map<std::string, std::string> parse_material_overrides(const std::vector<std::string>& entries);
+
+// Loads the scene and its environment, fits options.environment_lights RSLs,
+// bakes the fields the options switch on.
+RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options, bool progress);
+// The same for a scene already in memory (its environment file is still read).
+RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, bool progress);
+
+}  // namespace rsl

@@ -1,0 +1,154 @@
+// Set-up and per-frame state of the CPU renderer; the per-block shading kernel
+// is in shade_block.cpp.
+#include "src/render/renderer.h"
+
+#include <atomic>
+
+#include <tbb/parallel_for.h>
+
+#include "lightfit/decompose.h"
+#include "src/core/error.h"
+#include "src/trace/ground_truth.h"
+
+namespace rsl {
+
+namespace {
+constexpr int kBlockSize = 256;  // must match shade_block.cpp's scratch size
+}
+
+RslSet fit_environment_lights(const CubeMap& environment, int lights) {
+    lightfit::DecomposeOptions options;
+    options.lights = lights;
+    return lightfit::decompose(environment, options);
+}
+
+Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fields, const RenderOptions& options)
+    : scene_(scene),
+      options_(options),
+      rsls_(std::move(environment_lights)),
+      fields_(std::move(fields)),
+      materials_(scene, options) {
+    const size_t parts = scene.parts.size();
+    if (parts == 0) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
+    fields_.self.resize(parts);
+    fields_.occluder.resize(parts);
+    for (size_t p = 0; p < parts; ++p) {
+        const Part& part = scene.parts[p];
+        const size_t n = part.mesh.vertex_count();
+        if (part.mesh.normals.size() != n)
+            throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
+                             part.mesh.normals.size(), n);
+        if (fields_.self[p] && size_t(fields_.self[p]->vertex_count()) != n)
+            throw_file_error(scene.source, "part '{}': its SVDF has {} vertices, the mesh {}", part.name,
+                             fields_.self[p]->vertex_count(), n);
+        for (size_t begin = 0; begin < n; begin += kBlockSize)
+            blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kBlockSize))});
+        local_bounds_.push_back(part.mesh.bounding_sphere());
+        local_reach_.push_back(fields_.occluder[p] ? fields_.occluder[p]->reach() : BoundingSphere{});
+    }
+    for (const LocalLight& light : scene.lights) {
+        if (!(light.radius > 0.0f)) throw_file_error(scene.source, "local light with radius {}", light.radius);
+        light_radiance_.push_back(sphere_light_radiance(light));
+    }
+    poses_.resize(parts);
+    environment_squares_.resize(rsls_.lights.size());
+    light_positions_.resize(scene.lights.size());
+    const size_t light_count = rsls_.lights.size() + scene.lights.size();
+    offsets_.assign(parts * light_count + 1, 0);
+    occluders_.reserve(parts * light_count * (parts - 1));
+    set_time(0.0f);
+}
+
+void Renderer::set_time(float t) {
+    time_ = t;
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        PartPose& pose = poses_[p];
+        pose.transform = scene_.part_transform_at(int(p), t);
+        pose.linear = Mat3(pose.transform);
+        pose.normal = glm::transpose(glm::inverse(pose.linear));
+        pose.inverse = glm::inverse(pose.transform);
+        pose.inverse_linear = Mat3(pose.inverse);
+        pose.world_bounds = transform_sphere(pose.transform, local_bounds_[p]);
+    }
+    const Mat3 rotation = scene_.environment.rotation_at(t);
+    for (size_t l = 0; l < rsls_.lights.size(); ++l) {
+        const RotatableSquareLight& rsl = rsls_.lights[l];
+        SquareLight& square = environment_squares_[l];
+        square.direction = glm::normalize(rotation * rsl.center);
+        square.half_edge = square_half_edge_for_rsl(rsl.half_diagonal);
+        square.solid_angle = rsl.solid_angle();
+        square.integral = rsl.radiance * square.solid_angle;
+    }
+    for (size_t i = 0; i < scene_.lights.size(); ++i) light_positions_[i] = scene_.lights[i].position_at(t);
+    camera_ = scene_.camera.position_at(t);
+    update_occluder_lists();
+}
+
+// For every receiver part and light, the occluder parts whose lookups run.
+// Without culling every other part with a field is listed.
+void Renderer::update_occluder_lists() {
+    const size_t parts = scene_.parts.size();
+    const size_t environment = rsls_.lights.size();
+    const size_t lights = environment + scene_.lights.size();
+    occluders_.clear();
+    stats_.occluder_pairs = stats_.occluder_pairs_culled = 0;
+    size_t slot = 0;
+    for (size_t receiver = 0; receiver < parts; ++receiver) {
+        const BoundingSphere& r = poses_[receiver].world_bounds;
+        for (size_t l = 0; l < lights; ++l) {
+            offsets_[slot++] = occluders_.size();
+            const bool lit = l < environment ? options_.environment : options_.local_lights;
+            if (!options_.occluders || !lit) continue;
+            for (size_t o = 0; o < parts; ++o) {
+                if (o == receiver || !fields_.occluder[o]) continue;
+                ++stats_.occluder_pairs;
+                bool keep = true;
+                if (options_.occluder_culling) {
+                    const BoundingSphere& occluder = poses_[o].world_bounds;
+                    const BoundingSphere reach = transform_sphere(poses_[o].transform, local_reach_[o]);
+                    if (beyond_reach(r, reach)) {
+                        keep = false;
+                    } else if (l < environment) {
+                        const SquareLight& square = environment_squares_[l];
+                        keep = may_shadow_direction(r, occluder, square.direction,
+                                                    square_cone_half_angle(square.half_edge));
+                    } else {
+                        const size_t i = l - environment;
+                        keep = may_shadow_sphere_light(r, occluder, light_positions_[i], scene_.lights[i].radius);
+                    }
+                }
+                if (keep)
+                    occluders_.push_back(int(o));
+                else
+                    ++stats_.occluder_pairs_culled;
+            }
+        }
+    }
+    offsets_[slot] = occluders_.size();
+}
+
+VertexColors Renderer::make_output() const {
+    VertexColors colors;
+    colors.scene_name = scene_.name;
+    colors.producer = "rsl-cpu";
+    for (const Part& part : scene_.parts) colors.add_part(part.name, part.mesh.vertex_count());
+    return colors;
+}
+
+void Renderer::shade(VertexColors& out) {
+    RSL_CHECK_EQ(out.parts.size(), scene_.parts.size());
+    for (size_t p = 0; p < scene_.parts.size(); ++p) RSL_CHECK_EQ(out.parts[p].size(), scene_.parts[p].mesh.vertex_count());
+    out.time = time_;
+    std::atomic<size_t> lookups{0}, vertices{0};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+        RenderStats counts;
+        for (size_t b = range.begin(); b != range.end(); ++b) shade_block(blocks_[b], out, counts);
+        lookups.fetch_add(counts.lookups, std::memory_order_relaxed);
+        vertices.fetch_add(counts.vertices, std::memory_order_relaxed);
+    });
+    stats_.lookups = lookups.load();
+    stats_.vertices = vertices.load();
+    stats_.lights = rsls_.lights.size() + scene_.lights.size();
+}
+
+}  // namespace rsl

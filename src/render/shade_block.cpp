@@ -1,0 +1,174 @@
+// The per-block shading kernel of the CPU renderer: one light at a time over
+// all the vertices of a block, structure of arrays, no allocation.
+//
+// For each light the block's vertices are first projected into their local
+// plane (a branch-free loop the compiler vectorizes), then the vertices whose
+// view is above the horizon and whose square reaches the upper hemisphere are
+// compacted into query arrays, looked up in one BRDF batch, multiplied by the
+// self and occluder visibility, and scattered back into the colour sums.
+#include <cmath>
+
+#include "src/render/renderer.h"
+
+namespace rsl {
+
+namespace {
+
+constexpr int kBlock = 256;
+
+// Per-thread scratch of one block (about 40 KB, never on the heap per frame).
+struct BlockScratch {
+    // World positions and shading frames (x = tangent, y = bitangent, z = normal).
+    alignas(64) float px[kBlock], py[kBlock], pz[kBlock];
+    alignas(64) float xx[kBlock], xy[kBlock], xz[kBlock];
+    alignas(64) float yx[kBlock], yy[kBlock], yz[kBlock];
+    alignas(64) float zx[kBlock], zy[kBlock], zz[kBlock];
+    // View in the local frame, and the view-aligned rotation (cos φ_o, sin φ_o).
+    alignas(64) float vx[kBlock], vy[kBlock], vz[kBlock], view_cos[kBlock], view_sin[kBlock];
+    alignas(64) float r[kBlock], g[kBlock], b[kBlock];  // colour sums
+    // The current light per vertex (local lights vary per vertex).
+    alignas(64) float dx[kBlock], dy[kBlock], dz[kBlock], half[kBlock], ir[kBlock], ig[kBlock], ib[kBlock];
+    // Local plane point of the light's center and the light's local z.
+    alignas(64) float lpx[kBlock], lpy[kBlock], lz[kBlock];
+    // Compacted queries.
+    int index[kBlock];
+    alignas(64) float qx[kBlock], qy[kBlock], tx[kBlock], ty[kBlock], qh[kBlock];
+    alignas(64) float qvx[kBlock], qvy[kBlock], qvz[kBlock];
+    alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
+};
+
+thread_local BlockScratch scratch;
+
+}  // namespace
+
+void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) const {
+    BlockScratch& s = scratch;
+    const int part_index = block.part;
+    const TriangleMesh& mesh = scene_.parts[part_index].mesh;
+    const PartPose& pose = poses_[part_index];
+    const BrdfTable& table = materials_.table_of(part_index);
+    const bool isotropic = table.isotropic();
+    const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
+    const int n = block.end - block.begin;
+    const bool has_tangents = !mesh.tangents.empty();
+
+    // World position, shading frame (as PosedScene::vertex) and local view.
+    for (int k = 0; k < n; ++k) {
+        const int v = block.begin + k;
+        const Vec3 p = Vec3(pose.transform * Vec4(mesh.positions[v], 1.0f));
+        const Vec3 normal = glm::normalize(pose.normal * mesh.normals[v]);
+        const Vec3 tangent = has_tangents ? pose.linear * Vec3(mesh.tangents[v]) : Vec3(0);
+        const Frame f = Frame::from_normal_tangent(normal, tangent);
+        s.px[k] = p.x, s.py[k] = p.y, s.pz[k] = p.z;
+        s.xx[k] = f.x.x, s.xy[k] = f.x.y, s.xz[k] = f.x.z;
+        s.yx[k] = f.y.x, s.yy[k] = f.y.y, s.yz[k] = f.y.z;
+        s.zx[k] = f.z.x, s.zy[k] = f.z.y, s.zz[k] = f.z.z;
+        const Vec3 wo = f.to_local(glm::normalize(camera_ - p));
+        s.vx[k] = wo.x, s.vy[k] = wo.y, s.vz[k] = wo.z;
+        const float len2 = wo.x * wo.x + wo.y * wo.y;
+        const float inv = len2 > 1e-16f ? 1.0f / std::sqrt(len2) : 0.0f;
+        s.view_cos[k] = len2 > 1e-16f ? wo.y * inv : 1.0f;
+        s.view_sin[k] = wo.x * inv;
+        s.r[k] = s.g[k] = s.b[k] = 0.0f;
+    }
+
+    const size_t environment = environment_squares_.size();
+    const size_t lights = environment + light_positions_.size();
+    const size_t slot_base = size_t(part_index) * lights;
+    for (size_t l = 0; l < lights; ++l) {
+        const bool is_environment = l < environment;
+        if (is_environment ? !options_.environment : !options_.local_lights) continue;
+
+        // The light as each vertex sees it.
+        if (is_environment) {
+            const SquareLight& sq = environment_squares_[l];
+            for (int k = 0; k < n; ++k) {
+                s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
+                s.half[k] = sq.half_edge;
+                s.ir[k] = sq.integral.r, s.ig[k] = sq.integral.g, s.ib[k] = sq.integral.b;
+            }
+        } else {
+            const size_t i = l - environment;
+            const Vec3 center = light_positions_[i];
+            const float radius = scene_.lights[i].radius;
+            const Color radiance = light_radiance_[i];
+            for (int k = 0; k < n; ++k) {
+                const SquareLight sq = sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), center, radius, radiance);
+                s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
+                s.half[k] = sq.half_edge;
+                s.ir[k] = sq.integral.r, s.ig[k] = sq.integral.g, s.ib[k] = sq.integral.b;
+            }
+        }
+        // Local direction → equal-area plane point p = (x, y) / √(1 + z).
+        for (int k = 0; k < n; ++k) {
+            const float lx = s.dx[k] * s.xx[k] + s.dy[k] * s.xy[k] + s.dz[k] * s.xz[k];
+            const float ly = s.dx[k] * s.yx[k] + s.dy[k] * s.yy[k] + s.dz[k] * s.yz[k];
+            const float z = s.dx[k] * s.zx[k] + s.dy[k] * s.zy[k] + s.dz[k] * s.zz[k];
+            const float scale = 1.0f / std::sqrt(std::max(1.0f + z, 1e-12f));
+            s.lpx[k] = lx * scale, s.lpy[k] = ly * scale, s.lz[k] = z;
+        }
+        // Compaction: the view must be above the horizon (ρ = 0 otherwise, as
+        // the truth) and the square must reach the upper hemisphere.
+        int m = 0;
+        for (int k = 0; k < n; ++k) {
+            if (!(s.vz[k] > 0.0f) || !(s.half[k] > 0.0f) || !square_reaches_hemisphere(s.lz[k], s.half[k])) continue;
+            s.index[m] = k;
+            s.qx[m] = s.lpx[k], s.qy[m] = s.lpy[k], s.qh[m] = s.half[k];
+            if (isotropic) {  // view-aligned frame: rotate about the normal (to_view_aligned)
+                s.tx[m] = s.lpx[k] * s.view_cos[k] - s.lpy[k] * s.view_sin[k];
+                s.ty[m] = s.lpx[k] * s.view_sin[k] + s.lpy[k] * s.view_cos[k];
+            } else {
+                s.tx[m] = s.lpx[k], s.ty[m] = s.lpy[k];
+                s.qvx[m] = s.vx[k], s.qvy[m] = s.vy[k];
+            }
+            s.qvz[m] = s.vz[k];
+            ++m;
+        }
+        if (m == 0) continue;
+        counts.lookups += size_t(m);
+
+        SquareQueries queries;
+        queries.center_x = s.tx, queries.center_y = s.ty;
+        queries.half_edge = s.qh;
+        queries.view_x = isotropic ? nullptr : s.qvx;
+        queries.view_y = isotropic ? nullptr : s.qvy;
+        queries.view_z = s.qvz;
+        queries.count = size_t(m);
+        table.square_average_batch(queries, ColorOutputs{s.br, s.bg, s.bb});
+
+        if (svdf) {
+            for (int i = 0; i < m; ++i)
+                s.vis[i] = svdf->visible_fraction(block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
+        } else {
+            for (int i = 0; i < m; ++i) s.vis[i] = 1.0f;
+        }
+
+        // Other parts' shadows: receiver point and light direction in the occluder's frame.
+        for (size_t e = offsets_[slot_base + l]; e < offsets_[slot_base + l + 1]; ++e) {
+            const int o = occluders_[e];
+            const OccluderField& field = *fields_.occluder[o];
+            const PartPose& occluder = poses_[o];
+            for (int i = 0; i < m; ++i) {
+                if (!(s.vis[i] > 0.0f)) continue;
+                const int k = s.index[i];
+                const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
+                const Vec3 dir = glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
+                s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
+            }
+        }
+
+        for (int i = 0; i < m; ++i) {
+            const int k = s.index[i];
+            const float v = s.vis[i];
+            s.r[k] += s.ir[k] * s.br[i] * v;
+            s.g[k] += s.ig[k] * s.bg[i] * v;
+            s.b[k] += s.ib[k] * s.bb[i] * v;
+        }
+    }
+
+    std::vector<Color>& colors = out.parts[part_index];
+    for (int k = 0; k < n; ++k) colors[block.begin + k] = Color(s.r[k], s.g[k], s.b[k]);
+    counts.vertices += size_t(n);
+}
+
+}  // namespace rsl

@@ -1,0 +1,40 @@
+#pragma once
+// Helpers of the renderer tests: hand-made fields and small scenes.
+#include <memory>
+
+#include "fields/svdf.h"
+#include "src/render/part_fields.h"
+#include "tests/trace/trace_test_scenes.h"
+
+namespace rsl::test {
+
+// An SVDF whose every table is the constant distance `distance`: the visible
+// fraction of a square of half-edge h is then clamp(½ + distance / (2h)).
+inline std::shared_ptr<const Svdf> constant_svdf(int vertices, float distance, int resolution = 8) {
+    auto svdf = std::make_shared<Svdf>();
+    svdf->params.resolution = resolution;
+    CpcaModel& model = svdf->model;
+    model.dims = resolution * resolution;
+    model.vectors = 0;
+    model.clusters = 1;
+    model.tables.assign(size_t(model.dims), distance);
+    model.assignment.assign(size_t(vertices), 0);
+    return svdf;
+}
+
+// A single RSL of center c (unit, world), half-diagonal r, radiance I.
+inline RslSet single_rsl(const Vec3& center, float half_diagonal, const Color& radiance) {
+    RslSet set;
+    RotatableSquareLight light;
+    light.center = glm::normalize(center);
+    light.half_diagonal = half_diagonal;
+    light.radiance = radiance;
+    set.lights.push_back(light);
+    return set;
+}
+
+// Average of cos θ = 1 − |p|² (the equal-area map) over the plane square
+// [c ± h]², when it lies inside the unit disk: 1 − |c|² − 2h²/3.
+inline float square_average_cosine(const Vec2& c, float h) { return 1.0f - glm::dot(c, c) - 2.0f * h * h / 3.0f; }
+
+}  // namespace rsl::test
