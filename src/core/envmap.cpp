@@ -419,11 +419,17 @@ public:
                     return entries_.front().second;
                 }
         }
+        // Built outside the lock: threads resampling other geometries are not held up.
         auto weights = std::make_shared<const ResamplingWeights>(make());
         std::lock_guard lock(mutex_);
         entries_.emplace_front(key, weights);
         if (entries_.size() > kCapacity) entries_.pop_back();
         return weights;
+    }
+
+    void clear() {
+        std::lock_guard lock(mutex_);
+        entries_.clear();
     }
 
 private:
@@ -432,11 +438,15 @@ private:
     std::list<std::pair<std::string, std::shared_ptr<const ResamplingWeights>>> entries_;
 };
 
+WeightCache& weight_cache() {
+    static WeightCache cache;
+    return cache;
+}
+
 template <typename SourceCells, typename TargetCells>
 std::vector<Color> resample(const SourceCells& source, const std::vector<Color>& radiance,
                             const TargetCells& target) {
-    static WeightCache cache;
-    const auto weights = cache.get(source.key() + " -> " + target.key(), [&] {
+    const auto weights = weight_cache().get(source.key() + " -> " + target.key(), [&] {
         OverlapMatrix m = with_neighbor_seeds(estimate_overlaps(source, target), target);
         fit_margins(m, source, target);
         return ResamplingWeights{std::move(m.offset), std::move(m.column),
@@ -469,6 +479,8 @@ CubeMap resample_cube(const CubeMap& map, int n, const Mat3& rotation) {
 }
 
 }  // namespace
+
+void clear_resampling_cache() { weight_cache().clear(); }
 
 CubeMap cube_from_latlong(const Image& latlong, int n) {
     if (latlong.width < 1 || latlong.height < 1) throw_error("cannot resample an empty lat-long image");

@@ -83,6 +83,16 @@ TEST_CASE("Lat-long convention: +Y on top, u = 1/4 is +X, u = 1/2 is +Z", "[envm
         REQUIRE(std::min(std::abs(uv.x - u), 1.0f - std::abs(uv.x - u)) < 1e-5f);
         REQUIRE(uv.y == Approx(v).margin(1e-5));
     }
+    // It is OpenEXR's lat-long convention (which spaces pixel centers edge to
+    // edge, hence the fine grid and the tolerance).
+    const int w = 4001, h = 2001;
+    const Imath::Box2i window(Imath::V2i(0, 0), Imath::V2i(w - 1, h - 1));
+    for (int k = 0; k < 200; ++k) {
+        const float x = unit(rng) * (w - 1), y = unit(rng) * (h - 1);
+        const Imath::V3f e = Imf::LatLongMap::direction(window, Imath::V2f(x, y));
+        const Vec3 ours = latlong_direction(x / (w - 1), y / (h - 1));
+        REQUIRE(glm::length(ours - glm::normalize(Vec3(e.x, e.y, e.z))) < 1e-4f);
+    }
     CHECK(latlong_coords(Vec3(0, 1, 0)).y == 0.0f);
     CHECK(latlong_coords(Vec3(0, -1, 0)).y == 1.0f);
 }
