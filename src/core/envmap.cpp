@@ -167,10 +167,12 @@ namespace {
 // and symmetrically each source cell split and assigned to target cells (exact
 // columns, noisy rows). Sampling from both sides means every cell, however
 // small compared with the other side's cells, reaches all cells it overlaps.
-// The average of the two estimates is then balanced by iterative proportional
-// fitting (alternately rescaling columns and rows), ending on the columns, so
-// energy is exact per source cell and the rows (the flatness of a constant
-// map) are within kRowTolerance.
+// The average of the two estimates (plus small neighbor seeds, below) is then
+// balanced by iterative proportional fitting (alternately rescaling columns and
+// rows), ending on the columns, so energy is exact per source cell and the rows
+// (the flatness of a constant map) are within kRowTolerance, or close to it
+// after kMaxFittingRounds (measured: worst texel 0.25% at N = 32, 0.53% at
+// N = 128; `rsl bench env`).
 constexpr double kRowTolerance = 2e-3;
 constexpr int kMaxFittingRounds = 60;
 constexpr double kOverRelaxation = 1.9;  // row scale^ω: converges ~2× faster than plain fitting
@@ -178,7 +180,7 @@ constexpr double kOverRelaxation = 1.9;  // row scale^ω: converges ~2× faster 
 // Sub-cells per cell edge when sampling cells of one partition against
 // another: about 4×4 sub-cells per cell of the other partition.
 int sub_cells(double own_cells, double other_cells) {
-    return std::clamp(int(std::ceil(4.0 * std::sqrt(other_cells / own_cells))), 2, 32);
+    return std::clamp(int(std::ceil(4.0 * std::sqrt(other_cells / own_cells))), 1, 32);
 }
 
 struct LatLongCells {
