@@ -1,6 +1,8 @@
 #pragma once
 // The compressed occluder field (fields/ovdf.h) as the renderer's OccluderField.
+#include <algorithm>
 #include <functional>
+#include <numbers>
 #include <memory>
 
 #include "fields/ovdf.h"
@@ -19,6 +21,18 @@ public:
     }
     BoundingSphere reach() const override {
         return BoundingSphere{field_->center, field_->radius * field_->params.outer_radius};
+    }
+    // Trilinear blending reads the two shells bracketing the distance (inside
+    // the inner shell: the inner two) and, on each, the four samples around
+    // the direction, at most a cube cell's diagonal (√2·2/N radians at a face
+    // center, less elsewhere) away.
+    float footprint(float d_min, float d_max) const override {
+        const Ovdf& f = *field_;
+        const int last = f.params.shells - 1;
+        const int lo = std::min(int(std::clamp(f.shell_coordinate(d_min), 0.0f, float(last))), last - 1);
+        const int hi = std::min(int(std::clamp(f.shell_coordinate(d_max), 0.0f, float(last))), last - 1) + 1;
+        const float radial = std::max(f.shell_radius(hi), d_max) - std::min(f.shell_radius(lo), d_min);
+        return radial + f.shell_radius(hi) * 2.0f * std::numbers::sqrt2_v<float> / float(f.params.cube_resolution);
     }
     const Ovdf& field() const { return *field_; }
 

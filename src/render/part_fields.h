@@ -27,6 +27,11 @@ public:
     // In the part's frame: beyond this sphere the field is exactly 1 (the
     // outer shell), so a receiver outside it can skip the lookup.
     virtual BoundingSphere reach() const = 0;
+    // How far from a receiver point the field's data may come from: a lookup
+    // at a distance in [d_min, d_max] from the reach's center blends samples
+    // within this distance of the point, so their shadows (not the point's
+    // own) can darken it. Culling grows the receiver by it. 0 for an exact field.
+    virtual float footprint(float d_min, float d_max) const { return 0.0f; }
 };
 
 struct PartFields {

@@ -114,8 +114,14 @@ TEST_CASE("a sphere light is a per-vertex square of the cap's solid angle", "[re
         const float solid_angle = 2.0f * kPi * (1.0f - cos_alpha);
         const float h = 0.5f * std::sqrt(0.5f * solid_angle);
         const Vec2 p = hemisphere_to_plane(plane_local(to_light / d));
-        const Color expected = solid_angle * radiance * albedo * kInvPi * test::square_average_cosine(p, h);
-        for (int ch = 0; ch < 3; ++ch) CHECK(colors.parts[0][v][ch] == Approx(expected[ch]).epsilon(3e-3));
+        const Color scale = solid_angle * radiance * albedo * kInvPi;
+        const Color expected = scale * test::square_average_cosine(p, h);
+        // The table is piecewise constant over texels of side 2/N; a square of
+        // about one texel (as here) can be off by the cosine's change over half
+        // a texel, |∇(1 − |p|²)|·(1/N) = 2|p|/N, plus float rounding.
+        const float cosine_tolerance = 2.0f * glm::length(p) / 32.0f + 1e-4f;
+        for (int ch = 0; ch < 3; ++ch)
+            CHECK(colors.parts[0][v][ch] == Approx(expected[ch]).margin(scale[ch] * cosine_tolerance));
     }
 }
 
@@ -178,41 +184,65 @@ void rotate_scene(Scene& scene, const Quat& rotation) {
     for (LocalLight& light : scene.lights) light.position = m * light.position;
 }
 
-TEST_CASE("rotating the environment by R and the scene by R⁻¹ leaves the colours", "[render]") {
+TEST_CASE("rotating the environment by R equals rotating the scene by R⁻¹", "[render]") {
     const Scene scene = fields_scene();
-    FieldBakeOptions bake;
-    const PartFields fields = bake_part_fields(scene, bake);
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     const RslSet lights = random_rsls(12, 7);
     RenderOptions options;
-    options.occluder_culling = false;  // the same lists both ways
-    Renderer reference(scene, lights, fields, options);
-    const VertexColors expected = reference.shade();
+    options.occluder_culling = false;  // the same lookups both ways
 
+    // A: the environment turned by R, the scene as it is.
     const Vec3 axis = glm::normalize(Vec3(0.3f, 0.8f, -0.5f));
     const float degrees = 67.0f;
-    Scene rotated = scene;
-    rotated.environment.rotation_axis = axis;
-    rotated.environment.rotation_degrees = degrees;
-    rotate_scene(rotated, glm::angleAxis(glm::radians(-degrees), axis));
-    Renderer turned(rotated, lights, fields, options);
-    const VertexColors colors = turned.shade();
+    Scene turned_environment = scene;
+    turned_environment.environment.rotation_axis = axis;
+    turned_environment.environment.rotation_degrees = degrees;
+    Renderer a(turned_environment, lights, fields, options);
+    const VertexColors expected = a.shade();
 
+    // B: the environment as it is, the scene (parts, camera, lights) turned by R⁻¹.
+    Scene turned_scene = scene;
+    rotate_scene(turned_scene, glm::angleAxis(glm::radians(-degrees), axis));
+    Renderer b(turned_scene, lights, fields, options);
+    const VertexColors colors = b.shade();
+
+    // Every lookup sees the same local coordinates up to the float rounding of
+    // the rotated frames (~1e-6 plane units), so colours agree to ~1e-5 — except
+    // where a receiver sits exactly on an OVDF cube-face seam as seen from an
+    // occluder: rounding can pick the other face, whose samples interpolate to
+    // a slightly different value (measured: one vertex of 493, 1.4%).
     double error2 = 0, norm2 = 0;
+    size_t vertices = 0, differing = 0;
     for (size_t p = 0; p < expected.parts.size(); ++p)
         for (size_t v = 0; v < expected.parts[p].size(); ++v) {
             const Vec3 d = colors.parts[p][v] - expected.parts[p][v];
             error2 += glm::dot(d, d);
             norm2 += glm::dot(expected.parts[p][v], expected.parts[p][v]);
+            ++vertices;
+            if (glm::length(d) > 1e-4f * glm::length(expected.parts[p][v]) + 1e-7f) ++differing;
         }
-    INFO("relative L2 difference " << std::sqrt(error2 / norm2));
+    INFO("relative L2 difference " << std::sqrt(error2 / norm2) << ", " << differing << " of " << vertices
+                                   << " vertices differ by more than 1e-4");
     REQUIRE(norm2 > 0);
-    // Every lookup sees the same local coordinates up to float rounding of
-    // the rotated frames; rounding moves a lookup by ~1e-6 plane units.
-    CHECK(std::sqrt(error2 / norm2) < 1e-4);
+    CHECK(differing <= vertices / 100);
+    CHECK(std::sqrt(error2 / norm2) < 3e-3);
+    // Without the occluder fields nothing is discontinuous: float noise only.
+    RenderOptions self_only = options;
+    self_only.occluders = false;
+    Renderer a_self(turned_environment, lights, fields, self_only), b_self(turned_scene, lights, fields, self_only);
+    const VertexColors ea = a_self.shade(), eb = b_self.shade();
+    double self_error2 = 0, self_norm2 = 0;
+    for (size_t p = 0; p < ea.parts.size(); ++p)
+        for (size_t v = 0; v < ea.parts[p].size(); ++v) {
+            const Vec3 d = eb.parts[p][v] - ea.parts[p][v];
+            self_error2 += glm::dot(d, d);
+            self_norm2 += glm::dot(ea.parts[p][v], ea.parts[p][v]);
+        }
+    CHECK(std::sqrt(self_error2 / self_norm2) < 1e-5);
     // And the fields do matter: switching them off changes the colours.
     RenderOptions no_visibility = options;
     no_visibility.self_visibility = no_visibility.occluders = false;
-    Renderer bare(scene, lights, fields, no_visibility);
+    Renderer bare(turned_environment, lights, fields, no_visibility);
     const VertexColors unshadowed = bare.shade();
     double change2 = 0;
     for (size_t p = 0; p < expected.parts.size(); ++p)

@@ -1,0 +1,161 @@
+// Occluder culling: the bounding-sphere tests against brute-force rays, and
+// the renderer's colours with culling on and off.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "src/render/culling.h"
+#include "src/render/renderer.h"
+#include "src/render/square_lights.h"
+#include "tests/render/render_test_scenes.h"
+
+namespace rsl {
+namespace {
+
+bool ray_hits_sphere(const Vec3& origin, const Vec3& dir, const BoundingSphere& s, float t_max) {
+    const Vec3 oc = origin - s.center;
+    const float b = glm::dot(oc, dir), c = glm::dot(oc, oc) - s.radius * s.radius;
+    const float disc = b * b - c;
+    if (disc < 0) return false;
+    const float t1 = -b + std::sqrt(disc);
+    const float t0 = -b - std::sqrt(disc);
+    return t1 >= 0 && t0 <= t_max;
+}
+
+Vec3 random_unit(std::mt19937& rng) {
+    std::normal_distribution<float> normal;
+    return glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+}
+
+Vec3 random_in_ball(std::mt19937& rng, float radius) {
+    std::uniform_real_distribution<float> u(-1, 1);
+    for (;;) {
+        const Vec3 p(u(rng), u(rng), u(rng));
+        if (glm::dot(p, p) <= 1) return radius * p;
+    }
+}
+
+// A direction within `half_angle` of `axis`, uniform over the cone.
+Vec3 random_in_cone(std::mt19937& rng, const Vec3& axis, float half_angle) {
+    std::uniform_real_distribution<float> u(0, 1);
+    const float cos_theta = 1.0f - u(rng) * (1.0f - std::cos(half_angle));
+    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+    const float phi = 2 * kPi * u(rng);
+    return Frame::from_normal(axis).to_world(Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta));
+}
+
+TEST_CASE("culling tests never cull an occluder that a ray can reach", "[render][culling]") {
+    std::mt19937 rng{11};
+    std::uniform_real_distribution<float> u(0, 1);
+    int culled_directional = 0, culled_sphere = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const BoundingSphere receiver{random_in_ball(rng, 2.0f), 0.1f + u(rng)};
+        const BoundingSphere occluder{random_in_ball(rng, 3.0f), 0.1f + u(rng)};
+        const Vec3 axis = random_unit(rng);
+        const float half_angle = 0.02f + 1.4f * u(rng) * u(rng);
+        const bool kept_directional = may_shadow_direction(receiver, occluder, axis, half_angle);
+        const Vec3 light_center = random_in_ball(rng, 4.0f);
+        const float light_radius = 0.05f + 0.3f * u(rng);
+        const bool kept_sphere = may_shadow_sphere_light(receiver, occluder, light_center, light_radius);
+        culled_directional += !kept_directional;
+        culled_sphere += !kept_sphere;
+        if (kept_directional && kept_sphere) continue;
+        for (int ray = 0; ray < 3000; ++ray) {
+            const Vec3 origin = receiver.center + random_in_ball(rng, receiver.radius);
+            if (!kept_directional) {
+                // The cone's boundary is where a test would be tight: sample it often.
+                const float angle = (ray % 2) ? half_angle : half_angle * std::sqrt(u(rng));
+                const Vec3 dir = random_in_cone(rng, axis, angle);
+                REQUIRE_FALSE(ray_hits_sphere(origin, dir, occluder, 1e30f));
+            }
+            if (!kept_sphere) {
+                const Vec3 target = light_center + random_in_ball(rng, light_radius);
+                const float length = glm::length(target - origin);
+                if (length > 1e-6f) REQUIRE_FALSE(ray_hits_sphere(origin, (target - origin) / length, occluder, length));
+            }
+        }
+    }
+    // The tests do cull: both kinds happen in random configurations.
+    CHECK(culled_directional > 40);
+    CHECK(culled_sphere > 40);
+}
+
+TEST_CASE("the square's cone contains every direction of its square", "[render][culling]") {
+    std::mt19937 rng{5};
+    std::uniform_real_distribution<float> u(-1, 1);
+    for (int trial = 0; trial < 2000; ++trial) {
+        const float h = 0.01f + 0.3f * std::abs(u(rng));
+        const Vec2 center(1.2f * u(rng), 1.2f * u(rng));
+        const Vec3 c = plane_to_hemisphere(center);
+        const float cone = square_cone_half_angle(h);
+        for (int s = 0; s < 16; ++s) {
+            const Vec2 q = center + h * Vec2(u(rng), u(rng));
+            if (glm::dot(q, q) > 1.0f) continue;  // below the horizon: ρ·cos is 0 there
+            const float angle = std::acos(std::clamp(glm::dot(c, plane_to_hemisphere(q)), -1.0f, 1.0f));
+            REQUIRE(angle <= cone + 1e-4f);
+        }
+    }
+}
+
+// Spheres spread over a plane with fields: some pairs are far apart (beyond
+// the outer shell or outside every light's cone), others close.
+TEST_CASE("culling does not change the colours", "[render][culling]") {
+    Scene scene = test::make_scene("spread", Color(0.6f));
+    test::add_part(scene, test::make_plane(8.0f, 16, "ground"));
+    const Vec3 spots[] = {{0, 0.3f, 0}, {0.7f, 0.3f, 0.2f}, {-3.0f, 0.3f, 2.5f}, {3.2f, 0.3f, -3.0f}, {-0.4f, 1.2f, 0.1f}};
+    for (int i = 0; i < 5; ++i) {
+        Transform pose;
+        pose.translation = spots[i];
+        test::add_part(scene, test::make_icosphere(0.3f, 2, "sphere" + std::to_string(i)), pose);
+    }
+    LocalLight light;
+    light.radius = 0.05f;
+    light.power = Color(2.0f);
+    light.position = Vec3(2.5f, 0.8f, 2.5f);
+    scene.lights.push_back(light);
+    scene.camera.position = Vec3(2, 6, 7);
+    PrecomputeSettings& pre = scene.precompute;
+    pre.svdf_resolution = 16, pre.svdf_clusters = 8, pre.svdf_vectors = 4, pre.svdf_supersampling = 1;
+    pre.ovdf_shells = 4, pre.ovdf_cube_resolution = 8, pre.ovdf_vdt_resolution = 16, pre.ovdf_vectors = 4;
+    pre.ovdf_outer_radius = 4.0f;
+    FieldBakeOptions bake;
+    bake.self_visibility = false;
+    const PartFields fields = bake_part_fields(scene, bake);
+
+    // Small and large lights from above and from the side.
+    RslSet lights;
+    std::mt19937 rng{3};
+    std::uniform_real_distribution<float> u(0, 1);
+    for (int i = 0; i < 16; ++i) {
+        RotatableSquareLight l;
+        l.center = glm::normalize(Vec3(u(rng) - 0.5f, 0.2f + u(rng), u(rng) - 0.5f));
+        l.half_diagonal = 0.05f + 0.3f * u(rng);
+        l.radiance = Color(1.0f + u(rng));
+        lights.lights.push_back(l);
+    }
+    RenderOptions with, without;
+    without.occluder_culling = false;
+    Renderer culled(scene, lights, fields, with), full(scene, lights, fields, without);
+    for (float t : {0.0f}) {
+        culled.set_time(t);
+        full.set_time(t);
+        const VertexColors a = culled.shade(), b = full.shade();
+        CHECK(culled.stats().occluder_pairs_culled > culled.stats().occluder_pairs / 4);
+        CHECK(full.stats().occluder_pairs_culled == 0);
+        for (size_t p = 0; p < a.parts.size(); ++p)
+            for (size_t v = 0; v < a.parts[p].size(); ++v)
+                for (int ch = 0; ch < 3; ++ch)
+                    REQUIRE(a.parts[p][v][ch] == Approx(b.parts[p][v][ch]).epsilon(1e-5).margin(1e-7));
+        // The occluders matter in this scene.
+        RenderOptions none;
+        none.occluders = false;
+        Renderer unshadowed(scene, lights, fields, none);
+        const VertexColors c = unshadowed.shade();
+        double change = 0;
+        for (size_t v = 0; v < c.parts[0].size(); ++v) change += std::abs(c.parts[0][v].g - a.parts[0][v].g);
+        CHECK(change > 1e-3);
+    }
+}
+
+}  // namespace
+}  // namespace rsl
