@@ -1,0 +1,217 @@
+// The ground truth against analytic answers: the furnace, a square area light
+// (polygon form factor), a sphere's shadow from a small source, moving parts,
+// and a spherical local light.
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+#include "src/trace/ground_truth.h"
+#include "tests/trace/trace_test_scenes.h"
+
+using namespace rsl;
+
+namespace {
+
+constexpr int kFaceTop = 2;  // +Y in OpenGL face order
+
+// ∫ cos θ dω over the spherical polygon with unit corner directions `corners`
+// (great-circle edges), seen from a surface with unit normal n, the polygon
+// wholly above the horizon: Lambert's formula ½ Σ_i Θ_i (n · û_i).
+double polygon_cosine_integral(const std::vector<DVec3>& corners, DVec3 n) {
+    double sum = 0;
+    for (size_t i = 0; i < corners.size(); ++i) {
+        const DVec3 a = glm::normalize(corners[i]), b = glm::normalize(corners[(i + 1) % corners.size()]);
+        sum += std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(n, glm::normalize(glm::cross(a, b)));
+    }
+    return 0.5 * std::abs(sum);
+}
+
+// The directions through the corners of texels [i0, i1) × [j0, j1) of a face, rotated.
+std::vector<DVec3> block_corners(int n, int face, int i0, int i1, int j0, int j1, const Mat3& rotation) {
+    auto coord = [n](int i) { return -1.0f + 2.0f * float(i) / float(n); };
+    std::vector<DVec3> corners;
+    for (auto [i, j] : {std::pair{i0, j0}, {i1, j0}, {i1, j1}, {i0, j1}})
+        corners.push_back(DVec3(rotation * CubeMap::face_direction(face, coord(i), coord(j))));
+    return corners;
+}
+
+SurfacePoint point_on_floor(Vec3 p) {
+    SurfacePoint x;
+    x.position = p;
+    x.frame = Frame::from_normal_tangent(Vec3(0, 1, 0), Vec3(1, 0, 0));
+    x.offset_normal = x.frame.z;
+    return x;
+}
+
+// Does the ray o + s d (s > 0) meet the sphere (c, r)?
+bool ray_meets_sphere(DVec3 o, DVec3 d, DVec3 c, double r) {
+    const DVec3 oc = c - o;
+    const double b = glm::dot(oc, d);
+    return b > 0 && glm::dot(oc, oc) - b * b < r * r;
+}
+
+}  // namespace
+
+TEST_CASE("Furnace: white unit environment, albedo 1, no occluders gives 1 at every vertex", "[trace][truth]") {
+    SECTION("a horizontal plane, one ray per texel") {
+        Scene scene = test::make_scene("furnace");
+        test::add_part(scene, test::make_plane(2.0f, 8));
+        const GroundTruth truth(scene, test::constant_cube(32, Color(1)), 0.0f);
+        const VertexColors b = truth.shade_vertices();
+        REQUIRE(b.vertex_count() == 81);
+        for (const Color& c : b.parts[0]) {
+            REQUIRE(c.r == Approx(1.0f).margin(1e-3));
+            REQUIRE(c.g == Approx(1.0f).margin(1e-3));
+            REQUIRE(c.b == Approx(1.0f).margin(1e-3));
+        }
+    }
+    SECTION("a tilted plane: the horizon cuts texels, a 4×4 sub-grid per texel") {
+        Scene scene = test::make_scene("furnace-tilted");
+        Transform tilt;
+        tilt.rotation = glm::angleAxis(glm::radians(33.0f), glm::normalize(Vec3(1, 0.2f, 1)));
+        test::add_part(scene, test::make_plane(2.0f, 4), tilt);
+        scene.camera.position = Vec3(tilt.matrix() * Vec4(0, 10, 0.5f, 1));
+        GroundTruthOptions options;
+        options.texel_subdivision = 4;
+        const GroundTruth truth(scene, test::constant_cube(32, Color(1)), 0.0f, options);
+        const VertexColors b = truth.shade_vertices();
+        for (const Color& c : b.parts[0]) REQUIRE(c.g == Approx(1.0f).margin(1e-3));
+    }
+}
+
+TEST_CASE("Square area light: a plane's radiance equals the polygon form factor", "[trace][truth]") {
+    const int n = 32;
+    const Color radiance(2.0f, 3.0f, 5.0f);
+    // A 6×4-texel block off the zenith, the environment turned about a tilted axis.
+    const int i0 = 5, i1 = 11, j0 = 18, j1 = 22;
+    for (float degrees : {0.0f, 25.0f, 50.0f}) {
+        Scene scene = test::make_scene("area-light", Color(0.5f, 0.8f, 1.0f));
+        test::add_part(scene, test::make_plane(2.0f, 2));
+        scene.environment.rotation_axis = Vec3(1, 0, 0.3f);
+        scene.environment.rotation_degrees = degrees;
+        const GroundTruth truth(scene, test::block_cube(n, kFaceTop, i0, i1, j0, j1, radiance), 0.0f);
+        const Mat3 rotation = scene.environment.rotation_at(0.0f);
+        const std::vector<DVec3> corners = block_corners(n, kFaceTop, i0, i1, j0, j1, rotation);
+        for (const DVec3& corner : corners) REQUIRE(corner.y > 0.0);  // the formula needs it above the horizon
+        const double form_factor = polygon_cosine_integral(corners, DVec3(0, 1, 0)) / kPi;
+        INFO("rotation " << degrees << "°, form factor " << form_factor);
+        REQUIRE(form_factor > 0.003);
+        const VertexColors b = truth.shade_vertices();
+        for (const Color& c : b.parts[0]) {
+            REQUIRE(c.r / (0.5 * radiance.r * form_factor) == Approx(1.0).margin(1e-3));
+            REQUIRE(c.g / (0.8 * radiance.g * form_factor) == Approx(1.0).margin(1e-3));
+            REQUIRE(c.b / (1.0 * radiance.b * form_factor) == Approx(1.0).margin(1e-3));
+        }
+    }
+}
+
+TEST_CASE("A sphere's shadow from a small source has the analytic shadowed fraction", "[trace][truth]") {
+    const int n = 32, i0 = 14, i1 = 18;  // a 4×4-texel source at the zenith (about 14° wide)
+    const Vec3 center(0, 1.5f, 0);
+    const float radius = 0.5f;
+    Scene scene = test::make_scene("sphere-shadow");
+    test::add_part(scene, test::make_plane(6.0f, 2));
+    Transform at;
+    at.translation = center;
+    test::add_part(scene, test::make_icosphere(radius, 5), at);
+    GroundTruthOptions options;
+    options.texel_subdivision = 16;
+    const GroundTruth truth(scene, test::block_cube(n, kFaceTop, i0, i1, i0, i1, Color(100)), 0.0f, options);
+    const double unshadowed = 100.0 / kPi *
+        polygon_cosine_integral(block_corners(n, kFaceTop, i0, i1, i0, i1, Mat3(1.0f)), DVec3(0, 1, 0));
+
+    for (Vec3 p : {Vec3(0, 0, 0), Vec3(0.3f, 0, 0), Vec3(0.4f, 0, 0), Vec3(0.5f, 0, 0), Vec3(0.6f, 0, 0),
+                   Vec3(0.35f, 0, 0.35f), Vec3(0.7f, 0, 0), Vec3(1.2f, 0, 0)}) {
+        // Reference: the cosine-weighted fraction of the source (exact sphere,
+        // 1024² samples over the block in face coordinates), no Embree.
+        const int m = 1024;
+        const double s0 = -1.0 + 2.0 * i0 / n, s1 = -1.0 + 2.0 * i1 / n;
+        double lit = 0, all = 0;
+        for (int b = 0; b < m; ++b)
+            for (int a = 0; a < m; ++a) {
+                const double s = s0 + (s1 - s0) * (a + 0.5) / m, t = s0 + (s1 - s0) * (b + 0.5) / m;
+                const DVec3 d = glm::normalize(DVec3(s, 1.0, t));
+                const double weight = d.y / std::pow(s * s + 1.0 + t * t, 1.5);  // cos · dω/ds dt
+                all += weight;
+                if (!ray_meets_sphere(DVec3(p), d, DVec3(center), radius)) lit += weight;
+            }
+        const double reference = lit / all;
+        const double measured = luminance(truth.shade(point_on_floor(p), Vec3(0, 1, 0), truth.part_brdf(0))) /
+                                luminance(Color(float(unshadowed)));
+        INFO("point " << p.x << ", " << p.z << ": reference " << reference << ", truth " << measured);
+        REQUIRE(measured == Approx(reference).margin(3e-3));
+    }
+}
+
+TEST_CASE("Moving a part moves its shadow without rebuilding the scene", "[trace][truth]") {
+    Scene scene = test::make_scene("moving");
+    test::add_part(scene, test::make_plane(6.0f, 12));
+    Transform at;
+    at.translation = Vec3(0, 1.5f, 0);
+    const int sphere = test::add_part(scene, test::make_icosphere(0.5f, 3), at);
+    Vec3Track track;
+    track.times = {0.0f, 1.0f};
+    track.values = {Vec3(0, 1.5f, 0), Vec3(1.5f, 1.5f, 0)};
+    scene.nodes[scene.parts[sphere].node].translation = track;
+    const CubeMap sun = test::block_cube(16, kFaceTop, 7, 9, 7, 9, Color(50));
+
+    GroundTruth truth(scene, sun, 0.0f);
+    const SurfacePoint under_start = point_on_floor(Vec3(0)), under_end = point_on_floor(Vec3(1.5f, 0, 0));
+    const Vec3 up(0, 1, 0);
+    const Brdf& brdf = truth.part_brdf(0);
+    const float lit = luminance(truth.shade(point_on_floor(Vec3(-2.5f, 0, 0)), up, brdf));
+    REQUIRE(lit > 0.0f);
+    REQUIRE(luminance(truth.shade(under_start, up, brdf)) == 0.0f);
+    REQUIRE(luminance(truth.shade(under_end, up, brdf)) == Approx(lit).epsilon(1e-5));
+
+    truth.set_time(1.0f);
+    REQUIRE(luminance(truth.shade(under_start, up, brdf)) == Approx(lit).epsilon(1e-5));
+    REQUIRE(luminance(truth.shade(under_end, up, brdf)) == 0.0f);
+
+    // The same as a scene built from scratch at t = 1.
+    const GroundTruth fresh(scene, sun, 1.0f);
+    const VertexColors moved = truth.shade_vertices(), built = fresh.shade_vertices();
+    REQUIRE(moved.time == 1.0f);
+    size_t shadowed = 0;
+    for (size_t p = 0; p < moved.parts.size(); ++p)
+        for (size_t v = 0; v < moved.parts[p].size(); ++v) {
+            REQUIRE(moved.parts[p][v].g == Approx(built.parts[p][v].g).margin(1e-6));
+            if (p == 0 && moved.parts[p][v].g == 0.0f) ++shadowed;
+        }
+    REQUIRE(shadowed > 0);
+}
+
+TEST_CASE("A sphere light matches the irradiance of a spherical source", "[trace][truth]") {
+    const float a = 0.2f;
+    Scene scene = test::make_scene("sphere-light", Color(0.9f));
+    test::add_part(scene, test::make_plane(4.0f, 2));
+    LocalLight light;
+    light.radius = a;
+    light.power = Color(10, 20, 30);
+    light.position = Vec3(0, 1, 0);
+    scene.lights.push_back(light);
+    const GroundTruth truth(scene, CubeMap(4), 0.0f);
+    const Color radiance = light.power / (4.0f * kPi * kPi * a * a);
+    REQUIRE(sphere_light_radiance(light).g == Approx(radiance.g));
+
+    for (Vec3 p : {Vec3(0), Vec3(0.8f, 0, 0), Vec3(-0.5f, 0, 1.1f), Vec3(1.6f, 0, 0.2f)}) {
+        // E = π L sin²α cos θ for a sphere wholly above the horizon; B = (albedo/π) E.
+        const Vec3 to_light = light.position - p;
+        const float d = glm::length(to_light);
+        const float cos_theta = to_light.y / d;
+        REQUIRE(std::acos(cos_theta) + std::asin(a / d) < 0.5f * kPi);
+        const Color expected = 0.9f * radiance * (a * a / (d * d)) * cos_theta;
+        const Color b = truth.shade(point_on_floor(p), Vec3(0, 1, 0), truth.part_brdf(0));
+        INFO("point " << p.x << ", " << p.z);
+        REQUIRE(b.r == Approx(expected.r).epsilon(1e-3));
+        REQUIRE(b.b == Approx(expected.b).epsilon(1e-3));
+    }
+
+    // A sphere between the light and the floor hides it completely.
+    Transform at;
+    at.translation = Vec3(0, 0.5f, 0);
+    test::add_part(scene, test::make_icosphere(0.3f, 3), at);
+    const GroundTruth blocked(scene, CubeMap(4), 0.0f);
+    REQUIRE(luminance(blocked.shade(point_on_floor(Vec3(0)), Vec3(0, 1, 0), blocked.part_brdf(0))) == 0.0f);
+    REQUIRE(luminance(blocked.shade(point_on_floor(Vec3(1.6f, 0, 0.2f)), Vec3(0, 1, 0), blocked.part_brdf(0))) > 0.0f);
+}
