@@ -1,0 +1,151 @@
+// `rsl bench truth`: ground-truth throughput. Shadow rays per second in the
+// per-vertex case (coherent 16-ray packets from one origin, all cores), the
+// same rays one at a time for comparison, and the time of the robot scene's
+// full ground truth at 6×32×32 texels.
+#include <chrono>
+#include <filesystem>
+
+#include <fmt/core.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include "assets/generate/primitives.h"
+#include "src/cli/bench.h"
+#include "src/core/envmap.h"
+#include "src/core/scene.h"
+#include "src/trace/ground_truth.h"
+
+namespace rsl::cli {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// A floor with spheres standing on it: the shape of the project's scenes
+// (receivers under occluders) without needing the generated assets.
+Scene synthetic_scene(bool quick) {
+    Scene scene;
+    scene.name = "bench-spheres";
+    MaterialDesc white;
+    white.params["albedo"] = {0.8f, 0.8f, 0.8f};
+    scene.materials.push_back(white);
+    auto add = [&](TriangleMesh mesh, Vec3 at) {
+        SceneNode node;
+        node.name = mesh.name;
+        node.rest.translation = at;
+        scene.nodes.push_back(node);
+        Part part;
+        part.name = mesh.name;
+        part.mesh = std::move(mesh);
+        part.node = int(scene.nodes.size()) - 1;
+        scene.parts.push_back(std::move(part));
+    };
+    const int cells = quick ? 24 : 96;
+    TriangleMesh floor = assets::grid_plane(6, 6, cells, cells);
+    floor.name = "floor";
+    add(std::move(floor), Vec3(0));
+    for (int k = 0; k < 5; ++k) {
+        TriangleMesh ball = assets::sphere(0.45f, quick ? 0.12f : 0.04f);
+        ball.name = "ball" + std::to_string(k);
+        add(std::move(ball), Vec3(-2.0f + k, 0.45f + 0.1f * k, 0.3f * (k % 2)));
+    }
+    scene.camera.position = Vec3(0, 4, 6);
+    return scene;
+}
+
+void emit_truth(const std::string& case_name, const Scene& scene, const CubeMap& map, float t) {
+    const auto build_start = Clock::now();
+    const GroundTruth truth(scene, map, t);
+    const double build_seconds = since(build_start);
+    const auto start = Clock::now();
+    const VertexColors colors = truth.shade_vertices();
+    const double seconds = since(start);
+    const uint64_t rays = truth.rays_traced();
+    bench_emit({{"bench", "truth"},
+                {"case", case_name},
+                {"parts", scene.parts.size()},
+                {"vertices", scene.vertex_count()},
+                {"texels", map.texel_count()},
+                {"lit_texel_samples", truth.environment_sample_count()},
+                {"lights", scene.lights.size()},
+                {"bvh_seconds", build_seconds},
+                {"seconds", seconds},
+                {"shadow_rays", rays},
+                {"rays_per_vertex", double(rays) / double(std::max<size_t>(scene.vertex_count(), 1))},
+                {"shadow_rays_per_second", double(rays) / seconds}});
+}
+
+// The same per-vertex rays (upper hemisphere of a 6×N×N map) traced as
+// 16-ray packets and as single rays, over a sample of vertices.
+void emit_packet_comparison(const std::string& case_name, const Scene& scene, int resolution) {
+    const PosedScene posed(scene, 0.0f);
+    const CubeMap map(resolution);
+    std::vector<Vec3> dirs(map.texel_count());
+    for (int k = 0; k < map.texel_count(); ++k) dirs[k] = map.texel_direction(k);
+    std::vector<std::pair<int, int>> vertices;
+    for (size_t p = 0; p < scene.parts.size(); ++p)
+        for (size_t v = 0; v < scene.parts[p].mesh.vertex_count(); v += 7) vertices.emplace_back(int(p), int(v));
+    for (bool packets : {true, false}) {
+        const auto start = Clock::now();
+        const uint64_t rays = tbb::parallel_reduce(
+            tbb::blocked_range<size_t>(0, vertices.size(), 16), uint64_t(0),
+            [&](const tbb::blocked_range<size_t>& range, uint64_t count) {
+                std::vector<Vec3> batch(dirs.size());
+                std::vector<uint8_t> visible(dirs.size());
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    const SurfacePoint x = posed.vertex(vertices[i].first, vertices[i].second);
+                    const Vec3 origin = posed.offset().origin(x.position, x.offset_normal);
+                    int n = 0;
+                    for (const Vec3& d : dirs)
+                        if (glm::dot(d, x.offset_normal) > 0.0f) batch[n++] = d;
+                    if (packets) {
+                        posed.rays().occluded_batch(origin, batch.data(), n, 0.0f, 1e30f, visible.data());
+                    } else {
+                        for (int k = 0; k < n; ++k)
+                            visible[k] = !posed.rays().occluded(origin, batch[k], 0.0f, 1e30f);
+                    }
+                    count += uint64_t(n);
+                }
+                return count;
+            },
+            std::plus<uint64_t>());
+        const double seconds = since(start);
+        bench_emit({{"bench", "truth"},
+                    {"case", case_name + (packets ? " packets of 16" : " single rays")},
+                    {"vertices", vertices.size()},
+                    {"seconds", seconds},
+                    {"shadow_rays", rays},
+                    {"shadow_rays_per_second", double(rays) / seconds}});
+    }
+}
+
+CubeMap white_cube(int n) {
+    CubeMap map(n);
+    for (Color& c : map.radiances()) c = Color(1);
+    return map;
+}
+
+RegisterBenchmark truth_benchmark({"truth",
+    "Ground truth: shadow rays per second (per-vertex packets vs single rays) and the robot scene at 6×32×32",
+    [](const BenchOptions& options) {
+        const Scene spheres = synthetic_scene(options.quick);
+        const int n = options.quick ? 8 : 32;
+        emit_truth(fmt::format("spheres, white 6x{}x{}", n, n), spheres, white_cube(n), 0.0f);
+        emit_packet_comparison(fmt::format("spheres, hemisphere of 6x{}x{}", n, n), spheres, n);
+
+        const fs::path robot_path = fs::path(RSL_SOURCE_DIR) / "assets" / "scenes" / "robot.json";
+        if (!fs::exists(robot_path) || !fs::exists(options.generated_assets / "robot.glb")) {
+            bench_emit({{"bench", "truth"}, {"case", "robot"}, {"skipped", "run `rsl assets` first: missing " + robot_path.string()}});
+            return;
+        }
+        const Scene robot = load_scene(robot_path);
+        const int robot_n = options.quick ? 8 : 32;
+        const CubeMap environment = robot.environment.file.empty()
+            ? CubeMap(robot_n) : load_environment(robot.environment.file, robot_n);
+        emit_truth(fmt::format("robot t=0, its environment 6x{}x{}", robot_n, robot_n), robot, environment, 0.0f);
+        if (!options.quick) emit_truth("robot t=0, white 6x32x32", robot, white_cube(32), 0.0f);
+    }});
+
+}  // namespace
+}  // namespace rsl::cli
