@@ -56,6 +56,7 @@ Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fie
     const size_t light_count = rsls_.lights.size() + scene.lights.size();
     offsets_.assign(parts * light_count + 1, 0);
     occluders_.reserve(parts * light_count * (parts - 1));
+    occluder_growth_.assign(parts * parts, 0.0f);
     set_time(0.0f);
 }
 
@@ -106,27 +107,25 @@ void Renderer::update_occluder_lists() {
                 if (options_.occluder_culling) {
                     const BoundingSphere& occluder = poses_[o].world_bounds;
                     const BoundingSphere reach = transform_sphere(poses_[o].transform, local_reach_[o]);
+                    // The field blends samples up to `footprint` away from the
+                    // receiver: test the receiver grown by it, so that culling
+                    // never changes a lookup's result.
+                    const float scale = reach.radius / std::max(local_reach_[o].radius, 1e-30f);
+                    const float distance = glm::length(r.center - reach.center) / scale;
+                    const float grow = scale * fields_.occluder[o]->footprint(
+                                                   std::max(0.0f, distance - r.radius / scale),
+                                                   std::min(local_reach_[o].radius, distance + r.radius / scale));
+                    occluder_growth_[receiver * parts + o] = grow;
+                    const BoundingSphere grown{r.center, r.radius + grow};
                     if (beyond_reach(r, reach)) {
                         keep = false;
+                    } else if (l < environment) {
+                        const SquareLight& square = environment_squares_[l];
+                        keep = may_shadow_direction(grown, occluder, square.direction,
+                                                    square_cone_half_angle(square.half_edge));
                     } else {
-                        // The field blends samples up to `footprint` away from
-                        // the receiver: test the receiver grown by it, so that
-                        // culling never changes a lookup's result.
-                        const float scale = reach.radius / std::max(local_reach_[o].radius, 1e-30f);
-                        const float distance = glm::length(r.center - reach.center) / scale;
-                        const float grow = scale * fields_.occluder[o]->footprint(
-                                                       std::max(0.0f, distance - r.radius / scale),
-                                                       std::min(local_reach_[o].radius, distance + r.radius / scale));
-                        const BoundingSphere grown{r.center, r.radius + grow};
-                        if (l < environment) {
-                            const SquareLight& square = environment_squares_[l];
-                            keep = may_shadow_direction(grown, occluder, square.direction,
-                                                        square_cone_half_angle(square.half_edge));
-                        } else {
-                            const size_t i = l - environment;
-                            keep = may_shadow_sphere_light(grown, occluder, light_positions_[i],
-                                                           scene_.lights[i].radius);
-                        }
+                        const size_t i = l - environment;
+                        keep = may_shadow_sphere_light(grown, occluder, light_positions_[i], scene_.lights[i].radius);
                     }
                 }
                 if (keep)

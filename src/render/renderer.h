@@ -93,6 +93,9 @@ private:
     // occluders_[offsets_[p·L + l] .. offsets_[p·L + l + 1]).
     std::vector<int> occluders_;
     std::vector<size_t> offsets_;
+    // Per (receiver, occluder): how much the occluder's field footprint grows
+    // the receiver in culling tests (world units).
+    std::vector<float> occluder_growth_;
     RenderStats stats_;
 };
 

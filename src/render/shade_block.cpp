@@ -15,6 +15,8 @@ namespace rsl {
 namespace {
 
 constexpr int kBlock = 256;
+// Scenes with more parts skip the per-vertex occluder test for the rest.
+constexpr int kMaxConeParts = 32;
 
 // Per-thread scratch of one block (about 40 KB, never on the heap per frame).
 struct BlockScratch {
@@ -35,7 +37,26 @@ struct BlockScratch {
     alignas(64) float qx[kBlock], qy[kBlock], tx[kBlock], ty[kBlock], qh[kBlock];
     alignas(64) float qvx[kBlock], qvy[kBlock], qvz[kBlock];
     alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
+    // Per query: half-angle of a cone around the light holding its square.
+    alignas(64) float beta[kBlock];
+    // Per occluder part and vertex: the direction to the occluder's (grown)
+    // bounding sphere and the half-angle it subtends (π: the vertex is inside).
+    alignas(64) float cone_x[kMaxConeParts][kBlock], cone_y[kMaxConeParts][kBlock], cone_z[kMaxConeParts][kBlock];
+    alignas(64) float cone_angle[kMaxConeParts][kBlock];
+    bool cone_ready[kMaxConeParts];
 };
+
+// Half-angle of a cone around a light's direction that holds the part of its
+// square (half-edge h) above the horizon, for a vertex where the light has
+// local z = lz. The plane segment from the square's center to any of its
+// points above the horizon stays within radius ρ_max = max(1, |p|),
+// |p| = √(1 − lz), where the inverse map stretches lengths by at most
+// √2 / cos(θ/2) = √2 / √(1 − ρ²/2) (see square_cone_half_angle).
+inline float vertex_square_cone(float lz, float h) {
+    const float rho2 = std::min(2.0f, std::max(1.0f, 1.0f - lz));
+    const float denominator = std::sqrt(std::max(1e-12f, 1.0f - 0.5f * rho2));
+    return std::min(kPi, 2.0f * h / denominator);
+}
 
 thread_local BlockScratch scratch;
 
@@ -51,6 +72,9 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
     const int n = block.end - block.begin;
     const bool has_tangents = !mesh.tangents.empty();
+    const bool vertex_culling = options_.occluder_culling && int(scene_.parts.size()) <= kMaxConeParts;
+    if (vertex_culling)
+        for (size_t o = 0; o < scene_.parts.size(); ++o) s.cone_ready[o] = false;
 
     // World position, shading frame (as PosedScene::vertex) and local view.
     for (int k = 0; k < n; ++k) {
@@ -122,6 +146,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                 s.qvx[m] = s.vx[k], s.qvy[m] = s.vy[k];
             }
             s.qvz[m] = s.vz[k];
+            s.beta[m] = vertex_culling ? vertex_square_cone(s.lz[k], s.half[k]) : kPi;
             ++m;
         }
         if (m == 0) continue;
@@ -148,9 +173,31 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             const int o = occluders_[e];
             const OccluderField& field = *fields_.occluder[o];
             const PartPose& occluder = poses_[o];
+            if (vertex_culling && !s.cone_ready[o]) {
+                // The occluder's bounding sphere, grown by its field's
+                // footprint (as in the per-part test), seen from each vertex.
+                const BoundingSphere& sphere = occluder.world_bounds;
+                const float radius = sphere.radius + occluder_growth_[size_t(part_index) * scene_.parts.size() + o];
+                for (int k = 0; k < n; ++k) {
+                    const Vec3 to = sphere.center - Vec3(s.px[k], s.py[k], s.pz[k]);
+                    const float distance = glm::length(to);
+                    const Vec3 u = distance > 0.0f ? to / distance : Vec3(0, 0, 1);
+                    s.cone_x[o][k] = u.x, s.cone_y[o][k] = u.y, s.cone_z[o][k] = u.z;
+                    s.cone_angle[o][k] = distance > radius ? std::asin(radius / distance) : kPi;
+                }
+                s.cone_ready[o] = true;
+            }
             for (int i = 0; i < m; ++i) {
                 if (!(s.vis[i] > 0.0f)) continue;
                 const int k = s.index[i];
+                if (vertex_culling) {
+                    // Skip when the light's cone and the occluder's cone are disjoint.
+                    const float reach = s.beta[i] + s.cone_angle[o][k];
+                    if (reach < kPi) {
+                        const float c = s.dx[k] * s.cone_x[o][k] + s.dy[k] * s.cone_y[o][k] + s.dz[k] * s.cone_z[o][k];
+                        if (c < std::cos(reach)) continue;
+                    }
+                }
                 const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
                 const Vec3 dir = glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
                 s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);

@@ -1,0 +1,105 @@
+// `rsl bench render`: frames per second of the CPU RSL renderer — shading
+// alone and with image formation — and its speed-up over the ground truth on
+// the same frame, measured in the same run; plus the error against it.
+// `rsl bench render-accuracy`: the error table of docs/RESULTS.md.
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+#include <fmt/core.h>
+
+#include "src/cli/bench.h"
+#include "src/render/render_bench_cases.h"
+#include "src/render/render_setup.h"
+#include "src/trace/error_metrics.h"
+#include "src/trace/ground_truth.h"
+#include "src/trace/image_formation.h"
+
+namespace rsl::cli {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+template <class F>
+double median_seconds(int repeats, F&& f) {
+    std::vector<double> times;
+    for (int i = 0; i < repeats; ++i) {
+        const auto start = Clock::now();
+        f();
+        times.push_back(since(start));
+    }
+    std::sort(times.begin(), times.end());
+    return times[times.size() / 2];
+}
+
+void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
+    const auto scene = load_bench_scene(c, options.shared_assets);
+    if (!scene) {
+        bench_emit({{"bench", "render"}, {"case", c.name}, {"skipped", "missing shared assets"}});
+        return;
+    }
+    RenderOptions render_options;
+    render_options.environment_lights = c.lights;
+    const RenderSetup setup = prepare_render(scene, render_options, false);
+    Renderer renderer(*scene, setup.environment_lights, setup.fields, render_options);
+    VertexColors colors = renderer.make_output();
+    renderer.set_time(c.time);
+    renderer.shade(colors);  // warm-up: thread-local scratch, caches
+    const int repeats = options.quick ? 2 : 5;
+    const double shade_seconds = median_seconds(repeats, [&] {
+        renderer.set_time(c.time);
+        renderer.shade(colors);
+    });
+    const int width = options.quick ? 160 : scene->camera.width, height = options.quick ? 120 : scene->camera.height;
+    PosedScene posed(*scene, c.time);
+    const PinholeCamera camera = PinholeCamera::at_time(scene->camera, c.time, width, height);
+    Image image;
+    const double image_seconds = median_seconds(repeats, [&] { image = form_image(posed, camera, colors); });
+
+    GroundTruth truth(*scene, setup.environment, c.time);
+    auto start = Clock::now();
+    const VertexColors reference = truth.shade_vertices();
+    const double truth_seconds = since(start);
+    const VertexErrorReport error = compare_vertex_colors(colors, reference);
+    const RenderStats& stats = renderer.stats();
+    bench_emit({{"bench", "render"},
+                {"case", c.name},
+                {"vertices", stats.vertices},
+                {"parts", scene->parts.size()},
+                {"lights", stats.lights},
+                {"lookups", stats.lookups},
+                {"occluder_pairs", stats.occluder_pairs},
+                {"occluder_pairs_culled", stats.occluder_pairs_culled},
+                {"bake_seconds", setup.bake_seconds},
+                {"fit_seconds", setup.fit_seconds},
+                {"shade_seconds", shade_seconds},
+                {"fps_shading", 1.0 / shade_seconds},
+                {"image_seconds", image_seconds},
+                {"image", fmt::format("{}x{}", width, height)},
+                {"fps_with_image", 1.0 / (shade_seconds + image_seconds)},
+                {"truth_seconds", truth_seconds},
+                {"speedup_shading", truth_seconds / shade_seconds},
+                {"speedup_with_image", (truth_seconds + image_seconds) / (shade_seconds + image_seconds)},
+                {"relative_l2_vs_truth", error.total.relative_l2()}});
+}
+
+void bench_render(const BenchOptions& options) {
+    for (const RenderBenchCase& c : render_speed_cases(options.quick)) bench_case(c, options);
+}
+
+RegisterBenchmark render_benchmark({"render",
+    "CPU RSL renderer: fps (shading, with image formation) and speed-up over the ground truth", bench_render});
+
+void bench_render_accuracy(const BenchOptions& options) {
+    for (const AccuracyRow& row : render_accuracy_table(options.shared_assets, options.quick))
+        bench_emit(accuracy_row_json(row));
+}
+
+RegisterBenchmark render_accuracy_benchmark({"render-accuracy",
+    "Per-vertex relative L2 error of the RSL renderer vs the ground truth (docs/RESULTS.md); slow",
+    bench_render_accuracy});
+
+}  // namespace
+}  // namespace rsl::cli

@@ -1,0 +1,162 @@
+#include "src/render/render_bench_cases.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "lightfit/reconstruct.h"
+#include "src/render/render_setup.h"
+#include "src/trace/error_metrics.h"
+#include "src/trace/ground_truth.h"
+
+namespace rsl {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+fs::path scenes_dir() { return fs::path(RSL_SOURCE_DIR) / "assets/scenes"; }
+
+// Every part Lambertian (albedo 0.6): the "diffuse" rows.
+void make_diffuse(Scene& scene) {
+    MaterialDesc lambert;
+    lambert.name = "diffuse";
+    lambert.model = "lambert";
+    lambert.params["albedo"] = {0.6f, 0.6f, 0.6f};
+    scene.materials = {lambert};
+    for (Part& part : scene.parts) part.material = 0;
+}
+
+// The four environments of the table as cube maps of the scenes' resolution.
+struct NamedEnvironment {
+    std::string name;
+    CubeMap map;
+};
+std::vector<NamedEnvironment> table_environments(const fs::path& shared, int n, bool quick) {
+    std::vector<NamedEnvironment> result;
+    for (const char* probe : {"grace", "ennis", "uffizi"}) {
+        const fs::path path = shared / "probes" / (std::string(probe) + ".hdr");
+        if (fs::exists(path)) result.push_back({probe, load_environment(path, n)});
+        if (quick) return result;
+    }
+    // The project's generated sun and sky (assets/generated, made by `rsl assets`).
+    const fs::path sunsky = fs::path(RSL_SOURCE_DIR) / "assets/generated/sunsky.exr";
+    if (fs::exists(sunsky)) result.push_back({"sunsky", load_environment(sunsky, n)});
+    return result;
+}
+
+}  // namespace
+
+PrecomputeSettings bench_precompute() {
+    PrecomputeSettings p;
+    p.svdf_resolution = 16, p.svdf_clusters = 64, p.svdf_vectors = 6, p.svdf_supersampling = 2;
+    p.ovdf_shells = 8, p.ovdf_inner_radius = 0.4f, p.ovdf_outer_radius = 6.0f;
+    p.ovdf_cube_resolution = 16, p.ovdf_vdt_resolution = 16, p.ovdf_vectors = 6;
+    return p;
+}
+
+std::vector<RenderBenchCase> render_speed_cases(bool quick) {
+    if (quick) return {{"robot 30 RSLs", "robot.json", false, 30, 0.5f}};
+    return {{"bunny on plane 30 RSLs", "bunny.json", true, 30, 0.0f},
+            {"robot 30 RSLs", "robot.json", false, 30, 0.5f},
+            {"kitchen 30 RSLs", "kitchen.json", false, 30, 1.0f}};
+}
+
+std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const fs::path& shared_assets) {
+    if (c.needs_shared && !fs::exists(shared_assets)) return nullptr;
+    auto scene = std::make_shared<Scene>(load_scene(scenes_dir() / c.scene_file));
+    scene->precompute = bench_precompute();
+    return scene;
+}
+
+std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bool quick, bool progress) {
+    struct SceneCase {
+        std::string name, file;
+        std::vector<float> times;
+        bool needs_shared;
+    };
+    std::vector<SceneCase> scenes = {{"robot", "robot.json", {0.0f, 0.5f, 1.0f}, false},
+                                     {"kitchen", "kitchen.json", {1.0f}, false},
+                                     {"bunny", "bunny.json", {0.0f}, true}};
+    std::vector<int> light_counts = {10, 30, 60, 100};
+    if (quick) {
+        scenes.resize(1);
+        scenes[0].times = {0.0f};
+        light_counts = {10, 30};
+    }
+    std::vector<AccuracyRow> rows;
+    for (const SceneCase& sc : scenes) {
+        if (sc.needs_shared && !fs::exists(shared_assets)) continue;
+        for (const bool glossy : {true, false}) {
+            if (quick && !glossy) continue;
+            auto scene = std::make_shared<Scene>(load_scene(scenes_dir() / sc.file));
+            scene->precompute = bench_precompute();
+            if (!glossy) make_diffuse(*scene);
+            // Fields depend on geometry only: bake once per scene and material set.
+            RenderOptions bake_options;
+            bake_options.environment = false;
+            const RenderSetup setup = prepare_render(scene, bake_options, progress);
+            for (const NamedEnvironment& env : table_environments(shared_assets, scene->environment.resolution, quick)) {
+                for (float t : sc.times) {
+                    auto start = std::chrono::steady_clock::now();
+                    GroundTruth truth(*scene, env.map, t);
+                    const VertexColors reference = truth.shade_vertices();
+                    const double truth_seconds = since(start);
+                    for (int k : light_counts) {
+                        AccuracyRow row{sc.name, env.name, glossy ? "glossy" : "diffuse", t, k};
+                        const RslSet rsls = fit_environment_lights(env.map, k);
+                        RenderOptions options;
+                        Renderer renderer(*scene, rsls, setup.fields, options);
+                        renderer.set_time(t);
+                        start = std::chrono::steady_clock::now();
+                        const VertexColors colors = renderer.shade();
+                        row.render_seconds = since(start);
+                        row.truth_seconds = truth_seconds;
+                        row.vertices = colors.vertex_count();
+                        row.error = compare_vertex_colors(colors, reference).total.relative_l2();
+                        RenderOptions no_occluders;
+                        no_occluders.occluders = false;
+                        Renderer self_only(*scene, rsls, setup.fields, no_occluders);
+                        self_only.set_time(t);
+                        row.no_occluder_error = compare_vertex_colors(self_only.shade(), reference).total.relative_l2();
+                        // The light approximation alone: the exact integral
+                        // under the map the RSLs stand for (one more ground
+                        // truth per row, so only for the glossy robot under grace).
+                        row.light_error = -1;
+                        if (sc.name == "robot" && glossy && env.name == "grace") {
+                            GroundTruth light_only(*scene, lightfit::reconstruct(rsls, env.map.resolution()), t);
+                            row.light_error =
+                                compare_vertex_colors(light_only.shade_vertices(), reference).total.relative_l2();
+                        }
+                        if (progress)
+                            std::fprintf(stderr, "%s t=%.2f %s %s K=%d: %.4f (light %.4f, no occluders %.4f)\n",
+                                         row.scene.c_str(), t, row.environment.c_str(), row.material.c_str(), k,
+                                         row.error, row.light_error, row.no_occluder_error);
+                        rows.push_back(row);
+                    }
+                }
+            }
+        }
+    }
+    return rows;
+}
+
+nlohmann::json accuracy_row_json(const AccuracyRow& row) {
+    return {{"bench", "render-accuracy"},
+            {"scene", row.scene},
+            {"time", row.time},
+            {"environment", row.environment},
+            {"material", row.material},
+            {"lights", row.lights},
+            {"vertices", row.vertices},
+            {"relative_l2", row.error},
+            {"relative_l2_light_only", row.light_error},
+            {"relative_l2_without_occluders", row.no_occluder_error},
+            {"truth_seconds", row.truth_seconds},
+            {"render_seconds", row.render_seconds}};
+}
+
+}  // namespace rsl
