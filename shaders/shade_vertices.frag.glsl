@@ -1,0 +1,349 @@
+#version 330 core
+// The shading pass (RSL paper §5.2, Figure 8): one fragment per vertex of the
+// vertex rectangle computes
+//
+//   Σ_lights  2r²·I  ×  BRDF-SAT average  ×  SVDF average  ×  Π_occluders OVDF average
+//
+// with the same arithmetic as the CPU renderer (src/render/shade_block.cpp,
+// src/brdf/brdf_table.cpp, fields/svdf.h, fields/ovdf.cpp), so that the two
+// agree to float rounding. Layout of every texture: src/gl/gpu_layout.h.
+// Defines from the host: MAX_STRIDE (texels of a CPCA row).
+
+const int kArrayWidth = 2048;  // gl_objects.h kArrayTextureWidth
+const int kArrayShift = 11;
+const float kSqrt2 = 1.41421356237;
+
+uniform sampler2D u_positions;     // vertex rectangle: part-space position, part
+uniform sampler2D u_normals;       // normal, SVDF cluster
+uniform sampler2D u_tangents;      // tangent
+uniform sampler2D u_parts;         // part records (kPartStride texels each)
+uniform sampler2D u_lights;        // 2 texels per light
+uniform usampler2D u_occluders;    // (light, part) → bit mask of occluder parts
+uniform sampler3D u_brdf;          // SAT corners, slices stacked
+uniform sampler2D u_brdf_offsets;  // per slice mean offset
+uniform sampler2D u_svdf_tables;
+uniform sampler2D u_svdf_coefficients;
+uniform sampler2D u_ovdf_tables;
+uniform sampler2D u_ovdf_coefficients;
+uniform sampler2D u_ovdf_frames;
+
+uniform int u_vertex_count;
+uniform int u_part_count;
+uniform int u_environment_lights;  // lights [0, E) are environment squares, [E, L) local sphere lights
+uniform int u_light_count;
+uniform bool u_environment_enabled;  // RenderOptions::environment
+uniform bool u_local_enabled;        // RenderOptions::local_lights
+uniform int u_brdf_resolution;     // N
+uniform vec3 u_camera;
+uniform bool u_self_visibility;
+uniform vec3 u_face_normal[6];
+uniform vec3 u_face_s[6];
+uniform vec3 u_face_t[6];
+
+layout(location = 0) out vec4 o_color;
+
+vec4 fetch(sampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0); }
+vec4 part_texel(int part, int slot) { return fetch(u_parts, part * 18 + slot); }  // kPartStride = 18
+
+// ---- frames and the equal-area map (src/core/math.h, hemisphere.h) ----
+
+vec3 any_orthonormal(vec3 n) {
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float b = n.x * n.y * a;
+    return vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
+}
+
+// Frame::from_normal_tangent: rows x, y, z of the world → local rotation.
+mat3 frame_rows(vec3 n, vec3 t) {
+    vec3 z = normalize(n);
+    vec3 x = t - z * dot(z, t);
+    float len2 = dot(x, x);
+    x = len2 > 1e-12 ? x / sqrt(len2) : any_orthonormal(z);
+    return mat3(x, cross(z, x), z);  // columns; local = transpose(frame) * world
+}
+vec3 to_local(mat3 frame, vec3 v) { return vec3(dot(v, frame[0]), dot(v, frame[1]), dot(v, frame[2])); }
+
+vec2 hemisphere_to_plane(vec3 w) { return w.xy * (1.0 / sqrt(max(1.0 + w.z, 1e-12))); }
+
+// ---- BRDF summed-area tables (brdf_table.cpp) ----
+
+struct Taps {
+    ivec4 ax, by;
+    vec4 wx, wy;
+    float clipped_area, inv_full_area;
+};
+
+void bracket(float x, int n, out int lower, out float upper_weight) {
+    lower = min(int(x), n - 1);
+    upper_weight = x - float(lower);
+}
+
+Taps square_taps(vec2 c, float h) {
+    int n = u_brdf_resolution;
+    float scale = 0.5 * float(n);
+    h = max(h, 1e-6);
+    float x0 = clamp((c.x - h + 1.0) * scale, 0.0, float(n));
+    float x1 = clamp((c.x + h + 1.0) * scale, 0.0, float(n));
+    float y0 = clamp((c.y - h + 1.0) * scale, 0.0, float(n));
+    float y1 = clamp((c.y + h + 1.0) * scale, 0.0, float(n));
+    int a0, a1, b0, b1;
+    float f0, f1, g0, g1;
+    bracket(x0, n, a0, f0);
+    bracket(x1, n, a1, f1);
+    bracket(y0, n, b0, g0);
+    bracket(y1, n, b1, g1);
+    Taps t;
+    t.ax = ivec4(a1, a1 + 1, a0, a0 + 1);
+    t.wx = vec4(1.0 - f1, f1, f0 - 1.0, -f0);
+    t.by = ivec4(b1, b1 + 1, b0, b0 + 1);
+    t.wy = vec4(1.0 - g1, g1, g0 - 1.0, -g0);
+    t.clipped_area = (x1 - x0) * (y1 - y0);
+    float edge = 2.0 * h * scale;
+    t.inv_full_area = 1.0 / (edge * edge);
+    return t;
+}
+
+vec3 slice_integral(int s, Taps t) {
+    vec3 sum = vec3(0.0);
+    for (int n = 0; n < 4; ++n)
+        for (int m = 0; m < 4; ++m) sum += (t.wx[m] * t.wy[n]) * texelFetch(u_brdf, ivec3(t.ax[m], t.by[n], s), 0).rgb;
+    return sum + fetch(u_brdf_offsets, s).rgb * t.clipped_area;
+}
+
+void sample_lerp(float t, int v, out int k0, out float w) {
+    t = clamp(t, 0.0, float(v - 1));
+    k0 = min(int(t), v - 2);
+    w = t - float(k0);
+}
+
+// Average of ρ·cos over the square (table frame) for view `view`; material =
+// (first slice, isotropic, V, 0).
+vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
+    Taps t = square_taps(c, h);
+    if (t.clipped_area <= 0.0) return vec3(0.0);
+    int first = int(material.x), v = int(material.z);
+    vec3 sum = vec3(0.0);
+    if (material.y > 0.5) {
+        int k0;
+        float w;
+        sample_lerp(sqrt(clamp(1.0 - view.z, 0.0, 1.0)) * float(v) - 0.5, v, k0, w);
+        sum += (1.0 - w) * slice_integral(first + k0, t);
+        sum += w * slice_integral(first + k0 + 1, t);
+    } else {
+        vec2 p = hemisphere_to_plane(vec3(view.xy, max(view.z, -0.999)));
+        float len2 = dot(p, p);
+        if (len2 > 1.0) p /= sqrt(len2);
+        int i0, j0;
+        float wi, wj;
+        sample_lerp((p.x + 1.0) * 0.5 * float(v) - 0.5, v, i0, wi);
+        sample_lerp((p.y + 1.0) * 0.5 * float(v) - 0.5, v, j0, wj);
+        int s = first + j0 * v + i0;
+        sum += ((1.0 - wi) * (1.0 - wj)) * slice_integral(s, t);
+        sum += (wi * (1.0 - wj)) * slice_integral(s + 1, t);
+        sum += ((1.0 - wi) * wj) * slice_integral(s + v, t);
+        sum += (wi * wj) * slice_integral(s + v + 1, t);
+    }
+    return sum * t.inv_full_area;
+}
+
+// ---- visibility distance tables (fields/vdt.h, svdf.h, ovdf.cpp) ----
+
+float visible_fraction_from_distance(float d, float h) { return clamp(0.5 + d / (2.0 * h), 0.0, 1.0); }
+
+// Bilinear taps between texel centers of an n×n table (vdt.cpp bilinear_taps).
+void bilinear_taps(int n, vec2 p, out ivec4 index, out vec4 weight) {
+    float hi = float(n - 1);
+    float u = clamp((p.x + 1.0) * (0.5 * float(n)) - 0.5, 0.0, hi);
+    float v = clamp((p.y + 1.0) * (0.5 * float(n)) - 0.5, 0.0, hi);
+    int i0 = min(int(u), n - 2), j0 = min(int(v), n - 2);
+    float fx = u - float(i0), fy = v - float(j0);
+    int base = j0 * n + i0;
+    index = ivec4(base, base + 1, base + n, base + n + 1);
+    weight = vec4((1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy);
+}
+
+vec4 g_svdf_coefficients[MAX_STRIDE];
+
+// The vertex's reconstructed SVDF distance at plane point p.
+float svdf_distance(vec4 svdf, int cluster, vec2 p) {
+    int n = int(svdf.z), stride = int(svdf.w), dims = n * n;
+    ivec4 index;
+    vec4 weight;
+    bilinear_taps(n, p, index, weight);
+    float d = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        int row = int(svdf.x) + (cluster * dims + index[k]) * stride;
+        float value = 0.0;
+        for (int t = 0; t < stride; ++t) value += dot(fetch(u_svdf_tables, row + t), g_svdf_coefficients[t]);
+        d += weight[k] * value;
+    }
+    return d;
+}
+
+// One OVDF sample's reconstructed distance at plane point p.
+float ovdf_sample_distance(int tables, int coefficients, int stride, int vdt_n, int sample, int segment, vec2 p) {
+    vec4 w[MAX_STRIDE];
+    for (int t = 0; t < stride; ++t) w[t] = fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
+    ivec4 index;
+    vec4 weight;
+    bilinear_taps(vdt_n, p, index, weight);
+    int dims = vdt_n * vdt_n;
+    float d = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        int row = tables + (segment * dims + index[k]) * stride;
+        float value = 0.0;
+        for (int t = 0; t < stride; ++t) value += dot(fetch(u_ovdf_tables, row + t), w[t]);
+        d += weight[k] * value;
+    }
+    return d;
+}
+
+float shell_coordinate(vec4 shells, float distance, float radius) {
+    float d = distance / radius, last = shells.x - 1.0, inner = shells.z, outer = shells.w;
+    int spacing = int(shells.y);
+    if (spacing == 0) return last * log(max(d, 1e-6) / inner) / log(outer / inner);
+    if (spacing == 1) return last * (d - inner) / (outer - inner);
+    return last * (1.0 / max(d, 1e-6) - 1.0 / inner) / (1.0 / outer - 1.0 / inner);
+}
+
+// Ovdf::visible_fraction (per-sample blend): point and light in the occluder's frame.
+float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
+    vec4 center = part_texel(part, 14);
+    vec4 bases = part_texel(part, 15);
+    vec3 v = point - center.xyz;
+    float d = length(v);
+    if (d >= bases.w) return 1.0;
+    vec4 shells = part_texel(part, 16);
+    vec4 grid = part_texel(part, 17);
+    vec3 dir = d > 0.0 ? v / d : vec3(0.0, 0.0, 1.0);
+    int shell_count = int(shells.x), n = int(grid.x), vdt_n = int(grid.y), stride = int(grid.z), m = int(grid.w);
+    float u = clamp(shell_coordinate(shells, d, center.w), 0.0, float(shell_count - 1));
+    int s0 = min(int(u), shell_count - 2);
+    float fs = u - float(s0);
+    int face = 0;
+    float best = -2.0;
+    for (int f = 0; f < 6; ++f) {
+        float c = dot(dir, u_face_normal[f]);
+        if (c > best) {
+            best = c;
+            face = f;
+        }
+    }
+    float x = clamp((dot(dir, u_face_s[face]) / best + 1.0) * 0.5 * float(n) - 0.5, 0.0, float(n - 1));
+    float y = clamp((dot(dir, u_face_t[face]) / best + 1.0) * 0.5 * float(n) - 0.5, 0.0, float(n - 1));
+    int i0 = min(int(x), n - 2), j0 = min(int(y), n - 2);
+    float fx = x - float(i0), fy = y - float(j0);
+    ivec4 ii = ivec4(i0, i0 + 1, i0, i0 + 1), jj = ivec4(j0, j0, j0 + 1, j0 + 1);
+    vec4 w = vec4((1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy);
+    int tables = int(bases.x), coefficients = int(bases.y), frames = int(bases.z);
+    float distance = 0.0;
+    for (int k = 0; k < 2; ++k) {
+        int shell = s0 + k;
+        float ws = k == 0 ? 1.0 - fs : fs;
+        if (ws == 0.0) continue;
+        for (int q = 0; q < 4; ++q) {
+            if (w[q] == 0.0) continue;
+            int frame_index = frames + 2 * ((face * n + jj[q]) * n + ii[q]);
+            vec3 fx_axis = fetch(u_ovdf_frames, frame_index).xyz;
+            vec3 fz_axis = fetch(u_ovdf_frames, frame_index + 1).xyz;
+            vec3 local = vec3(dot(light, fx_axis), dot(light, cross(fz_axis, fx_axis)), dot(light, fz_axis));
+            vec2 p = hemisphere_to_plane(local);
+            int sample = ((shell * 6 + face) * n + jj[q]) * n + ii[q];
+            int segment = ((shell * 6 + face) * m + jj[q] * m / n) * m + ii[q] * m / n;
+            distance += ws * w[q] * ovdf_sample_distance(tables, coefficients, stride, vdt_n, sample, segment, p);
+        }
+    }
+    return visible_fraction_from_distance(distance, h);
+}
+
+// ---- local lights (src/render/square_lights.h) ----
+
+float sphere_cap_solid_angle(float radius, float distance) {
+    float sin2 = min(1.0, (radius / distance) * (radius / distance));
+    return 2.0 * 3.14159265359 * sin2 / (1.0 + sqrt(1.0 - sin2));
+}
+
+void main() {
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    int vertex = texel.y * kArrayWidth + texel.x;
+    if (vertex >= u_vertex_count) {
+        o_color = vec4(0.0);
+        return;
+    }
+    vec4 position = texelFetch(u_positions, texel, 0);
+    vec4 normal = texelFetch(u_normals, texel, 0);
+    vec3 tangent = texelFetch(u_tangents, texel, 0).xyz;
+    int part = int(position.w);
+    mat4 transform = mat4(part_texel(part, 0), part_texel(part, 1), part_texel(part, 2), part_texel(part, 3));
+    mat3 normal_matrix = mat3(part_texel(part, 4).xyz, part_texel(part, 5).xyz, part_texel(part, 6).xyz);
+    vec4 material = part_texel(part, 11);
+    vec4 svdf = part_texel(part, 12);
+    int local_vertex = vertex - int(part_texel(part, 13).x);
+    bool isotropic = material.y > 0.5;
+
+    vec3 p = (transform * vec4(position.xyz, 1.0)).xyz;
+    mat3 frame = frame_rows(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent);
+    vec3 wo = to_local(frame, normalize(u_camera - p));
+    float len2 = wo.x * wo.x + wo.y * wo.y;
+    float inv = len2 > 1e-16 ? 1.0 / sqrt(len2) : 0.0;
+    float view_cos = len2 > 1e-16 ? wo.y * inv : 1.0;
+    float view_sin = wo.x * inv;
+
+    bool self = u_self_visibility && svdf.z > 0.0 && normal.w >= 0.0;
+    int cluster = int(normal.w);
+    if (self) {
+        int stride = int(svdf.w);
+        for (int t = 0; t < stride; ++t)
+            g_svdf_coefficients[t] = fetch(u_svdf_coefficients, int(svdf.y) + local_vertex * stride + t);
+    }
+
+    vec3 color = vec3(0.0);
+    if (wo.z > 0.0) {
+        int first = u_environment_enabled ? 0 : u_environment_lights;
+        int last = u_local_enabled ? u_light_count : u_environment_lights;
+        for (int l = first; l < last; ++l) {
+            vec4 a = fetch(u_lights, 2 * l), b = fetch(u_lights, 2 * l + 1);
+            vec3 direction;
+            float h;
+            vec3 integral;
+            if (l < u_environment_lights) {
+                direction = a.xyz;
+                h = a.w;
+                integral = b.rgb;
+            } else {  // sphere light: center a.xyz, radius a.w, radiance b.rgb
+                vec3 to_center = a.xyz - p;
+                float distance = length(to_center);
+                if (!(distance > a.w)) continue;
+                direction = to_center / distance;
+                float solid_angle = sphere_cap_solid_angle(a.w, distance);
+                h = 0.5 * sqrt(0.5 * solid_angle);
+                integral = b.rgb * solid_angle;
+            }
+            vec3 local = to_local(frame, direction);
+            vec2 lp = local.xy * (1.0 / sqrt(max(1.0 + local.z, 1e-12)));
+            float reach = 1.0 + kSqrt2 * h;
+            if (!(h > 0.0) || !(local.z > 1.0 - reach * reach)) continue;
+            vec3 brdf;
+            if (isotropic) {
+                vec2 tc = vec2(lp.x * view_cos - lp.y * view_sin, lp.x * view_sin + lp.y * view_cos);
+                brdf = brdf_average(material, tc, h, wo);
+            } else {
+                brdf = brdf_average(material, lp, h, wo);
+            }
+            float visibility = self ? visible_fraction_from_distance(svdf_distance(svdf, cluster, lp), h) : 1.0;
+            uint mask = texelFetch(u_occluders, ivec2(l, part), 0).r;
+            for (int o = 0; o < u_part_count && mask != 0u; ++o) {
+                if ((mask & (1u << uint(o))) == 0u) continue;
+                mask &= ~(1u << uint(o));
+                if (!(visibility > 0.0)) break;
+                mat4 inverse = mat4(part_texel(o, 7), part_texel(o, 8), part_texel(o, 9), part_texel(o, 10));
+                vec3 point = (inverse * vec4(p, 1.0)).xyz;
+                vec3 dir = normalize(mat3(inverse) * direction);
+                visibility *= ovdf_visible_fraction(o, point, dir, h);
+            }
+            color += integral * brdf * visibility;
+        }
+    }
+    o_color = vec4(color, 1.0);
+}

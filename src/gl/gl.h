@@ -1,0 +1,21 @@
+#pragma once
+// The OpenGL API as rsl uses it: the core-profile header with prototypes. The
+// entry points come from libglvnd's libOpenGL.so (Debian's Mesa and NVIDIA's
+// driver both install it), which dispatches to whichever context — EGL or GLX
+// — is current, so no loader library is needed. Everything used is core 3.3.
+#ifndef GL_GLEXT_PROTOTYPES
+#define GL_GLEXT_PROTOTYPES 1
+#endif
+#include <GL/glcorearb.h>
+
+#include <string>
+
+namespace rsl::gl {
+
+// Throws rsl::Error when the GL error flag is set, naming `what`.
+void check_gl(const char* what);
+
+// "OpenGL 4.5 (Core Profile) Mesa 22.3.6 on llvmpipe (...)" of the current context.
+std::string context_description();
+
+}  // namespace rsl::gl

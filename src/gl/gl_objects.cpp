@@ -1,0 +1,184 @@
+#include "src/gl/gl_objects.h"
+
+#include <algorithm>
+
+#include "src/core/error.h"
+#include "src/gl/shader_sources.h"
+
+namespace rsl::gl {
+
+void check_gl(const char* what) {
+    const GLenum error = glGetError();
+    if (error != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:04x} in {}", unsigned(error), what));
+}
+
+std::string context_description() {
+    auto text = [](GLenum name) {
+        const GLubyte* s = glGetString(name);
+        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+    };
+    return "OpenGL " + text(GL_VERSION) + " on " + text(GL_RENDERER);
+}
+
+void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
+void delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
+void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
+void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
+void delete_program(GLuint id) { glDeleteProgram(id); }
+void delete_query(GLuint id) { glDeleteQueries(1, &id); }
+
+Texture make_texture() {
+    GLuint id = 0;
+    glGenTextures(1, &id);
+    return Texture(id);
+}
+Buffer make_buffer() {
+    GLuint id = 0;
+    glGenBuffers(1, &id);
+    return Buffer(id);
+}
+VertexArray make_vertex_array() {
+    GLuint id = 0;
+    glGenVertexArrays(1, &id);
+    return VertexArray(id);
+}
+Framebuffer make_framebuffer() {
+    GLuint id = 0;
+    glGenFramebuffers(1, &id);
+    return Framebuffer(id);
+}
+Renderbuffer make_renderbuffer() {
+    GLuint id = 0;
+    glGenRenderbuffers(1, &id);
+    return Renderbuffer(id);
+}
+Query make_query() {
+    GLuint id = 0;
+    glGenQueries(1, &id);
+    return Query(id);
+}
+
+namespace {
+
+std::string shader_text(const std::string& name) {
+    const char* source = embedded_shader(name);
+    if (!source) throw Error(fmt::format("shaders/{}: no such embedded shader", name));
+    return source;
+}
+
+// The #version line stays first; defines follow it.
+std::string with_defines(const std::string& source, const std::string& defines) {
+    if (defines.empty()) return source;
+    const size_t version = source.find("#version");
+    if (version == std::string::npos) return defines + source;
+    const size_t eol = source.find('\n', version);
+    return source.substr(0, eol + 1) + defines + source.substr(eol + 1);
+}
+
+GLuint compile(GLenum type, const std::string& name, const std::string& defines) {
+    const std::string source = with_defines(shader_text(name), defines);
+    const GLuint shader = glCreateShader(type);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        glGetShaderInfoLog(shader, length, nullptr, log.data());
+        glDeleteShader(shader);
+        throw Error(fmt::format("shaders/{}: compilation failed:\n{}", name, log));
+    }
+    return shader;
+}
+
+}  // namespace
+
+Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines) {
+    const GLuint vs = compile(GL_VERTEX_SHADER, vertex, defines);
+    GLuint fs = 0;
+    try {
+        fs = compile(GL_FRAGMENT_SHADER, fragment, defines);
+    } catch (...) {
+        glDeleteShader(vs);
+        throw;
+    }
+    Program program(glCreateProgram());
+    glAttachShader(program.id(), vs);
+    glAttachShader(program.id(), fs);
+    glLinkProgram(program.id());
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+        throw Error(fmt::format("shaders/{} + shaders/{}: link failed:\n{}", vertex, fragment, log));
+    }
+    return program;
+}
+
+namespace {
+
+void upload_array(ArrayTexture& array, const std::vector<Vec4>& data, GLenum internal_format) {
+    array.size = data.size();
+    array.width = kArrayTextureWidth;
+    array.height = int(std::max<size_t>(1, (data.size() + kArrayTextureWidth - 1) / kArrayTextureWidth));
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (array.height > max_size)
+        throw Error(fmt::format("GPU data of {} texels needs a {}×{} texture; this driver allows {}", data.size(),
+                                array.width, array.height, max_size));
+    // Pad the last row so that the upload reads only owned memory.
+    std::vector<Vec4> padded;
+    const Vec4* pixels = data.data();
+    if (data.size() != size_t(array.width) * array.height) {
+        padded = data;
+        padded.resize(size_t(array.width) * array.height, Vec4(0.0f));
+        pixels = padded.data();
+    }
+    glBindTexture(GL_TEXTURE_2D, array.texture.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GLint(internal_format), array.width, array.height, 0, GL_RGBA, GL_FLOAT, pixels);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    check_gl("uploading an array texture");
+}
+
+}  // namespace
+
+ArrayTexture make_array_texture(const std::vector<Vec4>& data, GLenum internal_format) {
+    ArrayTexture array;
+    array.texture = make_texture();
+    upload_array(array, data, internal_format);
+    return array;
+}
+
+void update_array_texture(ArrayTexture& array, const std::vector<Vec4>& data) {
+    GLint format = GL_RGBA32F;
+    glBindTexture(GL_TEXTURE_2D, array.texture.id());
+    glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    const int height = int(std::max<size_t>(1, (data.size() + kArrayTextureWidth - 1) / kArrayTextureWidth));
+    if (height != array.height) {
+        upload_array(array, data, GLenum(format));
+        return;
+    }
+    array.size = data.size();
+    const int full_rows = int(data.size() / kArrayTextureWidth);
+    if (full_rows > 0)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kArrayTextureWidth, full_rows, GL_RGBA, GL_FLOAT, data.data());
+    const int rest = int(data.size() % kArrayTextureWidth);
+    if (rest > 0)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, full_rows, rest, 1, GL_RGBA, GL_FLOAT,
+                        data.data() + size_t(full_rows) * kArrayTextureWidth);
+    check_gl("updating an array texture");
+}
+
+}  // namespace rsl::gl

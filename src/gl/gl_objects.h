@@ -1,0 +1,84 @@
+#pragma once
+// Move-only owners of OpenGL objects, and the few helpers every pass uses:
+// shader programs built from embedded sources, and flat arrays stored in 2D
+// textures (GL 3.3 has no storage buffers, and 2D textures are the one kind
+// every driver sizes generously).
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "src/core/math.h"
+#include "src/gl/gl.h"
+
+namespace rsl::gl {
+
+// A GL object name with its delete function.
+template <void (*Delete)(GLuint)>
+class Handle {
+public:
+    Handle() = default;
+    explicit Handle(GLuint id) : id_(id) {}
+    Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
+    Handle& operator=(Handle&& other) noexcept {
+        if (this != &other) {
+            reset();
+            id_ = std::exchange(other.id_, 0);
+        }
+        return *this;
+    }
+    ~Handle() { reset(); }
+    void reset() {
+        if (id_) Delete(id_);
+        id_ = 0;
+    }
+    GLuint id() const { return id_; }
+    explicit operator bool() const { return id_ != 0; }
+
+private:
+    GLuint id_ = 0;
+};
+
+void delete_texture(GLuint id);
+void delete_buffer(GLuint id);
+void delete_vertex_array(GLuint id);
+void delete_framebuffer(GLuint id);
+void delete_renderbuffer(GLuint id);
+void delete_program(GLuint id);
+void delete_query(GLuint id);
+using Texture = Handle<delete_texture>;
+using Buffer = Handle<delete_buffer>;
+using VertexArray = Handle<delete_vertex_array>;
+using Framebuffer = Handle<delete_framebuffer>;
+using Renderbuffer = Handle<delete_renderbuffer>;
+using Program = Handle<delete_program>;
+using Query = Handle<delete_query>;
+
+Texture make_texture();
+Buffer make_buffer();
+VertexArray make_vertex_array();
+Framebuffer make_framebuffer();
+Renderbuffer make_renderbuffer();
+Query make_query();
+
+// Compiles and links the embedded shaders/<vertex> and shaders/<fragment>;
+// `defines` (e.g. "#define MAX_PARTS 32\n") go right after the #version line.
+// Throws rsl::Error with the driver's log, naming the shader file.
+Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines = "");
+
+// A flat array of vec4 (or half4) stored row-major in a 2D texture of fixed
+// width: element i is texel (i % width, i / width). Shaders read it with
+// texelFetch(tex, ivec2(i % width, i / width), 0).
+struct ArrayTexture {
+    Texture texture;
+    int width = 1, height = 1;
+    size_t size = 0;
+};
+// Width used for every array texture (a power of two the shaders share).
+inline constexpr int kArrayTextureWidth = 2048;
+// `internal_format`: GL_RGBA32F, or GL_RGBA16F for data that is exactly
+// representable in half precision (the driver converts from float).
+ArrayTexture make_array_texture(const std::vector<Vec4>& data, GLenum internal_format = GL_RGBA32F);
+void update_array_texture(ArrayTexture& array, const std::vector<Vec4>& data);
+
+}  // namespace rsl::gl

@@ -1,0 +1,360 @@
+#include "src/gl/gl_renderer.h"
+
+#include "src/brdf/material_library.h"
+#include "src/core/error.h"
+#include "src/trace/ground_truth.h"
+
+namespace rsl::gl {
+
+namespace {
+
+// Texture units of the shading pass.
+enum Unit : int {
+    kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitOccluders, kUnitBrdf,
+    kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
+    kUnitOvdfFrames, kUnitCount
+};
+
+void bind_texture(int unit, GLenum target, GLuint texture) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(target, texture);
+}
+
+GLint uniform(const Program& program, const char* name) { return glGetUniformLocation(program.id(), name); }
+
+size_t texel_bytes(const ArrayTexture& array, size_t bytes_per_texel) {
+    return size_t(array.width) * array.height * bytes_per_texel;
+}
+
+}  // namespace
+
+std::vector<std::shared_ptr<const BrdfTable>> scene_part_tables(const Scene& scene, const RenderOptions& options) {
+    MaterialLibrary library = MaterialLibrary::from_scene(scene, options.brdf_table);
+    for (const auto& [part_name, material_name] : options.material_override) {
+        int part = -1;
+        for (size_t p = 0; p < scene.parts.size(); ++p)
+            if (scene.parts[p].name == part_name) part = int(p);
+        if (part < 0) throw_file_error(scene.source, "material override: no part named '{}'", part_name);
+        const int material = library.find(material_name);
+        if (material < 0)
+            throw_file_error(scene.source, "material override for part '{}': no material named '{}'", part_name,
+                             material_name);
+        library.assign(part, material);
+    }
+    std::vector<std::shared_ptr<const BrdfTable>> tables;
+    for (int p = 0; p < library.part_count(); ++p) tables.push_back(library.table(library.part_material(p)));
+    return tables;
+}
+
+GlRenderer::GlRenderer(const Scene& scene, RslSet environment_lights, PartFields fields, const RenderOptions& options)
+    : scene_(scene),
+      options_(options),
+      environment_(std::move(environment_lights)),
+      fields_(std::move(fields)),
+      frame_(scene, fields_) {
+    if (scene.parts.empty()) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
+    fields_.self.resize(scene.parts.size());
+    fields_.occluder.resize(scene.parts.size());
+    for (size_t p = 0; p < scene.parts.size(); ++p)
+        if (fields_.self[p] && size_t(fields_.self[p]->vertex_count()) != scene.parts[p].mesh.vertex_count())
+            throw_file_error(scene.source, "part '{}': its SVDF has {} vertices, the mesh {}", scene.parts[p].name,
+                             fields_.self[p]->vertex_count(), scene.parts[p].mesh.vertex_count());
+
+    const PackedGeometry geometry = pack_geometry(scene, fields_);
+    const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride);
+    shade_program_ = build_program("fullscreen.vert.glsl", "shade_vertices.frag.glsl", defines);
+    display_program_ = build_program("display.vert.glsl", "display.frag.glsl");
+    glUseProgram(shade_program_.id());
+    const char* samplers[kUnitCount] = {"u_positions",       "u_normals",           "u_tangents",
+                                        "u_parts",           "u_lights",            "u_occluders",
+                                        "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
+                                        "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
+                                        "u_ovdf_frames"};
+    for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(shade_program_, samplers[unit]), unit);
+    glUniform3fv(uniform(shade_program_, "u_face_normal"), 6, &geometry.face_normal[0].x);
+    glUniform3fv(uniform(shade_program_, "u_face_s"), 6, &geometry.face_s[0].x);
+    glUniform3fv(uniform(shade_program_, "u_face_t"), 6, &geometry.face_t[0].x);
+    upload_geometry(geometry);
+    set_part_tables(scene_part_tables(scene, options));
+    for (auto& frame : queries_)
+        for (Query& query : frame) query = make_query();
+    check_gl("creating the GL renderer");
+    set_time(0.0f);
+}
+
+GlRenderer::~GlRenderer() = default;
+
+void GlRenderer::upload_geometry(const PackedGeometry& g) {
+    vertex_count_ = int(g.positions.size());
+    first_vertex_ = g.first_vertex;
+    part_records_ = g.part_static;
+    rect_height_ = std::max(1, (vertex_count_ + kArrayTextureWidth - 1) / kArrayTextureWidth);
+
+    ArrayTexture positions = make_array_texture(g.positions);
+    ArrayTexture normals = make_array_texture(g.normals);
+    ArrayTexture tangents = make_array_texture(g.tangents);
+    positions_ = std::move(positions.texture);
+    normals_ = std::move(normals.texture);
+    tangents_ = std::move(tangents.texture);
+    gpu_bytes_ = 3 * size_t(kArrayTextureWidth) * rect_height_ * 16;
+    // Tables whose every value is a half (the fields store them so) lose
+    // nothing in RGBA16F and halve the memory and bandwidth.
+    svdf_tables_ = make_array_texture(g.svdf_tables, g.svdf_tables_half ? GL_RGBA16F : GL_RGBA32F);
+    svdf_coefficients_ = make_array_texture(g.svdf_coefficients);
+    ovdf_tables_ = make_array_texture(g.ovdf_tables, g.ovdf_tables_half ? GL_RGBA16F : GL_RGBA32F);
+    ovdf_coefficients_ = make_array_texture(g.ovdf_coefficients);
+    ovdf_frames_ = make_array_texture(g.ovdf_frames);
+    gpu_bytes_ += texel_bytes(svdf_tables_, g.svdf_tables_half ? 8 : 16) + texel_bytes(svdf_coefficients_, 16) +
+                  texel_bytes(ovdf_tables_, g.ovdf_tables_half ? 8 : 16) + texel_bytes(ovdf_coefficients_, 16) +
+                  texel_bytes(ovdf_frames_, 16);
+    parts_ = make_array_texture(part_records_);
+    lights_ = make_array_texture({Vec4(0.0f)});
+    occluders_ = make_texture();
+    glBindTexture(GL_TEXTURE_2D, occluders_.id());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+
+    // The render target and the buffer that carries it to the display pass.
+    target_ = make_texture();
+    glBindTexture(GL_TEXTURE_2D, target_.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kArrayTextureWidth, rect_height_, 0, GL_RGBA, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    target_fbo_ = make_framebuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, target_fbo_.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target_.id(), 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("GL renderer: the RGBA32F vertex-colour target is not renderable on this driver");
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    colors_ = make_buffer();
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, colors_.id());
+    glBufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(size_t(kArrayTextureWidth) * rect_height_ * 16), nullptr,
+                 GL_STREAM_COPY);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    gpu_bytes_ += 2 * size_t(kArrayTextureWidth) * rect_height_ * 16;
+
+    // Display geometry: part-space positions of every vertex, indices per part.
+    std::vector<Vec3> positions3;
+    std::vector<uint32_t> indices;
+    first_index_.clear();
+    for (const Part& part : scene_.parts) {
+        positions3.insert(positions3.end(), part.mesh.positions.begin(), part.mesh.positions.end());
+        first_index_.push_back(indices.size());
+        indices.insert(indices.end(), part.mesh.indices.begin(), part.mesh.indices.end());
+    }
+    first_index_.push_back(indices.size());
+    empty_vao_ = make_vertex_array();
+    display_vao_ = make_vertex_array();
+    glBindVertexArray(display_vao_.id());
+    display_positions_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, display_positions_.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(positions3.size() * sizeof(Vec3)), positions3.data(), GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+    glEnableVertexAttribArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, colors_.id());
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 16, nullptr);
+    glEnableVertexAttribArray(1);
+    display_indices_ = make_buffer();
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, display_indices_.id());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
+                 GL_STATIC_DRAW);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    gpu_bytes_ += positions3.size() * sizeof(Vec3) + indices.size() * sizeof(uint32_t);
+    check_gl("uploading the scene");
+}
+
+void GlRenderer::set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> tables) {
+    RSL_CHECK_EQ(tables.size(), scene_.parts.size());
+    const size_t old_bytes = materials_.sat.size() * sizeof(float) + materials_.offsets.size() * 16;
+    part_tables_ = std::move(tables);
+    materials_ = pack_materials(part_tables_);
+    const int corners = materials_.resolution + 1;
+    GLint max_3d = 0;
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max_3d);
+    if (materials_.slices > max_3d)
+        throw_file_error(scene_.source, "GL renderer: the BRDF tables have {} slices; this driver's 3D textures hold {}",
+                         materials_.slices, max_3d);
+    if (!brdf_) brdf_ = make_texture();
+    glBindTexture(GL_TEXTURE_3D, brdf_.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, corners, corners, materials_.slices, 0, GL_RGB, GL_FLOAT,
+                 materials_.sat.data());
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
+    if (brdf_offsets_.texture)
+        update_array_texture(brdf_offsets_, materials_.offsets);
+    else
+        brdf_offsets_ = make_array_texture(materials_.offsets);
+    for (size_t p = 0; p < part_tables_.size(); ++p)
+        part_records_[p * kPartStride + kSlotMaterial] = materials_.part_material[p];
+    gpu_bytes_ = gpu_bytes_ - old_bytes + materials_.sat.size() * sizeof(float) + materials_.offsets.size() * 16;
+    check_gl("uploading the BRDF tables");
+}
+
+void GlRenderer::set_toggles(const RenderOptions& options) {
+    options_.environment = options.environment;
+    options_.local_lights = options.local_lights;
+    options_.self_visibility = options.self_visibility;
+    options_.occluders = options.occluders;
+    options_.occluder_culling = options.occluder_culling;
+}
+
+void GlRenderer::set_environment_lights(RslSet lights) { environment_ = std::move(lights); }
+
+void GlRenderer::set_time(float t) {
+    time_ = t;
+    frame_.update(scene_, environment_, options_, t);
+}
+
+void GlRenderer::set_view(float t, const Vec3& camera, const Mat3& environment_rotation) {
+    time_ = t;
+    frame_.update(scene_, environment_, options_, t, environment_rotation, &camera);
+}
+
+// Poses into the part records; lights (2 texels each); occluder masks.
+void GlRenderer::upload_frame() {
+    const auto& poses = frame_.poses();
+    for (size_t p = 0; p < poses.size(); ++p)
+        write_pose(poses[p].transform, poses[p].normal, poses[p].inverse, &part_records_[p * kPartStride]);
+    update_array_texture(parts_, part_records_);
+
+    light_texels_.clear();
+    for (const SquareLight& square : frame_.environment_squares()) {
+        light_texels_.push_back(Vec4(square.direction, square.half_edge));
+        light_texels_.push_back(Vec4(square.integral, 0.0f));
+    }
+    for (size_t i = 0; i < scene_.lights.size(); ++i) {
+        light_texels_.push_back(Vec4(frame_.light_positions()[i], scene_.lights[i].radius));
+        light_texels_.push_back(Vec4(sphere_light_radiance(scene_.lights[i]), 1.0f));
+    }
+    if (light_texels_.empty()) light_texels_.push_back(Vec4(0.0f));
+    update_array_texture(lights_, light_texels_);
+
+    glBindTexture(GL_TEXTURE_2D, occluders_.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    const int lights = std::max(1, frame_.light_count());
+    std::vector<uint32_t> empty(size_t(lights) * scene_.parts.size(), 0u);
+    const uint32_t* masks = frame_.light_count() > 0 ? frame_.masks().data() : empty.data();
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, lights, GLsizei(scene_.parts.size()), 0, GL_RED_INTEGER,
+                 GL_UNSIGNED_INT, masks);
+}
+
+void GlRenderer::shade() {
+    collect_timings();
+    Query* queries = queries_[frame_parity_];
+    upload_frame();
+    glBeginQuery(GL_TIME_ELAPSED, queries[0].id());
+    glBindFramebuffer(GL_FRAMEBUFFER, target_fbo_.id());
+    glViewport(0, 0, kArrayTextureWidth, rect_height_);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glUseProgram(shade_program_.id());
+    bind_texture(kUnitPositions, GL_TEXTURE_2D, positions_.id());
+    bind_texture(kUnitNormals, GL_TEXTURE_2D, normals_.id());
+    bind_texture(kUnitTangents, GL_TEXTURE_2D, tangents_.id());
+    bind_texture(kUnitParts, GL_TEXTURE_2D, parts_.texture.id());
+    bind_texture(kUnitLights, GL_TEXTURE_2D, lights_.texture.id());
+    bind_texture(kUnitOccluders, GL_TEXTURE_2D, occluders_.id());
+    bind_texture(kUnitBrdf, GL_TEXTURE_3D, brdf_.id());
+    bind_texture(kUnitBrdfOffsets, GL_TEXTURE_2D, brdf_offsets_.texture.id());
+    bind_texture(kUnitSvdfTables, GL_TEXTURE_2D, svdf_tables_.texture.id());
+    bind_texture(kUnitSvdfCoefficients, GL_TEXTURE_2D, svdf_coefficients_.texture.id());
+    bind_texture(kUnitOvdfTables, GL_TEXTURE_2D, ovdf_tables_.texture.id());
+    bind_texture(kUnitOvdfCoefficients, GL_TEXTURE_2D, ovdf_coefficients_.texture.id());
+    bind_texture(kUnitOvdfFrames, GL_TEXTURE_2D, ovdf_frames_.texture.id());
+    glUniform1i(uniform(shade_program_, "u_vertex_count"), vertex_count_);
+    glUniform1i(uniform(shade_program_, "u_part_count"), int(scene_.parts.size()));
+    glUniform1i(uniform(shade_program_, "u_environment_lights"), int(frame_.environment_squares().size()));
+    glUniform1i(uniform(shade_program_, "u_light_count"), frame_.light_count());
+    glUniform1i(uniform(shade_program_, "u_environment_enabled"), options_.environment ? 1 : 0);
+    glUniform1i(uniform(shade_program_, "u_local_enabled"), options_.local_lights ? 1 : 0);
+    glUniform1i(uniform(shade_program_, "u_self_visibility"), options_.self_visibility ? 1 : 0);
+    glUniform1i(uniform(shade_program_, "u_brdf_resolution"), materials_.resolution);
+    const Vec3 camera = frame_.camera();
+    glUniform3f(uniform(shade_program_, "u_camera"), camera.x, camera.y, camera.z);
+    glBindVertexArray(empty_vao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEndQuery(GL_TIME_ELAPSED);
+
+    // Render target → pixel-pack buffer: stays on the GPU.
+    glBeginQuery(GL_TIME_ELAPSED, queries[1].id());
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, colors_.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, kArrayTextureWidth, rect_height_, GL_RGBA, GL_FLOAT, nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glEndQuery(GL_TIME_ELAPSED);
+    query_pending_[frame_parity_] = true;
+    drew_[frame_parity_] = false;
+    check_gl("the shading pass");
+}
+
+void GlRenderer::draw(const Mat4& view_projection, float exposure) {
+    Query* queries = queries_[frame_parity_];
+    glBeginQuery(GL_TIME_ELAPSED, queries[2].id());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(display_program_.id());
+    glUniformMatrix4fv(uniform(display_program_, "u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
+    glUniform1f(uniform(display_program_, "u_exposure"), exposure);
+    const GLint model = uniform(display_program_, "u_model");
+    glBindVertexArray(display_vao_.id());
+    const auto& poses = frame_.poses();
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        glUniformMatrix4fv(model, 1, GL_FALSE, &poses[p].transform[0][0]);
+        const size_t count = first_index_[p + 1] - first_index_[p];
+        glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
+                                 reinterpret_cast<const void*>(first_index_[p] * sizeof(uint32_t)),
+                                 first_vertex_[p]);
+    }
+    glBindVertexArray(0);
+    glEndQuery(GL_TIME_ELAPSED);
+    drew_[frame_parity_] = true;
+    check_gl("the display pass");
+}
+
+// Reads the previous use of this parity's queries, if they are done (never waits).
+void GlRenderer::collect_timings() {
+    frame_parity_ ^= 1;
+    if (!query_pending_[frame_parity_]) return;
+    Query* queries = queries_[frame_parity_];
+    GLuint available = 0;
+    glGetQueryObjectuiv(queries[1].id(), GL_QUERY_RESULT_AVAILABLE, &available);
+    if (!available) return;
+    GLuint64 ns[3] = {0, 0, 0};
+    for (int q = 0; q < (drew_[frame_parity_] ? 3 : 2); ++q) {
+        glGetQueryObjectuiv(queries[q].id(), GL_QUERY_RESULT_AVAILABLE, &available);
+        if (available) glGetQueryObjectui64v(queries[q].id(), GL_QUERY_RESULT, &ns[q]);
+    }
+    timings_.shade_ms = double(ns[0]) * 1e-6;
+    timings_.pack_ms = double(ns[1]) * 1e-6;
+    timings_.display_ms = double(ns[2]) * 1e-6;
+    query_pending_[frame_parity_] = false;
+}
+
+VertexColors GlRenderer::make_output() const {
+    VertexColors colors;
+    colors.scene_name = scene_.name;
+    colors.producer = "rsl-gl";
+    for (const Part& part : scene_.parts) colors.add_part(part.name, part.mesh.vertex_count());
+    return colors;
+}
+
+void GlRenderer::read_colors(VertexColors& out) const {
+    RSL_CHECK_EQ(out.parts.size(), scene_.parts.size());
+    std::vector<Vec4> texels(static_cast<size_t>(vertex_count_));
+    glBindBuffer(GL_COPY_READ_BUFFER, colors_.id());
+    glGetBufferSubData(GL_COPY_READ_BUFFER, 0, GLsizeiptr(texels.size() * sizeof(Vec4)), texels.data());
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    check_gl("reading the vertex colours");
+    out.time = time_;
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        RSL_CHECK_EQ(out.parts[p].size(), scene_.parts[p].mesh.vertex_count());
+        for (size_t v = 0; v < out.parts[p].size(); ++v) out.parts[p][v] = Color(texels[first_vertex_[p] + v]);
+    }
+}
+
+}  // namespace rsl::gl

@@ -1,0 +1,161 @@
+#include "src/gl/gpu_layout.h"
+
+#include <map>
+
+#include "src/core/envmap.h"
+#include "src/core/error.h"
+#include "src/render/ovdf_occluder.h"
+
+namespace rsl::gl {
+
+namespace {
+
+constexpr size_t kExactFloatIndex = size_t(1) << 24;
+
+bool is_half_exact(float v) { return round_to_half(v) == v; }
+
+// Appends a CPCA model's tables ([μ, b…] per (cluster, texel)) and returns
+// the first texel; records whether every value is exactly a half.
+int append_tables(const CpcaModel& model, std::vector<Vec4>& out, bool& half_exact) {
+    const int stride = cpca_stride(model.vectors);
+    const size_t base = out.size();
+    out.resize(base + size_t(model.clusters) * model.dims * stride, Vec4(0.0f));
+    for (int c = 0; c < model.clusters; ++c)
+        for (int d = 0; d < model.dims; ++d) {
+            const float* row = model.row(c, d);
+            float* texels = &out[base + (size_t(c) * model.dims + d) * stride].x;
+            for (int i = 0; i <= model.vectors; ++i) {
+                texels[i] = row[i];
+                half_exact = half_exact && is_half_exact(row[i]);
+            }
+        }
+    return int(base);
+}
+
+// Appends [1, w…] per sample and returns the first texel.
+int append_coefficients(const CpcaModel& model, std::vector<Vec4>& out) {
+    const int stride = cpca_stride(model.vectors);
+    const size_t base = out.size();
+    out.resize(base + size_t(model.samples()) * stride, Vec4(0.0f));
+    for (int s = 0; s < model.samples(); ++s) {
+        float* texels = &out[base + size_t(s) * stride].x;
+        texels[0] = 1.0f;
+        const float* w = model.coefficients_of(s);
+        for (int i = 0; i < model.vectors; ++i) texels[i + 1] = w[i];
+    }
+    return int(base);
+}
+
+void check_index(const Scene& scene, size_t size, const char* what) {
+    if (size >= kExactFloatIndex)
+        throw_file_error(scene.source, "GL renderer: {} needs {} texels, more than float indices address (2^24)",
+                         what, size);
+}
+
+}  // namespace
+
+void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, Vec4* record) {
+    for (int c = 0; c < 4; ++c) record[kSlotTransform + c] = transform[c];
+    for (int c = 0; c < 3; ++c) record[kSlotNormal + c] = Vec4(normal[c], 0.0f);
+    for (int c = 0; c < 4; ++c) record[kSlotInverse + c] = inverse[c];
+}
+
+PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
+    PackedGeometry g;
+    const size_t parts = scene.parts.size();
+    g.part_static.assign(parts * kPartStride, Vec4(0.0f));
+    const float root2 = std::sqrt(2.0f);
+    for (int f = 0; f < 6; ++f) {  // as Ovdf::prepare
+        g.face_normal[f] = CubeMap::face_direction(f, 0, 0);
+        g.face_s[f] = root2 * CubeMap::face_direction(f, 1, 0) - g.face_normal[f];
+        g.face_t[f] = root2 * CubeMap::face_direction(f, 0, 1) - g.face_normal[f];
+    }
+    for (size_t p = 0; p < parts; ++p) {
+        const TriangleMesh& mesh = scene.parts[p].mesh;
+        Vec4* record = &g.part_static[p * kPartStride];
+        const int first = int(g.positions.size());
+        g.first_vertex.push_back(first);
+        record[kSlotVertices] = Vec4(float(first), 0, 0, 0);
+
+        const Svdf* svdf = p < fields.self.size() ? fields.self[p].get() : nullptr;
+        if (svdf) {
+            const CpcaModel& m = svdf->model;
+            const int stride = cpca_stride(m.vectors);
+            g.max_stride = std::max(g.max_stride, stride);
+            const int tables = append_tables(m, g.svdf_tables, g.svdf_tables_half);
+            const int coefficients = append_coefficients(m, g.svdf_coefficients);
+            record[kSlotSvdf] = Vec4(float(tables), float(coefficients), float(svdf->resolution()), float(stride));
+        }
+        for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+            g.positions.push_back(Vec4(mesh.positions[v], float(p)));
+            const float cluster = svdf ? float(svdf->model.assignment[v]) : -1.0f;
+            g.normals.push_back(Vec4(mesh.normals[v], cluster));
+            g.tangents.push_back(mesh.tangents.empty() ? Vec4(0.0f) : Vec4(Vec3(mesh.tangents[v]), 0.0f));
+        }
+
+        const OccluderField* field = p < fields.occluder.size() ? fields.occluder[p].get() : nullptr;
+        if (!field) continue;
+        const auto* occluder = dynamic_cast<const OvdfOccluder*>(field);
+        if (!occluder)
+            throw_file_error(scene.source, "GL renderer: part '{}' has an occluder field that is not an OVDF",
+                             scene.parts[p].name);
+        const Ovdf& o = occluder->field();
+        const OvdfParams& op = o.params;
+        const int n = op.cube_resolution;
+        // The shader computes a sample's cluster as its segment (as the bake assigns it).
+        for (int shell = 0; shell < op.shells; ++shell)
+            for (int face = 0; face < 6; ++face)
+                for (int j = 0; j < n; ++j)
+                    for (int i = 0; i < n; ++i)
+                        if (o.model.assignment[o.sample_index(shell, face, i, j)] != o.segment_of(shell, face, i, j))
+                            throw_file_error(scene.source, "GL renderer: OVDF of part '{}' is not clustered by segment",
+                                             scene.parts[p].name);
+        const int stride = cpca_stride(o.model.vectors);
+        g.max_stride = std::max(g.max_stride, stride);
+        const int tables = append_tables(o.model, g.ovdf_tables, g.ovdf_tables_half);
+        const int coefficients = append_coefficients(o.model, g.ovdf_coefficients);
+        const int frames = int(g.ovdf_frames.size());
+        for (int face = 0; face < 6; ++face)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    const Frame& frame = o.sample_frame(face, i, j);
+                    g.ovdf_frames.push_back(Vec4(frame.x, 0.0f));
+                    g.ovdf_frames.push_back(Vec4(frame.z, 0.0f));
+                }
+        record[kSlotOvdfCenter] = Vec4(o.center, o.radius);
+        record[kSlotOvdfBases] = Vec4(float(tables), float(coefficients), float(frames), o.shell_radius(op.shells - 1));
+        record[kSlotOvdfShells] = Vec4(float(op.shells), float(int(op.spacing)), op.inner_radius, op.outer_radius);
+        record[kSlotOvdfGrid] = Vec4(float(n), float(op.vdt_resolution), float(stride), float(op.segments_per_side));
+    }
+    g.first_vertex.push_back(int(g.positions.size()));
+    check_index(scene, g.positions.size(), "the vertices");
+    check_index(scene, g.svdf_tables.size(), "the SVDF tables");
+    check_index(scene, g.svdf_coefficients.size(), "the SVDF coefficients");
+    check_index(scene, g.ovdf_tables.size(), "the OVDF tables");
+    check_index(scene, g.ovdf_coefficients.size(), "the OVDF coefficients");
+    return g;
+}
+
+PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable>>& part_tables) {
+    PackedMaterials out;
+    std::map<const BrdfTable*, int> first_slice;
+    for (const auto& table : part_tables) {
+        RSL_CHECK(table != nullptr);
+        const int n = table->grid().n;
+        if (out.resolution == 0) out.resolution = n;
+        if (n != out.resolution)
+            throw Error(fmt::format("GL renderer: BRDF tables of {}² and {}² texels; all must share one resolution",
+                                    out.resolution, n));
+        auto [it, inserted] = first_slice.emplace(table.get(), out.slices);
+        if (inserted) {
+            out.sat.insert(out.sat.end(), table->sat_data().begin(), table->sat_data().end());
+            for (int s = 0; s < table->slice_count(); ++s) out.offsets.push_back(Vec4(table->offset(s), 0.0f));
+            out.slices += table->slice_count();
+        }
+        out.part_material.push_back(Vec4(float(it->second), table->isotropic() ? 1.0f : 0.0f,
+                                         float(table->options().view_samples), 0.0f));
+    }
+    return out;
+}
+
+}  // namespace rsl::gl

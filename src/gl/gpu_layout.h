@@ -1,0 +1,77 @@
+#pragma once
+// How the GPU renderer lays its data out in textures (docs/GPU.md), built on
+// the CPU without any GL call so that the layout can be tested by itself.
+//
+// Flat arrays go into RGBA "array textures" (gl_objects.h): element i at texel
+// (i % 2048, i / 2048). Indices stored in float texels are exact below 2^24
+// (checked).
+//
+//  vertex rectangle (3 textures, one texel per vertex, vertex i at (i % W, i / W)):
+//    positions  xyz = part-space position, w = part index
+//    normals    xyz = part-space normal,   w = SVDF cluster of the vertex (−1: none)
+//    tangents   xyz = part-space tangent (0: none)
+//  parts (kPartStride texels per part): pose, material, SVDF and OVDF records
+//  SVDF / OVDF tables: per (cluster, texel) `stride` texels = [μ, b₀ … b_{k−1}] padded
+//  SVDF / OVDF coefficients: per vertex / sample `stride` texels = [1, w₀ … w_{k−1}] padded,
+//    so a reconstruction is Σ_t dot(table_t, coefficients_t)
+//  OVDF sample frames: per (face, i, j) two texels, x and z (y = z × x)
+//  BRDF: one 3D texture (N+1)×(N+1)×slices of SAT corners (sat_data() order),
+//    all tables stacked along z; per slice its mean offset (RGB)
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "src/brdf/brdf_table.h"
+#include "src/core/scene.h"
+#include "src/render/part_fields.h"
+
+namespace rsl::gl {
+
+inline constexpr int kPartStride = 18;
+// Texel slots inside a part record.
+enum PartSlot : int {
+    kSlotTransform = 0,   // 4 columns
+    kSlotNormal = 4,      // 3 columns
+    kSlotInverse = 7,     // 4 columns
+    kSlotMaterial = 11,   // (first slice, isotropic, V, 0)
+    kSlotSvdf = 12,       // (tables base, coefficients base, resolution (0: none), stride)
+    kSlotVertices = 13,   // (first vertex, 0, 0, 0)
+    kSlotOvdfCenter = 14, // (center, radius (0: none))
+    kSlotOvdfBases = 15,  // (tables base, coefficients base, frames base, outer shell radius)
+    kSlotOvdfShells = 16, // (shells, spacing, inner radius, outer radius)
+    kSlotOvdfGrid = 17,   // (cube resolution, VDT resolution, stride, segments per side)
+};
+
+// Texels of a reconstruction row or coefficient row for k basis vectors.
+inline int cpca_stride(int vectors) { return (vectors + 1 + 3) / 4; }
+
+struct PackedGeometry {
+    std::vector<Vec4> positions, normals, tangents;  // per vertex (the vertex rectangle)
+    std::vector<int> first_vertex;                   // per part, and the total at the end
+    std::vector<Vec4> part_static;                   // parts × kPartStride (pose slots left 0)
+    std::vector<Vec4> svdf_tables, svdf_coefficients;
+    std::vector<Vec4> ovdf_tables, ovdf_coefficients, ovdf_frames;
+    bool svdf_tables_half = true, ovdf_tables_half = true;  // every table value exactly a half
+    int max_stride = 1;
+    std::array<Vec3, 6> face_normal{}, face_s{}, face_t{};  // OVDF cube faces (as Ovdf::prepare)
+};
+
+// Packs meshes and fields. Occluder fields must be OvdfOccluder (the
+// compressed field); others throw rsl::Error naming the scene.
+PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields);
+
+struct PackedMaterials {
+    int resolution = 0;  // N
+    int slices = 0;
+    std::vector<float> sat;      // (N+1)² × slices × RGB, 3D-texture order
+    std::vector<Vec4> offsets;   // per slice
+    std::vector<Vec4> part_material;  // per part: (first slice, isotropic, V, 0)
+};
+
+// Stacks the distinct tables the parts use (same N required).
+PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable>>& part_tables);
+
+// The pose slots of one part record.
+void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, Vec4* record);
+
+}  // namespace rsl::gl

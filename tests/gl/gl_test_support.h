@@ -1,0 +1,72 @@
+#pragma once
+// Helpers of the GL tests: one headless context per test process, scenes with
+// real (small) baked fields, and the CPU-vs-GL comparison.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "src/gl/headless_context.h"
+#include "src/render/renderer.h"
+#include "src/trace/vertex_colors.h"
+
+namespace rsl::test {
+
+inline gl::HeadlessContext& gl_context() {
+    static gl::HeadlessContext context;
+    context.make_current();
+    return context;
+}
+
+inline RslSet random_rsls(int count, uint32_t seed) {
+    std::mt19937 rng{seed};
+    std::normal_distribution<float> normal;
+    std::uniform_real_distribution<float> uniform(0.05f, 0.5f);
+    RslSet set;
+    for (int i = 0; i < count; ++i) {
+        RotatableSquareLight light;
+        light.center = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+        light.half_diagonal = uniform(rng);
+        light.radiance = Color(uniform(rng), uniform(rng), uniform(rng)) * 4.0f;
+        set.lights.push_back(light);
+    }
+    return set;
+}
+
+struct ColorDifference {
+    double relative_l2 = 0;       // ‖gl − cpu‖₂ / ‖cpu‖₂ over all vertices and channels
+    double max_relative = 0;      // max over vertices of |gl − cpu| / max(|cpu|, floor)
+    size_t vertices = 0, over_tolerance = 0;
+    double mean_luminance = 0;
+};
+
+// Per vertex and channel, |gl − cpu| is compared with tolerance·max(|cpu|,
+// floor), where floor = 1e-2 × the mean |cpu| over the scene: values far below
+// the scene's level (deep shadow, grazing views) are compared absolutely.
+inline ColorDifference compare_colors(const VertexColors& gl, const VertexColors& cpu, double tolerance) {
+    ColorDifference d;
+    double sum = 0, error2 = 0, norm2 = 0;
+    size_t values = 0;
+    for (const auto& part : cpu.parts)
+        for (const Color& c : part) sum += std::abs(c.r) + std::abs(c.g) + std::abs(c.b), values += 3;
+    const double floor = 1e-2 * sum / std::max<size_t>(values, 1);
+    d.mean_luminance = sum / std::max<size_t>(values, 1);
+    for (size_t p = 0; p < cpu.parts.size(); ++p)
+        for (size_t v = 0; v < cpu.parts[p].size(); ++v) {
+            double worst = 0;
+            for (int c = 0; c < 3; ++c) {
+                const double a = gl.parts[p][v][c], b = cpu.parts[p][v][c];
+                error2 += (a - b) * (a - b), norm2 += b * b;
+                worst = std::max(worst, std::abs(a - b) / std::max(std::abs(b), floor));
+            }
+            d.max_relative = std::max(d.max_relative, worst);
+            d.over_tolerance += worst > tolerance ? 1 : 0;
+            ++d.vertices;
+        }
+    d.relative_l2 = std::sqrt(error2 / std::max(norm2, 1e-30));
+    return d;
+}
+
+}  // namespace rsl::test
