@@ -70,6 +70,14 @@ inline float sample_bilinear(int n, const float* table, const Vec2& p) {
     return sum;
 }
 
+// Plane point of a local direction for table lookups: hemisphere_to_plane,
+// except at (and numerically near) the antipode of the pole, whose image is
+// the whole circle |p| = √2; any point out there reads the table's far corner.
+inline Vec2 lookup_plane_point(const Vec3& local) {
+    if (local.z < -0.9999f) return Vec2(1.5f, 1.5f);
+    return hemisphere_to_plane(local);
+}
+
 // The VDT rule: visible fraction of a square of half-edge h whose center has
 // interpolated distance d.
 inline float visible_fraction_from_distance(float d, float half_edge) {

@@ -1,0 +1,113 @@
+#pragma once
+// Occluder visibility distance field (RSL paper §4.3.2, §5.1; shadow fields,
+// Zhou et al. 2005): around a rigid part, sample points on concentric shells,
+// each shell sampled like a cube map; at every sample point q the VDT of the
+// part on the hemisphere whose pole points from q to the part's center.
+// Compressed by PCA per segment (each cube face split 2×2: 24 segments per
+// shell).
+//
+// Sample frames: z = (center − q)/|center − q|; x = the face's s axis made
+// orthogonal to z. Within a face this is smooth (z stays within 55° of the
+// face normal, which is orthogonal to s), so neighbouring samples' frames
+// agree up to the angle between them; it jumps at face edges, where blending
+// reads each sample in its own frame anyway (docs/FIELDS.md).
+//
+// Lookups run in the occluder's frame (the part's own coordinates).
+#include <array>
+#include <cstdint>
+#include <functional>
+
+#include "fields/cpca.h"
+#include "fields/visibility_map.h"
+#include "src/core/mesh.h"
+
+namespace rsl {
+
+enum class ShellSpacing : uint8_t { Geometric = 0, Linear = 1, InverseRadius = 2 };
+
+struct OvdfParams {
+    int shells = 16;
+    float inner_radius = 0.4f;  // × bounding radius
+    float outer_radius = 6.0f;
+    ShellSpacing spacing = ShellSpacing::Geometric;
+    int cube_resolution = 32;  // sample points per cube-face side
+    int vdt_resolution = 32;
+    int vectors = 8;
+    int segments_per_side = 2;  // each face split segments_per_side² ways
+    int supersampling = 2;
+    VdtMode mode = VdtMode::CoverageAware;
+    bool half_precision_tables = true;
+    uint64_t seed = 1;
+
+    int segment_count() const { return shells * 6 * segments_per_side * segments_per_side; }
+    size_t sample_count() const { return size_t(shells) * 6 * cube_resolution * cube_resolution; }
+};
+
+// How the eight nearest samples are combined. A sample's VDT stores the part
+// as seen from the sample point, centered on its pole. Read in the receiver's
+// own pole frame ("aligned"), the first-order effect of moving between samples
+// — the part's image sliding across the hemisphere — cancels, and only the
+// slow change of the part's silhouette with viewpoint is interpolated. Read in
+// each sample's own frame, the image slides by the angle between the sample
+// directions (up to half a cube texel, uncorrected at face edges): measured in
+// tests/fields/ovdf_test.cpp and docs/FIELDS.md.
+enum class OvdfBlend : uint8_t {
+    AlignedCoefficients = 0,  // per shell: blend the four samples' PCA coefficients, one
+                              // reconstruction (four aligned lookups where they straddle segments)
+    AlignedSamples = 1,       // eight reconstructions at the receiver's plane point
+    SampleFrames = 2,         // eight lookups, each in its sample's own frame
+};
+
+struct OvdfBakeStats {
+    double seconds = 0;
+    size_t rays = 0;
+    CpcaReport compression;
+};
+
+class Ovdf {
+public:
+    OvdfParams params;
+    Vec3 center{0};
+    float radius = 1;  // bounding-sphere radius R
+    CpcaModel model;   // samples = shells × 6 × N², clusters = segments
+
+    // Set up geometry (radii, frames) for params/center/radius.
+    void prepare();
+
+    float shell_radius(int shell) const { return shell_radii_[shell]; }
+    // Continuous shell index of a distance (linear in the spacing's coordinate).
+    float shell_coordinate(float distance) const;
+    int sample_index(int shell, int face, int i, int j) const {
+        const int n = params.cube_resolution;
+        return ((shell * 6 + face) * n + j) * n + i;
+    }
+    int segment_of(int shell, int face, int i, int j) const;
+    Vec3 sample_position(int shell, int face, int i, int j) const;
+    const Frame& sample_frame(int face, int i, int j) const {
+        return frames_[(face * params.cube_resolution + j) * params.cube_resolution + i];
+    }
+
+    // Visible fraction, as far as this part occludes, of the square of half-edge
+    // `half_edge` around light direction `light` (unit, occluder frame) seen from
+    // `point` (occluder frame). 1 beyond the outer shell; clamped to the inner
+    // shell inside it.
+    float visible_fraction(const Vec3& point, const Vec3& light, float half_edge,
+                           OvdfBlend blend = OvdfBlend::AlignedCoefficients) const;
+
+    // The blended signed distance (plane units) that visible_fraction uses.
+    float distance(const Vec3& point, const Vec3& light, OvdfBlend blend = OvdfBlend::AlignedCoefficients) const;
+
+    // Distance of sample `sample`'s reconstructed VDT at plane point p.
+    float sample_distance(int sample, const Vec2& p) const;
+
+private:
+    std::vector<float> shell_radii_;
+    std::vector<Frame> frames_;                 // per (face, i, j)
+    std::array<Vec3, 6> face_normal_{}, face_s_{}, face_t_{};
+};
+
+// Traces and compresses the OVDF of one part.
+Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats* stats = nullptr,
+               const std::function<void(double)>& progress = {});
+
+}  // namespace rsl

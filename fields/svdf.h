@@ -1,0 +1,74 @@
+#pragma once
+// Self-visibility distance field (RSL paper §4.3.1, §5.1): one VDT per vertex
+// in the vertex's local frame, compressed with clustered PCA. A lookup
+// reconstructs only the four bilinear taps it needs.
+#include <cstdint>
+#include <functional>
+
+#include "fields/cpca.h"
+#include "fields/visibility_map.h"
+#include "src/core/mesh.h"
+
+namespace rsl {
+
+struct SvdfParams {
+    int resolution = 32;
+    int supersampling = 2;  // adaptive: k×k rays in boundary texels
+    bool coarse_to_fine = true;  // see fields/visibility_map.h
+    int clusters = 256;     // scaled down to vertices / 16 for small meshes
+    int vectors = 8;
+    int refine_iterations = 2;
+    VdtMode mode = VdtMode::CoverageAware;
+    BelowHorizon below_horizon = BelowHorizon::Extend;
+    bool half_precision_tables = true;
+    uint64_t seed = 1;
+
+    int effective_clusters(size_t vertices) const {
+        return int(std::max<size_t>(1, std::min<size_t>(size_t(clusters), vertices / 16)));
+    }
+};
+
+struct SvdfBakeStats {
+    double trace_seconds = 0, compress_seconds = 0;
+    CpcaReport compression;  // rms error in plane units, sizes in bytes
+};
+
+class Svdf {
+public:
+    SvdfParams params;
+    CpcaModel model;  // samples = vertices, dims = resolution²
+
+    int vertex_count() const { return model.samples(); }
+    int resolution() const { return params.resolution; }
+
+    // Reconstructed signed distance at plane point p.
+    float distance(int vertex, const Vec2& p) const {
+        const BilinearTaps taps = bilinear_taps(params.resolution, p);
+        float d = 0;
+        for (int k = 0; k < 4; ++k) d += taps.weight[k] * model.reconstruct(vertex, taps.index[k]);
+        return d;
+    }
+    // Visible fraction of the axis-aligned square (center, half-edge) of the
+    // vertex's local plane.
+    float visible_fraction(int vertex, const Vec2& center, float half_edge) const {
+        return visible_fraction_from_distance(distance(vertex, center), half_edge);
+    }
+    // Same for a local direction (unit, vertex frame) and half-edge.
+    float visible_fraction(int vertex, const Vec3& local_direction, float half_edge) const {
+        return visible_fraction(vertex, lookup_plane_point(local_direction), half_edge);
+    }
+};
+
+// Traces and compresses the SVDF of one part (self-shadowing only).
+// progress(fraction) is called with the fraction of the whole bake.
+Svdf bake_svdf(const TriangleMesh& mesh, const SvdfParams& params, SvdfBakeStats* stats = nullptr,
+               const std::function<void(double)>& progress = {});
+
+// The uncompressed VDTs (vertices × resolution²), for tests and benchmarks.
+std::vector<float> trace_svdf_tables(const TriangleMesh& mesh, const SvdfParams& params,
+                                     const std::function<void(double)>& progress = {});
+
+// Compression alone (from uncompressed tables).
+Svdf compress_svdf(const std::vector<float>& tables, const SvdfParams& params, SvdfBakeStats* stats = nullptr);
+
+}  // namespace rsl

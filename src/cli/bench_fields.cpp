@@ -1,0 +1,117 @@
+// `rsl bench fields`: SVDF/OVDF bake times, compression ratios and errors,
+// lookups per second, and the compression/error trade-off (docs/FIELDS.md).
+#include <chrono>
+#include <filesystem>
+#include <random>
+
+#include "fields/svdf.h"
+#include "src/cli/bench.h"
+#include "src/core/scene.h"
+
+namespace rsl::cli {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Mean |fraction − reference| over random squares at random vertices, where the
+// reference reads the uncompressed tables with the same VDT rule (isolates the
+// compression error from the VDT approximation).
+double fraction_error_vs_raw(const Svdf& svdf, const std::vector<float>& raw, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-0.7f, 0.7f), h(0.03f, 0.3f);
+    const int n = svdf.resolution(), nn = n * n;
+    std::uniform_int_distribution<int> vertex(0, svdf.vertex_count() - 1);
+    double sum = 0;
+    const int samples = 20000;
+    for (int k = 0; k < samples; ++k) {
+        const int v = vertex(rng);
+        const Vec2 c(u(rng), u(rng));
+        const float he = h(rng);
+        sum += std::abs(svdf.visible_fraction(v, c, he) - vdt_visible_fraction(n, raw.data() + size_t(v) * nn, c, he));
+    }
+    return sum / samples;
+}
+
+void bench_svdf(const BenchOptions& options) {
+    const fs::path bunny = options.shared_assets / "meshes/stanford-bunny.obj";
+    const fs::path suzanne = options.shared_assets / "meshes/suzanne.obj";
+    const fs::path path = options.quick ? suzanne : bunny;
+    if (!fs::exists(path)) {
+        bench_emit({{"bench", "fields"}, {"case", "svdf bake"}, {"skipped", "missing " + path.string()}});
+        return;
+    }
+    TriangleMesh mesh = load_obj(path);
+    validate_and_complete(mesh, path);
+    SvdfParams params;
+    auto start = Clock::now();
+    const std::vector<float> raw = trace_svdf_tables(mesh, params);
+    const double trace_seconds = since(start);
+    SvdfBakeStats stats;
+    const Svdf svdf = compress_svdf(raw, params, &stats);
+    const size_t rays_lower_bound = mesh.vertex_count() * HemisphereSampling(params.resolution, 1).traced_texels().size();
+    bench_emit({{"bench", "fields"},
+                {"case", "svdf bake " + path.filename().string()},
+                {"vertices", mesh.vertex_count()},
+                {"resolution", params.resolution},
+                {"supersampling", params.supersampling},
+                {"clusters", svdf.model.clusters},
+                {"vectors", params.vectors},
+                {"trace_seconds", trace_seconds},
+                {"compress_seconds", stats.compress_seconds},
+                {"total_seconds", trace_seconds + stats.compress_seconds},
+                {"center_rays_per_second", double(rays_lower_bound) / trace_seconds},
+                {"raw_bytes", stats.compression.raw_bytes},
+                {"stored_bytes", stats.compression.stored_bytes},
+                {"compression_ratio", stats.compression.compression_ratio()},
+                {"rms_error_plane_units", stats.compression.rms_error},
+                {"mean_fraction_error_vs_raw", fraction_error_vs_raw(svdf, raw, 3)}});
+
+    // Lookups per second (single thread, random vertices and squares).
+    {
+        std::mt19937 rng(1);
+        std::uniform_real_distribution<float> u(-0.8f, 0.8f);
+        std::uniform_int_distribution<int> vertex(0, svdf.vertex_count() - 1);
+        const int count = 2'000'000;
+        std::vector<int> vs(4096);
+        std::vector<Vec2> cs(4096);
+        for (int k = 0; k < 4096; ++k) vs[k] = vertex(rng), cs[k] = Vec2(u(rng), u(rng));
+        float sink = 0;
+        start = Clock::now();
+        for (int k = 0; k < count; ++k) sink += svdf.visible_fraction(vs[k & 4095], cs[k & 4095], 0.1f);
+        const double s = since(start);
+        bench_emit({{"bench", "fields"}, {"case", "svdf lookup"}, {"lookups_per_second", count / s},
+                    {"threads", 1}, {"checksum", sink}});
+    }
+
+    // Compression / error trade-off (paper Fig. 11 style).
+    struct Setting { int clusters, vectors; };
+    const std::vector<Setting> settings = options.quick ? std::vector<Setting>{{64, 4}, {32, 8}}
+                                                        : std::vector<Setting>{{256, 16}, {256, 8}, {128, 8}, {64, 4}};
+    for (const Setting& s : settings) {
+        SvdfParams p = params;
+        p.clusters = s.clusters;
+        p.vectors = s.vectors;
+        SvdfBakeStats st;
+        const Svdf compressed = compress_svdf(raw, p, &st);
+        bench_emit({{"bench", "fields"},
+                    {"case", "svdf tradeoff " + path.filename().string()},
+                    {"clusters", compressed.model.clusters},
+                    {"vectors", s.vectors},
+                    {"compress_seconds", st.compress_seconds},
+                    {"compression_ratio", st.compression.compression_ratio()},
+                    {"stored_megabytes", st.compression.stored_bytes / 1e6},
+                    {"rms_error_plane_units", st.compression.rms_error},
+                    {"mean_fraction_error_vs_raw", fraction_error_vs_raw(compressed, raw, 3)}});
+    }
+}
+
+RegisterBenchmark fields_benchmark({"fields",
+    "SVDF/OVDF bake time, compression ratio and error, lookups per second, trade-off",
+    [](const BenchOptions& options) {
+        bench_svdf(options);
+    }});
+
+}  // namespace
+}  // namespace rsl::cli
