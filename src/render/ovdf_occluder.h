@@ -14,7 +14,7 @@ OvdfParams ovdf_params(const PrecomputeSettings& settings);
 
 class OvdfOccluder final : public OccluderField {
 public:
-    explicit OvdfOccluder(std::shared_ptr<const Ovdf> field, OvdfBlend blend = OvdfBlend::PerSample)
+    explicit OvdfOccluder(std::shared_ptr<const Ovdf> field, OvdfBlend blend = OvdfBlend::AlignedCoefficients)
         : field_(std::move(field)), blend_(blend) {}
     float visible_fraction(const Vec3& point, const Vec3& light, float half_edge) const override {
         return field_->visible_fraction(point, light, half_edge, blend_);
