@@ -1,0 +1,94 @@
+#pragma once
+// What every demo shares: loading its scene with the demo's precompute
+// settings, the frame clock, image formation with a fixed exposure, and the
+// outputs (PNG sequence, contact sheet, MP4).
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "demos/demo.h"
+#include "src/core/image.h"
+#include "src/core/scene.h"
+#include "src/render/render_options.h"
+#include "src/trace/posed_scene.h"
+#include "src/trace/vertex_colors.h"
+
+namespace rsl::demos {
+
+// --quick: precompute and environment small enough for a test (docs/DEMOS.md).
+void apply_quick_settings(Scene& scene);
+inline constexpr int kQuickLights = 8;
+
+// The demo's scene file (relative to the demos folder), quick settings applied.
+std::shared_ptr<Scene> load_demo_scene(const DemoOptions& options, const std::string& relative_path);
+std::filesystem::path demos_folder(const DemoOptions& options);
+std::filesystem::path output_folder(const DemoOptions& options, const std::string& demo);
+
+// `frames` times spread evenly over the scene's animation range [start, end):
+// the range is a loop, so the last frame does not repeat the first.
+std::vector<float> frame_times(const Scene& scene, int frames);
+
+// The image of per-vertex colours from the scene camera at t, on a dark
+// opaque background (what every demo frame shows).
+Image form_frame(const PosedScene& posed, const Scene& scene, float t, const VertexColors& colors, int width,
+                 int height);
+
+// out = Σ w_i · in_i over vertices (all inputs describe the same vertices).
+void weighted_sum(VertexColors& out, const std::vector<const VertexColors*>& inputs, const std::vector<float>& weights);
+
+// Exposure (stops) mapping the 99th luminance percentile of the image to 0.9.
+float exposure_for(const Image& image);
+
+// Writes frames as out/frame_NNNN.png with the exposure of the first one,
+// keeps a reduced copy of each for the contact sheet, and at the end writes
+// the sheet (at most `sheet_tiles` frames, evenly picked) and the MP4.
+class FrameSequence {
+public:
+    FrameSequence(std::filesystem::path folder, int sheet_columns = 4, int sheet_tiles = 8);
+    void set_exposure(float stops) { exposure_ = stops, exposure_fixed_ = true; }
+    float exposure() const { return exposure_; }
+    // Returns the written path.
+    std::filesystem::path add(const Image& frame, const std::string& label);
+    // Contact sheet (contact_sheet.png) and, with ffmpeg on PATH, NAME.mp4.
+    void finish(DemoResult& result, float fps);
+
+private:
+    std::filesystem::path folder_;
+    int columns_, max_tiles_;
+    float exposure_ = 0;
+    bool exposure_fixed_ = false;
+    std::vector<Image> tiles_;
+    std::vector<std::string> labels_;
+    std::vector<std::filesystem::path> written_;
+};
+
+// Full path of an executable found on PATH, or empty.
+std::filesystem::path find_on_path(const std::string& program);
+// Encodes folder/frame_%04d.png into an H.264 MP4 with ffmpeg; throws on failure.
+void encode_mp4(const std::filesystem::path& ffmpeg, const std::filesystem::path& folder, float fps,
+                const std::filesystem::path& mp4);
+
+double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b);
+
+}  // namespace rsl::demos
+
+#include <functional>
+
+namespace rsl::demos {
+
+// The frame loop every animated demo runs: for each frame time, `shade`
+// fills the vertex colours (and its own timing fields), the frame is formed
+// and written, and the label returned by `label` goes on its contact-sheet tile.
+struct SequenceSpec {
+    std::string name;
+    int default_frames = 12;
+    int default_width = 320, default_height = 240;
+    std::function<void(int frame, float t, VertexColors& colors, FrameTiming& timing)> shade;
+    std::function<std::string(int frame, float t)> label;  // empty: "t=…s"
+};
+void render_sequence(const SequenceSpec& spec, const DemoOptions& options, const Scene& scene,
+                     VertexColors colors, DemoResult& result);
+
+}  // namespace rsl::demos

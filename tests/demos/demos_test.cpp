@@ -1,0 +1,216 @@
+// Every demo, headless, short and small (--quick: tiny precompute, 8 lights):
+// the outputs exist and decode, frames are not blank, and they change over
+// time. Plus the pieces the demos script: the environment cross-fade weight,
+// the glossiness sweep, the vertex-colour blend.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <unistd.h>
+
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb_image.h>
+
+#include "demos/demo.h"
+#include "demos/demo_runners.h"
+#include "demos/demo_support.h"
+#include "src/brdf/brdf.h"
+#include "src/core/error.h"
+
+using namespace rsl;
+using namespace rsl::demos;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Per-process scratch folder (several builds may run the suite at once),
+// removed when the test program exits.
+fs::path scratch_dir() {
+    static const struct Scratch {
+        fs::path dir = fs::temp_directory_path() / fmt::format("rsl_demos_test_{}", ::getpid());
+        Scratch() { fs::create_directories(dir); }
+        ~Scratch() { std::error_code ignored; fs::remove_all(dir, ignored); }
+    } scratch;
+    return scratch.dir;
+}
+
+struct Png {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;
+};
+
+Png read_png(const fs::path& path) {
+    INFO(path.string());
+    REQUIRE(fs::is_regular_file(path));
+    Png png;
+    int channels = 0;
+    unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 3);
+    REQUIRE(data != nullptr);
+    png.rgb.assign(data, data + size_t(png.width) * png.height * 3);
+    stbi_image_free(data);
+    return png;
+}
+
+// Standard deviation of the 8-bit luma over the image: 0 for a flat image.
+double luma_deviation(const Png& png) {
+    double sum = 0, sum2 = 0;
+    const size_t n = size_t(png.width) * png.height;
+    for (size_t p = 0; p < n; ++p) {
+        const double y = 0.2126 * png.rgb[3 * p] + 0.7152 * png.rgb[3 * p + 1] + 0.0722 * png.rgb[3 * p + 2];
+        sum += y, sum2 += y * y;
+    }
+    const double mean = sum / double(n);
+    return std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean));
+}
+
+// Fraction of pixels whose colour differs by more than 2 levels in some channel.
+double changed_fraction(const Png& a, const Png& b) {
+    REQUIRE(a.width == b.width);
+    REQUIRE(a.height == b.height);
+    size_t changed = 0;
+    const size_t n = size_t(a.width) * a.height;
+    for (size_t p = 0; p < n; ++p)
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(int(a.rgb[3 * p + c]) - int(b.rgb[3 * p + c])) > 2) {
+                ++changed;
+                break;
+            }
+    return double(changed) / double(n);
+}
+
+constexpr int kWidth = 48, kHeight = 36, kFrames = 3;
+
+DemoResult run_quick(const std::string& name) {
+    DemoOptions options;
+    options.out_dir = scratch_dir() / name;
+    options.frames = kFrames;
+    options.width = kWidth;
+    options.height = kHeight;
+    options.quick = true;
+    options.progress = false;
+    return run_demo(name, options);
+}
+
+// The checks every animated demo passes.
+void check_animated(const DemoResult& result) {
+    REQUIRE(result.frames.size() == size_t(kFrames));
+    REQUIRE(result.timings.size() == size_t(kFrames));
+    std::vector<Png> frames;
+    for (const fs::path& path : result.frames) {
+        frames.push_back(read_png(path));
+        REQUIRE(frames.back().width == kWidth);
+        REQUIRE(frames.back().height == kHeight);
+        INFO(path.string());
+        REQUIRE(luma_deviation(frames.back()) > 8.0);  // not blank: the scene shows structure
+    }
+    for (size_t f = 1; f < frames.size(); ++f) {
+        INFO("frame " << f << " vs frame " << f - 1);
+        REQUIRE(changed_fraction(frames[f], frames[f - 1]) > 0.02);  // it moves
+    }
+    const Png sheet = read_png(result.contact_sheet);
+    REQUIRE(sheet.width > kFrames * kWidth);  // every frame (and gaps) side by side
+    REQUIRE(sheet.height > kHeight);
+    REQUIRE(luma_deviation(sheet) > 8.0);
+    for (const FrameTiming& timing : result.timings) REQUIRE(timing.shade_seconds > 0);
+}
+
+}  // namespace
+
+TEST_CASE("robot demo renders a moving, non-blank sequence", "[demos][robot]") {
+    check_animated(run_quick("robot"));
+}
+
+TEST_CASE("kitchen demo renders a moving, non-blank sequence", "[demos][kitchen]") {
+    check_animated(run_quick("kitchen"));
+}
+
+TEST_CASE("materials demo changes the frames only through the glossiness edit", "[demos][materials]") {
+    const DemoResult result = run_quick("materials");
+    check_animated(result);  // the scene does not move: the change is the table rebuild
+    REQUIRE(result.metrics.at("table_rebuild_seconds") > 0);
+}
+
+TEST_CASE("compare demo: truth, 10/30/100 lights and error images; more lights, less error", "[demos][compare]") {
+    const DemoResult result = run_quick("compare");
+    REQUIRE(result.frames.size() == 7);  // truth + 3 × (RSL, error)
+    for (const fs::path& path : result.frames) {
+        const Png png = read_png(path);
+        REQUIRE(png.width == kWidth);
+        REQUIRE(png.height == kHeight);
+    }
+    REQUIRE(luma_deviation(read_png(result.frames.front())) > 8.0);
+    const Png sheet = read_png(result.contact_sheet);
+    REQUIRE(sheet.width > 4 * kWidth);
+    REQUIRE(sheet.height > 2 * kHeight);
+    const double e10 = result.metrics.at("pixel_error_K10"), e100 = result.metrics.at("pixel_error_K100");
+    INFO("relative L2 error: 10 lights " << e10 << ", 100 lights " << e100);
+    REQUIRE(e10 > 0.0);
+    REQUIRE(e10 < 1.0);
+    REQUIRE(e100 < e10);
+    REQUIRE(result.metrics.at("vertex_error_K100") < result.metrics.at("vertex_error_K10"));
+}
+
+TEST_CASE("unknown demo names are refused with the list", "[demos]") {
+    try {
+        run_demo("teapot", DemoOptions{});
+        FAIL("no error");
+    } catch (const Error& e) {
+        REQUIRE(std::string(e.what()).find("robot") != std::string::npos);
+    }
+}
+
+TEST_CASE("environment cross-fade weight: first map at 0, second at half the period, periodic", "[demos]") {
+    EnvironmentDesc env;
+    REQUIRE(environment_blend_weight(env, 1.0f) == 0.0f);  // no second map
+    env.second_file = "b.exr";
+    env.blend_period_seconds = 8;
+    REQUIRE(environment_blend_weight(env, 0.0f) == Approx(0.0f).margin(1e-6));
+    REQUIRE(environment_blend_weight(env, 4.0f) == Approx(1.0f));
+    REQUIRE(environment_blend_weight(env, 2.0f) == Approx(0.5f));
+    REQUIRE(environment_blend_weight(env, 8.0f) == Approx(0.0f).margin(1e-6));
+    for (float t = 0; t < 4; t += 0.25f)
+        REQUIRE(environment_blend_weight(env, t + 0.25f) > environment_blend_weight(env, t));
+}
+
+TEST_CASE("weighted vertex-colour sum is the per-vertex linear combination", "[demos]") {
+    VertexColors a, b, out;
+    for (VertexColors* c : {&a, &b, &out}) c->add_part("p", 3), c->add_part("q", 1);
+    a.parts[0] = {Color(1, 2, 3), Color(0), Color(4)};
+    a.parts[1] = {Color(1)};
+    b.parts[0] = {Color(3, 2, 1), Color(1), Color(0)};
+    b.parts[1] = {Color(5)};
+    weighted_sum(out, {&a, &b}, {0.25f, 0.75f});
+    REQUIRE(out.parts[0][0] == Color(2.5f, 2.0f, 1.5f));
+    REQUIRE(out.parts[0][1] == Color(0.75f));
+    REQUIRE(out.parts[0][2] == Color(1.0f));
+    REQUIRE(out.parts[1][0] == Color(4.0f));
+}
+
+TEST_CASE("glossiness sweep sets valid parameters for every swept model, rougher as it goes", "[demos]") {
+    const std::vector<MaterialDesc> models{
+        {"steel", "phong", {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.7f, 0.7f, 0.7f}}, {"exponent", {100}}}, {}},
+        {"bronze", "cook_torrance_beckmann", {{"f0", {0.8f, 0.5f, 0.25f}}, {"roughness", {0.2f}}}, {}},
+        {"metal", "ward", {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.6f, 0.6f, 0.6f}}, {"alpha", {0.15f}}}, {}},
+        {"brushed", "ward_anisotropic",
+         {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.6f, 0.6f, 0.6f}}, {"alpha_x", {0.3f}}, {"alpha_y", {0.08f}}}, {}},
+    };
+    const int frames = 5;
+    for (const MaterialDesc& model : models) {
+        INFO(model.model);
+        float previous_peak = 1e30f;
+        for (int f = 0; f < frames; ++f) {
+            MaterialDesc edited = model;
+            set_glossiness(edited, sweep_roughness(f, frames));
+            const auto brdf = make_brdf(edited);  // validates every parameter
+            // Mirror configuration at 45°: the lobe's peak falls as roughness grows.
+            const Vec3 wi = glm::normalize(Vec3(0.7f, 0.0f, 0.7f)), wo = glm::normalize(Vec3(-0.7f, 0.0f, 0.7f));
+            const float peak = luminance(brdf->eval(wi, wo));
+            REQUIRE(peak < previous_peak);
+            previous_peak = peak;
+        }
+    }
+    MaterialDesc lambert{"floor", "lambert", {{"albedo", {0.5f, 0.5f, 0.5f}}}, {}};
+    REQUIRE_THROWS_AS(set_glossiness(lambert, 0.2f), Error);
+    REQUIRE(sweep_roughness(0, 12) < sweep_roughness(11, 12));
+}
