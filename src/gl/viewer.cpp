@@ -1,0 +1,221 @@
+// The viewer's window, input and frame loop (panel: viewer_panel.cpp).
+#define GLFW_INCLUDE_NONE
+#include "src/gl/viewer.h"
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <stb_image_write.h>
+
+#include <chrono>
+#include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "src/core/atomic_file.h"
+#include "src/core/error.h"
+#include "src/gl/gl.h"
+#include "src/gl/viewer_state.h"
+#include "src/render/render_setup.h"
+
+namespace rsl::gl {
+
+void use_quick_fields(PrecomputeSettings& pre) {
+    pre.svdf_resolution = 16, pre.svdf_clusters = 32, pre.svdf_vectors = 4, pre.svdf_supersampling = 1;
+    pre.ovdf_shells = 6, pre.ovdf_cube_resolution = 8, pre.ovdf_vdt_resolution = 16, pre.ovdf_vectors = 4;
+}
+
+namespace {
+
+// glfwInit / glfwTerminate and the window, released in reverse order.
+struct Window {
+    GLFWwindow* window = nullptr;
+    Window(int width, int height, const std::string& title) {
+        glfwSetErrorCallback([](int code, const char* message) { std::fprintf(stderr, "GLFW %d: %s\n", code, message); });
+        if (!glfwInit()) throw Error("rsl view: GLFW could not start (no display? try xvfb-run -a rsl view ...)");
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+        window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+        if (!window) {
+            glfwTerminate();
+            throw Error("rsl view: no window with an OpenGL 3.3 core context");
+        }
+        glfwMakeContextCurrent(window);
+        glfwSwapInterval(0);  // measure the renderer, not the display's refresh
+    }
+    ~Window() {
+        glfwDestroyWindow(window);
+        glfwTerminate();
+    }
+};
+
+struct ImGuiSession {
+    explicit ImGuiSession(GLFWwindow* window) {
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini beside the user's files
+        ImGui::StyleColorsDark();
+        ImGui_ImplGlfw_InitForOpenGL(window, true);
+        ImGui_ImplOpenGL3_Init("#version 330 core");
+    }
+    ~ImGuiSession() {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+};
+
+// Mouse and keys that ImGui does not take.
+struct Input {
+    double last_x = 0, last_y = 0;
+    bool space_down = false, h_down = false;
+};
+
+void handle_input(GLFWwindow* window, Input& input, ViewerState& state, float dt) {
+    double x, y;
+    glfwGetCursorPos(window, &x, &y);
+    const float dx = float(x - input.last_x), dy = float(y - input.last_y);
+    input.last_x = x, input.last_y = y;
+    if (ImGui::GetIO().WantCaptureMouse) return;
+    const bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) {
+        if (shift && !state.scene->lights.empty()) {
+            // Move the light in the view plane, scaled to the orbit distance.
+            LocalLight& light = state.scene->lights.front();
+            const Vec3 forward = glm::normalize(state.camera.target - state.camera.eye());
+            const Vec3 right = glm::normalize(glm::cross(forward, Vec3(0, 1, 0)));
+            const Vec3 up = glm::cross(right, forward);
+            const float scale = 0.002f * state.camera.distance;
+            light.position += scale * (dx * right - dy * up);
+            light.path.reset();
+        } else {
+            state.camera.yaw -= 0.005f * dx;
+            state.camera.pitch = std::clamp(state.camera.pitch + 0.005f * dy, -1.5f, 1.5f);
+        }
+    }
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) state.environment_degrees += 0.3f * dx;
+    if (ImGui::GetIO().WantCaptureKeyboard) return;
+    if (glfwGetKey(window, GLFW_KEY_LEFT) == GLFW_PRESS) state.environment_degrees -= 60.0f * dt;
+    if (glfwGetKey(window, GLFW_KEY_RIGHT) == GLFW_PRESS) state.environment_degrees += 60.0f * dt;
+    const bool space = glfwGetKey(window, GLFW_KEY_SPACE) == GLFW_PRESS;
+    if (space && !input.space_down) state.playing = !state.playing;
+    input.space_down = space;
+    const bool h = glfwGetKey(window, GLFW_KEY_H) == GLFW_PRESS;
+    if (h && !input.h_down) state.panel = !state.panel;
+    input.h_down = h;
+    if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, GLFW_TRUE);
+    state.environment_degrees = std::remainder(state.environment_degrees, 360.0f);
+}
+
+void write_screenshot(const std::filesystem::path& path, int width, int height) {
+    std::vector<unsigned char> pixels(size_t(width) * height * 3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+    std::vector<unsigned char> flipped(pixels.size());
+    const size_t row = size_t(width) * 3;
+    for (int y = 0; y < height; ++y)
+        std::copy_n(pixels.data() + size_t(height - 1 - y) * row, row, flipped.data() + size_t(y) * row);
+    write_atomically(path, [&](const std::filesystem::path& tmp) {
+        if (!stbi_write_png(tmp.c_str(), width, height, 3, flipped.data(), int(row)))
+            throw_file_error(path, "could not write the PNG");
+    });
+}
+
+}  // namespace
+
+void run_viewer(const ViewerOptions& options) {
+    auto scene = std::make_shared<Scene>(load_scene(options.scene));
+    if (options.quick_fields) use_quick_fields(scene->precompute);
+    if (scene->lights.empty()) {  // a light to move around
+        LocalLight light;
+        light.radius = 0.05f;
+        light.power = Color(4.0f);
+        const BoundingSphere bounds = scene->parts.front().mesh.bounding_sphere();
+        light.position = scene->camera.target + Vec3(0.5f, 1.0f, 0.5f) * std::max(0.5f, 0.3f * bounds.radius);
+        scene->lights.push_back(light);
+    }
+    RenderSetup setup = prepare_render(scene, options.render, true);
+
+    Window window(options.width, options.height, "rsl view: " + scene->name);
+    ImGuiSession imgui(window.window);
+    GlRenderer renderer(*scene, setup.environment_lights, setup.fields, options.render);
+    std::fprintf(stderr, "%s\n", context_description().c_str());
+
+    ViewerState state;
+    state.scene = scene.get();
+    state.environment = &setup.environment;
+    state.renderer = &renderer;
+    state.materials = std::make_unique<MaterialLibrary>(MaterialLibrary::from_scene(*scene, options.render.brdf_table));
+    state.toggles = options.render;
+    state.rsl_count = int(setup.environment_lights.lights.size());
+    state.time = options.start_time;
+    state.exposure = options.exposure;
+    state.panel = options.panel;
+    state.camera.target = scene->camera.target;
+    const Vec3 offset = scene->camera.position - scene->camera.target;
+    state.camera.distance = glm::length(offset);
+    state.camera.yaw = std::atan2(offset.x, offset.z);
+    state.camera.pitch = std::asin(std::clamp(offset.y / std::max(state.camera.distance, 1e-6f), -1.0f, 1.0f));
+    state.camera.fov_y_degrees = scene->camera.fov_y_degrees;
+    // Apply material overrides given on the command line to the library.
+    for (const auto& [part_name, material_name] : options.render.material_override)
+        for (size_t p = 0; p < scene->parts.size(); ++p)
+            if (scene->parts[p].name == part_name) state.materials->assign(int(p), state.materials->find(material_name));
+
+    Input input;
+    glfwGetCursorPos(window.window, &input.last_x, &input.last_y);
+    const float duration = std::max(scene->animation.end - scene->animation.start, 1e-3f);
+    auto last = std::chrono::steady_clock::now();
+    for (int frame = 0; !glfwWindowShouldClose(window.window); ++frame) {
+        glfwPollEvents();
+        const auto now = std::chrono::steady_clock::now();
+        // Screenshot mode plays at the scene's frame rate, whatever the speed.
+        const float dt = options.frames > 0 ? 1.0f / std::max(scene->animation.fps, 1.0f)
+                                            : std::chrono::duration<float>(now - last).count();
+        const double ms = std::chrono::duration<double, std::milli>(now - last).count();
+        state.frame_ms = 0.9 * state.frame_ms + 0.1 * ms;
+        state.fps = state.frame_ms > 0 ? 1e3 / state.frame_ms : 0;
+        last = now;
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        handle_input(window.window, input, state, dt);
+        viewer_panel(state);
+        apply_pending(state);
+        if (state.playing && frame > 0)
+            state.time = scene->animation.start + std::fmod(state.time - scene->animation.start + dt, duration);
+
+        int width, height;
+        glfwGetFramebufferSize(window.window, &width, &height);
+        const Mat3 turn = Mat3(glm::rotate(Mat4(1.0f), glm::radians(state.environment_degrees), Vec3(0, 1, 0)));
+        const Vec3 eye = state.camera.eye();
+        renderer.set_view(state.time, eye, turn);
+        renderer.shade();
+
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, width, height);
+        glClearColor(0.05f, 0.05f, 0.06f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        const float aspect = float(width) / float(std::max(height, 1));
+        const Mat4 projection = glm::perspective(glm::radians(state.camera.fov_y_degrees), aspect,
+                                                 0.01f * state.camera.distance, 100.0f * state.camera.distance);
+        const Mat4 view = glm::lookAt(eye, state.camera.target, Vec3(0, 1, 0));
+        renderer.draw(projection * view, std::exp2(state.exposure));
+        glDisable(GL_DEPTH_TEST);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+        if (options.frames > 0 && frame + 1 >= options.frames) {
+            if (!options.screenshot.empty()) write_screenshot(options.screenshot, width, height);
+            break;
+        }
+        glfwSwapBuffers(window.window);
+    }
+    if (state.refit.valid()) state.refit.wait();
+}
+
+}  // namespace rsl::gl

@@ -1,0 +1,38 @@
+#pragma once
+// `rsl view SCENE`: the interactive viewer (GLFW window, Dear ImGui panel) on
+// top of the GPU renderer. Mouse: left-drag orbits, right-drag turns the
+// environment, wheel zooms, shift + left-drag moves the local light in the
+// view plane. Keys: space play/pause, ←/→ turn the environment, H hides the
+// panel, Esc quits. The panel swaps each part's BRDF, edits material
+// parameters (the table is rebuilt and uploaded the same frame), re-fits the
+// environment with another number of RSLs in a background thread, switches
+// each visibility factor, and shows fps and the GPU time of each pass.
+#include <filesystem>
+
+#include "src/core/scene.h"
+#include "src/render/render_options.h"
+
+namespace rsl::gl {
+
+struct ViewerOptions {
+    std::filesystem::path scene;
+    RenderOptions render;
+    bool quick_fields = false;         // small precompute settings: seconds instead of minutes
+    float start_time = 0;
+    float exposure = 0;                // stops
+    int width = 1280, height = 720;
+    bool panel = true;
+    // Screenshot mode: render `frames` frames (playing), save the last to
+    // `screenshot` (PNG) and exit. frames = 0: interactive.
+    std::filesystem::path screenshot;
+    int frames = 0;
+};
+
+// Runs the viewer until the window closes (or the screenshot is written).
+// Throws rsl::Error when no window or GL 3.3 core context can be had.
+void run_viewer(const ViewerOptions& options);
+
+// Precompute settings small enough to bake a scene's fields in seconds.
+void use_quick_fields(PrecomputeSettings& settings);
+
+}  // namespace rsl::gl

@@ -1,0 +1,130 @@
+// The viewer's ImGui panel: materials, lights, visibility factors, timings.
+#include <imgui.h>
+
+#include <algorithm>
+#include <string>
+
+#include "src/core/error.h"
+#include "src/gl/viewer_state.h"
+#include "src/render/renderer.h"
+
+namespace rsl::gl {
+
+namespace {
+
+// Slider range for a material parameter, from its name.
+void parameter_range(const std::string& key, float& lo, float& hi) {
+    lo = 0.0f, hi = 1.0f;
+    if (key.find("exponent") != std::string::npos) lo = 1.0f, hi = 500.0f;
+    if (key.find("roughness") != std::string::npos || key.find("alpha") != std::string::npos) lo = 0.01f;
+}
+
+void material_editor(ViewerState& state, int material) {
+    MaterialDesc desc = state.materials->desc(material);
+    ImGui::PushID(material);
+    if (ImGui::TreeNode(desc.name.c_str(), "%s (%s)", desc.name.c_str(), desc.model.c_str())) {
+        for (auto& [key, value] : desc.params) {
+            bool changed = false;
+            if (value.size() == 3) {
+                changed = ImGui::ColorEdit3(key.c_str(), value.data(), ImGuiColorEditFlags_Float);
+            } else if (value.size() == 1) {
+                float lo, hi;
+                parameter_range(key, lo, hi);
+                changed = ImGui::SliderFloat(key.c_str(), &value[0], lo, hi, "%.3f",
+                                             hi > 10.0f ? ImGuiSliderFlags_Logarithmic : 0);
+            }
+            if (changed) {
+                try {
+                    state.materials->set_parameter(material, key, value);
+                    state.materials_dirty = true;
+                } catch (const Error&) {
+                    // Out of the model's range: the library kept the old value.
+                }
+            }
+        }
+        ImGui::TreePop();
+    }
+    ImGui::PopID();
+}
+
+}  // namespace
+
+void apply_pending(ViewerState& state) {
+    if (state.refit.valid() && state.refit.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        state.renderer->set_environment_lights(state.refit.get());
+    }
+    if (state.materials_dirty) {
+        std::vector<std::shared_ptr<const BrdfTable>> tables;
+        for (int p = 0; p < state.materials->part_count(); ++p)
+            tables.push_back(state.materials->table(state.materials->part_material(p)));
+        state.renderer->set_part_tables(std::move(tables));
+        state.materials_dirty = false;
+    }
+}
+
+void viewer_panel(ViewerState& state) {
+    if (!state.panel) return;
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+    ImGui::Begin("rsl view");
+    const PassTimings t = state.renderer->timings();
+    ImGui::Text("%.1f fps, %.2f ms/frame", state.fps, state.frame_ms);
+    ImGui::Text("GPU: shading %.2f ms, pack %.2f ms, display %.2f ms", t.shade_ms, t.pack_ms, t.display_ms);
+    ImGui::Text("%d vertices, %d lights, occluder pairs %zu (%zu culled)", state.renderer->vertex_count(),
+                state.renderer->frame().light_count(), state.renderer->frame().occluder_pairs(),
+                state.renderer->frame().occluder_pairs_culled());
+
+    if (ImGui::CollapsingHeader("Animation and lighting", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::Checkbox("play (space)", &state.playing);
+        ImGui::SameLine();
+        ImGui::SliderFloat("t", &state.time, state.scene->animation.start, std::max(state.scene->animation.end, 1e-3f));
+        ImGui::SliderFloat("environment turn", &state.environment_degrees, -180.0f, 180.0f, "%.0f deg");
+        ImGui::SliderFloat("exposure", &state.exposure, -6.0f, 6.0f, "%.1f stops");
+        if (state.environment && state.environment->resolution() > 0) {
+            ImGui::SliderInt("RSLs", &state.rsl_count, 1, 100);
+            if (ImGui::IsItemDeactivatedAfterEdit() && !state.refit.valid()) {
+                const CubeMap* environment = state.environment;
+                const int count = state.rsl_count;
+                state.refit_count = count;
+                state.refit = std::async(std::launch::async, [environment, count] {
+                    return fit_environment_lights(*environment, count);
+                });
+            }
+            if (state.refit.valid()) ImGui::Text("fitting %d RSLs...", state.refit_count);
+            else ImGui::Text("%zu RSLs in use", state.renderer->environment_lights().lights.size());
+        }
+        if (!state.scene->lights.empty()) {
+            LocalLight& light = state.scene->lights.front();
+            ImGui::DragFloat3("light (shift+drag)", &light.position.x, 0.01f);
+            light.path.reset();
+        }
+    }
+    if (ImGui::CollapsingHeader("Visibility factors", ImGuiTreeNodeFlags_DefaultOpen)) {
+        RenderOptions& o = state.toggles;
+        bool changed = ImGui::Checkbox("environment RSLs", &o.environment);
+        changed |= ImGui::Checkbox("local lights", &o.local_lights);
+        changed |= ImGui::Checkbox("self-visibility (SVDF)", &o.self_visibility);
+        changed |= ImGui::Checkbox("other parts' shadows (OVDF)", &o.occluders);
+        changed |= ImGui::Checkbox("occluder culling", &o.occluder_culling);
+        if (changed) state.renderer->set_toggles(o);
+    }
+    if (ImGui::CollapsingHeader("Materials")) {
+        MaterialLibrary& library = *state.materials;
+        for (int p = 0; p < library.part_count(); ++p) {
+            const int current = library.part_material(p);
+            if (ImGui::BeginCombo(state.scene->parts[p].name.c_str(), library.desc(current).name.c_str())) {
+                for (int m = 0; m < library.material_count(); ++m)
+                    if (ImGui::Selectable(library.desc(m).name.c_str(), m == current)) {
+                        library.assign(p, m);
+                        state.materials_dirty = true;
+                    }
+                ImGui::EndCombo();
+            }
+        }
+        ImGui::Separator();
+        for (int m = 0; m < library.material_count(); ++m) material_editor(state, m);
+    }
+    ImGui::End();
+}
+
+}  // namespace rsl::gl

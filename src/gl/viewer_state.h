@@ -1,0 +1,44 @@
+#pragma once
+// The viewer's state between frames and its ImGui panel (viewer_panel.cpp).
+#include <future>
+#include <memory>
+#include <vector>
+
+#include "src/brdf/material_library.h"
+#include "src/core/envmap.h"
+#include "src/core/scene.h"
+#include "src/gl/gl_renderer.h"
+
+namespace rsl::gl {
+
+struct OrbitCamera {
+    Vec3 target{0};
+    float distance = 3, yaw = 0, pitch = 0.3f;  // radians
+    float fov_y_degrees = 40;
+    Vec3 eye() const {
+        return target + distance * Vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+    }
+};
+
+struct ViewerState {
+    Scene* scene = nullptr;
+    const CubeMap* environment = nullptr;
+    GlRenderer* renderer = nullptr;
+    std::unique_ptr<MaterialLibrary> materials;
+    OrbitCamera camera;
+    float time = 0, environment_degrees = 0, exposure = 0;
+    bool playing = true, panel = true;
+    RenderOptions toggles;
+    int rsl_count = 30;
+    std::future<RslSet> refit;  // the background fit, when one runs
+    int refit_count = 0;
+    bool materials_dirty = false;
+    double frame_ms = 0, fps = 0;
+};
+
+// Draws the panel and applies what changed (materials, toggles, RSL count).
+void viewer_panel(ViewerState& state);
+// Applies finished background work (a new RSL set) and material edits.
+void apply_pending(ViewerState& state);
+
+}  // namespace rsl::gl
