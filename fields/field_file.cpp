@@ -1,0 +1,311 @@
+#include "fields/field_file.h"
+
+#include <cstring>
+#include <fstream>
+
+#include <Imath/half.h>
+#include <nlohmann/json.hpp>
+
+#include "src/core/atomic_file.h"
+#include "src/core/error.h"
+
+namespace rsl {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr char kMagic[8] = {'R', 'S', 'L', 'F', 'I', 'E', 'L', 'D'};
+
+class ByteWriter {
+public:
+    template <typename T>
+    void put(const T& value) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        const char* p = reinterpret_cast<const char*>(&value);
+        bytes_.append(p, sizeof(T));
+    }
+    void put_bytes(const void* data, size_t n) { bytes_.append(static_cast<const char*>(data), n); }
+    std::string& bytes() { return bytes_; }
+
+private:
+    std::string bytes_;
+};
+
+class ByteReader {
+public:
+    ByteReader(const fs::path& path, const std::string& bytes, size_t end) : path_(path), bytes_(bytes), end_(end) {}
+    template <typename T>
+    T get() {
+        T value;
+        need(sizeof(T));
+        std::memcpy(&value, bytes_.data() + at_, sizeof(T));
+        at_ += sizeof(T);
+        return value;
+    }
+    void get_bytes(void* out, size_t n) {
+        need(n);
+        std::memcpy(out, bytes_.data() + at_, n);
+        at_ += n;
+    }
+    size_t position() const { return at_; }
+
+private:
+    void need(size_t n) {
+        if (at_ + n > end_) throw_file_error(path_, "truncated field file (payload ends early)");
+    }
+    const fs::path& path_;
+    const std::string& bytes_;
+    size_t at_ = 0, end_;
+};
+
+json to_json(const SvdfParams& p) {
+    return {{"resolution", p.resolution}, {"supersampling", p.supersampling}, {"coarse_to_fine", p.coarse_to_fine},
+            {"clusters", p.clusters},     {"vectors", p.vectors},             {"refine_iterations", p.refine_iterations},
+            {"mode", int(p.mode)},        {"below_horizon", int(p.below_horizon)},
+            {"half_precision_tables", p.half_precision_tables}, {"seed", p.seed}};
+}
+json to_json(const OvdfParams& p) {
+    return {{"shells", p.shells},
+            {"inner_radius", p.inner_radius},
+            {"outer_radius", p.outer_radius},
+            {"spacing", int(p.spacing)},
+            {"cube_resolution", p.cube_resolution},
+            {"vdt_resolution", p.vdt_resolution},
+            {"vectors", p.vectors},
+            {"segments_per_side", p.segments_per_side},
+            {"supersampling", p.supersampling},
+            {"mode", int(p.mode)},
+            {"half_precision_tables", p.half_precision_tables},
+            {"seed", p.seed}};
+}
+SvdfParams svdf_params_from(const json& j) {
+    SvdfParams p;
+    p.resolution = j.at("resolution");
+    p.supersampling = j.at("supersampling");
+    p.coarse_to_fine = j.at("coarse_to_fine");
+    p.clusters = j.at("clusters");
+    p.vectors = j.at("vectors");
+    p.refine_iterations = j.at("refine_iterations");
+    p.mode = VdtMode(j.at("mode").get<int>());
+    p.below_horizon = BelowHorizon(j.at("below_horizon").get<int>());
+    p.half_precision_tables = j.at("half_precision_tables");
+    p.seed = j.at("seed");
+    return p;
+}
+OvdfParams ovdf_params_from(const json& j) {
+    OvdfParams p;
+    p.shells = j.at("shells");
+    p.inner_radius = j.at("inner_radius");
+    p.outer_radius = j.at("outer_radius");
+    p.spacing = ShellSpacing(j.at("spacing").get<int>());
+    p.cube_resolution = j.at("cube_resolution");
+    p.vdt_resolution = j.at("vdt_resolution");
+    p.vectors = j.at("vectors");
+    p.segments_per_side = j.at("segments_per_side");
+    p.supersampling = j.at("supersampling");
+    p.mode = VdtMode(j.at("mode").get<int>());
+    p.half_precision_tables = j.at("half_precision_tables");
+    p.seed = j.at("seed");
+    return p;
+}
+
+void put_model(ByteWriter& w, const CpcaModel& m, bool half_tables) {
+    w.put(int32_t(m.dims));
+    w.put(int32_t(m.vectors));
+    w.put(int32_t(m.clusters));
+    w.put(int32_t(m.samples()));
+    w.put(uint8_t(half_tables));
+    if (half_tables) {
+        for (float v : m.tables) w.put(Imath::half(v).bits());
+    } else {
+        w.put_bytes(m.tables.data(), m.tables.size() * sizeof(float));
+    }
+    if (m.clusters <= 65536) {
+        for (int32_t c : m.assignment) w.put(uint16_t(c));
+    } else {
+        w.put_bytes(m.assignment.data(), m.assignment.size() * sizeof(int32_t));
+    }
+    w.put_bytes(m.coefficients.data(), m.coefficients.size() * sizeof(float));
+}
+
+void write_field(const fs::path& path, FieldKind kind, uint64_t mesh, const std::string& params,
+                 const Ovdf* ovdf, const CpcaModel& model, bool half_tables) {
+    ByteWriter w;
+    w.put_bytes(kMagic, sizeof(kMagic));
+    w.put(kFieldFormatVersion);
+    w.put(uint32_t(kind));
+    w.put(mesh);
+    w.put(params_hash(params));
+    w.put(uint32_t(params.size()));
+    w.put_bytes(params.data(), params.size());
+    if (ovdf) {
+        w.put(ovdf->center);
+        w.put(ovdf->radius);
+    }
+    put_model(w, model, half_tables);
+    w.put(fnv1a64(w.bytes().data(), w.bytes().size()));
+    write_file_atomically(path, w.bytes());
+}
+
+// Checks magic, size, checksum and version; returns the header and leaves the
+// reader just after the parameters.
+FieldHeader parse_header(const fs::path& path, const std::string& bytes, ByteReader& r) {
+    FieldHeader h;
+    h.file_bytes = bytes.size();
+    if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+        throw_file_error(path, "not an rsl field file (bad magic)");
+    constexpr size_t kMinimum = 8 + 4 + 4 + 8 + 8 + 4 + 8;
+    if (bytes.size() < kMinimum) throw_file_error(path, "truncated field file ({} bytes)", bytes.size());
+    std::memcpy(&h.checksum, bytes.data() + bytes.size() - 8, 8);
+    if (fnv1a64(bytes.data(), bytes.size() - 8) != h.checksum)
+        throw_file_error(path, "checksum mismatch: the field file is corrupt or truncated; re-run `rsl bake`");
+    char magic[8];
+    r.get_bytes(magic, 8);
+    h.version = r.get<uint32_t>();
+    if (h.version != kFieldFormatVersion)
+        throw_file_error(path, "stale field file: format version {}, this rsl reads version {}; re-run `rsl bake`",
+                         h.version, kFieldFormatVersion);
+    const uint32_t kind = r.get<uint32_t>();
+    if (kind != uint32_t(FieldKind::Svdf) && kind != uint32_t(FieldKind::Ovdf))
+        throw_file_error(path, "unknown field kind {}", kind);
+    h.kind = FieldKind(kind);
+    h.mesh_hash = r.get<uint64_t>();
+    h.params_hash = r.get<uint64_t>();
+    h.params.resize(r.get<uint32_t>());
+    r.get_bytes(h.params.data(), h.params.size());
+    if (params_hash(h.params) != h.params_hash) throw_file_error(path, "parameter block does not match its hash");
+    return h;
+}
+
+void check_expectation(const fs::path& path, const FieldHeader& h, FieldKind kind, const FieldExpectation& e) {
+    if (h.kind != kind)
+        throw_file_error(path, "holds an {} where an {} was expected", h.kind == FieldKind::Svdf ? "SVDF" : "OVDF",
+                         kind == FieldKind::Svdf ? "SVDF" : "OVDF");
+    if (e.mesh_hash && *e.mesh_hash != h.mesh_hash)
+        throw_file_error(path, "stale field file: baked for a different mesh (hash {:016x}, expected {:016x}); "
+                               "re-run `rsl bake`",
+                         h.mesh_hash, *e.mesh_hash);
+    if (e.params && params_hash(*e.params) != h.params_hash)
+        throw_file_error(path, "stale field file: baked with parameters {} but {} are expected; re-run `rsl bake`",
+                         h.params, *e.params);
+}
+
+CpcaModel get_model(const fs::path& path, ByteReader& r, FieldHeader& h) {
+    CpcaModel m;
+    m.dims = h.dims = r.get<int32_t>();
+    m.vectors = h.vectors = r.get<int32_t>();
+    m.clusters = h.clusters = r.get<int32_t>();
+    h.samples = r.get<int32_t>();
+    h.half_tables = r.get<uint8_t>() != 0;
+    if (m.dims <= 0 || m.vectors < 0 || m.clusters <= 0 || h.samples <= 0 || m.dims > (1 << 20) ||
+        m.vectors > 1024 || size_t(m.clusters) > size_t(h.samples))
+        throw_file_error(path, "implausible model sizes (dims {}, vectors {}, clusters {}, samples {})", m.dims,
+                         m.vectors, m.clusters, h.samples);
+    m.tables.resize(size_t(m.clusters) * m.dims * (m.vectors + 1));
+    if (h.half_tables) {
+        for (float& v : m.tables) {
+            Imath::half x;
+            x.setBits(r.get<uint16_t>());
+            v = float(x);
+        }
+    } else {
+        r.get_bytes(m.tables.data(), m.tables.size() * sizeof(float));
+    }
+    m.assignment.resize(h.samples);
+    if (m.clusters <= 65536) {
+        for (int32_t& c : m.assignment) c = r.get<uint16_t>();
+    } else {
+        r.get_bytes(m.assignment.data(), m.assignment.size() * sizeof(int32_t));
+    }
+    for (int32_t c : m.assignment)
+        if (c < 0 || c >= m.clusters) throw_file_error(path, "cluster index {} out of range", c);
+    m.coefficients.resize(size_t(h.samples) * m.vectors);
+    r.get_bytes(m.coefficients.data(), m.coefficients.size() * sizeof(float));
+    return m;
+}
+
+}  // namespace
+
+uint64_t fnv1a64(const void* data, size_t bytes, uint64_t hash) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) {
+        hash ^= p[i];
+        hash *= 0x100000001b3ull;
+    }
+    return hash;
+}
+
+uint64_t mesh_hash(const TriangleMesh& mesh) {
+    uint64_t h = fnv1a64(mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    h = fnv1a64(mesh.normals.data(), mesh.normals.size() * sizeof(Vec3), h);
+    h = fnv1a64(mesh.tangents.data(), mesh.tangents.size() * sizeof(Vec4), h);
+    return fnv1a64(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t), h);
+}
+
+std::string params_json(const SvdfParams& params) { return to_json(params).dump(); }
+std::string params_json(const OvdfParams& params) { return to_json(params).dump(); }
+
+void write_svdf(const fs::path& path, const Svdf& svdf, uint64_t mesh) {
+    write_field(path, FieldKind::Svdf, mesh, params_json(svdf.params), nullptr, svdf.model,
+                svdf.params.half_precision_tables);
+}
+
+void write_ovdf(const fs::path& path, const Ovdf& ovdf, uint64_t mesh) {
+    write_field(path, FieldKind::Ovdf, mesh, params_json(ovdf.params), &ovdf, ovdf.model,
+                ovdf.params.half_precision_tables);
+}
+
+FieldHeader read_field_header(const fs::path& path) {
+    const std::string bytes = read_file(path);
+    ByteReader r(path, bytes, bytes.size() >= 8 ? bytes.size() - 8 : 0);
+    FieldHeader h = parse_header(path, bytes, r);
+    if (h.kind == FieldKind::Ovdf) {
+        r.get<Vec3>();
+        r.get<float>();
+    }
+    get_model(path, r, h);
+    return h;
+}
+
+Svdf read_svdf(const fs::path& path, const FieldExpectation& expect) {
+    const std::string bytes = read_file(path);
+    ByteReader r(path, bytes, bytes.size() >= 8 ? bytes.size() - 8 : 0);
+    FieldHeader h = parse_header(path, bytes, r);
+    check_expectation(path, h, FieldKind::Svdf, expect);
+    Svdf svdf;
+    try {
+        svdf.params = svdf_params_from(json::parse(h.params));
+    } catch (const json::exception& e) {
+        throw_file_error(path, "bad parameter block: {}", e.what());
+    }
+    svdf.model = get_model(path, r, h);
+    if (h.dims != svdf.params.resolution * svdf.params.resolution)
+        throw_file_error(path, "table size {} does not match resolution {}", h.dims, svdf.params.resolution);
+    if (r.position() != bytes.size() - 8) throw_file_error(path, "trailing bytes after the payload");
+    return svdf;
+}
+
+Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
+    const std::string bytes = read_file(path);
+    ByteReader r(path, bytes, bytes.size() >= 8 ? bytes.size() - 8 : 0);
+    FieldHeader h = parse_header(path, bytes, r);
+    check_expectation(path, h, FieldKind::Ovdf, expect);
+    Ovdf ovdf;
+    try {
+        ovdf.params = ovdf_params_from(json::parse(h.params));
+    } catch (const json::exception& e) {
+        throw_file_error(path, "bad parameter block: {}", e.what());
+    }
+    ovdf.center = r.get<Vec3>();
+    ovdf.radius = r.get<float>();
+    ovdf.model = get_model(path, r, h);
+    if (h.dims != ovdf.params.vdt_resolution * ovdf.params.vdt_resolution ||
+        size_t(h.samples) != ovdf.params.sample_count() || h.clusters != ovdf.params.segment_count())
+        throw_file_error(path, "model sizes do not match the OVDF parameters");
+    if (r.position() != bytes.size() - 8) throw_file_error(path, "trailing bytes after the payload");
+    ovdf.prepare();
+    return ovdf;
+}
+
+}  // namespace rsl

@@ -1,0 +1,67 @@
+#pragma once
+// Field files (.rslf): one compressed SVDF or OVDF of one part.
+//
+// Layout (little-endian):
+//   "RSLFIELD"                     8 bytes, magic
+//   u32 format version             kFieldFormatVersion
+//   u32 kind                       1 = SVDF, 2 = OVDF
+//   u64 mesh hash                  mesh_hash() of the part's mesh
+//   u64 parameter hash             FNV-1a 64 of the parameter JSON below
+//   u32 n, n bytes                 parameters as JSON (human-readable, `rsl info`)
+//   OVDF only: f32 center xyz, f32 radius
+//   model: i32 dims, vectors, clusters, samples; u8 half tables;
+//          tables (half or float), assignment (u16 when clusters ≤ 65536, else
+//          i32), coefficients (f32)
+//   u64 FNV-1a 64 checksum of every byte before it
+// Readers refuse, naming the file: foreign files (magic), truncated or
+// corrupt ones (size, checksum), stale ones (version, kind, mesh hash or
+// parameters differing from what the caller expects).
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "fields/ovdf.h"
+#include "fields/svdf.h"
+#include "src/core/mesh.h"
+
+namespace rsl {
+
+inline constexpr uint32_t kFieldFormatVersion = 1;
+enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
+
+uint64_t fnv1a64(const void* data, size_t bytes, uint64_t hash = 0xcbf29ce484222325ull);
+// Positions, normals, tangents and indices: everything the tables depend on.
+uint64_t mesh_hash(const TriangleMesh& mesh);
+
+std::string params_json(const SvdfParams& params);
+std::string params_json(const OvdfParams& params);
+inline uint64_t params_hash(const std::string& json) { return fnv1a64(json.data(), json.size()); }
+
+struct FieldHeader {
+    uint32_t version = 0;
+    FieldKind kind = FieldKind::Svdf;
+    uint64_t mesh_hash = 0, params_hash = 0;
+    std::string params;  // JSON
+    int dims = 0, vectors = 0, clusters = 0, samples = 0;
+    bool half_tables = false;
+    uint64_t checksum = 0;
+    size_t file_bytes = 0;
+};
+
+// What a reader expects; a mismatch is refused as stale.
+struct FieldExpectation {
+    std::optional<uint64_t> mesh_hash;
+    std::optional<std::string> params;  // JSON, compared by hash
+};
+
+void write_svdf(const std::filesystem::path& path, const Svdf& svdf, uint64_t mesh_hash);
+void write_ovdf(const std::filesystem::path& path, const Ovdf& ovdf, uint64_t mesh_hash);
+
+Svdf read_svdf(const std::filesystem::path& path, const FieldExpectation& expect = {});
+Ovdf read_ovdf(const std::filesystem::path& path, const FieldExpectation& expect = {});
+
+// Header of any field file, after checking magic, size, checksum and version.
+FieldHeader read_field_header(const std::filesystem::path& path);
+
+}  // namespace rsl

@@ -1,0 +1,32 @@
+// `rsl info FILE.rslf`: a field file's header, sizes, and checksum check.
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "fields/field_file.h"
+#include "src/cli/info.h"
+
+namespace rsl::cli {
+namespace {
+
+void print_field_file(const std::filesystem::path& path) {
+    const FieldHeader h = read_field_header(path);  // throws on a bad magic, size, checksum or version
+    const size_t raw = size_t(h.samples) * h.dims * sizeof(float);
+    fmt::print("{}: rsl field file, format version {}, {}\n", path.string(), h.version,
+               h.kind == FieldKind::Svdf ? "SVDF (self-visibility, per vertex)" : "OVDF (occluder, shells of samples)");
+    fmt::print("  mesh hash      {:016x}\n", h.mesh_hash);
+    fmt::print("  parameters     {}\n", h.params);
+    fmt::print("  samples        {} ({} each: VDT {}x{})\n", h.samples, h.kind == FieldKind::Svdf ? "vertex" : "point",
+               int(std::lround(std::sqrt(h.dims))), int(std::lround(std::sqrt(h.dims))));
+    fmt::print("  compression    {} {} x {} vectors, tables in {}\n", h.clusters,
+               h.kind == FieldKind::Svdf ? "clusters" : "segments", h.vectors, h.half_tables ? "half" : "float");
+    fmt::print("  size           {:.2f} MB on disk, {:.2f} MB as raw float (1:{:.1f})\n", h.file_bytes / 1e6,
+               raw / 1e6, double(raw) / double(h.file_bytes));
+    fmt::print("  checksum       {:016x} (FNV-1a 64) OK\n", h.checksum);
+}
+
+RegisterInfoHandler field_info({"field", [](const auto& p) { return lowercase_extension(p) == ".rslf"; },
+                                print_field_file});
+
+}  // namespace
+}  // namespace rsl::cli

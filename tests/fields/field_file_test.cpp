@@ -1,0 +1,104 @@
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "fields/field_file.h"
+#include "src/core/atomic_file.h"
+#include "src/core/error.h"
+
+using namespace rsl;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A small SVDF with random-ish content (the file format does not care).
+Svdf small_svdf() {
+    Svdf svdf;
+    svdf.params.resolution = 4;
+    svdf.params.vectors = 2;
+    CpcaModel& m = svdf.model;
+    m.dims = 16;
+    m.vectors = 2;
+    m.clusters = 2;
+    for (int i = 0; i < 2 * 16 * 3; ++i) m.tables.push_back(round_to_half(0.01f * float(i % 37) - 0.1f));
+    for (int s = 0; s < 5; ++s) {
+        m.assignment.push_back(s % 2);
+        m.coefficients.push_back(0.5f * s);
+        m.coefficients.push_back(-0.25f * s);
+    }
+    return svdf;
+}
+
+fs::path temp_path(const std::string& name) {
+    const fs::path dir = fs::path(RSL_BINARY_DIR) / "test-output" / "fields";
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("field files round-trip exactly", "[field_file]") {
+    const Svdf svdf = small_svdf();
+    const fs::path path = temp_path("roundtrip.rslf");
+    write_svdf(path, svdf, 1234);
+    const Svdf back = read_svdf(path, {1234ull, params_json(svdf.params)});
+    CHECK(back.model.tables == svdf.model.tables);  // values were already half-representable
+    CHECK(back.model.assignment == svdf.model.assignment);
+    CHECK(back.model.coefficients == svdf.model.coefficients);
+    CHECK(back.params.resolution == 4);
+    const FieldHeader h = read_field_header(path);
+    CHECK(h.kind == FieldKind::Svdf);
+    CHECK(h.samples == 5);
+    CHECK(h.mesh_hash == 1234);
+}
+
+TEST_CASE("corrupt, truncated, foreign and stale field files are refused by name", "[field_file]") {
+    const Svdf svdf = small_svdf();
+    const fs::path good = temp_path("good.rslf");
+    write_svdf(good, svdf, 99);
+    const std::string bytes = read_file(good);
+
+    const fs::path bad = temp_path("bad.rslf");
+    auto refused = [&](const std::string& contents, const FieldExpectation& expect = {}) {
+        write_file_atomically(bad, contents);
+        const std::string message = error_of([&] { read_svdf(bad, expect); });
+        INFO(message);
+        CHECK(message.find(bad.string()) != std::string::npos);  // names the file
+        return message;
+    };
+    // One flipped bit anywhere in the payload.
+    for (size_t at : {size_t(20), bytes.size() / 2, bytes.size() - 12}) {
+        std::string corrupt = bytes;
+        corrupt[at] ^= 0x10;
+        CHECK(refused(corrupt).find("checksum") != std::string::npos);
+    }
+    // Truncated at several points (including inside the header).
+    for (size_t keep : {size_t(4), size_t(30), bytes.size() / 2, bytes.size() - 1})
+        CHECK(!refused(bytes.substr(0, keep)).empty());
+    // Foreign.
+    CHECK(refused("P6\n1 1\n255\nabc" + std::string(64, 'x')).find("not an rsl field file") != std::string::npos);
+    // Stale: another mesh, other parameters, another kind.
+    CHECK(refused(bytes, {uint64_t(100), std::nullopt}).find("different mesh") != std::string::npos);
+    SvdfParams other = svdf.params;
+    other.clusters = 17;
+    CHECK(refused(bytes, {std::nullopt, params_json(other)}).find("stale") != std::string::npos);
+    write_file_atomically(bad, bytes);
+    CHECK(error_of([&] { read_ovdf(bad); }).find("SVDF") != std::string::npos);
+    // A future format version (checksum recomputed, so only the version differs).
+    std::string future = bytes.substr(0, bytes.size() - 8);
+    future[8] = char(kFieldFormatVersion + 1);
+    const uint64_t sum = fnv1a64(future.data(), future.size());
+    future.append(reinterpret_cast<const char*>(&sum), 8);
+    CHECK(refused(future).find("format version") != std::string::npos);
+}
