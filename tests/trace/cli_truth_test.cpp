@@ -1,0 +1,84 @@
+// End to end through the `rsl` program: a furnace scene file → rsl truth →
+// .rslv/.exr/.png, then rsl compare on the results and on mismatched inputs.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <catch2/catch.hpp>
+
+#include "src/core/image.h"
+#include "src/trace/vertex_colors.h"
+
+using namespace rsl;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Runs a command; returns its exit status and stdout + stderr.
+std::pair<int, std::string> run(const std::string& command) {
+    std::string output;
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    char buffer[4096];
+    while (fgets(buffer, sizeof(buffer), pipe)) output += buffer;
+    const int status = pclose(pipe);
+    return {WEXITSTATUS(status), output};
+}
+
+void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+}  // namespace
+
+TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cli]") {
+    const fs::path dir = fs::path(RSL_BINARY_DIR) / "test_tmp" / "cli_truth";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    write_text(dir / "floor.obj",
+               "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvn 0 1 0\nf 1//1 4//1 3//1\nf 1//1 3//1 2//1\n");
+    Image white(32, 16, 3);
+    std::fill(white.pixels.begin(), white.pixels.end(), 1.0f);
+    write_exr(dir / "white.exr", white);
+    write_text(dir / "furnace.json", R"({
+  "name": "furnace",
+  "parts": [ { "name": "floor", "obj": "floor.obj" } ],
+  "materials": { "grey": { "model": "lambert", "albedo": [0.5, 0.5, 0.5] } },
+  "part_materials": { "*": "grey" },
+  "environment": { "file": "white.exr", "resolution": 32 },
+  "camera": { "position": [0, 3, 2], "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 60,
+              "width": 40, "height": 30 }
+})");
+    const std::string rsl = RSL_RSL_EXECUTABLE;
+    const fs::path out = dir / "truth.exr";
+    auto [status, text] = run(rsl + " truth " + (dir / "furnace.json").string() + " -q -o " + out.string());
+    INFO(text);
+    REQUIRE(status == 0);
+    REQUIRE(fs::exists(dir / "truth.png"));
+    const VertexColors colors = read_vertex_colors(dir / "truth.rslv");
+    REQUIRE(colors.scene_name == "furnace");
+    REQUIRE(colors.vertex_count() == 4);
+    // Constant environment 1, albedo 0.5, nothing above the floor: 0.5 everywhere.
+    for (const Color& c : colors.parts[0]) REQUIRE(c.g == Approx(0.5f).margin(1e-3));
+    const Image image = read_exr(out);
+    REQUIRE(image.width == 40);
+    REQUIRE(image.channels == 4);
+
+    auto [same_status, same] = run(rsl + " compare " + (dir / "truth.rslv").string() + " " + (dir / "truth.rslv").string());
+    INFO(same);
+    REQUIRE(same_status == 0);
+    REQUIRE(same.rfind("relative L2: 0 ", 0) == 0);
+    auto [image_status, images] = run(rsl + " compare " + out.string() + " " + out.string() + " --error-image " +
+                                      (dir / "err.png").string());
+    INFO(images);
+    REQUIRE(image_status == 0);
+    REQUIRE(images.find("relative H1: 0 ") != std::string::npos);
+    REQUIRE(fs::exists(dir / "err.png"));
+
+    // A different scene's vertices are refused, naming both files.
+    VertexColors other = colors;
+    other.scene_name = "kitchen";
+    write_vertex_colors(dir / "other.rslv", other);
+    auto [bad_status, bad] = run(rsl + " compare " + (dir / "other.rslv").string() + " " + (dir / "truth.rslv").string());
+    INFO(bad);
+    REQUIRE(bad_status == 1);
+    REQUIRE(bad.find("not comparable") != std::string::npos);
+}
