@@ -85,7 +85,7 @@ PrtPrecompute precompute_prt(const GroundTruth& truth, const CubeMap& environmen
     PrtPrecompute prt(VertexLayout{scene});
     prt.time = truth.time();
     prt.environment_rotation = scene.environment.rotation_at(truth.time());
-    const TransportSampler sampler(truth, environment, prt.environment_rotation);
+    const TransportSampler sampler(truth, environment, prt.environment_rotation, options.visibility);
     const int texels = sampler.texel_count();
     const size_t vertices = prt.layout.total();
 

@@ -29,11 +29,12 @@ struct PrtOptions {
     bool sh = true;
     int sh_order = sh::kMaxOrder;
     bool haar = true;
-    float haar_drop = 1e-5f;  // relative to the vertex's largest |coefficient|
+    float haar_drop = 1e-3f;  // relative to the vertex's largest |coefficient|
     int block_vertices = 256;
     // Also keep Σ_k L_k f_k Ω_k per vertex with this lighting (a check that the
     // transport reproduces the ground truth); null to skip.
     const CubeMap* check_lighting = nullptr;
+    bool visibility = true;  // false: V = 1, no rays (unshadowed transport)
 };
 
 struct ShTransfer {

@@ -32,8 +32,9 @@ VertexColors VertexLayout::to_colors(const Scene& scene, const std::vector<Color
     return colors;
 }
 
-TransportSampler::TransportSampler(const GroundTruth& truth, const CubeMap& grid, const Mat3& environment_rotation)
-    : truth_(truth) {
+TransportSampler::TransportSampler(const GroundTruth& truth, const CubeMap& grid, const Mat3& environment_rotation,
+                                   bool visibility)
+    : truth_(truth), visibility_(visibility) {
     directions_.reserve(size_t(grid.texel_count()));
     // Exactly as EnvironmentSamples::from_cube (subdivision 1) turns them.
     for (int k = 0; k < grid.texel_count(); ++k)
@@ -71,6 +72,10 @@ uint64_t TransportSampler::sample(int part, int vertex, Color* f, Scratch& scrat
         scratch.texels[rays] = k;
         scratch.weights[rays] = weight;
         ++rays;
+    }
+    if (!visibility_) {
+        for (int r = 0; r < rays; ++r) f[scratch.texels[r]] = scratch.weights[r];
+        return 0;
     }
     posed.rays().occluded_batch(origin, scratch.dirs.data(), rays, 0.0f, std::numeric_limits<float>::infinity(),
                                 scratch.visible.data());

@@ -40,7 +40,10 @@ class TransportSampler {
 public:
     // `truth` supplies the posed scene, the part BRDFs and the camera; the
     // texel directions are `grid`'s, turned by `environment_rotation`.
-    TransportSampler(const GroundTruth& truth, const CubeMap& grid, const Mat3& environment_rotation);
+    // With `visibility` false no ray is traced and V = 1 (the unshadowed
+    // transport, for attributing a renderer's error to lighting or shadows).
+    TransportSampler(const GroundTruth& truth, const CubeMap& grid, const Mat3& environment_rotation,
+                     bool visibility = true);
 
     int texel_count() const { return int(directions_.size()); }
     const std::vector<Vec3>& directions() const { return directions_; }
@@ -61,6 +64,7 @@ public:
 private:
     const GroundTruth& truth_;
     std::vector<Vec3> directions_;
+    bool visibility_ = true;
 };
 
 }  // namespace rsl

@@ -113,7 +113,8 @@ size_t field_bytes(const PartFields& fields) {
 }
 
 void write_outputs(const BaselinesArgs& args, const Scene& scene, const std::vector<MethodResult>& results,
-                   const PrtPrecompute& prt, double texel_sum_error) {
+                   const PrtPrecompute& prt, double texel_sum_error,
+                   const std::vector<std::pair<int, double>>& unshadowed_errors) {
     const std::filesystem::path dir(args.output);
     nlohmann::json json = {{"scene", scene.name}, {"source", scene.source.string()},
                            {"environment", scene.environment.file.filename().string()},
@@ -135,6 +136,15 @@ void write_outputs(const BaselinesArgs& args, const Scene& scene, const std::vec
                              r.terms, r.vertex_error, r.image_error, r.image_h1, r.frame_ms, r.precompute_s, double(r.bytes) / 1e6);
         const std::string stem = r.method == "truth" ? "truth" : fmt::format("{}_{}", r.method, r.terms);
         write_exr_and_png(dir / (stem + ".exr"), r.image, ToneMap{0.0f, true});
+    }
+    if (!unshadowed_errors.empty()) {
+        table += "\nRSL without visibility (SVDF and OVDF off) against the unshadowed truth, vertex rel. L2: ";
+        json["rsl_unshadowed_vertex_error"] = nlohmann::json::object();
+        for (const auto& [lights, error] : unshadowed_errors) {
+            table += fmt::format("K = {}: {:.4f}; ", lights, error);
+            json["rsl_unshadowed_vertex_error"][std::to_string(lights)] = error;
+        }
+        table += "\n";
     }
     write_file_atomically(dir / "results.json", json.dump(2) + "\n");
     write_file_atomically(dir / "table.md", table);
@@ -247,7 +257,13 @@ void run_baselines(const BaselinesArgs& args) {
             add_result("haar", terms, flat, ms, prt.trace_cpu_seconds + prt.haar_cpu_seconds, prt.haar.bytes());
         }
     }
+    std::vector<std::pair<int, double>> unshadowed_errors;  // (K, vertex error without visibility)
     if (!args.no_rsl) {
+        PrtOptions unshadowed_options;
+        unshadowed_options.sh = unshadowed_options.haar = false;
+        unshadowed_options.visibility = false;
+        unshadowed_options.check_lighting = &environment;
+        const PrtPrecompute unshadowed = precompute_prt(truth, environment, unshadowed_options);
         RenderOptions options;
         options.local_lights = false;
         options.environment_lights = args.rsl_lights.front();
@@ -265,9 +281,17 @@ void run_baselines(const BaselinesArgs& args) {
             VertexColors colors = renderer.make_output();
             const double ms = median_ms(args.repeats, [&] { renderer.shade(colors); });
             add_result("rsl", lights, flatten(colors), ms, setup.bake_seconds + fit_s, bytes);
+            // The same lights with every visibility factor off, against the
+            // unshadowed truth: the lighting + BRDF part of RSL's error.
+            RenderOptions no_shadows = options;
+            no_shadows.self_visibility = false, no_shadows.occluders = false;
+            Renderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
+            light_only.set_time(t);
+            light_only.shade(colors);
+            unshadowed_errors.push_back({lights, relative_l2_error(flatten(colors), unshadowed.texel_sum)});
         }
     }
-    write_outputs(args, scene, results, prt, texel_sum_error);
+    write_outputs(args, scene, results, prt, texel_sum_error, unshadowed_errors);
 }
 
 std::vector<int> parse_list(const std::string& text, const char* what) {

@@ -191,3 +191,26 @@ TEST_CASE("SH rendering with a turned environment matches re-projecting the turn
     ShRenderer(prt, sky).render(5, glm::transpose(turn), rotated);
     CHECK(relative_l2_error(rotated, reprojected) > 0.2);
 }
+
+TEST_CASE("Unshadowed transport (no rays) is the shadowed one where nothing occludes, and brighter in shadows") {
+    const Scene scene = make_shadow_scene(false);
+    const CubeMap sky = make_sky(16);
+    const GroundTruth truth(scene, sky, 0.0f);
+    PrtOptions options;
+    options.sh = options.haar = false;
+    options.check_lighting = &sky;
+    const PrtPrecompute shadowed = precompute_prt(truth, sky, options);
+    options.visibility = false;
+    const PrtPrecompute unshadowed = precompute_prt(truth, sky, options);
+    CHECK(unshadowed.rays == 0);
+    int darker = 0;
+    for (size_t v = 0; v < shadowed.texel_sum.size(); ++v) {
+        for (int c = 0; c < 3; ++c) REQUIRE(unshadowed.texel_sum[v][c] >= shadowed.texel_sum[v][c] * (1 - 1e-6f));
+        if (luminance(shadowed.texel_sum[v]) < 0.9f * luminance(unshadowed.texel_sum[v])) ++darker;
+    }
+    // The roof (its top is unoccluded) matches; the ground under it is shadowed.
+    const size_t roof = shadowed.layout.first(1);
+    for (size_t v = roof; v < shadowed.texel_sum.size(); ++v)
+        REQUIRE(luminance(unshadowed.texel_sum[v]) == Approx(luminance(shadowed.texel_sum[v])).epsilon(1e-6));
+    CHECK(darker >= 3);  // the roof's sun shadow covers a few ground vertices
+}
