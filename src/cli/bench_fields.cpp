@@ -1,9 +1,11 @@
 // `rsl bench fields`: SVDF/OVDF bake times, compression ratios and errors,
 // lookups per second, and the compression/error trade-off (docs/FIELDS.md).
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <random>
 
+#include "fields/ovdf.h"
 #include "fields/svdf.h"
 #include "src/cli/bench.h"
 #include "src/core/scene.h"
@@ -45,11 +47,16 @@ void bench_svdf(const BenchOptions& options) {
     TriangleMesh mesh = load_obj(path);
     validate_and_complete(mesh, path);
     SvdfParams params;
+    // Wall time depends on what else runs; CPU time (all threads) / 2 is the
+    // time on two dedicated cores.
+    const std::clock_t cpu_start = std::clock();
     auto start = Clock::now();
     const std::vector<float> raw = trace_svdf_tables(mesh, params);
     const double trace_seconds = since(start);
+    const double trace_cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     SvdfBakeStats stats;
     const Svdf svdf = compress_svdf(raw, params, &stats);
+    const double total_cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     const size_t rays_lower_bound = mesh.vertex_count() * HemisphereSampling(params.resolution, 1).traced_texels().size();
     bench_emit({{"bench", "fields"},
                 {"case", "svdf bake " + path.filename().string()},
@@ -61,6 +68,8 @@ void bench_svdf(const BenchOptions& options) {
                 {"trace_seconds", trace_seconds},
                 {"compress_seconds", stats.compress_seconds},
                 {"total_seconds", trace_seconds + stats.compress_seconds},
+                {"trace_cpu_seconds", trace_cpu},
+                {"total_cpu_seconds", total_cpu},
                 {"center_rays_per_second", double(rays_lower_bound) / trace_seconds},
                 {"raw_bytes", stats.compression.raw_bytes},
                 {"stored_bytes", stats.compression.stored_bytes},
@@ -107,10 +116,75 @@ void bench_svdf(const BenchOptions& options) {
     }
 }
 
+void bench_ovdf(const BenchOptions& options) {
+    const fs::path robot = options.generated_assets / "robot.glb";
+    if (!fs::exists(robot)) {
+        bench_emit({{"bench", "fields"}, {"case", "ovdf bake"}, {"skipped", "missing " + robot.string()}});
+        return;
+    }
+    const Scene scene = load_scene(robot);
+    // The largest part: the worst case of a scene's per-part bakes.
+    size_t part = 0;
+    for (size_t i = 0; i < scene.parts.size(); ++i)
+        if (scene.parts[i].mesh.triangle_count() > scene.parts[part].mesh.triangle_count()) part = i;
+    const TriangleMesh& mesh = scene.parts[part].mesh;
+    OvdfParams params;
+    if (options.quick) params.cube_resolution = 8;
+    OvdfBakeStats stats;
+    const std::clock_t cpu_start = std::clock();
+    const Ovdf ovdf = bake_ovdf(mesh, params, &stats);
+    const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    bench_emit({{"bench", "fields"},
+                {"case", "ovdf bake robot part '" + scene.parts[part].name + "'"},
+                {"triangles", mesh.triangle_count()},
+                {"shells", params.shells},
+                {"cube_resolution", params.cube_resolution},
+                {"vectors", params.vectors},
+                {"segments", params.segment_count()},
+                {"seconds", stats.seconds},
+                {"cpu_seconds", cpu},
+                {"raw_bytes", stats.compression.raw_bytes},
+                {"stored_bytes", stats.compression.stored_bytes},
+                {"compression_ratio", stats.compression.compression_ratio()},
+                {"rms_error_plane_units", stats.compression.rms_error}});
+    // Lookups per second for each blend (single thread), receivers around the part.
+    std::mt19937 rng(2);
+    std::normal_distribution<float> g;
+    std::uniform_real_distribution<float> u(0, 1);
+    std::vector<Vec3> points(4096), lights(4096);
+    for (int k = 0; k < 4096; ++k) {
+        const Vec3 dir = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+        points[k] = ovdf.center + ovdf.radius * (0.8f + 4.0f * u(rng)) * dir;
+        lights[k] = glm::normalize(-dir + 0.5f * Vec3(g(rng), g(rng), g(rng)));
+    }
+    const char* names[3] = {"aligned coefficients", "aligned samples", "sample frames"};
+    for (int b = 0; b < 3; ++b) {
+        const int count = options.quick ? 100000 : 1000000;
+        float sink = 0;
+        const auto start = Clock::now();
+        for (int k = 0; k < count; ++k) sink += ovdf.visible_fraction(points[k & 4095], lights[k & 4095], 0.1f, OvdfBlend(b));
+        bench_emit({{"bench", "fields"}, {"case", std::string("ovdf lookup ") + names[b]},
+                    {"lookups_per_second", count / since(start)}, {"threads", 1}, {"checksum", sink}});
+    }
+    // Trade-off: vectors per segment.
+    for (int vectors : {4, 16}) {
+        OvdfParams p = params;
+        p.vectors = vectors;
+        if (!options.quick) p.cube_resolution = 16;  // keeps the sweep short; ratios scale with it
+        OvdfBakeStats st;
+        bake_ovdf(mesh, p, &st);
+        bench_emit({{"bench", "fields"}, {"case", "ovdf tradeoff"}, {"cube_resolution", p.cube_resolution},
+                    {"vectors", vectors}, {"compression_ratio", st.compression.compression_ratio()},
+                    {"stored_megabytes", st.compression.stored_bytes / 1e6},
+                    {"rms_error_plane_units", st.compression.rms_error}, {"seconds", st.seconds}});
+    }
+}
+
 RegisterBenchmark fields_benchmark({"fields",
     "SVDF/OVDF bake time, compression ratio and error, lookups per second, trade-off",
     [](const BenchOptions& options) {
         bench_svdf(options);
+        bench_ovdf(options);
     }});
 
 }  // namespace
