@@ -25,7 +25,7 @@ RegisterCommand view_command({"view",
         app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
         app.add_option("--lights,-k", args->lights, "Number of environment RSLs at start")->capture_default_str();
         app.add_option("--time,-t", args->time, "Start time in seconds")->capture_default_str();
-        app.add_option("--exposure", args->exposure, "Exposure in stops")->capture_default_str();
+        auto* exposure = app.add_option("--exposure", args->exposure, "Exposure in stops (default: automatic)");
         app.add_option("--width", args->width, "Window width")->capture_default_str();
         app.add_option("--height", args->height, "Window height")->capture_default_str();
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
@@ -34,7 +34,7 @@ RegisterCommand view_command({"view",
         app.add_flag("--no-panel", args->no_panel, "Hide the control panel (H toggles it)");
         app.add_option("--screenshot", args->screenshot, "Write the last frame to this PNG and exit (with --frames)");
         app.add_option("--frames", args->frames, "Render N frames (playing the animation), then exit");
-        app.callback([args] {
+        app.callback([args, exposure] {
             if (args->lights < 1) throw_error("--lights {}: expected at least 1", args->lights);
             if (!args->screenshot.empty() && args->frames < 1) throw_error("--screenshot needs --frames N (N ≥ 1)");
             gl::ViewerOptions options;
@@ -44,6 +44,7 @@ RegisterCommand view_command({"view",
             options.quick_fields = args->quick;
             options.start_time = args->time;
             options.exposure = args->exposure;
+            options.auto_exposure = exposure->count() == 0;
             options.width = args->width;
             options.height = args->height;
             options.panel = !args->no_panel;

@@ -8,6 +8,7 @@
 #include <imgui.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
@@ -109,6 +110,19 @@ void handle_input(GLFWwindow* window, Input& input, ViewerState& state, float dt
     state.environment_degrees = std::remainder(state.environment_degrees, 360.0f);
 }
 
+// Exposure (stops) that maps the 90th percentile of the vertex luminances to
+// 0.7: the sun-lit scenes would otherwise clip.
+float automatic_exposure(const VertexColors& colors) {
+    std::vector<float> values;
+    for (const auto& part : colors.parts)
+        for (const Color& c : part)
+            if (luminance(c) > 0.0f) values.push_back(luminance(c));
+    if (values.empty()) return 0.0f;
+    const size_t k = values.size() * 9 / 10;
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    return std::log2(0.7f / values[k]);
+}
+
 void write_screenshot(const std::filesystem::path& path, int width, int height) {
     std::vector<unsigned char> pixels(size_t(width) * height * 3);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -195,6 +209,11 @@ void run_viewer(const ViewerOptions& options) {
         const Vec3 eye = state.camera.eye();
         renderer.set_view(state.time, eye, turn);
         renderer.shade();
+        if (frame == 0 && options.auto_exposure) {
+            VertexColors colors = renderer.make_output();
+            renderer.read_colors(colors);
+            state.exposure = automatic_exposure(colors);
+        }
 
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, width, height);

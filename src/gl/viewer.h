@@ -20,6 +20,7 @@ struct ViewerOptions {
     bool quick_fields = false;         // small precompute settings: seconds instead of minutes
     float start_time = 0;
     float exposure = 0;                // stops
+    bool auto_exposure = true;         // set `exposure` from the first frame's vertex colours
     int width = 1280, height = 720;
     bool panel = true;
     // Screenshot mode: render `frames` frames (playing), save the last to
