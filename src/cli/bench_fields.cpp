@@ -9,6 +9,7 @@
 #include "fields/svdf.h"
 #include "src/cli/bench.h"
 #include "src/core/scene.h"
+#include "src/trace/ray_scene.h"
 
 namespace rsl::cli {
 namespace {
@@ -180,9 +181,73 @@ void bench_ovdf(const BenchOptions& options) {
     }
 }
 
+// Choices measured against rays: below-horizon value and VDT mode. For each
+// variant, VDTs of a vertex subset; squares with their visible fraction over
+// the above-horizon part of the square (what the shading integral weighs: ρ·cos
+// is zero below) traced with 24×24 rays.
+void bench_choices(const BenchOptions& options) {
+    const fs::path path = options.shared_assets / (options.quick ? "meshes/suzanne.obj" : "meshes/stanford-bunny.obj");
+    if (!fs::exists(path)) return;
+    TriangleMesh mesh = load_obj(path);
+    validate_and_complete(mesh, path);
+    RayScene scene;
+    scene.add_instance(scene.add_mesh(mesh), Mat4(1.0f));
+    scene.commit();
+    const RayOffset offset{scene.world_diagonal()};
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0, 1);
+    std::vector<uint32_t> subset;
+    for (int k = 0; k < (options.quick ? 100 : 400); ++k) subset.push_back(uint32_t(u(rng) * mesh.vertex_count()));
+    struct Square { int k; Vec2 c; float h; double want; bool horizon; };
+    std::vector<Square> squares;
+    for (int k = 0; k < int(subset.size()); ++k) {
+        const Frame frame = vertex_frame(mesh, subset[k]);
+        const Vec3 origin = offset.origin(mesh.positions[subset[k]], frame.z);
+        for (int q = 0; q < 8; ++q) {
+            const bool horizon = q < 4;
+            const float h = 0.04f + 0.16f * u(rng), angle = 6.2831853f * u(rng);
+            const float r = horizon ? 0.9f + 0.15f * u(rng) : 0.8f * u(rng);
+            const Vec2 c = r * Vec2(std::cos(angle), std::sin(angle));
+            int visible = 0, total = 0;
+            for (int b = 0; b < 24; ++b)
+                for (int a = 0; a < 24; ++a) {
+                    const Vec2 p = c + h * Vec2(-1 + (2 * a + 1.0f) / 24, -1 + (2 * b + 1.0f) / 24);
+                    if (glm::dot(p, p) >= 1.0f) continue;
+                    ++total;
+                    visible += !scene.occluded(origin, frame.to_world(plane_to_hemisphere(p)), 0.0f, 1e30f);
+                }
+            if (total > 0) squares.push_back({k, c, h, double(visible) / total, horizon});
+        }
+    }
+    struct Variant { const char* name; BelowHorizon below; VdtMode mode; int supersampling; };
+    const Variant variants[] = {{"extend, coverage-aware, 2x2", BelowHorizon::Extend, VdtMode::CoverageAware, 2},
+                                {"blocked, coverage-aware, 2x2", BelowHorizon::Blocked, VdtMode::CoverageAware, 2},
+                                {"visible, coverage-aware, 2x2", BelowHorizon::Visible, VdtMode::CoverageAware, 2},
+                                {"extend, binary, 1x1", BelowHorizon::Extend, VdtMode::Binary, 1},
+                                {"extend, coverage-aware, 4x4", BelowHorizon::Extend, VdtMode::CoverageAware, 4}};
+    for (const Variant& v : variants) {
+        VisibilityMapOptions o;
+        o.below_horizon = v.below;
+        o.mode = v.mode;
+        o.supersampling = v.supersampling;
+        const std::vector<float> vdts = trace_vertex_vdts(scene, mesh, o, {}, &subset);
+        double err[2] = {0, 0};
+        int count[2] = {0, 0};
+        for (const Square& s : squares) {
+            const float got = vdt_visible_fraction(32, vdts.data() + size_t(s.k) * 1024, s.c, s.h);
+            err[s.horizon] += std::abs(got - s.want);
+            ++count[s.horizon];
+        }
+        bench_emit({{"bench", "fields"}, {"case", std::string("vdt choice ") + v.name}, {"mesh", path.filename().string()},
+                    {"mean_error_inside_disk", err[0] / std::max(count[0], 1)},
+                    {"mean_error_at_horizon", err[1] / std::max(count[1], 1)}, {"squares", squares.size()}});
+    }
+}
+
 RegisterBenchmark fields_benchmark({"fields",
     "SVDF/OVDF bake time, compression ratio and error, lookups per second, trade-off",
     [](const BenchOptions& options) {
+        bench_choices(options);
         bench_svdf(options);
         bench_ovdf(options);
     }});
