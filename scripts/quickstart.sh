@@ -26,7 +26,12 @@ fi
 
 echo "== configure + build ($build, Release)"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" --parallel "$(nproc)"
+if [ "$mode" = render ]; then
+  # Rendering needs only the program and the generated assets, not the tests.
+  cmake --build "$build" --parallel "$(nproc)" --target rsl generated_assets
+else
+  cmake --build "$build" --parallel "$(nproc)"
+fi
 
 case "$mode" in
   render)
