@@ -69,6 +69,9 @@ void run_render(const RenderArgs& args) {
 
     const RenderSetup setup = prepare_render(args.scene, options, !args.quiet);
     const Scene& scene = *setup.scene;
+    if (!args.quiet)
+        fmt::print(stderr, "fields: {} loaded from the cache, {} baked ({:.1f} s)\n", setup.fields_loaded,
+                   setup.fields_baked, setup.bake_seconds);
     Renderer renderer(scene, setup.environment_lights, setup.fields, options);
 
     const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
@@ -78,8 +81,10 @@ void run_render(const RenderArgs& args) {
     VertexColors colors = renderer.make_output();
     ImageFormationOptions formation;
     formation.samples_per_side = args.samples;
-    ToneMap tone;
-    tone.exposure = args.exposure;
+    // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
+    // so that the two PNGs of one frame come out alike. For a strict visual
+    // comparison give both the same non-zero --exposure.
+    const ToneMap tone{args.exposure, args.exposure == 0.0f};
     for (size_t f = 0; f < times.size(); ++f) {
         const float t = times[f];
         const auto start = std::chrono::steady_clock::now();
@@ -122,7 +127,7 @@ RegisterCommand render_command({"render",
         app.add_option("--width", args->width, "Image width (default: the scene camera's)");
         app.add_option("--height", args->height, "Image height (default: the scene camera's)");
         app.add_option("--samples", args->samples, "S: SxS primary rays per pixel")->capture_default_str();
-        app.add_option("--exposure", args->exposure, "PNG exposure in stops")->capture_default_str();
+        app.add_option("--exposure", args->exposure, "PNG exposure in stops (default 0: automatic, as rsl truth)")->capture_default_str();
         app.add_flag("--quiet,-q", args->quiet, "No progress lines");
         app.callback([args] { run_render(*args); });
     }});

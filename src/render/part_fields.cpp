@@ -1,17 +1,11 @@
 #include "src/render/part_fields.h"
 
+#include "src/render/field_cache_loader.h"
 #include "src/render/ovdf_occluder.h"
 
 namespace rsl {
 
-SvdfParams svdf_params(const PrecomputeSettings& settings) {
-    SvdfParams params;
-    params.resolution = settings.svdf_resolution;
-    params.clusters = settings.svdf_clusters;
-    params.vectors = settings.svdf_vectors;
-    params.supersampling = settings.svdf_supersampling;
-    return params;
-}
+SvdfParams svdf_params(const PrecomputeSettings& settings) { return cache_svdf_params(settings); }
 
 PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options) {
     PartFields fields;
@@ -34,6 +28,21 @@ PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options)
             });
         }
     }
+    return fields;
+}
+
+PartFields load_part_fields(const Scene& scene, const FieldBakeOptions& options, bool progress,
+                            FieldLoadReport* report) {
+    if (scene.source.empty()) return bake_part_fields(scene, options);
+    CachedFields cached = load_or_bake_fields(scene, options.occluders, progress);
+    PartFields fields;
+    fields.self.resize(scene.parts.size());
+    fields.occluder.resize(scene.parts.size());
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        if (options.self_visibility) fields.self[p] = std::move(cached.svdf[p]);
+        if (options.occluders && cached.ovdf[p]) fields.occluder[p] = std::make_shared<const OvdfOccluder>(std::move(cached.ovdf[p]));
+    }
+    if (report) *report = FieldLoadReport{cached.loaded, cached.baked};
     return fields;
 }
 

@@ -44,20 +44,28 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
     FieldBakeOptions bake;
     bake.self_visibility = options.self_visibility;
     bake.occluders = options.occluders;
-    std::unique_ptr<ProgressReport> report;
-    std::string current;
-    if (progress)
-        bake.progress = [&](const std::string& what, double fraction) {
-            if (what != current) {
-                if (report) report->finish("");
-                current = what;
-                report = std::make_unique<ProgressReport>(what, true);
-            }
-            report->update(fraction);
-        };
     const auto start = std::chrono::steady_clock::now();
-    setup.fields = bake_part_fields(s, bake);
-    if (report) report->finish("");
+    if (!s.source.empty()) {
+        // The scene's field cache: reuse what `rsl bake` (or an earlier run)
+        // wrote, bake only what is missing.
+        FieldLoadReport report;
+        setup.fields = load_part_fields(s, bake, progress, &report);
+        setup.fields_loaded = report.loaded, setup.fields_baked = report.baked;
+    } else {
+        std::unique_ptr<ProgressReport> report;
+        std::string current;
+        if (progress)
+            bake.progress = [&](const std::string& what, double fraction) {
+                if (what != current) {
+                    if (report) report->finish("");
+                    current = what;
+                    report = std::make_unique<ProgressReport>(what, true);
+                }
+                report->update(fraction);
+            };
+        setup.fields = bake_part_fields(s, bake);
+        if (report) report->finish("");
+    }
     setup.bake_seconds = seconds_since(start);
     return setup;
 }

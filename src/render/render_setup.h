@@ -1,7 +1,8 @@
 #pragma once
 // Everything a renderer needs before its first frame, from a scene file:
 // the scene, its environment as a cube map, the environment's RSL set and the
-// parts' visibility fields (baked on demand, with progress on stderr).
+// parts' visibility fields (from the scene's field cache, <scene folder>/
+// .rsl-cache, baking only what is missing, with progress on stderr).
 // Shared by `rsl render`, `rsl bench render` and the error tables.
 #include <filesystem>
 #include <map>
@@ -19,7 +20,8 @@ struct RenderSetup {
     CubeMap environment;           // resolution 0 when the scene has none
     RslSet environment_lights;
     PartFields fields;
-    double fit_seconds = 0, bake_seconds = 0;
+    double fit_seconds = 0, bake_seconds = 0;  // bake_seconds: loading and baking fields
+    int fields_loaded = 0, fields_baked = 0;    // field files reused from / written to the cache
 };
 
 // "PART=MATERIAL" strings → overrides; throws rsl::Error on a malformed entry.

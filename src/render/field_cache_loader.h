@@ -1,0 +1,35 @@
+#pragma once
+// The renderer's door to the fields stage's on-disk cache (fields/field_cache.h,
+// the files `rsl bake` writes): load every part's valid cached SVDF/OVDF and
+// bake (then write) only the missing ones, with progress on stderr.
+//
+// This header deliberately does not include fields/field_cache.h: that header
+// declares an rsl::PartFields of its own, which would clash with the
+// renderer's PartFields alias (src/render/part_fields.h) in one translation
+// unit. Only field_cache_loader.cpp sees it.
+#include <memory>
+#include <vector>
+
+#include "fields/ovdf.h"
+#include "fields/svdf.h"
+#include "src/core/scene.h"
+
+namespace rsl {
+
+struct CachedFields {
+    std::vector<std::shared_ptr<const Svdf>> svdf;  // per part; null where not asked for
+    std::vector<std::shared_ptr<const Ovdf>> ovdf;  // per part; null where not asked for
+    int loaded = 0, baked = 0;                      // field files reused / baked and written
+};
+
+// The same parameters `rsl bake` derives from a scene's precompute settings,
+// so that both find the same cache files.
+SvdfParams cache_svdf_params(const PrecomputeSettings& settings);
+OvdfParams cache_ovdf_params(const PrecomputeSettings& settings);
+
+// Fields of every part of `scene` (which must have a source file: the cache
+// lives beside it, in <scene folder>/.rsl-cache). OVDFs only when `occluders`
+// and the scene has more than one part.
+CachedFields load_or_bake_fields(const Scene& scene, bool occluders, bool progress);
+
+}  // namespace rsl
