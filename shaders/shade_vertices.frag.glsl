@@ -26,6 +26,7 @@ uniform sampler2D u_svdf_coefficients;
 uniform sampler2D u_ovdf_tables;
 uniform sampler2D u_ovdf_coefficients;
 uniform sampler2D u_ovdf_frames;
+uniform sampler2D u_occluder_spheres;  // (receiver, occluder): grown world bounding sphere
 
 uniform int u_vertex_count;
 uniform int u_part_count;
@@ -36,6 +37,7 @@ uniform bool u_local_enabled;        // RenderOptions::local_lights
 uniform int u_brdf_resolution;     // N
 uniform vec3 u_camera;
 uniform bool u_self_visibility;
+uniform bool u_vertex_culling;     // per-vertex cone test (RenderOptions::occluder_culling)
 uniform vec3 u_face_normal[6];
 uniform vec3 u_face_s[6];
 uniform vec3 u_face_t[6];
@@ -181,22 +183,12 @@ float svdf_distance(vec4 svdf, int cluster, vec2 p) {
     return d;
 }
 
-// One OVDF sample's reconstructed distance at plane point p.
-float ovdf_sample_distance(int tables, int coefficients, int stride, int vdt_n, int sample, int segment, vec2 p) {
-    vec4 w[MAX_STRIDE];
-    for (int t = 0; t < stride; ++t) w[t] = fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
-    ivec4 index;
-    vec4 weight;
-    bilinear_taps(vdt_n, p, index, weight);
-    int dims = vdt_n * vdt_n;
-    float d = 0.0;
-    for (int k = 0; k < 4; ++k) {
-        int row = tables + (segment * dims + index[k]) * stride;
-        float value = 0.0;
-        for (int t = 0; t < stride; ++t) value += dot(fetch(u_ovdf_tables, row + t), w[t]);
-        d += weight[k] * value;
-    }
-    return d;
+// An OVDF row reconstruction Σ_t dot(row_t, w_t) at table texel `texel`.
+float ovdf_row(int tables, int stride, int dims, int segment, int texel, vec4 w[MAX_STRIDE]) {
+    int row = tables + (segment * dims + texel) * stride;
+    float value = 0.0;
+    for (int t = 0; t < stride; ++t) value += dot(fetch(u_ovdf_tables, row + t), w[t]);
+    return value;
 }
 
 float shell_coordinate(vec4 shells, float distance, float radius) {
@@ -207,7 +199,7 @@ float shell_coordinate(vec4 shells, float distance, float radius) {
     return last * (1.0 / max(d, 1e-6) - 1.0 / inner) / (1.0 / outer - 1.0 / inner);
 }
 
-// Ovdf::visible_fraction (per-sample blend): point and light in the occluder's frame.
+// Ovdf::visible_fraction (AlignedCoefficients): point and light in the occluder's frame.
 float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     vec4 center = part_texel(part, 14);
     vec4 bases = part_texel(part, 15);
@@ -236,25 +228,70 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     float fx = x - float(i0), fy = y - float(j0);
     ivec4 ii = ivec4(i0, i0 + 1, i0, i0 + 1), jj = ivec4(j0, j0, j0 + 1, j0 + 1);
     vec4 w = vec4((1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy);
-    int tables = int(bases.x), coefficients = int(bases.y), frames = int(bases.z);
+    int tables = int(bases.x), coefficients = int(bases.y), dims = vdt_n * vdt_n;
+    // The receiver's own pole frame, twisted by the face rule like its
+    // samples (OvdfBlend::AlignedCoefficients, the CPU's default): one
+    // plane point for all eight samples.
+    vec3 local = to_local(frame_rows(-dir, u_face_s[face]), light);
+    vec2 lp = local.z < -0.9999 ? vec2(1.5) : hemisphere_to_plane(local);  // lookup_plane_point
+    ivec4 index;
+    vec4 weight;
+    bilinear_taps(vdt_n, lp, index, weight);
     float distance = 0.0;
     for (int k = 0; k < 2; ++k) {
         int shell = s0 + k;
         float ws = k == 0 ? 1.0 - fs : fs;
         if (ws == 0.0) continue;
-        for (int q = 0; q < 4; ++q) {
-            if (w[q] == 0.0) continue;
-            int frame_index = frames + 2 * ((face * n + jj[q]) * n + ii[q]);
-            vec3 fx_axis = fetch(u_ovdf_frames, frame_index).xyz;
-            vec3 fz_axis = fetch(u_ovdf_frames, frame_index + 1).xyz;
-            vec3 local = vec3(dot(light, fx_axis), dot(light, cross(fz_axis, fx_axis)), dot(light, fz_axis));
-            vec2 p = hemisphere_to_plane(local);
-            int sample = ((shell * 6 + face) * n + jj[q]) * n + ii[q];
-            int segment = ((shell * 6 + face) * m + jj[q] * m / n) * m + ii[q] * m / n;
-            distance += ws * w[q] * ovdf_sample_distance(tables, coefficients, stride, vdt_n, sample, segment, p);
+        int base = (shell * 6 + face) * m;
+        int segment = (base + jj[0] * m / n) * m + ii[0] * m / n;
+        if (segment == (base + jj[3] * m / n) * m + ii[3] * m / n) {
+            // Reconstruction is linear in the coefficients: blend them first.
+            vec4 c[MAX_STRIDE];
+            for (int t = 0; t < stride; ++t) c[t] = vec4(0.0);
+            for (int q = 0; q < 4; ++q) {
+                int sample = ((shell * 6 + face) * n + jj[q]) * n + ii[q];
+                for (int t = 0; t < stride; ++t) c[t] += w[q] * fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
+            }
+            c[0].x = 1.0;  // the mean's weight (the blend weights sum to 1)
+            float value = 0.0;
+            for (int t = 0; t < 4; ++t) value += weight[t] * ovdf_row(tables, stride, dims, segment, index[t], c);
+            distance += ws * value;
+        } else {  // the four samples straddle segments: four reconstructions
+            for (int q = 0; q < 4; ++q) {
+                if (w[q] == 0.0) continue;
+                int sample = ((shell * 6 + face) * n + jj[q]) * n + ii[q];
+                int sample_segment = (base + jj[q] * m / n) * m + ii[q] * m / n;
+                vec4 c[MAX_STRIDE];
+                for (int t = 0; t < stride; ++t) c[t] = fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
+                float value = 0.0;
+                for (int t = 0; t < 4; ++t) value += weight[t] * ovdf_row(tables, stride, dims, sample_segment, index[t], c);
+                distance += ws * w[q] * value;
+            }
         }
     }
     return visible_fraction_from_distance(distance, h);
+}
+
+// Half-angle of a cone around the light's direction holding the part of its
+// square above the horizon, for local z = lz (shade_block.cpp vertex_square_cone).
+float vertex_square_cone(float lz, float h) {
+    float rho2 = min(2.0, max(1.0, 1.0 - lz));
+    float denominator = sqrt(max(1e-12, 1.0 - 0.5 * rho2));
+    return min(3.14159265359, 2.0 * h / denominator);
+}
+
+// Whether the light's cone (half-angle beta around `direction`) can meet the
+// occluder's grown bounding sphere seen from p: the CPU renderer's per-vertex
+// test, which never changes a result, only skips lookups that return 1.
+bool may_occlude(int receiver, int occluder, vec3 p, vec3 direction, float beta) {
+    vec4 sphere = fetch(u_occluder_spheres, receiver * u_part_count + occluder);
+    vec3 to = sphere.xyz - p;
+    float distance = length(to);
+    float cone = distance > sphere.w ? asin(sphere.w / distance) : 3.14159265359;
+    float reach = beta + cone;
+    if (reach >= 3.14159265359) return true;
+    vec3 u = distance > 0.0 ? to / distance : vec3(0.0, 0.0, 1.0);
+    return dot(direction, u) >= cos(reach);
 }
 
 // ---- local lights (src/render/square_lights.h) ----
@@ -333,10 +370,12 @@ void main() {
             }
             float visibility = self ? visible_fraction_from_distance(svdf_distance(svdf, cluster, lp), h) : 1.0;
             uint mask = texelFetch(u_occluders, ivec2(l, part), 0).r;
+            float beta = u_vertex_culling ? vertex_square_cone(local.z, h) : 3.14159265359;
             for (int o = 0; o < u_part_count && mask != 0u; ++o) {
                 if ((mask & (1u << uint(o))) == 0u) continue;
                 mask &= ~(1u << uint(o));
                 if (!(visibility > 0.0)) break;
+                if (u_vertex_culling && !may_occlude(part, o, p, direction, beta)) continue;
                 mat4 inverse = mat4(part_texel(o, 7), part_texel(o, 8), part_texel(o, 9), part_texel(o, 10));
                 vec3 point = (inverse * vec4(p, 1.0)).xyz;
                 vec3 dir = normalize(mat3(inverse) * direction);

@@ -49,6 +49,20 @@ void FrameState::update_masks(const Scene& scene, const RenderOptions& options) 
     const size_t environment = squares_.size();
     light_count_ = int(environment + light_positions_.size());
     masks_.assign(parts * size_t(light_count_), 0u);
+    spheres_.assign(parts * parts, Vec4(0.0f));
+    for (size_t receiver = 0; receiver < parts; ++receiver)
+        for (size_t o = 0; o < parts; ++o) {
+            if (o == receiver || !occluder_fields_[o]) continue;
+            const BoundingSphere& r = poses_[receiver].world_bounds;
+            const BoundingSphere reach = transform_sphere(poses_[o].transform, local_reach_[o]);
+            const float scale = reach.radius / std::max(local_reach_[o].radius, 1e-30f);
+            const float distance = glm::length(r.center - reach.center) / scale;
+            const float grow = scale * occluder_fields_[o]->footprint(
+                                           std::max(0.0f, distance - r.radius / scale),
+                                           std::min(local_reach_[o].radius, distance + r.radius / scale));
+            const BoundingSphere& sphere = poses_[o].world_bounds;
+            spheres_[receiver * parts + o] = Vec4(sphere.center, sphere.radius + grow);
+        }
     pairs_ = culled_ = 0;
     for (size_t receiver = 0; receiver < parts; ++receiver) {
         const BoundingSphere& r = poses_[receiver].world_bounds;

@@ -97,6 +97,8 @@ void handle_input(GLFWwindow* window, Input& input, ViewerState& state, float dt
         }
     }
     if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) state.environment_degrees += 0.3f * dx;
+    // The wheel zooms (ImGui's GLFW backend collects the scroll events).
+    state.camera.distance *= std::pow(0.9f, ImGui::GetIO().MouseWheel);
     if (ImGui::GetIO().WantCaptureKeyboard) return;
     if (glfwGetKey(window, GLFW_KEY_LEFT) == GLFW_PRESS) state.environment_degrees -= 60.0f * dt;
     if (glfwGetKey(window, GLFW_KEY_RIGHT) == GLFW_PRESS) state.environment_degrees += 60.0f * dt;
