@@ -112,9 +112,13 @@ size_t field_bytes(const PartFields& fields) {
     return bytes;
 }
 
+struct Diagnostics {
+    std::vector<std::pair<int, double>> haar, rsl;  // (terms, vertex error)
+};
+
 void write_outputs(const BaselinesArgs& args, const Scene& scene, const std::vector<MethodResult>& results,
                    const PrtPrecompute& prt, double texel_sum_error,
-                   const std::vector<std::pair<int, double>>& unshadowed_errors) {
+                   const Diagnostics& unshadowed) {
     const std::filesystem::path dir(args.output);
     nlohmann::json json = {{"scene", scene.name}, {"source", scene.source.string()},
                            {"environment", scene.environment.file.filename().string()},
@@ -137,12 +141,14 @@ void write_outputs(const BaselinesArgs& args, const Scene& scene, const std::vec
         const std::string stem = r.method == "truth" ? "truth" : fmt::format("{}_{}", r.method, r.terms);
         write_exr_and_png(dir / (stem + ".exr"), r.image, ToneMap{0.0f, true});
     }
-    if (!unshadowed_errors.empty()) {
-        table += "\nRSL without visibility (SVDF and OVDF off) against the unshadowed truth, vertex rel. L2: ";
-        json["rsl_unshadowed_vertex_error"] = nlohmann::json::object();
-        for (const auto& [lights, error] : unshadowed_errors) {
-            table += fmt::format("K = {}: {:.4f}; ", lights, error);
-            json["rsl_unshadowed_vertex_error"][std::to_string(lights)] = error;
+    table += "\nWithout visibility (V = 1; RSL with SVDF and OVDF off) against the unshadowed truth, vertex rel. L2:\n";
+    for (const auto& [name, rows] : {std::pair{"haar", &unshadowed.haar}, std::pair{"rsl", &unshadowed.rsl}}) {
+        if (rows->empty()) continue;
+        json[fmt::format("{}_unshadowed_vertex_error", name)] = nlohmann::json::object();
+        table += fmt::format("- {}:", name);
+        for (const auto& [terms, error] : *rows) {
+            table += fmt::format(" {} → {:.4f};", terms, error);
+            json[fmt::format("{}_unshadowed_vertex_error", name)][std::to_string(terms)] = error;
         }
         table += "\n";
     }
@@ -235,7 +241,7 @@ void run_baselines(const BaselinesArgs& args) {
     prt_options.haar_drop = args.haar_drop;
     prt_options.check_lighting = &environment;
     say("PRT precompute (SH + Haar transport)...");
-    const PrtPrecompute prt = precompute_prt(truth, environment, prt_options);
+    PrtPrecompute prt = precompute_prt(truth, environment, prt_options);
     const double texel_sum_error = relative_l2_error(prt.texel_sum, truth_flat);
     say(fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, SH {:.1f}, Haar {:.1f}; transport vs truth {:.2e}",
                     prt.wall_seconds, prt.trace_cpu_seconds, prt.sh_cpu_seconds, prt.haar_cpu_seconds,
@@ -257,13 +263,25 @@ void run_baselines(const BaselinesArgs& args) {
             add_result("haar", terms, flat, ms, prt.trace_cpu_seconds + prt.haar_cpu_seconds, prt.haar.bytes());
         }
     }
-    std::vector<std::pair<int, double>> unshadowed_errors;  // (K, vertex error without visibility)
+    // Without visibility (V = 1 in the transport, fields off in RSL), against
+    // the unshadowed truth: the lighting approximations alone, like for like.
+    // The shadowed Haar transport is released first (it can be large).
+    prt.haar = {};
+    Diagnostics unshadowed_errors;
+    PrtOptions unshadowed_options;
+    unshadowed_options.sh = false;
+    unshadowed_options.haar_drop = args.haar_drop;
+    unshadowed_options.visibility = false;
+    unshadowed_options.check_lighting = &environment;
+    const PrtPrecompute unshadowed = precompute_prt(truth, environment, unshadowed_options);
+    {
+        HaarRenderer haar_renderer(unshadowed);
+        for (int terms : args.haar_terms) {
+            haar_renderer.render(environment, terms, flat);
+            unshadowed_errors.haar.push_back({terms, relative_l2_error(flat, unshadowed.texel_sum)});
+        }
+    }
     if (!args.no_rsl) {
-        PrtOptions unshadowed_options;
-        unshadowed_options.sh = unshadowed_options.haar = false;
-        unshadowed_options.visibility = false;
-        unshadowed_options.check_lighting = &environment;
-        const PrtPrecompute unshadowed = precompute_prt(truth, environment, unshadowed_options);
         RenderOptions options;
         options.local_lights = false;
         options.environment_lights = args.rsl_lights.front();
@@ -288,7 +306,7 @@ void run_baselines(const BaselinesArgs& args) {
             Renderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
             light_only.set_time(t);
             light_only.shade(colors);
-            unshadowed_errors.push_back({lights, relative_l2_error(flatten(colors), unshadowed.texel_sum)});
+            unshadowed_errors.rsl.push_back({lights, relative_l2_error(flatten(colors), unshadowed.texel_sum)});
         }
     }
     write_outputs(args, scene, results, prt, texel_sum_error, unshadowed_errors);
