@@ -1,6 +1,7 @@
 #pragma once
 // Errors that reach the user name the file (or parameter) and what is wrong.
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -24,6 +25,26 @@ template <typename... Args>
 template <typename... Args>
 [[noreturn]] void throw_error(fmt::format_string<Args...> format, Args&&... args) {
     throw Error(fmt::format(format, std::forward<Args>(args)...));
+}
+
+// Warnings: problems the program works around but the user must hear about
+// (degenerate triangles dropped, ...). Each is one line; by default it goes to
+// stderr as "rsl: warning: <message>". Library code calls warn()/warn_file(),
+// never prints itself, so tests and tools can capture warnings.
+using WarningHandler = std::function<void(const std::string& message)>;
+// Installs `handler` (empty: back to stderr) and returns the previous one.
+// Thread-safe; warnings from parallel code are delivered one at a time.
+WarningHandler set_warning_handler(WarningHandler handler);
+void emit_warning(const std::string& message);
+
+template <typename... Args>
+void warn(fmt::format_string<Args...> format, Args&&... args) {
+    emit_warning(fmt::format(format, std::forward<Args>(args)...));
+}
+// "path: message", the shape of throw_file_error.
+template <typename... Args>
+void warn_file(const std::filesystem::path& path, fmt::format_string<Args...> format, Args&&... args) {
+    emit_warning(fmt::format("{}: {}", path.string(), fmt::format(format, std::forward<Args>(args)...)));
 }
 
 // CHECK-style invariant that prints both sides, as pbrt's CHECK_EQ does.

@@ -261,6 +261,11 @@ public:
             scene.parts.push_back(std::move(part));
         }
         for (size_t a = 0; a < model_.animations.size(); ++a) import_animation(a, scene, offset);
+        // One line per file, counting each glTF mesh once however many nodes use it.
+        size_t dropped = 0;
+        for (const std::optional<TriangleMesh>& mesh : converted)
+            if (mesh) dropped += mesh->degenerate_dropped;
+        if (dropped) warn_file(path_, "{} degenerate triangle{} dropped", dropped, dropped == 1 ? "" : "s");
     }
 
 private:

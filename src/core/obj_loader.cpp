@@ -155,7 +155,8 @@ TriangleMesh load_obj(const std::filesystem::path& path) {
     const std::string text = buffer.str();
     if (text.find('\0') != std::string::npos) throw_file_error(path, "contains NUL bytes: not a text OBJ file");
     TriangleMesh mesh = ObjParser(path).parse(text);
-    validate_and_complete(mesh, path);
+    if (const size_t dropped = validate_and_complete(mesh, path))
+        warn_file(path, "{} degenerate triangle{} dropped", dropped, dropped == 1 ? "" : "s");
     return mesh;
 }
 

@@ -16,6 +16,7 @@
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 using Json = nlohmann::json;
@@ -228,6 +229,27 @@ TEST_CASE("glTF meshes without normals get computed normals and tangents", "[glt
     for (const Vec4& t : base.mesh.tangents) check_near(Vec3(t), {1, 0, 0});
     const Part& arm = part_named(scene, "arm");  // given normals are kept
     for (const Vec3& n : arm.mesh.normals) check_near(n, {0, 1, 0});
+}
+
+TEST_CASE("glTF degenerate triangles: one warning per file, each mesh counted once", "[gltf]") {
+    const auto dir = temp_dir("degenerate");
+    GltfBuilder b;
+    // The square plus two degenerate triangles (repeated index; collinear),
+    // used by two nodes; a clean triangle mesh on a third node.
+    std::vector<float> positions = kSquare;
+    positions.insert(positions.end(), {2, 2, 0});  // vertex 4: on the diagonal 0-2
+    const int square = b.mesh(positions, {0, 1, 2, 0, 2, 3, 1, 1, 2, 0, 2, 4});
+    const int clean = b.mesh({0, 0, 0, 1, 0, 0, 0, 0, 1}, {});
+    b.node({{"name", "a"}, {"mesh", square}});
+    b.node({{"name", "b"}, {"mesh", square}});
+    b.node({{"name", "c"}, {"mesh", clean}});
+    b.write_glb(dir / "degenerate.glb");
+    test::WarningCapture warnings;
+    const Scene scene = load_scene(dir / "degenerate.glb");
+    REQUIRE(scene.parts.size() == 3);
+    CHECK(part_named(scene, "a").mesh.triangle_count() == 2);
+    REQUIRE(warnings.messages().size() == 1);
+    CHECK(warnings.messages()[0] == (dir / "degenerate.glb").string() + ": 2 degenerate triangles dropped");
 }
 
 TEST_CASE("Cubic-spline glTF channels and node matrices", "[gltf]") {

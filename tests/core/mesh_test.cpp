@@ -8,6 +8,8 @@
 
 #include "src/core/error.h"
 #include "src/core/mesh.h"
+#include "src/core/scene.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 
@@ -117,6 +119,31 @@ TEST_CASE("OBJ errors name the file, the line and the problem", "[mesh][obj]") {
                       "no triangles (2 degenerate triangles dropped)");
     require_obj_error("binary.obj", std::string("v 0 0 0\0\x01\x02", 10), "NUL");
     CHECK_THROWS_WITH(load_obj(temp_dir() / "does_not_exist.obj"), Catch::Contains("does_not_exist.obj: cannot open"));
+}
+
+TEST_CASE("Loading a mesh with degenerate triangles warns once, naming the file and the count", "[mesh][obj]") {
+    // A unit quad plus three degenerate triangles (collinear, repeated index, a point).
+    const auto path = write_file("some_degenerate.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 2 0\n"
+                                 "f 1 2 3\nf 1 3 4\nf 1 3 5\nf 2 2 3\nf 4 4 4\n");
+    {
+        test::WarningCapture warnings;
+        const TriangleMesh m = load_obj(path);
+        CHECK(m.triangle_count() == 2);
+        REQUIRE(warnings.messages().size() == 1);
+        CHECK(warnings.messages()[0] == path.string() + ": 3 degenerate triangles dropped");
+    }
+    {
+        test::WarningCapture warnings;  // through load_scene too (a bare .obj scene)
+        const Scene scene = load_scene(path);
+        REQUIRE(warnings.messages().size() == 1);
+        CHECK(warnings.messages()[0] == path.string() + ": 3 degenerate triangles dropped");
+    }
+    {
+        test::WarningCapture warnings;  // a clean mesh says nothing
+        load_obj(write_file("clean.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+        CHECK(warnings.messages().empty());
+    }
 }
 
 TEST_CASE("Degenerate triangles are dropped and counted", "[mesh]") {

@@ -1,0 +1,60 @@
+#pragma once
+// Helpers shared by the test suites: per-process scratch folders, small file
+// writers, and capture of rsl::warn() output.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "src/core/error.h"
+
+namespace rsl::test {
+
+// A fresh, empty folder `name` inside this process's scratch folder. ctest
+// runs test cases as separate processes, several builds may run the suite at
+// once, so the scratch folder carries the process id; it is removed when the
+// test program exits.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+    static const struct Scratch {
+        std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("rsl_test_{}", ::getpid());
+        ~Scratch() {
+            std::error_code ignored;
+            std::filesystem::remove_all(dir, ignored);
+        }
+    } scratch;
+    const std::filesystem::path dir = scratch.dir / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+inline void write_text(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+inline std::string read_bytes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Collects every rsl::warn() message while alive (instead of printing it).
+class WarningCapture {
+public:
+    WarningCapture()
+        : previous_(set_warning_handler([this](const std::string& message) { messages_.push_back(message); })) {}
+    ~WarningCapture() { set_warning_handler(std::move(previous_)); }
+    WarningCapture(const WarningCapture&) = delete;
+    WarningCapture& operator=(const WarningCapture&) = delete;
+
+    const std::vector<std::string>& messages() const { return messages_; }
+
+private:
+    std::vector<std::string> messages_;
+    WarningHandler previous_;
+};
+
+}  // namespace rsl::test
