@@ -1,0 +1,99 @@
+// The GPU data layout (no GL needed): what the shader computes from the packed
+// texels equals what the CPU computes from the fields and tables.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "src/core/error.h"
+#include "src/gl/gpu_layout.h"
+#include "src/render/ovdf_occluder.h"
+#include "tests/trace/trace_test_scenes.h"
+
+namespace rsl {
+namespace {
+
+// Σ_t dot(table_t, coefficients_t): the shader's reconstruction.
+float packed_reconstruct(const std::vector<Vec4>& tables, int tables_base, const std::vector<Vec4>& coefficients,
+                         int coefficients_base, int stride, int dims, int cluster, int sample, int texel) {
+    float value = 0;
+    for (int t = 0; t < stride; ++t)
+        value += glm::dot(tables[tables_base + (size_t(cluster) * dims + texel) * stride + t],
+                          coefficients[coefficients_base + size_t(sample) * stride + t]);
+    return value;
+}
+
+TEST_CASE("packed SVDF and OVDF rows reconstruct the fields' values", "[gl-layout]") {
+    Scene scene = test::make_scene("layout", Color(0.5f));
+    test::add_part(scene, test::make_plane(2.0f, 6, "ground"));
+    Transform lifted;
+    lifted.translation = Vec3(0, 0.4f, 0);
+    test::add_part(scene, test::make_icosphere(0.3f, 2, "ball"), lifted);
+    PrecomputeSettings& pre = scene.precompute;
+    pre.svdf_resolution = 8, pre.svdf_clusters = 4, pre.svdf_vectors = 5, pre.svdf_supersampling = 1;
+    pre.ovdf_shells = 3, pre.ovdf_cube_resolution = 4, pre.ovdf_vdt_resolution = 8, pre.ovdf_vectors = 3;
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    const gl::PackedGeometry g = gl::pack_geometry(scene, fields);
+
+    REQUIRE(g.first_vertex.size() == 3);
+    CHECK(size_t(g.first_vertex[2]) == scene.vertex_count());
+    std::mt19937 rng(5);
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        const Vec4* record = &g.part_static[p * gl::kPartStride];
+        CHECK(record[gl::kSlotVertices].x == float(g.first_vertex[p]));
+        const Svdf& svdf = *fields.self[p];
+        const Vec4 s = record[gl::kSlotSvdf];
+        CHECK(s.z == float(svdf.resolution()));
+        CHECK(s.w == float(gl::cpca_stride(svdf.model.vectors)));
+        for (int k = 0; k < 200; ++k) {
+            const int v = int(rng() % svdf.vertex_count()), texel = int(rng() % svdf.model.dims);
+            const int global = g.first_vertex[p] + v;
+            CHECK(g.positions[global] == Vec4(scene.parts[p].mesh.positions[v], float(p)));
+            const int cluster = int(g.normals[global].w);
+            CHECK(cluster == svdf.model.assignment[v]);
+            const float packed = packed_reconstruct(g.svdf_tables, int(s.x), g.svdf_coefficients, int(s.y), int(s.w),
+                                                    svdf.model.dims, cluster, v, texel);
+            CHECK(packed == Approx(svdf.model.reconstruct(v, texel)).margin(1e-5));
+        }
+        const Ovdf& ovdf = dynamic_cast<const OvdfOccluder&>(*fields.occluder[p]).field();
+        const Vec4 bases = record[gl::kSlotOvdfBases], grid = record[gl::kSlotOvdfGrid];
+        CHECK(record[gl::kSlotOvdfCenter] == Vec4(ovdf.center, ovdf.radius));
+        CHECK(bases.w == ovdf.shell_radius(ovdf.params.shells - 1));
+        for (int k = 0; k < 200; ++k) {
+            const int sample = int(rng() % ovdf.model.samples()), texel = int(rng() % ovdf.model.dims);
+            const float packed = packed_reconstruct(g.ovdf_tables, int(bases.x), g.ovdf_coefficients, int(bases.y),
+                                                    int(grid.z), ovdf.model.dims, ovdf.model.assignment[sample],
+                                                    sample, texel);
+            CHECK(packed == Approx(ovdf.model.reconstruct(sample, texel)).margin(1e-5));
+        }
+    }
+    // The fields store half-precision tables: RGBA16F holds them exactly.
+    CHECK(g.svdf_tables_half);
+    CHECK(g.ovdf_tables_half);
+}
+
+TEST_CASE("BRDF tables are stacked once each, in sat_data() order", "[gl-layout]") {
+    MaterialDesc lambert = test::lambert(Color(0.5f));
+    MaterialDesc ward;
+    ward.name = "ward";
+    ward.model = "ward_anisotropic";
+    ward.params = {{"kd", {0.2f, 0.2f, 0.2f}}, {"ks", {0.2f, 0.2f, 0.2f}}, {"alpha_x", {0.2f}}, {"alpha_y", {0.4f}}};
+    BrdfTableOptions options;
+    options.resolution = 8, options.view_samples = 4;
+    const auto iso = BrdfTable::build(*make_brdf(lambert), options);
+    const auto aniso = BrdfTable::build(*make_brdf(ward), options);
+    const gl::PackedMaterials m = gl::pack_materials({iso, aniso, iso});
+    CHECK(m.resolution == 8);
+    CHECK(m.slices == 4 + 16);
+    REQUIRE(m.part_material.size() == 3);
+    CHECK(m.part_material[0] == Vec4(0, 1, 4, 0));
+    CHECK(m.part_material[1] == Vec4(4, 0, 4, 0));
+    CHECK(m.part_material[2] == m.part_material[0]);
+    const size_t slice = 9 * 9 * 3;
+    CHECK(std::equal(aniso->sat_data().begin(), aniso->sat_data().end(), m.sat.begin() + 4 * slice));
+    CHECK(m.offsets[4 + 5] == Vec4(aniso->offset(5), 0.0f));
+    options.resolution = 16;
+    CHECK_THROWS_AS(gl::pack_materials({iso, BrdfTable::build(*make_brdf(lambert), options)}), Error);
+}
+
+}  // namespace
+}  // namespace rsl
