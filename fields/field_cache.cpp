@@ -30,16 +30,35 @@ fs::path field_path(const FieldCacheOptions& options, const Scene& scene, int pa
            fmt::format("{}.{}-{}.{}.{:016x}.rslf", stem, part, safe_name(scene.parts[part].name), kind, key);
 }
 
-// Reads a cached file if it is there and valid; explains why not otherwise.
-template <typename Field, typename Read>
-std::optional<Field> try_cached(const fs::path& path, const FieldExpectation& expect, bool verbose, Read read) {
-    if (!fs::exists(path)) return std::nullopt;
-    try {
-        return read(path, expect);
-    } catch (const Error& e) {
-        if (verbose) std::fprintf(stderr, "rsl bake: rebuilding: %s\n", e.what());
-        return std::nullopt;
+// One field of one part: read from `path` when the file is there and valid;
+// otherwise baked (with progress on stderr) and written there. A file that is
+// there but refused (corrupt, truncated, foreign) is worth a warning even
+// when quiet: it is being replaced. Stale files need none: any change of mesh
+// or parameters selects a different file name.
+template <typename Field, typename Params, typename Stats>
+Field load_or_bake(const fs::path& path, const FieldExpectation& expect, const std::string& label,
+                   const TriangleMesh& mesh, const Params& params, bool verbose, bool& reused,
+                   Field (*read)(const fs::path&, const FieldExpectation&),
+                   Field (*bake)(const TriangleMesh&, const Params&, Stats*, const std::function<void(double)>&),
+                   void (*write)(const fs::path&, const Field&, uint64_t)) {
+    reused = false;
+    if (fs::exists(path)) {
+        try {
+            Field field = read(path, expect);
+            reused = true;
+            if (verbose) std::fprintf(stderr, "%s: cached %s\n", label.c_str(), path.string().c_str());
+            return field;
+        } catch (const Error& e) {
+            warn("refusing a cached field file, baking it again: {}", e.what());
+        }
     }
+    ProgressReport progress(label, verbose);
+    Stats stats;
+    Field field = bake(mesh, params, &stats, [&](double x) { progress.update(x); });
+    write(path, field, *expect.mesh_hash);
+    progress.finish(fmt::format("1:{:.1f} compression, rms {:.4f}", stats.compression.compression_ratio(),
+                                stats.compression.rms_error));
+    return field;
 }
 
 }  // namespace
@@ -93,33 +112,12 @@ std::vector<PartFields> bake_or_load_fields(const Scene& scene, const FieldCache
                                               scene.parts[i].name, mesh.vertex_count());
 
         f.svdf_file = field_path(options, scene, int(i), "svdf", hash, svdf_params);
-        f.svdf = try_cached<Svdf>(f.svdf_file, {hash, svdf_params}, options.verbose, read_svdf);
-        f.svdf_reused = f.svdf.has_value();
-        if (!f.svdf) {
-            ProgressReport progress("SVDF " + label, options.verbose);
-            SvdfBakeStats stats;
-            f.svdf = bake_svdf(mesh, options.svdf, &stats, [&](double x) { progress.update(x); });
-            write_svdf(f.svdf_file, *f.svdf, hash);
-            progress.finish(fmt::format("1:{:.1f} compression, rms {:.4f}", stats.compression.compression_ratio(),
-                                        stats.compression.rms_error));
-        } else if (options.verbose) {
-            std::fprintf(stderr, "SVDF %s: cached %s\n", label.c_str(), f.svdf_file.string().c_str());
-        }
+        f.svdf = load_or_bake(f.svdf_file, {hash, svdf_params}, "SVDF " + label, mesh, options.svdf, options.verbose,
+                              f.svdf_reused, read_svdf, bake_svdf, write_svdf);
         if (options.svdf_only) continue;
-
         f.ovdf_file = field_path(options, scene, int(i), "ovdf", hash, ovdf_params);
-        f.ovdf = try_cached<Ovdf>(f.ovdf_file, {hash, ovdf_params}, options.verbose, read_ovdf);
-        f.ovdf_reused = f.ovdf.has_value();
-        if (!f.ovdf) {
-            ProgressReport progress("OVDF " + label, options.verbose);
-            OvdfBakeStats stats;
-            f.ovdf = bake_ovdf(mesh, options.ovdf, &stats, [&](double x) { progress.update(x); });
-            write_ovdf(f.ovdf_file, *f.ovdf, hash);
-            progress.finish(fmt::format("1:{:.1f} compression, rms {:.4f}", stats.compression.compression_ratio(),
-                                        stats.compression.rms_error));
-        } else if (options.verbose) {
-            std::fprintf(stderr, "OVDF %s: cached %s\n", label.c_str(), f.ovdf_file.string().c_str());
-        }
+        f.ovdf = load_or_bake(f.ovdf_file, {hash, ovdf_params}, "OVDF " + label, mesh, options.ovdf, options.verbose,
+                              f.ovdf_reused, read_ovdf, bake_ovdf, write_ovdf);
     }
     return fields;
 }

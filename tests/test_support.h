@@ -1,11 +1,14 @@
 #pragma once
 // Helpers shared by the test suites: per-process scratch folders, small file
 // writers, and capture of rsl::warn() output.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -40,6 +43,25 @@ inline std::string read_bytes(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
+
+// Runs a shell command; returns its exit status (-1 when it did not run or
+// was killed) and its stdout and stderr together.
+inline std::pair<int, std::string> run_command(const std::string& command) {
+    std::string output;
+    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) return {-1, "popen failed: " + command};
+    char buffer[4096];
+    while (std::fgets(buffer, sizeof(buffer), pipe)) output += buffer;
+    const int status = ::pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+#ifdef RSL_RSL_EXECUTABLE
+// The `rsl` program with arguments (the binary this build made).
+inline std::pair<int, std::string> run_rsl(const std::string& arguments) {
+    return run_command(std::string(RSL_RSL_EXECUTABLE) + " " + arguments);
+}
+#endif
 
 // Collects every rsl::warn() message while alive (instead of printing it).
 class WarningCapture {

@@ -48,12 +48,20 @@ RegisterCommand bake_command({"bake",
                        "Cache folder for the field files (default: .rsl-cache beside the input)");
         app.add_flag("--svdf-only", args->svdf_only, "Only self-visibility (no OVDF)");
         app.add_option("--clusters", args->clusters, "SVDF CPCA clusters (default: scene setting, 256)");
-        app.add_option("--vectors", args->vectors, "SVDF CPCA vectors per cluster (default 8)");
-        app.add_option("--supersampling", args->supersampling, "k×k rays in boundary texels (default 2)");
-        app.add_option("--ovdf-vectors", args->ovdf_vectors, "OVDF PCA vectors per segment (default 8)");
-        app.add_option("--cube-resolution", args->cube_resolution, "OVDF sample points per cube-face side (default 32)");
-        app.add_option("--shells", args->shells, "OVDF shells (default 16)");
-        app.add_flag("-q,--quiet", args->quiet, "No progress output");
+        app.add_option("--vectors", args->vectors, "SVDF CPCA vectors per cluster (default: scene setting, 8)");
+        app.add_option("--supersampling", args->supersampling, "k×k rays per texel where visibility changes, SVDF and OVDF (default 2)");
+        app.add_option("--ovdf-vectors", args->ovdf_vectors, "OVDF PCA vectors per segment (default: scene setting, 8)");
+        app.add_option("--cube-resolution", args->cube_resolution, "OVDF sample points per cube-face side (default: scene setting, 32)");
+        app.add_option("--shells", args->shells, "OVDF shells around the part (default: scene setting, 16)");
+        app.add_flag("-q,--quiet", args->quiet, "No progress output (warnings still go to stderr)");
+        app.footer(
+            "Cache: one .rslf file per part and field kind, named "
+            "<scene>.<part index>-<part name>.<svdf|ovdf>.<key>.rslf, where the key hashes the format version, "
+            "the part's mesh and the parameters; a change of any of them selects a new file. A run reuses every "
+            "cached file that reads back valid (version, mesh, parameters, checksum) and says so; a corrupt or "
+            "foreign file is refused with a warning, baked again and replaced. Files are written atomically. "
+            "Defaults of the options above come from the scene's \"precompute\" section (docs/SCENE_FORMAT.md). "
+            "`rsl info FILE.rslf` checks one file.");
         app.callback([args] { run_bake(*args); });
     }});
 

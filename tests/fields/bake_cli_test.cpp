@@ -1,0 +1,150 @@
+// End to end through the `rsl` program: `rsl bake` on a tiny two-part scene
+// bakes every field file, a second run reuses them untouched, a corrupted
+// file is refused by `rsl info` and baked again by the next `rsl bake`.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+#include "fields/field_file.h"
+#include "tests/test_support.h"
+
+using namespace rsl;
+using namespace rsl::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A 4×4 ground of four triangles around a centre vertex, and a unit box on it
+// (quads, fan-triangulated); low settings keep the four bakes in milliseconds.
+void write_tiny_scene(const fs::path& dir) {
+    write_text(dir / "ground.obj",
+               "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nv 0 0 0\n"
+               "f 1 5 2\nf 2 5 3\nf 3 5 4\nf 4 5 1\n");
+    write_text(dir / "box.obj",
+               "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\n"
+               "v -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
+               "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n");
+    write_text(dir / "tiny.json", R"({
+  "name": "tiny",
+  "parts": [ { "name": "ground", "obj": "ground.obj" }, { "name": "box", "obj": "box.obj" } ],
+  "precompute": { "svdf": { "resolution": 8, "clusters": 4, "vectors": 2, "supersampling": 1 },
+                  "ovdf": { "shells": 2, "cube_resolution": 4, "vdt_resolution": 8, "vectors": 2 } }
+})");
+}
+
+// The .rslf paths `rsl bake` printed on stdout, one a line, in order.
+std::vector<fs::path> printed_field_files(const std::string& output) {
+    std::vector<fs::path> files;
+    std::istringstream lines(output);
+    for (std::string line; std::getline(lines, line);)
+        if (line.size() > 5 && line.compare(line.size() - 5, 5, ".rslf") == 0 && line.find(' ') == std::string::npos)
+            files.emplace_back(line);
+    return files;
+}
+
+std::map<fs::path, std::string> contents_of(const std::vector<fs::path>& files) {
+    std::map<fs::path, std::string> contents;
+    for (const fs::path& f : files) contents[f] = read_bytes(f);
+    return contents;
+}
+
+bool contains(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("rsl bake: bakes, reuses the cache, refuses and rebakes a corrupt file", "[fields][cli]") {
+    const fs::path dir = scratch_dir("bake_cli");
+    write_tiny_scene(dir);
+    const std::string scene = (dir / "tiny.json").string();
+    const fs::path cache = dir / ".rsl-cache";  // the default: beside the scene
+
+    // First run: SVDF and OVDF of both parts, all baked, in the default cache folder.
+    const auto [status, output] = run_rsl("bake " + scene);
+    INFO(output);
+    REQUIRE(status == 0);
+    const std::vector<fs::path> files = printed_field_files(output);
+    REQUIRE(files.size() == 4);
+    for (const fs::path& f : files) {
+        CHECK(fs::equivalent(f.parent_path(), cache));
+        CHECK(f.extension() == ".rslf");
+    }
+    CHECK(contains(output, "4 field files baked, 0 reused from the cache"));
+    CHECK(std::count_if(fs::directory_iterator(cache), fs::directory_iterator(), [](const auto&) { return true; }) == 4);
+    // What was written reads back as the fields of the right kind and mesh.
+    CHECK(read_field_header(files[0]).kind == FieldKind::Svdf);
+    CHECK(read_field_header(files[1]).kind == FieldKind::Ovdf);
+    CHECK(read_field_header(files[2]).kind == FieldKind::Svdf);
+    CHECK(read_field_header(files[0]).mesh_hash != read_field_header(files[2]).mesh_hash);
+    const auto baked = contents_of(files);
+    std::map<fs::path, fs::file_time_type> written;
+    for (const fs::path& f : files) written[f] = fs::last_write_time(f);
+
+    // Second run: everything from the cache, files untouched.
+    {
+        const auto [again, text] = run_rsl("bake " + scene);
+        INFO(text);
+        REQUIRE(again == 0);
+        CHECK(printed_field_files(text) == files);
+        CHECK(contains(text, "0 field files baked, 4 reused from the cache"));
+        CHECK(contains(text, "cached " + files[3].string()));
+        CHECK(contents_of(files) == baked);
+        for (const fs::path& f : files) CHECK(fs::last_write_time(f) == written[f]);
+    }
+
+    // `rsl info` checks a good file ...
+    {
+        const auto [info_status, text] = run_rsl("info " + files[2].string());
+        INFO(text);
+        CHECK(info_status == 0);
+        CHECK(contains(text, "OK"));
+    }
+    // ... and refuses the box's SVDF with one byte flipped, naming the file.
+    const fs::path victim = files[2];
+    std::string bytes = baked.at(victim);
+    bytes[bytes.size() / 2] ^= 0x40;
+    write_text(victim, bytes);
+    {
+        const auto [info_status, text] = run_rsl("info " + victim.string());
+        INFO(text);
+        CHECK(info_status != 0);
+        CHECK(contains(text, victim.string() + ": checksum mismatch"));
+    }
+
+    // The next bake (quiet) warns, bakes that one file again and reuses the rest.
+    {
+        const auto [rebake, text] = run_rsl("bake -q " + scene);
+        INFO(text);
+        REQUIRE(rebake == 0);
+        CHECK(printed_field_files(text) == files);
+        CHECK(contains(text, "rsl: warning: "));
+        CHECK(contains(text, victim.string() + ": checksum mismatch"));
+        const auto now = contents_of(files);
+        for (const fs::path& f : files) {
+            INFO(f);
+            CHECK(now.at(f) == baked.at(f));  // the bake is deterministic: the same bytes as the first time
+            if (f != victim) CHECK(fs::last_write_time(f) == written[f]);
+        }
+        CHECK(run_rsl("info " + victim.string()).first == 0);
+    }
+    // Not quiet, the summary counts the rebake: one file, the others reused.
+    {
+        std::string again = baked.at(files[1]);
+        again[again.size() / 3] ^= 0x01;
+        write_text(files[1], again);
+        const auto [rebake, text] = run_rsl("bake " + scene);
+        INFO(text);
+        REQUIRE(rebake == 0);
+        CHECK(contains(text, "1 field files baked, 3 reused from the cache"));
+    }
+}
+
+TEST_CASE("rsl bake --help explains the cache", "[fields][cli]") {
+    const auto [status, text] = run_rsl("bake --help");
+    INFO(text);
+    CHECK(status == 0);
+    CHECK(contains(text, ".rsl-cache"));
+    CHECK(contains(text, "reuses every cached file"));
+    CHECK(contains(text, "baked again"));
+}
