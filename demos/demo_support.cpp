@@ -79,7 +79,7 @@ float exposure_for(const Image& image) {
         for (int x = 0; x < image.width; ++x) lum.push_back(luminance(image.rgb(x, y)));
     const size_t k = size_t(0.99 * double(lum.size() - 1));
     std::nth_element(lum.begin(), lum.begin() + k, lum.end());
-    return lum[k] > 0.0f ? std::log2(0.9f / lum[k]) : 0.0f;
+    return lum[k] > 0.0f ? std::log2(0.7f / lum[k]) : 0.0f;
 }
 
 FrameSequence::FrameSequence(fs::path folder, int sheet_columns, int sheet_tiles)

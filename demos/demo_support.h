@@ -38,7 +38,8 @@ Image form_frame(const PosedScene& posed, const Scene& scene, float t, const Ver
 // out = Σ w_i · in_i over vertices (all inputs describe the same vertices).
 void weighted_sum(VertexColors& out, const std::vector<const VertexColors*>& inputs, const std::vector<float>& weights);
 
-// Exposure (stops) mapping the 99th luminance percentile of the image to 0.9.
+// Exposure (stops) mapping the 99th luminance percentile of the image to 0.7 (headroom: a
+// lit white floor stays grey enough to show the shadows on it).
 float exposure_for(const Image& image);
 
 // Writes frames as out/frame_NNNN.png with the exposure of the first one,

@@ -62,6 +62,7 @@ DemoResult run_materials_demo(const DemoOptions& options) {
     std::optional<Renderer> renderer;
     SequenceSpec spec;
     spec.name = result.name;
+    spec.default_width = 480, spec.default_height = 180;  // a row of four
     spec.shade = [&](int frame, float t, VertexColors& colors, FrameTiming& timing) {
         const auto begin = std::chrono::steady_clock::now();
         renderer.reset();  // it holds a reference to the scene whose materials change
