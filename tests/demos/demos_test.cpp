@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 
 #include <unistd.h>
 
@@ -16,6 +18,7 @@
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"
 #include "src/brdf/brdf.h"
+#include "src/core/atomic_file.h"
 #include "src/core/error.h"
 
 using namespace rsl;
@@ -221,4 +224,44 @@ TEST_CASE("glossiness sweep sets valid parameters for every swept model, rougher
     MaterialDesc lambert{"floor", "lambert", {{"albedo", {0.5f, 0.5f, 0.5f}}}, {}};
     REQUIRE_THROWS_AS(set_glossiness(lambert, 0.2f), Error);
     REQUIRE(sweep_roughness(0, 12) < sweep_roughness(11, 12));
+}
+
+TEST_CASE("frame sequences: numbered PNGs, a contact sheet, and an MP4 exactly when ffmpeg is on PATH", "[demos]") {
+    // A stand-in ffmpeg that writes its arguments into its output file (the
+    // last argument), so the test sees the command without the real encoder.
+    const fs::path bin = scratch_dir() / "fake-bin";
+    fs::create_directories(bin);
+    {
+        std::ofstream script(bin / "ffmpeg");
+        script << "#!/bin/sh\nfor a; do last=\"$a\"; done\necho \"$@\" > \"$last\"\n";
+    }
+    fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+    const std::string saved_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+
+    Image frame(20, 10, 3);
+    for (size_t i = 0; i < frame.pixels.size(); ++i) frame.pixels[i] = float(i % 7) / 7.0f;
+    for (const bool with_ffmpeg : {false, true}) {
+        INFO("ffmpeg on PATH: " << with_ffmpeg);
+        ::setenv("PATH", with_ffmpeg ? (bin.string() + ":" + saved_path).c_str() : "/nonexistent", 1);
+        const fs::path folder = scratch_dir() / (with_ffmpeg ? "seq-ffmpeg" : "seq-plain");
+        DemoResult result;
+        result.name = "seq";
+        FrameSequence sequence(folder);
+        for (int f = 0; f < 3; ++f) REQUIRE(sequence.add(frame, "f") == folder / fmt::format("frame_{:04d}.png", f));
+        sequence.finish(result, 12.0f);
+        ::setenv("PATH", saved_path.c_str(), 1);
+        REQUIRE(result.frames.size() == 3);
+        REQUIRE(read_png(result.contact_sheet).width > 3 * 20);
+        if (!with_ffmpeg) {
+            REQUIRE(result.mp4.empty());
+            continue;
+        }
+        REQUIRE(result.mp4 == folder / "seq.mp4");
+        const std::string args = read_file(result.mp4);  // the fake encoder's record of its command line
+        REQUIRE(args.find("-framerate 12") != std::string::npos);
+        REQUIRE(args.find((folder / "frame_%04d.png").string()) != std::string::npos);
+        REQUIRE(args.find("yuv420p") != std::string::npos);
+        for (const auto& entry : fs::directory_iterator(folder))  // written atomically: no temporary left
+            REQUIRE(entry.path().filename().string().find(".tmp-") == std::string::npos);
+    }
 }
