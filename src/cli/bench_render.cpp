@@ -58,6 +58,22 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     Image image;
     const double image_seconds = median_seconds(repeats, [&] { image = form_image(posed, camera, colors); });
 
+    // The same frame with parts of the work switched off or done the slower
+    // way, in the same run: where the time goes, and the split OVDF lookup's
+    // gain over the field's own lookup (fields/ovdf.h).
+    auto variant_seconds = [&](auto&& configure) {
+        RenderOptions o = render_options;
+        configure(o);
+        Renderer r(*scene, setup.environment_lights, setup.fields, o);
+        VertexColors out = r.make_output();
+        r.set_time(c.time);
+        r.shade(out);
+        return median_seconds(repeats, [&] { r.shade(out); });
+    };
+    const double field_lookup_seconds = variant_seconds([](RenderOptions& o) { o.fast_occluder_lookups = false; });
+    const double self_only_seconds = variant_seconds([](RenderOptions& o) { o.occluders = false; });
+    const double brdf_only_seconds = variant_seconds([](RenderOptions& o) { o.occluders = o.self_visibility = false; });
+
     GroundTruth truth(*scene, setup.environment, c.time);
     auto start = Clock::now();
     const VertexColors reference = truth.shade_vertices();
@@ -72,7 +88,14 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
                 {"lookups", stats.lookups},
                 {"occluder_pairs", stats.occluder_pairs},
                 {"occluder_pairs_culled", stats.occluder_pairs_culled},
+                {"block_occluders_culled", stats.block_occluders_culled},
+                {"occluder_lookups", stats.occluder_lookups},
+                {"shade_seconds_field_lookups", field_lookup_seconds},
+                {"shade_seconds_self_only", self_only_seconds},
+                {"shade_seconds_brdf_only", brdf_only_seconds},
                 {"bake_seconds", setup.bake_seconds},
+                {"fields_loaded", setup.fields_loaded},
+                {"fields_baked", setup.fields_baked},
                 {"fit_seconds", setup.fit_seconds},
                 {"shade_seconds", shade_seconds},
                 {"fps_shading", 1.0 / shade_seconds},

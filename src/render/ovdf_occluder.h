@@ -35,6 +35,7 @@ public:
         return radial + f.shell_radius(hi) * 2.0f * std::numbers::sqrt2_v<float> / float(f.params.cube_resolution);
     }
     const Ovdf& field() const { return *field_; }
+    OvdfBlend blend() const { return blend_; }
 
 private:
     std::shared_ptr<const Ovdf> field_;

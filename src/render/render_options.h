@@ -16,6 +16,9 @@ struct RenderOptions {
     bool self_visibility = true;     // multiply by the SVDF average
     bool occluders = true;           // multiply by the other parts' OVDF averages
     bool occluder_culling = true;    // skip occluders that cannot shadow (never changes the result)
+    // OVDF lookups split into a per-(vertex, occluder) half and a per-light half
+    // (src/render/ovdf_lookup.h; same values as the field's own lookup, faster).
+    bool fast_occluder_lookups = true;
     // Per-part material override: part name → material name (scene materials).
     std::map<std::string, std::string> material_override;
     BrdfTableOptions brdf_table;     // resolution of the BRDF summed-area tables
@@ -28,6 +31,8 @@ struct RenderStats {
     size_t lookups = 0;                // (vertex, light) pairs that reached the lookups
     size_t occluder_pairs = 0;         // (receiver part, occluder part, light) triples considered
     size_t occluder_pairs_culled = 0;  // ... of which culled
+    size_t block_occluders_culled = 0; // (block, occluder, light) triples skipped by the block's bounding sphere
+    size_t occluder_lookups = 0;       // OVDF lookups that ran (vertex, light, occluder)
 };
 
 }  // namespace rsl

@@ -8,6 +8,7 @@
 
 #include "lightfit/decompose.h"
 #include "src/core/error.h"
+#include "src/render/ovdf_occluder.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl {
@@ -45,6 +46,11 @@ Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fie
             blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kBlockSize))});
         local_bounds_.push_back(part.mesh.bounding_sphere());
         local_reach_.push_back(fields_.occluder[p] ? fields_.occluder[p]->reach() : BoundingSphere{});
+        // Compressed OVDFs blended by coefficients take the split lookup.
+        const auto* ovdf = dynamic_cast<const OvdfOccluder*>(fields_.occluder[p].get());
+        const bool fast = options_.fast_occluder_lookups && ovdf && ovdf->blend() == OvdfBlend::AlignedCoefficients;
+        fast_lookups_.push_back(fast ? std::make_unique<const OvdfLookup>(ovdf->field()) : nullptr);
+        if (fast_lookups_.back() && !fast_lookups_.back()->usable()) fast_lookups_.back().reset();
     }
     for (const LocalLight& light : scene.lights) {
         if (!(light.radius > 0.0f)) throw_file_error(scene.source, "local light with radius {}", light.radius);
@@ -150,13 +156,17 @@ void Renderer::shade(VertexColors& out) {
     RSL_CHECK_EQ(out.parts.size(), scene_.parts.size());
     for (size_t p = 0; p < scene_.parts.size(); ++p) RSL_CHECK_EQ(out.parts[p].size(), scene_.parts[p].mesh.vertex_count());
     out.time = time_;
-    std::atomic<size_t> lookups{0}, vertices{0};
+    std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
         RenderStats counts;
         for (size_t b = range.begin(); b != range.end(); ++b) shade_block(blocks_[b], out, counts);
         lookups.fetch_add(counts.lookups, std::memory_order_relaxed);
         vertices.fetch_add(counts.vertices, std::memory_order_relaxed);
+        occluder_lookups.fetch_add(counts.occluder_lookups, std::memory_order_relaxed);
+        block_culled.fetch_add(counts.block_occluders_culled, std::memory_order_relaxed);
     });
+    stats_.occluder_lookups = occluder_lookups.load();
+    stats_.block_occluders_culled = block_culled.load();
     stats_.lookups = lookups.load();
     stats_.vertices = vertices.load();
     stats_.lights = rsls_.lights.size() + scene_.lights.size();

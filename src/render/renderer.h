@@ -22,6 +22,7 @@
 #include "src/core/scene.h"
 #include "src/render/culling.h"
 #include "src/render/material_tables.h"
+#include "src/render/ovdf_lookup.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"
@@ -71,8 +72,11 @@ private:
         Mat3 inverse_linear{1.0f};
         BoundingSphere world_bounds;
     };
+    struct BlockScratch;  // shade_block.cpp
     void update_occluder_lists();
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts) const;
+    void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int receiver, int occluder, int n,
+                          bool culling) const;
 
     const Scene& scene_;
     RenderOptions options_;
@@ -82,6 +86,8 @@ private:
     std::vector<Block> blocks_;
     std::vector<BoundingSphere> local_bounds_;       // per part, in its own frame
     std::vector<BoundingSphere> local_reach_;        // per part: its occluder field's reach (radius 0: none)
+    // Per part: the fast split lookup of its OVDF (null: the field's own lookup).
+    std::vector<std::unique_ptr<const OvdfLookup>> fast_lookups_;
 
     float time_ = 0;
     std::vector<PartPose> poses_;

@@ -8,6 +8,7 @@
 // self and occluder visibility, and scattered back into the colour sums.
 #include <cmath>
 
+#include "src/render/ovdf_lookup.h"
 #include "src/render/renderer.h"
 
 namespace rsl {
@@ -18,8 +19,10 @@ constexpr int kBlock = 256;
 // Scenes with more parts skip the per-vertex occluder test for the rest.
 constexpr int kMaxConeParts = 32;
 
+}  // namespace
+
 // Per-thread scratch of one block (about 40 KB, never on the heap per frame).
-struct BlockScratch {
+struct Renderer::BlockScratch {
     // World positions and shading frames (x = tangent, y = bitangent, z = normal).
     alignas(64) float px[kBlock], py[kBlock], pz[kBlock];
     alignas(64) float xx[kBlock], xy[kBlock], xz[kBlock];
@@ -44,7 +47,13 @@ struct BlockScratch {
     alignas(64) float cone_x[kMaxConeParts][kBlock], cone_y[kMaxConeParts][kBlock], cone_z[kMaxConeParts][kBlock];
     alignas(64) float cone_angle[kMaxConeParts][kBlock];
     bool cone_ready[kMaxConeParts];
+    bool block_outside[kMaxConeParts];  // the whole block lies beyond the occluder's outer shell
+    // Per occluder part and vertex: the light-independent half of its OVDF
+    // lookup (OvdfLookup), prepared once per block; sized on first use.
+    std::vector<OvdfPoint> points;
 };
+
+namespace {
 
 // Half-angle of a cone around a light's direction that holds the part of its
 // square (half-edge h) above the horizon, for a vertex where the light has
@@ -58,11 +67,44 @@ inline float vertex_square_cone(float lz, float h) {
     return std::min(kPi, 2.0f * h / denominator);
 }
 
-thread_local BlockScratch scratch;
-
 }  // namespace
 
+// Per block and occluder, before its first lookup: each vertex's cone towards
+// the occluder's bounding sphere (grown by its field's footprint, as in the
+// per-part test), whether the block lies beyond the field's outer shell, and
+// each vertex's prepared OVDF point.
+void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int receiver, int o, int n,
+                                bool culling) const {
+    const PartPose& occluder = poses_[o];
+    const size_t parts = scene_.parts.size();
+    s.cone_ready[o] = true;
+    s.block_outside[o] = false;
+    if (culling) {
+        const BoundingSphere reach = transform_sphere(occluder.transform, local_reach_[o]);
+        s.block_outside[o] = beyond_reach(block_sphere, reach);
+        if (s.block_outside[o]) return;
+    }
+    if (culling) {
+    const BoundingSphere& sphere = occluder.world_bounds;
+    const float radius = sphere.radius + occluder_growth_[size_t(receiver) * parts + o];
+    for (int k = 0; k < n; ++k) {
+        const Vec3 to = sphere.center - Vec3(s.px[k], s.py[k], s.pz[k]);
+        const float distance = glm::length(to);
+        const Vec3 u = distance > 0.0f ? to / distance : Vec3(0, 0, 1);
+        s.cone_x[o][k] = u.x, s.cone_y[o][k] = u.y, s.cone_z[o][k] = u.z;
+        s.cone_angle[o][k] = distance > radius ? std::asin(radius / distance) : kPi;
+    }
+    }
+    if (const OvdfLookup* fast = fast_lookups_[o].get()) {
+        if (s.points.size() < parts * kBlock) s.points.resize(parts * kBlock);  // first frame only
+        OvdfPoint* points = s.points.data() + size_t(o) * kBlock;
+        for (int k = 0; k < n; ++k)
+            fast->prepare(Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f)), points[k]);
+    }
+}
+
 void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) const {
+    thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
     const int part_index = block.part;
     const TriangleMesh& mesh = scene_.parts[part_index].mesh;
@@ -72,8 +114,10 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
     const int n = block.end - block.begin;
     const bool has_tangents = !mesh.tangents.empty();
-    const bool vertex_culling = options_.occluder_culling && int(scene_.parts.size()) <= kMaxConeParts;
-    if (vertex_culling)
+    // Per-occluder scratch (cones, prepared OVDF points) for scenes of up to kMaxConeParts parts.
+    const bool per_occluder = int(scene_.parts.size()) <= kMaxConeParts;
+    const bool vertex_culling = options_.occluder_culling && per_occluder;
+    if (per_occluder)
         for (size_t o = 0; o < scene_.parts.size(); ++o) s.cone_ready[o] = false;
 
     // World position, shading frame (as PosedScene::vertex) and local view.
@@ -94,6 +138,22 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         s.view_cos[k] = len2 > 1e-16f ? wo.y * inv : 1.0f;
         s.view_sin[k] = wo.x * inv;
         s.r[k] = s.g[k] = s.b[k] = 0.0f;
+    }
+    // The block's bounding sphere (box center, farthest vertex) for block-level culling.
+    BoundingSphere block_sphere;
+    if (vertex_culling) {
+        Vec3 lo(s.px[0], s.py[0], s.pz[0]), hi = lo;
+        for (int k = 1; k < n; ++k) {
+            lo = glm::min(lo, Vec3(s.px[k], s.py[k], s.pz[k]));
+            hi = glm::max(hi, Vec3(s.px[k], s.py[k], s.pz[k]));
+        }
+        block_sphere.center = 0.5f * (lo + hi);
+        float r2 = 0;
+        for (int k = 0; k < n; ++k) {
+            const Vec3 d = Vec3(s.px[k], s.py[k], s.pz[k]) - block_sphere.center;
+            r2 = std::max(r2, glm::dot(d, d));
+        }
+        block_sphere.radius = std::sqrt(r2) * (1.0f + 1e-6f) + 1e-6f;
     }
 
     const size_t environment = environment_squares_.size();
@@ -171,24 +231,29 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         // Other parts' shadows: receiver point and light direction in the occluder's frame.
         for (size_t e = offsets_[slot_base + l]; e < offsets_[slot_base + l + 1]; ++e) {
             const int o = occluders_[e];
-            const OccluderField& field = *fields_.occluder[o];
             const PartPose& occluder = poses_[o];
-            if (vertex_culling && !s.cone_ready[o]) {
-                // The occluder's bounding sphere, grown by its field's
-                // footprint (as in the per-part test), seen from each vertex.
-                const BoundingSphere& sphere = occluder.world_bounds;
-                const float radius = sphere.radius + occluder_growth_[size_t(part_index) * scene_.parts.size() + o];
-                for (int k = 0; k < n; ++k) {
-                    const Vec3 to = sphere.center - Vec3(s.px[k], s.py[k], s.pz[k]);
-                    const float distance = glm::length(to);
-                    const Vec3 u = distance > 0.0f ? to / distance : Vec3(0, 0, 1);
-                    s.cone_x[o][k] = u.x, s.cone_y[o][k] = u.y, s.cone_z[o][k] = u.z;
-                    s.cone_angle[o][k] = distance > radius ? std::asin(radius / distance) : kPi;
-                }
-                s.cone_ready[o] = true;
+            if (per_occluder && !s.cone_ready[o]) prepare_occluder(s, block_sphere, part_index, o, n, vertex_culling);
+            if (vertex_culling && s.block_outside[o]) {
+                ++counts.block_occluders_culled;
+                continue;
             }
+            if (vertex_culling && is_environment) {
+                // The whole block against the light's cone (as the per-part test).
+                const SquareLight& sq = environment_squares_[l];
+                const BoundingSphere grown{block_sphere.center,
+                                           block_sphere.radius + occluder_growth_[size_t(part_index) * scene_.parts.size() + o]};
+                if (!may_shadow_direction(grown, occluder.world_bounds, sq.direction, square_cone_half_angle(sq.half_edge))) {
+                    ++counts.block_occluders_culled;
+                    continue;
+                }
+            }
+            const OvdfLookup* fast = per_occluder ? fast_lookups_[o].get() : nullptr;
+            const OccluderField& field = *fields_.occluder[o];
+            // An environment light has one direction in the occluder's frame.
+            const Vec3 light_local = is_environment ? glm::normalize(occluder.inverse_linear * environment_squares_[l].direction)
+                                                    : Vec3(0);
             for (int i = 0; i < m; ++i) {
-                if (!(s.vis[i] > 0.0f)) continue;
+                if (!(s.vis[i] > 0.0f)) continue;  // already black: later occluders cannot change it
                 const int k = s.index[i];
                 if (vertex_culling) {
                     // Skip when the light's cone and the occluder's cone are disjoint.
@@ -198,9 +263,21 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                         if (c < std::cos(reach)) continue;
                     }
                 }
-                const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
-                const Vec3 dir = glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
-                s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
+                const Vec3 dir = is_environment ? light_local
+                                                : glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
+                if (fast) {
+                    const OvdfPoint& q = s.points[size_t(o) * kBlock + k];
+                    if (q.kind == OvdfPoint::Outside) continue;
+                    ++counts.occluder_lookups;
+                    const Vec3 point = q.kind == OvdfPoint::Slow
+                                           ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
+                                           : Vec3(0);
+                    s.vis[i] *= visible_fraction_from_distance(fast->distance(q, point, dir), s.qh[i]);
+                } else {
+                    ++counts.occluder_lookups;
+                    const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
+                    s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
+                }
             }
         }
 

@@ -133,8 +133,11 @@ TEST_CASE("culling does not change the colours", "[render][culling]") {
         l.radiance = Color(1.0f + u(rng));
         lights.lights.push_back(l);
     }
+    // Culling off also takes the field's own lookup (not the split one), so the
+    // comparison checks both the culling and src/render/ovdf_lookup.h.
     RenderOptions with, without;
     without.occluder_culling = false;
+    without.fast_occluder_lookups = false;
     Renderer culled(scene, lights, fields, with), full(scene, lights, fields, without);
     for (float t : {0.0f}) {
         culled.set_time(t);
@@ -142,6 +145,7 @@ TEST_CASE("culling does not change the colours", "[render][culling]") {
         const VertexColors a = culled.shade(), b = full.shade();
         CHECK(culled.stats().occluder_pairs_culled > culled.stats().occluder_pairs / 4);
         CHECK(full.stats().occluder_pairs_culled == 0);
+        CHECK(culled.stats().occluder_lookups < full.stats().occluder_lookups);
         for (size_t p = 0; p < a.parts.size(); ++p)
             for (size_t v = 0; v < a.parts[p].size(); ++v)
                 for (int ch = 0; ch < 3; ++ch)

@@ -1,0 +1,55 @@
+// The renderer's split OVDF lookup (src/render/ovdf_lookup.h) against the
+// field's own lookup, Ovdf::distance with aligned-coefficient blending, at
+// random receiver points (inside the inner shell, between shells, on cube-face
+// and PCA-segment seams, beyond the outer shell) and random lights.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "lightfit/rsl.h"
+#include "src/render/ovdf_lookup.h"
+#include "tests/render/render_test_scenes.h"
+
+namespace rsl {
+namespace {
+
+TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
+    // A box-like, asymmetric occluder: a stretched icosphere off the origin.
+    TriangleMesh mesh = test::make_icosphere(0.5f, 2, "blob");
+    for (Vec3& p : mesh.positions) p = Vec3(1.6f * p.x + 0.2f, 0.7f * p.y, p.z - 0.1f);
+    OvdfParams params;
+    params.shells = 4, params.cube_resolution = 8, params.vdt_resolution = 8, params.vectors = 4;
+    params.inner_radius = 0.5f, params.outer_radius = 5.0f;
+    const Ovdf field = bake_ovdf(mesh, params);
+    const OvdfLookup lookup(field);
+    REQUIRE(lookup.usable());
+
+    std::mt19937 rng{11};
+    std::normal_distribution<float> normal;
+    std::uniform_real_distribution<float> uniform(0, 1);
+    int fast = 0, slow = 0, outside = 0, shadowed = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const Vec3 dir = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+        const float distance = field.radius * params.outer_radius * 1.2f * uniform(rng);
+        const Vec3 point = field.center + distance * dir;
+        OvdfPoint q;
+        lookup.prepare(point, q);
+        fast += q.kind == OvdfPoint::Fast, slow += q.kind == OvdfPoint::Slow, outside += q.kind == OvdfPoint::Outside;
+        for (int l = 0; l < 4; ++l) {
+            // Lights biased towards the occluder so that many lookups see it.
+            const Vec3 light = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)) - 1.5f * dir);
+            const float expected = field.distance(point, light, OvdfBlend::AlignedCoefficients);
+            const float got = lookup.distance(q, point, light);
+            REQUIRE(got == Approx(expected).margin(2e-5f).epsilon(1e-5f));
+            shadowed += expected < 0.0f;
+        }
+    }
+    // Every kind of point occurred, and most lookups take the fast path.
+    CHECK(outside > 100);
+    CHECK(slow > 100);
+    CHECK(fast > 2 * slow);
+    CHECK(shadowed > 500);
+}
+
+}  // namespace
+}  // namespace rsl
