@@ -1,12 +1,12 @@
 #include "fields/field_file.h"
 
 #include <cstring>
-#include <fstream>
 
 #include <Imath/half.h>
 #include <nlohmann/json.hpp>
 
 #include "src/core/atomic_file.h"
+#include "src/core/binary_io.h"
 #include "src/core/error.h"
 
 namespace rsl {
@@ -16,48 +16,6 @@ using nlohmann::json;
 namespace {
 
 constexpr char kMagic[8] = {'R', 'S', 'L', 'F', 'I', 'E', 'L', 'D'};
-
-class ByteWriter {
-public:
-    template <typename T>
-    void put(const T& value) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        const char* p = reinterpret_cast<const char*>(&value);
-        bytes_.append(p, sizeof(T));
-    }
-    void put_bytes(const void* data, size_t n) { bytes_.append(static_cast<const char*>(data), n); }
-    std::string& bytes() { return bytes_; }
-
-private:
-    std::string bytes_;
-};
-
-class ByteReader {
-public:
-    ByteReader(const fs::path& path, const std::string& bytes, size_t end) : path_(path), bytes_(bytes), end_(end) {}
-    template <typename T>
-    T get() {
-        T value;
-        need(sizeof(T));
-        std::memcpy(&value, bytes_.data() + at_, sizeof(T));
-        at_ += sizeof(T);
-        return value;
-    }
-    void get_bytes(void* out, size_t n) {
-        need(n);
-        std::memcpy(out, bytes_.data() + at_, n);
-        at_ += n;
-    }
-    size_t position() const { return at_; }
-
-private:
-    void need(size_t n) {
-        if (at_ + n > end_) throw_file_error(path_, "truncated field file (payload ends early)");
-    }
-    const fs::path& path_;
-    const std::string& bytes_;
-    size_t at_ = 0, end_;
-};
 
 json to_json(const SvdfParams& p) {
     return {{"resolution", p.resolution}, {"supersampling", p.supersampling}, {"coarse_to_fine", p.coarse_to_fine},
@@ -110,7 +68,7 @@ OvdfParams ovdf_params_from(const json& j) {
     return p;
 }
 
-void put_model(ByteWriter& w, const CpcaModel& m, bool half_tables) {
+void put_model(BinaryWriter& w, const CpcaModel& m, bool half_tables) {
     w.put(int32_t(m.dims));
     w.put(int32_t(m.vectors));
     w.put(int32_t(m.clusters));
@@ -131,34 +89,32 @@ void put_model(ByteWriter& w, const CpcaModel& m, bool half_tables) {
 
 void write_field(const fs::path& path, FieldKind kind, uint64_t mesh, const std::string& params,
                  const Ovdf* ovdf, const CpcaModel& model, bool half_tables) {
-    ByteWriter w;
+    BinaryWriter w;
     w.put_bytes(kMagic, sizeof(kMagic));
     w.put(kFieldFormatVersion);
     w.put(uint32_t(kind));
     w.put(mesh);
     w.put(params_hash(params));
-    w.put(uint32_t(params.size()));
-    w.put_bytes(params.data(), params.size());
+    w.put_string(params);
     if (ovdf) {
         w.put(ovdf->center);
         w.put(ovdf->radius);
     }
     put_model(w, model, half_tables);
-    w.put(fnv1a64(w.bytes().data(), w.bytes().size()));
-    write_file_atomically(path, w.bytes());
+    write_file_atomically(path, w.finish_with_checksum());
 }
 
 // Checks magic, size, checksum and version; returns the header and leaves the
 // reader just after the parameters.
-FieldHeader parse_header(const fs::path& path, const std::string& bytes, ByteReader& r) {
+FieldHeader parse_header(const fs::path& path, const std::string& bytes, BinaryReader& r) {
     FieldHeader h;
     h.file_bytes = bytes.size();
     if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
         throw_file_error(path, "not an rsl field file (bad magic)");
     constexpr size_t kMinimum = 8 + 4 + 4 + 8 + 8 + 4 + 8;
     if (bytes.size() < kMinimum) throw_file_error(path, "truncated field file ({} bytes)", bytes.size());
-    std::memcpy(&h.checksum, bytes.data() + bytes.size() - 8, 8);
-    if (fnv1a64(bytes.data(), bytes.size() - 8) != h.checksum)
+    h.checksum = stored_checksum(bytes);
+    if (!has_valid_checksum(bytes))
         throw_file_error(path, "checksum mismatch: the field file is corrupt or truncated; re-run `rsl bake`");
     char magic[8];
     r.get_bytes(magic, 8);
@@ -172,8 +128,7 @@ FieldHeader parse_header(const fs::path& path, const std::string& bytes, ByteRea
     h.kind = FieldKind(kind);
     h.mesh_hash = r.get<uint64_t>();
     h.params_hash = r.get<uint64_t>();
-    h.params.resize(r.get<uint32_t>());
-    r.get_bytes(h.params.data(), h.params.size());
+    h.params = r.get_string("parameters");
     if (params_hash(h.params) != h.params_hash) throw_file_error(path, "parameter block does not match its hash");
     return h;
 }
@@ -191,7 +146,7 @@ void check_expectation(const fs::path& path, const FieldHeader& h, FieldKind kin
                          h.params, *e.params);
 }
 
-CpcaModel get_model(const fs::path& path, ByteReader& r, FieldHeader& h) {
+CpcaModel get_model(const fs::path& path, BinaryReader& r, FieldHeader& h) {
     CpcaModel m;
     m.dims = h.dims = r.get<int32_t>();
     m.vectors = h.vectors = r.get<int32_t>();
@@ -202,7 +157,15 @@ CpcaModel get_model(const fs::path& path, ByteReader& r, FieldHeader& h) {
         m.vectors > 1024 || size_t(m.clusters) > size_t(h.samples))
         throw_file_error(path, "implausible model sizes (dims {}, vectors {}, clusters {}, samples {})", m.dims,
                          m.vectors, m.clusters, h.samples);
-    m.tables.resize(size_t(m.clusters) * m.dims * (m.vectors + 1));
+    // Sizes must fit the bytes left before anything is allocated (a crafted
+    // header could otherwise ask for terabytes). Bounded above: no overflow.
+    const uint64_t tables = uint64_t(m.clusters) * uint64_t(m.dims) * uint64_t(m.vectors + 1);
+    const uint64_t payload = tables * (h.half_tables ? 2 : 4) + uint64_t(h.samples) * (m.clusters <= 65536 ? 2 : 4) +
+                             uint64_t(h.samples) * uint64_t(m.vectors) * 4;
+    if (payload > r.remaining())
+        throw_file_error(path, "truncated or corrupt: the model needs {} bytes, the file holds {}", payload,
+                         r.remaining());
+    m.tables.resize(tables);
     if (h.half_tables) {
         for (float& v : m.tables) {
             Imath::half x;
@@ -225,16 +188,27 @@ CpcaModel get_model(const fs::path& path, ByteReader& r, FieldHeader& h) {
     return m;
 }
 
-}  // namespace
+// The payload ends where the trailing checksum begins.
+size_t payload_end(const std::string& bytes) { return bytes.size() >= 8 ? bytes.size() - 8 : 0; }
 
-uint64_t fnv1a64(const void* data, size_t bytes, uint64_t hash) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < bytes; ++i) {
-        hash ^= p[i];
-        hash *= 0x100000001b3ull;
+// The file's parameters after checking it is the expected kind, mesh and
+// parameters (stale files are refused here).
+template <typename Params>
+Params expected_params(const fs::path& path, const FieldHeader& h, FieldKind kind, const FieldExpectation& expect,
+                       Params (*from_json)(const json&)) {
+    check_expectation(path, h, kind, expect);
+    try {
+        return from_json(json::parse(h.params));
+    } catch (const json::exception& e) {
+        throw_file_error(path, "bad parameter block: {}", e.what());
     }
-    return hash;
 }
+
+void check_fully_read(const fs::path& path, const BinaryReader& r) {
+    if (r.remaining() != 0) throw_file_error(path, "trailing bytes after the payload");
+}
+
+}  // namespace
 
 uint64_t mesh_hash(const TriangleMesh& mesh) {
     uint64_t h = fnv1a64(mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
@@ -258,7 +232,7 @@ void write_ovdf(const fs::path& path, const Ovdf& ovdf, uint64_t mesh) {
 
 FieldHeader read_field_header(const fs::path& path) {
     const std::string bytes = read_file(path);
-    ByteReader r(path, bytes, bytes.size() >= 8 ? bytes.size() - 8 : 0);
+    BinaryReader r(path, bytes, payload_end(bytes));
     FieldHeader h = parse_header(path, bytes, r);
     if (h.kind == FieldKind::Ovdf) {
         r.get<Vec3>();
@@ -270,40 +244,30 @@ FieldHeader read_field_header(const fs::path& path) {
 
 Svdf read_svdf(const fs::path& path, const FieldExpectation& expect) {
     const std::string bytes = read_file(path);
-    ByteReader r(path, bytes, bytes.size() >= 8 ? bytes.size() - 8 : 0);
+    BinaryReader r(path, bytes, payload_end(bytes));
     FieldHeader h = parse_header(path, bytes, r);
-    check_expectation(path, h, FieldKind::Svdf, expect);
     Svdf svdf;
-    try {
-        svdf.params = svdf_params_from(json::parse(h.params));
-    } catch (const json::exception& e) {
-        throw_file_error(path, "bad parameter block: {}", e.what());
-    }
+    svdf.params = expected_params(path, h, FieldKind::Svdf, expect, svdf_params_from);
     svdf.model = get_model(path, r, h);
     if (h.dims != svdf.params.resolution * svdf.params.resolution)
         throw_file_error(path, "table size {} does not match resolution {}", h.dims, svdf.params.resolution);
-    if (r.position() != bytes.size() - 8) throw_file_error(path, "trailing bytes after the payload");
+    check_fully_read(path, r);
     return svdf;
 }
 
 Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
     const std::string bytes = read_file(path);
-    ByteReader r(path, bytes, bytes.size() >= 8 ? bytes.size() - 8 : 0);
+    BinaryReader r(path, bytes, payload_end(bytes));
     FieldHeader h = parse_header(path, bytes, r);
-    check_expectation(path, h, FieldKind::Ovdf, expect);
     Ovdf ovdf;
-    try {
-        ovdf.params = ovdf_params_from(json::parse(h.params));
-    } catch (const json::exception& e) {
-        throw_file_error(path, "bad parameter block: {}", e.what());
-    }
+    ovdf.params = expected_params(path, h, FieldKind::Ovdf, expect, ovdf_params_from);
     ovdf.center = r.get<Vec3>();
     ovdf.radius = r.get<float>();
     ovdf.model = get_model(path, r, h);
     if (h.dims != ovdf.params.vdt_resolution * ovdf.params.vdt_resolution ||
         size_t(h.samples) != ovdf.params.sample_count() || h.clusters != ovdf.params.segment_count())
         throw_file_error(path, "model sizes do not match the OVDF parameters");
-    if (r.position() != bytes.size() - 8) throw_file_error(path, "trailing bytes after the payload");
+    check_fully_read(path, r);
     ovdf.prepare();
     return ovdf;
 }

@@ -23,6 +23,7 @@
 
 #include "fields/ovdf.h"
 #include "fields/svdf.h"
+#include "src/core/binary_io.h"  // fnv1a64
 #include "src/core/mesh.h"
 
 namespace rsl {
@@ -30,7 +31,6 @@ namespace rsl {
 inline constexpr uint32_t kFieldFormatVersion = 1;
 enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
 
-uint64_t fnv1a64(const void* data, size_t bytes, uint64_t hash = 0xcbf29ce484222325ull);
 // Positions, normals, tangents and indices: everything the tables depend on.
 uint64_t mesh_hash(const TriangleMesh& mesh);
 

@@ -3,9 +3,9 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 #include "src/core/atomic_file.h"
+#include "src/core/binary_io.h"
 #include "src/core/error.h"
 
 namespace rsl {
@@ -14,65 +14,6 @@ namespace {
 
 constexpr char kMagic[8] = {'R', 'S', 'L', 'V', 'T', 'X', 'C', '\0'};
 static_assert(sizeof(Color) == 3 * sizeof(float), "Color must be three packed floats");
-
-uint64_t fnv1a64(const char* data, size_t size) {
-    uint64_t hash = 0xcbf29ce484222325ull;
-    for (size_t i = 0; i < size; ++i) {
-        hash ^= uint8_t(data[i]);
-        hash *= 0x100000001b3ull;
-    }
-    return hash;
-}
-
-class Writer {
-public:
-    template <typename T>
-    void put(const T& value) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
-    }
-    void put_string(const std::string& s) {
-        put(uint32_t(s.size()));
-        bytes_ += s;
-    }
-    void put_raw(const void* data, size_t size) { bytes_.append(static_cast<const char*>(data), size); }
-    std::string& bytes() { return bytes_; }
-
-private:
-    std::string bytes_;
-};
-
-// Bounds-checked reads that name the file when it ends early.
-class Reader {
-public:
-    Reader(const std::filesystem::path& path, const std::string& bytes, size_t end)
-        : path_(path), bytes_(bytes), end_(end) {}
-    template <typename T>
-    T get(const char* what) {
-        T value;
-        get_raw(&value, sizeof(T), what);
-        return value;
-    }
-    std::string get_string(const char* what) {
-        const uint32_t size = get<uint32_t>(what);
-        if (size > remaining()) throw_file_error(path_, "truncated or corrupt: {} of {} bytes", what, size);
-        std::string s(bytes_.data() + pos_, size);
-        pos_ += size;
-        return s;
-    }
-    void get_raw(void* out, size_t size, const char* what) {
-        if (size > remaining()) throw_file_error(path_, "truncated or corrupt: file ends inside the {}", what);
-        std::memcpy(out, bytes_.data() + pos_, size);
-        pos_ += size;
-    }
-    size_t remaining() const { return end_ - pos_; }
-
-private:
-    const std::filesystem::path& path_;
-    const std::string& bytes_;
-    size_t end_;
-    size_t pos_ = 0;
-};
 
 }  // namespace
 
@@ -89,8 +30,8 @@ void VertexColors::add_part(const std::string& name, size_t vertices) {
 
 void write_vertex_colors(const std::filesystem::path& path, const VertexColors& colors) {
     RSL_CHECK_EQ(colors.part_names.size(), colors.parts.size());
-    Writer w;
-    w.put_raw(kMagic, sizeof(kMagic));
+    BinaryWriter w;
+    w.put_bytes(kMagic, sizeof(kMagic));
     w.put(kVertexColorsVersion);
     w.put_string(colors.scene_name);
     w.put_string(colors.producer);
@@ -100,9 +41,8 @@ void write_vertex_colors(const std::filesystem::path& path, const VertexColors& 
         w.put_string(colors.part_names[p]);
         w.put(uint64_t(colors.parts[p].size()));
     }
-    for (const auto& part : colors.parts) w.put_raw(part.data(), part.size() * sizeof(Color));
-    w.put(fnv1a64(w.bytes().data(), w.bytes().size()));
-    write_file_atomically(path, w.bytes());
+    for (const auto& part : colors.parts) w.put_bytes(part.data(), part.size() * sizeof(Color));
+    write_file_atomically(path, w.finish_with_checksum());
 }
 
 VertexColors read_vertex_colors(const std::filesystem::path& path) {
@@ -110,16 +50,14 @@ VertexColors read_vertex_colors(const std::filesystem::path& path) {
     if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
         throw_file_error(path, "not an rsl vertex-colour file (.rslv): wrong magic number");
     const size_t header_and_data = bytes.size() >= sizeof(kMagic) + 12 ? bytes.size() - sizeof(uint64_t) : 0;
-    Reader r(path, bytes, header_and_data);
+    BinaryReader r(path, bytes, header_and_data);
     char magic[sizeof(kMagic)];
-    r.get_raw(magic, sizeof(magic), "magic number");
+    r.get_bytes(magic, sizeof(magic), "magic number");
     const uint32_t version = r.get<uint32_t>("version");
     if (version != kVertexColorsVersion)
         throw_file_error(path, "vertex-colour file version {}, this build reads version {}", version,
                          kVertexColorsVersion);
-    uint64_t stored_checksum;
-    std::memcpy(&stored_checksum, bytes.data() + header_and_data, sizeof(stored_checksum));
-    if (stored_checksum != fnv1a64(bytes.data(), header_and_data))
+    if (!has_valid_checksum(bytes))
         throw_file_error(path, "checksum mismatch: the file is corrupt or truncated");
 
     VertexColors colors;
@@ -141,7 +79,7 @@ VertexColors read_vertex_colors(const std::filesystem::path& path) {
                          total * sizeof(Color), r.remaining());
     for (uint32_t p = 0; p < part_count; ++p) {
         auto& part = colors.parts.emplace_back(counts[p]);
-        r.get_raw(part.data(), counts[p] * sizeof(Color), "vertex data");
+        r.get_bytes(part.data(), counts[p] * sizeof(Color), "vertex data");
         for (size_t v = 0; v < part.size(); ++v)
             if (!std::isfinite(part[v].r) || !std::isfinite(part[v].g) || !std::isfinite(part[v].b))
                 throw_file_error(path, "non-finite colour at part '{}' vertex {}", colors.part_names[p], v);

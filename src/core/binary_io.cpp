@@ -1,0 +1,24 @@
+#include "src/core/binary_io.h"
+
+namespace rsl {
+
+uint64_t fnv1a64(const void* data, size_t bytes, uint64_t hash) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) {
+        hash ^= p[i];
+        hash *= 0x100000001b3ull;
+    }
+    return hash;
+}
+
+uint64_t stored_checksum(std::string_view bytes) {
+    uint64_t stored = 0;
+    if (bytes.size() >= sizeof(stored)) std::memcpy(&stored, bytes.data() + bytes.size() - sizeof(stored), sizeof(stored));
+    return stored;
+}
+
+bool has_valid_checksum(std::string_view bytes) {
+    return bytes.size() >= sizeof(uint64_t) && stored_checksum(bytes) == fnv1a64(bytes.data(), bytes.size() - sizeof(uint64_t));
+}
+
+}  // namespace rsl
