@@ -15,6 +15,14 @@
 
 namespace rsl {
 
+OvdfZoom ovdf_zoom(float distance, float radius) {
+    OvdfZoom z;
+    if (distance <= radius) return z;  // inside the bounding sphere: the whole square, no cone
+    z.cone = std::sqrt(2.0f) * std::sin(0.5f * std::asin(radius / distance));
+    z.zoom = std::max(1.0f, kOvdfZoomEdge / z.cone);
+    return z;
+}
+
 void Ovdf::prepare() {
     const OvdfParams& p = params;
     RSL_CHECK_GE(p.shells, 2);
@@ -34,6 +42,8 @@ void Ovdf::prepare() {
         }
         shell_radii_[s] = r * radius;
     }
+    shell_zoom_.resize(p.shells);
+    for (int s = 0; s < p.shells; ++s) shell_zoom_[s] = ovdf_zoom(shell_radii_[s], radius);
     // Face axes from the cube-map convention: face_direction(f, s, t) ∝ N + s·S + t·T.
     const float root2 = std::sqrt(2.0f);
     for (int f = 0; f < 6; ++f) {
@@ -77,10 +87,12 @@ Vec3 Ovdf::sample_position(int shell, int face, int i, int j) const {
 }
 
 float Ovdf::sample_distance(int sample, const Vec2& p) const {
-    const BilinearTaps taps = bilinear_taps(params.vdt_resolution, p);
+    const int n = params.cube_resolution;
+    const OvdfZoom& zoom = shell_zoom_[sample / (6 * n * n)];
+    const BilinearTaps taps = bilinear_taps(params.vdt_resolution, zoom.zoom * p);
     float d = 0;
     for (int k = 0; k < 4; ++k) d += taps.weight[k] * model.reconstruct(sample, taps.index[k]);
-    return d;
+    return ovdf_plane_distance(d, zoom, glm::length(p));
 }
 
 float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_edge, OvdfBlend blend) const {
@@ -112,12 +124,15 @@ float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) cons
 
     // The receiver's own pole frame, twisted by the face rule like its samples.
     const Frame aligned = Frame::from_normal_tangent(-dir, face_s_[face]);
-    const BilinearTaps taps = bilinear_taps(params.vdt_resolution, lookup_plane_point(aligned.to_local(light)));
+    const Vec2 plane = lookup_plane_point(aligned.to_local(light));
+    const float radial = glm::length(plane);
     float distance = 0;
     for (int k = 0; k < 2; ++k) {
         const int shell = s0 + k;
         const float ws = k == 0 ? 1.0f - fs : fs;
         if (ws == 0.0f) continue;
+        const OvdfZoom& zoom = shell_zoom_[shell];
+        const BilinearTaps taps = bilinear_taps(params.vdt_resolution, zoom.zoom * plane);
         const int segment = segment_of(shell, face, ii[0], jj[0]);
         const bool one_segment = segment == segment_of(shell, face, ii[3], jj[3]);
         if (blend == OvdfBlend::AlignedCoefficients && one_segment && model.vectors <= 32) {
@@ -135,15 +150,17 @@ float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) cons
                 for (int m = 0; m < model.vectors; ++m) r += coefficients[m] * row[m + 1];
                 value += taps.weight[t] * r;
             }
-            distance += ws * value;
+            distance += ws * ovdf_plane_distance(value, zoom, radial);
         } else if (blend != OvdfBlend::SampleFrames) {
+            float blended = 0;  // table units: the bound applies to the shell's blend, as above
             for (int q = 0; q < 4; ++q) {
                 if (w[q] == 0.0f) continue;
                 const int sample = sample_index(shell, face, ii[q], jj[q]);
                 float value = 0;
                 for (int t = 0; t < 4; ++t) value += taps.weight[t] * model.reconstruct(sample, taps.index[t]);
-                distance += ws * w[q] * value;
+                blended += w[q] * value;
             }
+            distance += ws * ovdf_plane_distance(blended, zoom, radial);
         } else {
             for (int q = 0; q < 4; ++q) {
                 if (w[q] == 0.0f) continue;
@@ -155,6 +172,83 @@ float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) cons
     }
     return distance;
 }
+
+namespace {
+
+// Local ray directions of one shell's zoomed table: table point p′ looks
+// along plane_to_hemisphere(p′ / zoom). Texels beyond the traced radius are
+// visible; texels whose center ray differs from a 4-neighbour's get k×k rays.
+struct ZoomedSampling {
+    int n = 0, k = 1;
+    std::vector<int> traced;           // texels with a center ray
+    std::vector<Vec3> centers;         // per traced texel
+    std::vector<Vec3> subsamples;      // per texel k×k (filled for traced texels)
+};
+
+ZoomedSampling zoomed_sampling(int n, int k, const OvdfZoom& zoom) {
+    ZoomedSampling z;
+    z.n = n, z.k = k;
+    const float texel = 2.0f / float(n);
+    // Inside the bounding sphere (no cone) the whole square, √2 and beyond included.
+    const float max_radius = zoom.cone >= kOvdfNoCone ? 1.5f : std::min(1.5f, zoom.zoom * zoom.cone + 1.5f * texel);
+    const auto direction = [&](float x, float y) { return plane_to_hemisphere(Vec2(x, y) / zoom.zoom); };
+    z.subsamples.resize(size_t(n) * n * k * k);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const float x = -1.0f + (i + 0.5f) * texel, y = -1.0f + (j + 0.5f) * texel;
+            if (x * x + y * y > max_radius * max_radius) continue;
+            const int t = j * n + i;
+            z.traced.push_back(t);
+            z.centers.push_back(direction(x, y));
+            for (int b = 0; b < k; ++b)
+                for (int a = 0; a < k; ++a)
+                    z.subsamples[size_t(t) * k * k + b * k + a] =
+                        direction(-1.0f + (i + (a + 0.5f) / k) * texel, -1.0f + (j + (b + 0.5f) / k) * texel);
+        }
+    return z;
+}
+
+struct ZoomedScratch {
+    std::vector<Vec3> world_dirs;
+    std::vector<uint8_t> hits;
+    std::vector<int> boundary;
+    std::vector<float> coverage;
+    VdtWorkspace vdt;
+};
+
+// Coverage (visible fractions) of the zoomed table seen from `origin` in `frame`.
+void trace_zoomed_coverage(const RayScene& scene, const ZoomedSampling& z, const Vec3& origin, const Frame& frame,
+                           ZoomedScratch& scratch) {
+    constexpr float kFar = 1e30f;
+    const int n = z.n, kk = z.k * z.k, count = int(z.traced.size());
+    std::fill(scratch.coverage.begin(), scratch.coverage.end(), 1.0f);
+    scratch.world_dirs.resize(std::max<size_t>(count, size_t(count) * kk));
+    scratch.hits.resize(scratch.world_dirs.size());
+    for (int c = 0; c < count; ++c) scratch.world_dirs[c] = frame.to_world(z.centers[c]);
+    scene.occluded_batch(origin, scratch.world_dirs.data(), count, 0.0f, kFar, scratch.hits.data());
+    for (int c = 0; c < count; ++c) scratch.coverage[z.traced[c]] = scratch.hits[c] ? 1.0f : 0.0f;
+    if (kk == 1) return;
+    scratch.boundary.clear();
+    for (int t : z.traced) {
+        const int i = t % n, j = t / n;
+        const float v = scratch.coverage[t];
+        const auto differs = [&](int s) { return scratch.coverage[s] != v; };
+        if ((i > 0 && differs(t - 1)) || (i + 1 < n && differs(t + 1)) || (j > 0 && differs(t - n)) ||
+            (j + 1 < n && differs(t + n)))
+            scratch.boundary.push_back(t);
+    }
+    int total = 0;
+    for (int t : scratch.boundary)
+        for (int s = 0; s < kk; ++s) scratch.world_dirs[total++] = frame.to_world(z.subsamples[size_t(t) * kk + s]);
+    scene.occluded_batch(origin, scratch.world_dirs.data(), total, 0.0f, kFar, scratch.hits.data());
+    for (size_t b = 0; b < scratch.boundary.size(); ++b) {
+        int visible = 0;
+        for (int s = 0; s < kk; ++s) visible += scratch.hits[b * kk + s];
+        scratch.coverage[scratch.boundary[b]] = float(visible) / float(kk);
+    }
+}
+
+}  // namespace
 
 Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats* stats,
                const std::function<void(double)>& progress) {
@@ -171,20 +265,13 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats
     scene.add_instance(scene.add_mesh(mesh), Mat4(1.0f));
     scene.commit();
 
-    // One sampling pattern per shell: rays only towards the part's bounding
-    // cone (plus a texel of margin); everything outside it is visible.
+    // One sampling pattern per shell, over its zoomed table: rays only
+    // towards the part's bounding cone (plus a texel and a half of margin);
+    // everything outside it is visible.
     const int nv = params.vdt_resolution, dims = nv * nv;
-    const float texel = 2.0f / float(nv);
-    std::vector<std::unique_ptr<HemisphereSampling>> samplings;
-    for (int s = 0; s < params.shells; ++s) {
-        const float ratio = ovdf.radius / ovdf.shell_radius(s);
-        float max_radius = 1.5f;  // inside the bounding sphere: the whole square
-        if (ratio < 1.0f) {
-            const float cone = std::asin(ratio);
-            max_radius = std::min(1.5f, std::sqrt(2.0f) * std::sin(0.5f * cone) + 1.5f * texel);
-        }
-        samplings.push_back(std::make_unique<HemisphereSampling>(nv, params.supersampling, true, max_radius));
-    }
+    std::vector<ZoomedSampling> samplings;
+    for (int s = 0; s < params.shells; ++s)
+        samplings.push_back(zoomed_sampling(nv, params.supersampling, ovdf.shell_zoom(s)));
 
     const int n = params.cube_resolution, m = params.segments_per_side, side = n / m;
     const int segments = params.segment_count();
@@ -203,12 +290,12 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats
         for (int j = sj * side; j < (sj + 1) * side; ++j)
             for (int i = si * side; i < (si + 1) * side; ++i) samples.push_back(ovdf.sample_index(shell, face, i, j));
         std::vector<float> tables(samples.size() * dims);
-        VisibilityScratch scratch;
+        ZoomedScratch scratch;
         scratch.coverage.resize(dims);
         for (size_t k = 0; k < samples.size(); ++k) {
             const int i = si * side + int(k) % side, j = sj * side + int(k) / side;
-            trace_coverage(scene, *samplings[shell], ovdf.sample_position(shell, face, i, j),
-                           ovdf.sample_frame(face, i, j), BelowHorizon::Visible, scratch, scratch.coverage.data());
+            trace_zoomed_coverage(scene, samplings[shell], ovdf.sample_position(shell, face, i, j),
+                                  ovdf.sample_frame(face, i, j), scratch);
             compute_vdt(nv, scratch.coverage.data(), tables.data() + k * dims, params.mode, scratch.vdt);
         }
         CpcaModel local;

@@ -12,7 +12,22 @@
 // agree up to the angle between them; it jumps at face edges, where blending
 // reads each sample in its own frame anyway (docs/FIELDS.md).
 //
+// Zoomed tables: seen from a sample at distance d > R, the part lies within
+// the cone of half-angle asin(R/d) around the pole, the disk |p| < e(d) =
+// √2·sin(½·asin(R/d)) of the equal-area plane. Each shell's tables cover the
+// plane scaled by its zoom k = max(1, kOvdfZoomEdge / e) (table point k·p),
+// so that the part fills the table at every distance instead of shrinking to
+// a texel or less (a thin limb a few R away vanished from an unzoomed 16²
+// table). The cone edge maps to kOvdfZoomEdge, leaving a visible margin whose
+// texels hold positive distances. A stored distance D′ (table units) is D′/k
+// in plane units (the VDT rule ½ + D/2h is invariant under the uniform
+// scale); outside the table, where the held edge value would be too small,
+// the cone gives the lower bound D ≥ |p| − e (the occluded set lies in the
+// disk), so each shell's distance is max(D′/k, |p| − e). Inside the bounding
+// sphere (d ≤ R) k = 1 and there is no bound.
+//
 // Lookups run in the occluder's frame (the part's own coordinates).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -22,6 +37,23 @@
 #include "src/core/mesh.h"
 
 namespace rsl {
+
+// Where the bounding cone's edge lies in a zoomed table ([-1, 1]²).
+inline constexpr float kOvdfZoomEdge = 0.75f;
+// The cone radius used where there is no cone (d ≤ R): the bound never binds.
+inline constexpr float kOvdfNoCone = 1e6f;
+
+struct OvdfZoom {
+    float zoom = 1;             // table point = zoom × plane point
+    float cone = kOvdfNoCone;   // plane radius of the bounding cone's edge
+};
+// The zoom of tables sampled at distance `distance` from a part of bounding radius `radius`.
+OvdfZoom ovdf_zoom(float distance, float radius);
+
+// A shell's distance in plane units from its table value (table units) at plane point of radius `radial`.
+inline float ovdf_plane_distance(float table_distance, const OvdfZoom& z, float radial) {
+    return std::max(table_distance / z.zoom, radial - z.cone);
+}
 
 enum class ShellSpacing : uint8_t { Geometric = 0, Linear = 1, InverseRadius = 2 };
 
@@ -75,6 +107,7 @@ public:
     void prepare();
 
     float shell_radius(int shell) const { return shell_radii_[shell]; }
+    const OvdfZoom& shell_zoom(int shell) const { return shell_zoom_[shell]; }
     // Continuous shell index of a distance (linear in the spacing's coordinate).
     float shell_coordinate(float distance) const;
     int sample_index(int shell, int face, int i, int j) const {
@@ -97,11 +130,13 @@ public:
     // The blended signed distance (plane units) that visible_fraction uses.
     float distance(const Vec3& point, const Vec3& light, OvdfBlend blend = OvdfBlend::AlignedCoefficients) const;
 
-    // Distance of sample `sample`'s reconstructed VDT at plane point p.
+    // Distance (plane units) of sample `sample`'s reconstructed VDT at plane
+    // point p (its shell's zoom and cone bound applied).
     float sample_distance(int sample, const Vec2& p) const;
 
 private:
     std::vector<float> shell_radii_;
+    std::vector<OvdfZoom> shell_zoom_;
     std::vector<Frame> frames_;                 // per (face, i, j)
     std::array<Vec3, 6> face_normal_{}, face_s_{}, face_t_{};
 };

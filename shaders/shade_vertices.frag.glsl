@@ -234,14 +234,17 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     // plane point for all eight samples.
     vec3 local = to_local(frame_rows(-dir, u_face_s[face]), light);
     vec2 lp = local.z < -0.9999 ? vec2(1.5) : hemisphere_to_plane(local);  // lookup_plane_point
-    ivec4 index;
-    vec4 weight;
-    bilinear_taps(vdt_n, lp, index, weight);
+    float radial = length(lp);
     float distance = 0.0;
     for (int k = 0; k < 2; ++k) {
         int shell = s0 + k;
         float ws = k == 0 ? 1.0 - fs : fs;
         if (ws == 0.0) continue;
+        // The shell's zoomed table (fields/ovdf.h OvdfZoom): (zoom, cone), after the frames.
+        vec2 zoom = fetch(u_ovdf_frames, int(bases.z) + 12 * n * n + shell).xy;
+        ivec4 index;
+        vec4 weight;
+        bilinear_taps(vdt_n, zoom.x * lp, index, weight);
         int base = (shell * 6 + face) * m;
         int segment = (base + jj[0] * m / n) * m + ii[0] * m / n;
         if (segment == (base + jj[3] * m / n) * m + ii[3] * m / n) {
@@ -255,8 +258,9 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
             c[0].x = 1.0;  // the mean's weight (the blend weights sum to 1)
             float value = 0.0;
             for (int t = 0; t < 4; ++t) value += weight[t] * ovdf_row(tables, stride, dims, segment, index[t], c);
-            distance += ws * value;
+            distance += ws * max(value / zoom.x, radial - zoom.y);  // ovdf_plane_distance
         } else {  // the four samples straddle segments: four reconstructions
+            float blended = 0.0;
             for (int q = 0; q < 4; ++q) {
                 if (w[q] == 0.0) continue;
                 int sample = ((shell * 6 + face) * n + jj[q]) * n + ii[q];
@@ -265,8 +269,9 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
                 for (int t = 0; t < stride; ++t) c[t] = fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
                 float value = 0.0;
                 for (int t = 0; t < 4; ++t) value += weight[t] * ovdf_row(tables, stride, dims, sample_segment, index[t], c);
-                distance += ws * w[q] * value;
+                blended += w[q] * value;
             }
+            distance += ws * max(blended / zoom.x, radial - zoom.y);
         }
     }
     return visible_fraction_from_distance(distance, h);

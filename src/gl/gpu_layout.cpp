@@ -122,6 +122,8 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
                     g.ovdf_frames.push_back(Vec4(frame.x, 0.0f));
                     g.ovdf_frames.push_back(Vec4(frame.z, 0.0f));
                 }
+        for (int shell = 0; shell < op.shells; ++shell)  // after the frames: (zoom, cone, 0, 0)
+            g.ovdf_frames.push_back(Vec4(o.shell_zoom(shell).zoom, o.shell_zoom(shell).cone, 0.0f, 0.0f));
         record[kSlotOvdfCenter] = Vec4(o.center, o.radius);
         record[kSlotOvdfBases] = Vec4(float(tables), float(coefficients), float(frames), o.shell_radius(op.shells - 1));
         record[kSlotOvdfShells] = Vec4(float(op.shells), float(int(op.spacing)), op.inner_radius, op.outer_radius);

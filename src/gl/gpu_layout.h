@@ -14,7 +14,8 @@
 //  SVDF / OVDF tables: per (cluster, texel) `stride` texels = [μ, b₀ … b_{k−1}] padded
 //  SVDF / OVDF coefficients: per vertex / sample `stride` texels = [1, w₀ … w_{k−1}] padded,
 //    so a reconstruction is Σ_t dot(table_t, coefficients_t)
-//  OVDF sample frames: per (face, i, j) two texels, x and z (y = z × x)
+//  OVDF sample frames: per (face, i, j) two texels, x and z (y = z × x); then
+//    per shell one texel (table zoom, cone radius, 0, 0) (fields/ovdf.h OvdfZoom)
 //  BRDF: one 3D texture (N+1)×(N+1)×slices of SAT corners (sat_data() order),
 //    all tables stacked along z; per slice its mean offset (RGB)
 #include <array>

@@ -60,6 +60,7 @@ void OvdfLookup::prepare(const Vec3& point, OvdfPoint& out) const {
         }
         out.row_offset[k] = int(size_t(segment) * dims_ * (vectors_ + 1));
         out.mean_weight[k] = ws;
+        out.zoom[k] = f.shell_zoom(shell);
         float* c = out.coefficients[k];
         for (int m = 0; m < vectors_; ++m) c[m] = 0.0f;
         if (ws == 0.0f) continue;

@@ -27,6 +27,7 @@ struct OvdfPoint {
     int row_offset[2] = {0, 0};  // per bracketing shell: start of its segment's table
     Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};  // the aligned pole frame
     float mean_weight[2] = {0, 0};             // the shell weight (multiplies the mean row)
+    OvdfZoom zoom[2];                          // per bracketing shell: its table zoom and cone
     float coefficients[2][kMaxVectors];        // blended coefficients × shell weight
 };
 
@@ -46,27 +47,32 @@ public:
         if (q.kind == OvdfPoint::Slow) return field_->distance(point, light, OvdfBlend::AlignedCoefficients);
         const Vec3 local(glm::dot(light, q.x), glm::dot(light, q.y), glm::dot(light, q.z));
         const Vec2 p = lookup_plane_point(local);
-        // bilinear_taps (fields/vdt.cpp), inline.
-        const int n = vdt_resolution_;
+        const float radial = std::sqrt(p.x * p.x + p.y * p.y);
+        const int n = vdt_resolution_, stride = vectors_ + 1;
         const float hi = float(n - 1);
-        const float u = std::clamp((p.x + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
-        const float v = std::clamp((p.y + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
-        const int i0 = std::min(int(u), n - 2), j0 = std::min(int(v), n - 2);
-        const float fx = u - float(i0), fy = v - float(j0);
-        const int base = j0 * n + i0;
-        const int index[4] = {base, base + 1, base + n, base + n + 1};
-        const float weight[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-        const int stride = vectors_ + 1;
         float distance = 0;
         for (int k = 0; k < 2; ++k) {
+            if (q.mean_weight[k] == 0.0f) continue;
+            // bilinear_taps (fields/vdt.cpp) at the shell's zoomed table point, inline.
+            const float zoom = q.zoom[k].zoom;
+            const float u = std::clamp((zoom * p.x + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
+            const float v = std::clamp((zoom * p.y + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
+            const int i0 = std::min(int(u), n - 2), j0 = std::min(int(v), n - 2);
+            const float fx = u - float(i0), fy = v - float(j0);
+            const int base = j0 * n + i0;
+            const int index[4] = {base, base + 1, base + n, base + n + 1};
+            const float weight[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
             const float* table = tables_ + q.row_offset[k];
             const float* c = q.coefficients[k];
+            float value = 0;  // × shell weight, table units
             for (int t = 0; t < 4; ++t) {
                 const float* row = table + size_t(index[t]) * stride;
                 float r = q.mean_weight[k] * row[0];
                 for (int m = 0; m < vectors_; ++m) r += c[m] * row[m + 1];
-                distance += weight[t] * r;
+                value += weight[t] * r;
             }
+            // ovdf_plane_distance, scaled by the (positive) shell weight.
+            distance += std::max(value / zoom, q.mean_weight[k] * (radial - q.zoom[k].cone));
         }
         return distance;
     }
