@@ -17,10 +17,10 @@
 
 namespace rsl::test {
 
-// A fresh, empty folder `name` inside this process's scratch folder. ctest
-// runs test cases as separate processes, several builds may run the suite at
-// once, so the scratch folder carries the process id; it is removed when the
-// test program exits.
+// The folder `name` (created if needed) inside this process's scratch folder.
+// ctest runs test cases as separate processes and several builds may run the
+// suite at once, so the scratch folder carries the process id; it is removed
+// when the test program exits. Test cases use names of their own.
 inline std::filesystem::path scratch_dir(const std::string& name) {
     static const struct Scratch {
         std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("rsl_test_{}", ::getpid());
@@ -30,7 +30,6 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
         }
     } scratch;
     const std::filesystem::path dir = scratch.dir / name;
-    std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
 }
@@ -42,6 +41,17 @@ inline void write_text(const std::filesystem::path& path, const std::string& tex
 inline std::string read_bytes(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The message of the rsl::Error that f() throws; empty when it throws none.
+template <typename F>
+std::string error_of(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
 }
 
 // Runs a shell command; returns its exit status (-1 when it did not run or

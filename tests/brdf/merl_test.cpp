@@ -11,18 +11,13 @@
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "tests/brdf/brdf_test_util.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 using namespace rsl::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path scratch_dir() {
-    const fs::path dir = fs::path(RSL_BINARY_DIR) / "test_scratch" / "merl";
-    fs::create_directories(dir);
-    return dir;
-}
 
 // Directions whose Rusinkiewicz coordinates are (θ_h, θ_d, φ_d), φ_h = 0.
 std::pair<Vec3, Vec3> from_half_diff(double theta_h, double theta_d, double phi_d) {
@@ -63,7 +58,7 @@ TEST_CASE("MERL layout: channel-major, φ_d fastest, √θ_h index, channel scal
 }
 
 TEST_CASE("MERL: a tabulated analytic BRDF is reproduced away from grazing", "[brdf][merl]") {
-    const fs::path file = scratch_dir() / "ggx.binary";
+    const fs::path file = scratch_dir("merl") / "ggx.binary";
     auto analytic =
         make_brdf(material("cook_torrance_ggx", {{"kd", {0.4f, 0.3f, 0.2f}}, {"f0", {0.9f, 0.6f, 0.3f}}, {"roughness", {0.35f}}}));
     MerlBrdf::save(file, MerlBrdf::tabulate(*analytic));
@@ -94,7 +89,7 @@ TEST_CASE("MERL: a tabulated analytic BRDF is reproduced away from grazing", "[b
 }
 
 TEST_CASE("MERL: wrong dimensions, truncated or oversized files are refused, naming the file", "[brdf][merl]") {
-    const fs::path dir = scratch_dir();
+    const fs::path dir = scratch_dir("merl");
     auto expect_error = [](const fs::path& path, const std::string& needle) {
         try {
             MerlBrdf::load(path);

@@ -4,13 +4,13 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
 
 TEST_CASE("atomic write leaves no partial file on failure", "[atomic]") {
-    fs::path dir = fs::temp_directory_path() / "rsl_atomic_test";
-    fs::remove_all(dir);
+    const fs::path dir = test::scratch_dir("atomic") / "created";  // write_atomically creates it
     fs::path target = dir / "out.bin";
     write_file_atomically(target, "first");
     CHECK(read_file(target) == "first");
@@ -25,5 +25,4 @@ TEST_CASE("atomic write leaves no partial file on failure", "[atomic]") {
     for (auto& e : fs::directory_iterator(dir)) { (void)e; ++files; }
     CHECK(files == 1);  // no temporary left behind
     CHECK_THROWS_WITH(read_file(dir / "missing"), Catch::Contains("missing"));
-    fs::remove_all(dir);
 }

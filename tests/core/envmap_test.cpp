@@ -14,6 +14,7 @@
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
@@ -49,13 +50,6 @@ Image constant_latlong(int w, int h, Color value) {
 
 // A smooth, strictly positive test function of direction.
 Color smooth(const Vec3& d) { return Color(1.5f + d.x, 1.5f + d.y * d.z, 1.2f + 0.8f * d.z * d.z - 0.3f * d.y); }
-
-fs::path test_dir(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("rsl_envmap_test_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 }  // namespace
 
@@ -268,7 +262,7 @@ TEST_CASE("Energy of the real probes is preserved at N = 32, 64, 128", "[envmap]
 }
 
 TEST_CASE("A bright pixel survives EXR file → load → resample → lookup", "[envmap][files]") {
-    const fs::path dir = test_dir("load");
+    const fs::path dir = test::scratch_dir("envmap_load");
     Image image = constant_latlong(128, 64, Color(0.1f));
     const int x = 37, y = 20;
     image.set_rgb(x, y, Color(5000.0f));
@@ -310,7 +304,7 @@ TEST_CASE("OpenEXR cube strips map to the right directions", "[envmap][strip]") 
         REQUIRE(glm::length(coarse.radiance(k) - smooth(coarse.texel_direction(k))) < 0.05f);
 
     // Files: by the envmap attribute, and by the 1:6 shape when it is absent.
-    const fs::path dir = test_dir("strip");
+    const fs::path dir = test::scratch_dir("envmap_strip");
     write_exr(dir / "cube.exr", strip, ExrWriteOptions{.envmap = EnvmapKind::Cube});
     write_exr(dir / "plain.exr", strip);
     for (const char* name : {"cube.exr", "plain.exr"}) {
@@ -369,7 +363,7 @@ TEST_CASE("cube_to_latlong inverts cube_from_latlong on smooth maps", "[envmap][
 }
 
 TEST_CASE("Environment files of the wrong shape or content are refused by name", "[envmap][bad]") {
-    const fs::path dir = test_dir("bad");
+    const fs::path dir = test::scratch_dir("envmap_bad");
     write_exr(dir / "square.exr", constant_latlong(32, 32, Color(1.0f)));
     CHECK_THROWS_WITH(load_environment(dir / "square.exr", 32),
                       Catch::Contains("square.exr") && Catch::Contains("32×32"));

@@ -23,17 +23,7 @@ using Json = nlohmann::json;
 
 namespace {
 
-// Per-process scratch folders (several builds may run the suite at once),
-// removed when the test program exits.
-std::filesystem::path temp_dir(const std::string& name) {
-    static const struct Scratch {
-        std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("rsl_gltf_test_{}", ::getpid());
-        ~Scratch() { std::error_code ignored; std::filesystem::remove_all(dir, ignored); }
-    } scratch;
-    const auto dir = scratch.dir / name;
-    std::filesystem::create_directories(dir);
-    return dir;
-}
+std::filesystem::path temp_dir(const std::string& name) { return test::scratch_dir("gltf_" + name); }
 
 // Writes glTF files by hand (JSON + one binary buffer), independently of the
 // loader under test.

@@ -27,18 +27,12 @@
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path test_dir(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("rsl_image_test_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 Image random_image(int w, int h, int c, unsigned seed) {
     std::mt19937 rng(seed);
@@ -138,7 +132,7 @@ void check_decoded(const Image& image, const std::vector<Rgbe>& pixels) {
 }  // namespace
 
 TEST_CASE("EXR round trip keeps float pixels exactly, RGB and RGBA", "[image][exr]") {
-    const fs::path dir = test_dir("exr_float");
+    const fs::path dir = test::scratch_dir("image_exr_float");
     for (int channels : {3, 4}) {
         const Image image = random_image(37, 19, channels, 7 + channels);
         const fs::path path = dir / fmt::format("float{}.exr", channels);
@@ -155,7 +149,7 @@ TEST_CASE("EXR round trip keeps float pixels exactly, RGB and RGBA", "[image][ex
 }
 
 TEST_CASE("EXR half files read back within half precision", "[image][exr]") {
-    const fs::path dir = test_dir("exr_half");
+    const fs::path dir = test::scratch_dir("image_exr_half");
     for (int channels : {3, 4}) {
         const Image image = random_image(16, 9, channels, 3);
         const fs::path path = dir / "half.exr";
@@ -174,7 +168,7 @@ TEST_CASE("EXR half files read back within half precision", "[image][exr]") {
 }
 
 TEST_CASE("Radiance RGBE: RLE and flat scanlines decode to Radiance's values", "[image][hdr]") {
-    const fs::path dir = test_dir("hdr");
+    const fs::path dir = test::scratch_dir("image_hdr");
     const int w = 70, h = 5;
     const std::vector<Rgbe> pixels = random_rgbe(w, h, 11);
     for (bool rle : {true, false}) {
@@ -192,7 +186,7 @@ TEST_CASE("Radiance RGBE: RLE and flat scanlines decode to Radiance's values", "
 }
 
 TEST_CASE("Radiance EXPOSURE header divides the stored values", "[image][hdr]") {
-    const fs::path dir = test_dir("hdr_exposure");
+    const fs::path dir = test::scratch_dir("image_hdr_exposure");
     std::vector<Rgbe> pixels(8 * 2, Rgbe{128, 64, 32, 129});
     std::string bytes = encode_radiance(8, 2, pixels, true);
     bytes.insert(bytes.find("\n\n") + 1, "EXPOSURE=2.0\n");
@@ -203,7 +197,7 @@ TEST_CASE("Radiance EXPOSURE header divides the stored values", "[image][hdr]") 
 }
 
 TEST_CASE("Bad Radiance files give errors naming the file and the scanline", "[image][hdr][bad]") {
-    const fs::path dir = test_dir("hdr_bad");
+    const fs::path dir = test::scratch_dir("image_hdr_bad");
     const int w = 32, h = 4;
     const std::string good = encode_radiance(w, h, random_rgbe(w, h, 5), true);
     auto expect_error = [&](const std::string& name, const std::string& bytes, const std::string& words) {
@@ -236,7 +230,7 @@ TEST_CASE("Bad Radiance files give errors naming the file and the scanline", "[i
 }
 
 TEST_CASE("Corrupt, mislabeled and non-RGB EXR files are refused by name", "[image][exr][bad]") {
-    const fs::path dir = test_dir("exr_bad");
+    const fs::path dir = test::scratch_dir("image_exr_bad");
     const Image image = random_image(64, 64, 3, 1);
     write_exr(dir / "good.exr", image);
     const std::string bytes = read_file(dir / "good.exr");
@@ -278,7 +272,7 @@ TEST_CASE("Corrupt, mislabeled and non-RGB EXR files are refused by name", "[ima
 }
 
 TEST_CASE("NaN, infinite and negative radiance are refused with the pixel position", "[image][bad]") {
-    const fs::path dir = test_dir("nan");
+    const fs::path dir = test::scratch_dir("image_nan");
     struct Case {
         float value;
         const char* word;
@@ -295,7 +289,7 @@ TEST_CASE("NaN, infinite and negative radiance are refused with the pixel positi
 }
 
 TEST_CASE("Failed writes leave no partial output", "[image][bad]") {
-    const fs::path dir = test_dir("partial");
+    const fs::path dir = test::scratch_dir("image_partial");
     CHECK_THROWS_WITH(write_exr(dir / "empty.exr", Image()), Catch::Contains("empty.exr"));
     CHECK_THROWS_WITH(write_png(dir / "empty.png", Image()), Catch::Contains("empty.png"));
     Image two_channels(4, 4, 2);
@@ -308,7 +302,7 @@ TEST_CASE("Failed writes leave no partial output", "[image][bad]") {
 }
 
 TEST_CASE("PNG previews are tone mapped sRGB with optional alpha", "[image][png]") {
-    const fs::path dir = test_dir("png");
+    const fs::path dir = test::scratch_dir("image_png");
     CHECK(linear_to_srgb8(0.0f) == 0);
     CHECK(linear_to_srgb8(1.0f) == 255);
     CHECK(linear_to_srgb8(0.5f) == 188);  // 1.055·0.5^(1/2.4) − 0.055 = 0.7354

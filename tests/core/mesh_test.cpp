@@ -15,20 +15,11 @@ using namespace rsl;
 
 namespace {
 
-// Per-process scratch folder (several builds may run the suite at once),
-// removed when the test program exits.
-std::filesystem::path temp_dir() {
-    static const struct Scratch {
-        std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("rsl_mesh_test_{}", ::getpid());
-        Scratch() { std::filesystem::create_directories(dir); }
-        ~Scratch() { std::error_code ignored; std::filesystem::remove_all(dir, ignored); }
-    } scratch;
-    return scratch.dir;
-}
+std::filesystem::path temp_dir() { return test::scratch_dir("mesh"); }
 
 std::filesystem::path write_file(const std::string& name, const std::string& text) {
     const auto path = temp_dir() / name;
-    std::ofstream(path, std::ios::binary) << text;
+    test::write_text(path, text);
     return path;
 }
 

@@ -11,24 +11,14 @@
 
 #include "src/core/error.h"
 #include "src/core/scene.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 
 namespace {
 
-// Per-process scratch folders (several builds may run the suite at once),
-// removed when the test program exits.
-std::filesystem::path temp_dir(const std::string& name) {
-    static const struct Scratch {
-        std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("rsl_scene_test_{}", ::getpid());
-        ~Scratch() { std::error_code ignored; std::filesystem::remove_all(dir, ignored); }
-    } scratch;
-    const auto dir = scratch.dir / name;
-    std::filesystem::create_directories(dir);
-    return dir;
-}
-
-void write_text(const std::filesystem::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+std::filesystem::path temp_dir(const std::string& name) { return test::scratch_dir("scene_" + name); }
+using test::write_text;
 
 const char* kTetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 

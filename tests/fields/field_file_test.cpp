@@ -7,6 +7,7 @@
 #include "fields/field_file.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
@@ -31,20 +32,8 @@ Svdf small_svdf() {
     return svdf;
 }
 
-fs::path temp_path(const std::string& name) {
-    const fs::path dir = fs::path(RSL_BINARY_DIR) / "test-output" / "fields";
-    fs::create_directories(dir);
-    return dir / name;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+fs::path temp_path(const std::string& name) { return test::scratch_dir("field_file") / name; }
+using test::error_of;
 
 }  // namespace
 

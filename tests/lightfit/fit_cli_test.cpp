@@ -11,22 +11,19 @@
 #include "lightfit/rsl.h"
 #include "src/core/envmap.h"
 #include "src/core/image.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
 
 namespace {
 
-int run(const std::string& arguments) {
-    const std::string command = std::string(RSL_RSL_EXECUTABLE) + " " + arguments + " > /dev/null 2>&1";
-    return std::system(command.c_str());
-}
+int run(const std::string& arguments) { return test::run_rsl(arguments).first; }
 
 }  // namespace
 
 TEST_CASE("rsl fit writes K lights that keep the environment's energy, and a preview", "[lightfit][cli]") {
-    const fs::path dir = fs::temp_directory_path() / ("rsl_fit_cli_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    const fs::path dir = test::scratch_dir("fit_cli");
     // A dim lat-long sky with one bright spot.
     Image latlong(64, 32);
     for (int y = 0; y < 32; ++y)

@@ -9,6 +9,7 @@
 #include "lightfit/rsl.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
@@ -29,13 +30,9 @@ RslSet random_set(unsigned seed, int count, int resolution) {
     return set;
 }
 
-fs::path temp_dir() {
-    fs::path dir = fs::temp_directory_path() / "rsl_lightfit_rsl_test";
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path temp_dir() { return test::scratch_dir("lightfit_rsl"); }
 
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+using test::write_text;
 
 }  // namespace
 

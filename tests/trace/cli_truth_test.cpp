@@ -8,31 +8,20 @@
 
 #include "src/core/image.h"
 #include "src/trace/vertex_colors.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
 
 namespace {
 
-// Runs a command; returns its exit status and stdout + stderr.
-std::pair<int, std::string> run(const std::string& command) {
-    std::string output;
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    char buffer[4096];
-    while (fgets(buffer, sizeof(buffer), pipe)) output += buffer;
-    const int status = pclose(pipe);
-    return {WEXITSTATUS(status), output};
-}
-
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+using test::run_command;
+using test::write_text;
 
 }  // namespace
 
 TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cli]") {
-    const fs::path dir = fs::path(RSL_BINARY_DIR) / "test_tmp" / "cli_truth";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = test::scratch_dir("cli_truth");
     write_text(dir / "floor.obj",
                "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvn 0 1 0\nf 1//1 4//1 3//1\nf 1//1 3//1 2//1\n");
     Image white(32, 16, 3);
@@ -49,7 +38,7 @@ TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cl
 })");
     const std::string rsl = RSL_RSL_EXECUTABLE;
     const fs::path out = dir / "truth.exr";
-    auto [status, text] = run(rsl + " truth " + (dir / "furnace.json").string() + " -q -o " + out.string());
+    auto [status, text] = run_command(rsl + " truth " + (dir / "furnace.json").string() + " -q -o " + out.string());
     INFO(text);
     REQUIRE(status == 0);
     REQUIRE(fs::exists(dir / "truth.png"));
@@ -62,11 +51,11 @@ TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cl
     REQUIRE(image.width == 40);
     REQUIRE(image.channels == 4);
 
-    auto [same_status, same] = run(rsl + " compare " + (dir / "truth.rslv").string() + " " + (dir / "truth.rslv").string());
+    auto [same_status, same] = run_command(rsl + " compare " + (dir / "truth.rslv").string() + " " + (dir / "truth.rslv").string());
     INFO(same);
     REQUIRE(same_status == 0);
     REQUIRE(same.rfind("relative L2: 0 ", 0) == 0);
-    auto [image_status, images] = run(rsl + " compare " + out.string() + " " + out.string() + " --error-image " +
+    auto [image_status, images] = run_command(rsl + " compare " + out.string() + " " + out.string() + " --error-image " +
                                       (dir / "err.png").string());
     INFO(images);
     REQUIRE(image_status == 0);
@@ -77,7 +66,7 @@ TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cl
     VertexColors other = colors;
     other.scene_name = "kitchen";
     write_vertex_colors(dir / "other.rslv", other);
-    auto [bad_status, bad] = run(rsl + " compare " + (dir / "other.rslv").string() + " " + (dir / "truth.rslv").string());
+    auto [bad_status, bad] = run_command(rsl + " compare " + (dir / "other.rslv").string() + " " + (dir / "truth.rslv").string());
     INFO(bad);
     REQUIRE(bad_status == 1);
     REQUIRE(bad.find("not comparable") != std::string::npos);

@@ -8,17 +8,15 @@
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/trace/vertex_colors.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path temp_dir() {
-    const fs::path dir = fs::path(RSL_BINARY_DIR) / "test_tmp" / "vertex_colors";
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path temp_dir() { return test::scratch_dir("vertex_colors"); }
+using test::error_of;
 
 VertexColors random_colors(uint32_t seed) {
     std::mt19937 rng(seed);
@@ -33,16 +31,6 @@ VertexColors random_colors(uint32_t seed) {
     for (auto& part : c.parts)
         for (Color& v : part) v = Color(uni(rng), uni(rng), uni(rng));
     return c;
-}
-
-template <typename F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
 }
 
 }  // namespace
