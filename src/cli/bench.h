@@ -4,6 +4,9 @@
 //   {"bench":"lightfit","case":"grace 6x32x32 -> 30","seconds":0.21,...}
 // Times are wall-clock on the machine that runs it; prefer ratios measured in
 // the same run (ours vs ground truth) when claiming speed-ups.
+#include <algorithm>
+#include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -21,6 +24,27 @@ struct BenchOptions {
 
 // Emit one result line (also collected for --json-out).
 void bench_emit(nlohmann::json result);
+
+// Timing helpers shared by the bench_<area>.cpp files.
+using BenchClock = std::chrono::steady_clock;
+inline double seconds_since(BenchClock::time_point start) {
+    return std::chrono::duration<double>(BenchClock::now() - start).count();
+}
+// CPU time of the whole process (all threads). On a shared machine a
+// difference of it divided by the cores used is the time on dedicated cores.
+inline double process_cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
+// Best (minimum) wall time of `repeats` runs: the least noisy estimate on a
+// shared machine for I/O- and allocation-bound work.
+template <typename F>
+double best_seconds(int repeats, F&& run) {
+    double best = 1e30;
+    for (int r = 0; r < repeats; ++r) {
+        const auto start = BenchClock::now();
+        run();
+        best = std::min(best, seconds_since(start));
+    }
+    return best;
+}
 
 struct Benchmark {
     std::string name;         // selects with `rsl bench NAME`

@@ -4,7 +4,6 @@
 // plane square that replaces it). docs/BRDF.md quotes these numbers.
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <random>
 #include <thread>
 
@@ -14,12 +13,6 @@
 
 namespace rsl::cli {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-// CPU time of the whole process (all threads): on a shared, oversubscribed
-// machine, CPU time / threads estimates the wall time on dedicated cores.
-double process_cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
 MaterialDesc material(const std::string& model, std::map<std::string, std::vector<float>> params) {
     MaterialDesc m;
@@ -58,7 +51,7 @@ void bench_build(const BenchOptions& options) {
         std::vector<double> times, cpu;
         std::shared_ptr<const BrdfTable> table;
         for (int k = 0; k < runs; ++k) {
-            const auto start = Clock::now();
+            const auto start = BenchClock::now();
             const double cpu_start = process_cpu_seconds();
             table = BrdfTable::build(*brdf);
             times.push_back(seconds_since(start));
@@ -98,12 +91,12 @@ void bench_lookups(const BenchOptions& options) {
             const Vec3 v = random_upper(rng, 1.5f);
             vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
         }
-        auto start = Clock::now();
+        auto start = BenchClock::now();
         double cpu_start = process_cpu_seconds();
         float checksum = 0;
         for (size_t k = 0; k < n; ++k) checksum += table->square_average(Vec2(cx[k], cy[k]), h[k], Vec3(vx[k], vy[k], vz[k])).g;
         const double single = seconds_since(start), single_cpu = process_cpu_seconds() - cpu_start;
-        start = Clock::now();
+        start = BenchClock::now();
         cpu_start = process_cpu_seconds();
         table->square_average_batch({cx.data(), cy.data(), h.data(), 0.0f, vx.data(), vy.data(), vz.data(), n},
                                     {r.data(), g.data(), b.data()});

@@ -17,9 +17,6 @@
 namespace rsl::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
 double worst_channel_error(const DVec3& got, const DVec3& want) {
     double worst = 0;
     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - want[c]) / want[c]);
@@ -30,12 +27,12 @@ double worst_channel_error(const DVec3& got, const DVec3& want) {
 template <typename F>
 std::pair<double, double> time_cold_warm(int warm_runs, F f) {
     clear_resampling_cache();
-    auto start = Clock::now();
+    auto start = BenchClock::now();
     f();
     const double cold = seconds_since(start);
     std::vector<double> warm;
     for (int k = 0; k < warm_runs; ++k) {
-        start = Clock::now();
+        start = BenchClock::now();
         f();
         warm.push_back(seconds_since(start));
     }
@@ -53,7 +50,7 @@ void bench_probes(const BenchOptions& options, const std::vector<int>& resolutio
             bench_emit({{"bench", "env"}, {"case", "probe " + name}, {"skipped", path.string() + " is absent"}});
             continue;
         }
-        auto start = Clock::now();
+        auto start = BenchClock::now();
         const Image image = read_hdr_image(path);
         const double read_seconds = seconds_since(start);
         const DVec3 source = latlong_energy(image);

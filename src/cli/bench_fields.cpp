@@ -1,7 +1,6 @@
 // `rsl bench fields`: SVDF/OVDF bake times, compression ratios and errors,
 // lookups per second, and the compression/error trade-off (docs/FIELDS.md).
 #include <chrono>
-#include <ctime>
 #include <filesystem>
 #include <random>
 
@@ -14,9 +13,6 @@
 namespace rsl::cli {
 namespace {
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Mean |fraction − reference| over random squares at random vertices, where the
 // reference reads the uncompressed tables with the same VDT rule (isolates the
@@ -45,19 +41,18 @@ void bench_svdf(const BenchOptions& options) {
         bench_emit({{"bench", "fields"}, {"case", "svdf bake"}, {"skipped", "missing " + path.string()}});
         return;
     }
-    TriangleMesh mesh = load_obj(path);
-    validate_and_complete(mesh, path);
+    const TriangleMesh mesh = load_obj(path);  // validated, normals and tangents complete
     SvdfParams params;
     // Wall time depends on what else runs; CPU time (all threads) / 2 is the
     // time on two dedicated cores.
-    const std::clock_t cpu_start = std::clock();
-    auto start = Clock::now();
+    const double cpu_start = process_cpu_seconds();
+    auto start = BenchClock::now();
     const std::vector<float> raw = trace_svdf_tables(mesh, params);
-    const double trace_seconds = since(start);
-    const double trace_cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    const double trace_seconds = seconds_since(start);
+    const double trace_cpu = process_cpu_seconds() - cpu_start;
     SvdfBakeStats stats;
     const Svdf svdf = compress_svdf(raw, params, &stats);
-    const double total_cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    const double total_cpu = process_cpu_seconds() - cpu_start;
     const size_t rays_lower_bound = mesh.vertex_count() * HemisphereSampling(params.resolution, 1).traced_texels().size();
     bench_emit({{"bench", "fields"},
                 {"case", "svdf bake " + path.filename().string()},
@@ -88,9 +83,9 @@ void bench_svdf(const BenchOptions& options) {
         std::vector<Vec2> cs(4096);
         for (int k = 0; k < 4096; ++k) vs[k] = vertex(rng), cs[k] = Vec2(u(rng), u(rng));
         float sink = 0;
-        start = Clock::now();
+        start = BenchClock::now();
         for (int k = 0; k < count; ++k) sink += svdf.visible_fraction(vs[k & 4095], cs[k & 4095], 0.1f);
-        const double s = since(start);
+        const double s = seconds_since(start);
         bench_emit({{"bench", "fields"}, {"case", "svdf lookup"}, {"lookups_per_second", count / s},
                     {"threads", 1}, {"checksum", sink}});
     }
@@ -132,9 +127,9 @@ void bench_ovdf(const BenchOptions& options) {
     OvdfParams params;
     if (options.quick) params.cube_resolution = 8;
     OvdfBakeStats stats;
-    const std::clock_t cpu_start = std::clock();
+    const double cpu_start = process_cpu_seconds();
     const Ovdf ovdf = bake_ovdf(mesh, params, &stats);
-    const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    const double cpu = process_cpu_seconds() - cpu_start;
     bench_emit({{"bench", "fields"},
                 {"case", "ovdf bake robot part '" + scene.parts[part].name + "'"},
                 {"triangles", mesh.triangle_count()},
@@ -162,10 +157,10 @@ void bench_ovdf(const BenchOptions& options) {
     for (int b = 0; b < 3; ++b) {
         const int count = options.quick ? 100000 : 1000000;
         float sink = 0;
-        const auto start = Clock::now();
+        const auto start = BenchClock::now();
         for (int k = 0; k < count; ++k) sink += ovdf.visible_fraction(points[k & 4095], lights[k & 4095], 0.1f, OvdfBlend(b));
         bench_emit({{"bench", "fields"}, {"case", std::string("ovdf lookup ") + names[b]},
-                    {"lookups_per_second", count / since(start)}, {"threads", 1}, {"checksum", sink}});
+                    {"lookups_per_second", count / seconds_since(start)}, {"threads", 1}, {"checksum", sink}});
     }
     // Trade-off: vectors per segment.
     for (int vectors : {4, 16}) {
@@ -188,8 +183,7 @@ void bench_ovdf(const BenchOptions& options) {
 void bench_choices(const BenchOptions& options) {
     const fs::path path = options.shared_assets / (options.quick ? "meshes/suzanne.obj" : "meshes/stanford-bunny.obj");
     if (!fs::exists(path)) return;
-    TriangleMesh mesh = load_obj(path);
-    validate_and_complete(mesh, path);
+    const TriangleMesh mesh = load_obj(path);  // validated, normals and tangents complete
     RayScene scene;
     scene.add_instance(scene.add_mesh(mesh), Mat4(1.0f));
     scene.commit();

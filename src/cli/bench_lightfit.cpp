@@ -3,7 +3,6 @@
 // reconstructed environment as K grows, for each merge rule (docs/LIGHTFIT.md).
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <filesystem>
 
 #include <fmt/core.h>
@@ -39,12 +38,12 @@ struct Timing {
 Timing time_decompose(const CubeMap& map, const lightfit::DecomposeOptions& options, int repeats) {
     Timing best;
     for (int r = 0; r < repeats; ++r) {
-        const std::clock_t cpu_start = std::clock();
+        const double cpu_start = process_cpu_seconds();
         const auto start = std::chrono::steady_clock::now();
         const RslSet set = lightfit::decompose(map, options);
         best.wall_seconds =
             std::min(best.wall_seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        best.cpu_seconds = std::min(best.cpu_seconds, double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+        best.cpu_seconds = std::min(best.cpu_seconds, process_cpu_seconds() - cpu_start);
     }
     return best;
 }

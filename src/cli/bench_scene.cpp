@@ -10,22 +10,6 @@
 namespace rsl::cli {
 namespace {
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// Best of `repeats` runs: loading is I/O- and allocation-bound, and the
-// minimum is the least noisy estimate on a shared machine.
-template <typename F>
-double best_seconds(int repeats, F&& run) {
-    double best = 1e30;
-    for (int r = 0; r < repeats; ++r) {
-        const auto start = Clock::now();
-        run();
-        best = std::min(best, since(start));
-    }
-    return best;
-}
 
 void bench_load(const fs::path& path, int repeats) {
     const std::string name = path.filename().string();
@@ -57,12 +41,12 @@ void bench_hierarchy(const fs::path& path, bool quick) {
     const Scene scene = load_scene(path);
     const int evaluations = quick ? 1000 : 20000;
     float checksum = 0;
-    const auto start = Clock::now();
+    const auto start = BenchClock::now();
     for (int e = 0; e < evaluations; ++e) {
         const float t = scene.animation.start + (scene.animation.end - scene.animation.start) * float(e) / evaluations;
         for (size_t p = 0; p < scene.parts.size(); ++p) checksum += scene.part_transform_at(int(p), t)[3][1];
     }
-    const double seconds = since(start);
+    const double seconds = seconds_since(start);
     bench_emit({{"bench", "scene"},
                 {"case", "part transforms " + path.filename().string()},
                 {"parts", scene.parts.size()},

@@ -3,7 +3,6 @@
 // same rays one at a time for comparison, and the time of the robot scene's
 // full ground truth at 6×32×32 texels.
 #include <chrono>
-#include <ctime>
 #include <filesystem>
 
 #include <fmt/core.h>
@@ -19,12 +18,9 @@
 namespace rsl::cli {
 namespace {
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-// Process CPU time (all threads): on a shared machine, rays per CPU-second
-// says what the code does when it gets the cores.
-double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
+// Rays per CPU-second (process_cpu_seconds) say what the code does when it
+// gets the cores of a shared machine.
 
 // A floor with spheres standing on it: the shape of the project's scenes
 // (receivers under occluders) without needing the generated assets.
@@ -59,13 +55,13 @@ Scene synthetic_scene(bool quick) {
 }
 
 void emit_truth(const std::string& case_name, const Scene& scene, const CubeMap& map, float t) {
-    const auto build_start = Clock::now();
+    const auto build_start = BenchClock::now();
     const GroundTruth truth(scene, map, t);
-    const double build_seconds = since(build_start);
-    const auto start = Clock::now();
-    const double cpu_start = cpu_seconds();
+    const double build_seconds = seconds_since(build_start);
+    const auto start = BenchClock::now();
+    const double cpu_start = process_cpu_seconds();
     const VertexColors colors = truth.shade_vertices();
-    const double seconds = since(start), cpu = cpu_seconds() - cpu_start;
+    const double seconds = seconds_since(start), cpu = process_cpu_seconds() - cpu_start;
     const uint64_t rays = truth.rays_traced();
     bench_emit({{"bench", "truth"},
                 {"case", case_name},
@@ -94,8 +90,8 @@ void emit_packet_comparison(const std::string& case_name, const Scene& scene, in
     for (size_t p = 0; p < scene.parts.size(); ++p)
         for (size_t v = 0; v < scene.parts[p].mesh.vertex_count(); v += 7) vertices.emplace_back(int(p), int(v));
     for (bool packets : {true, false}) {
-        const auto start = Clock::now();
-        const double cpu_start = cpu_seconds();
+        const auto start = BenchClock::now();
+        const double cpu_start = process_cpu_seconds();
         const uint64_t rays = tbb::parallel_reduce(
             tbb::blocked_range<size_t>(0, vertices.size(), 16), uint64_t(0),
             [&](const tbb::blocked_range<size_t>& range, uint64_t count) {
@@ -118,7 +114,7 @@ void emit_packet_comparison(const std::string& case_name, const Scene& scene, in
                 return count;
             },
             std::plus<uint64_t>());
-        const double seconds = since(start), cpu = cpu_seconds() - cpu_start;
+        const double seconds = seconds_since(start), cpu = process_cpu_seconds() - cpu_start;
         bench_emit({{"bench", "truth"},
                     {"case", case_name + (packets ? " packets of 16" : " single rays")},
                     {"vertices", vertices.size()},
