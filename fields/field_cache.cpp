@@ -6,8 +6,8 @@
 #include <fmt/format.h>
 
 #include "fields/field_file.h"
-#include "fields/progress_report.h"
 #include "src/core/error.h"
+#include "src/core/progress_report.h"
 
 namespace rsl {
 namespace fs = std::filesystem;

@@ -3,14 +3,13 @@
 // image formed from it exactly as the RSL renderer forms its image (or, with
 // --per-pixel, the same integral at every pixel's hit point), as EXR + PNG.
 #include <chrono>
-#include <cstdio>
-#include <mutex>
 
 #include <fmt/core.h>
 
 #include "src/cli/command.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
+#include "src/core/progress_report.h"
 #include "src/core/scene.h"
 #include "src/trace/ground_truth.h"
 #include "src/trace/image_formation.h"
@@ -38,36 +37,11 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Thread-safe progress line on stderr, at most every two seconds, with the
-// time left extrapolated from the rate so far.
-class ProgressPrinter {
-public:
-    ProgressPrinter(std::string what, bool quiet) : what_(std::move(what)), quiet_(quiet) {}
-    void operator()(size_t done, size_t total) {
-        if (quiet_) return;
-        std::lock_guard lock(mutex_);
-        const double elapsed = seconds_since(start_);
-        if (elapsed - last_ < 2.0 && done < total) return;
-        last_ = elapsed;
-        const double left = done > 0 ? elapsed * double(total - done) / double(done) : 0.0;
-        std::fprintf(stderr, "\rtruth: %s %5.1f%% (%zu/%zu), %.0f s elapsed, ~%.0f s left   ", what_.c_str(),
-                     100.0 * double(done) / double(std::max<size_t>(total, 1)), done, total, elapsed, left);
-        if (done >= total) std::fputc('\n', stderr);
-    }
-
-private:
-    std::string what_;
-    bool quiet_;
-    std::mutex mutex_;
-    Clock::time_point start_ = Clock::now();
-    double last_ = -10.0;
-};
-
 CubeMap load_scene_environment(const Scene& scene, int resolution) {
     if (scene.environment.file.empty()) return CubeMap(resolution);  // lights only
     if (!scene.environment.second_file.empty())
-        std::fprintf(stderr, "truth: warning: environment blending (second_file) is not applied; using %s\n",
-                     scene.environment.file.string().c_str());
+        warn_file(scene.source, "rsl truth does not apply environment blending (second_file); using {}",
+                  scene.environment.file.string());
     return load_environment(scene.environment.file, resolution);
 }
 
@@ -111,16 +85,18 @@ void run_truth(const TruthArgs& args) {
     const auto shade_start = Clock::now();
     VertexColors vertices;
     if (want_vertices) {
-        ProgressPrinter progress("vertices", args.quiet);
+        ProgressReport progress("truth: vertices", !args.quiet);
         vertices = truth.shade_vertices(std::ref(progress));
+        progress.finish("");
     }
     Image image;
     if (args.per_pixel) {
-        ProgressPrinter progress("pixels", args.quiet);
+        ProgressReport progress("truth: pixels", !args.quiet);
         const PosedScene& posed = truth.posed();
         image = trace_image(posed, camera, formation, [&](const RayHit& hit, const Vec3& dir) {
             return truth.shade(posed.hit_point(hit, dir), -dir, truth.part_brdf(hit.instance));
         }, std::ref(progress));
+        progress.finish("");
     } else {
         image = form_image(truth.posed(), camera, vertices, formation);
     }
