@@ -3,11 +3,14 @@
 // (docs/RENDERER.md). Every toggle exists so that one factor of the product
 // can be switched off and measured against the ground truth.
 #include <map>
+#include <memory>
 #include <string>
 
 #include "src/brdf/brdf_table.h"
 
 namespace rsl {
+
+class ExactVisibility;  // src/render/exact_visibility.h
 
 struct RenderOptions {
     int environment_lights = 30;     // K: RSLs fitted to the environment map
@@ -22,6 +25,9 @@ struct RenderOptions {
     // Per-part material override: part name → material name (scene materials).
     std::map<std::string, std::string> material_override;
     BrdfTableOptions brdf_table;     // resolution of the BRDF summed-area tables
+    // Diagnostic: ray-traced visibility in place of the SVDF, the OVDFs or both
+    // (its mode says which); it must be posed at the renderer's time.
+    std::shared_ptr<const ExactVisibility> exact_visibility;
 };
 
 // Counters of one shading pass (for `rsl render` and the benchmarks).

@@ -8,6 +8,7 @@
 // self and occluder visibility, and scattered back into the colour sums.
 #include <cmath>
 
+#include "src/render/exact_visibility.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/renderer.h"
 
@@ -221,15 +222,26 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         queries.count = size_t(m);
         table.square_average_batch(queries, ColorOutputs{s.br, s.bg, s.bb});
 
-        if (svdf) {
+        const ExactVisibility* exact = options_.exact_visibility.get();
+        const ExactVisibilityMode exact_mode = exact ? exact->mode() : ExactVisibilityMode::All;
+        const bool exact_others = exact_mode == ExactVisibilityMode::Others || exact_mode == ExactVisibilityMode::OthersProduct;
+        if (exact && !exact_others) {
+            for (int i = 0; i < m; ++i)
+                s.vis[i] = exact->visible_fraction(part_index, block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
+        } else if (svdf) {
             for (int i = 0; i < m; ++i)
                 s.vis[i] = svdf->visible_fraction(block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
         } else {
             for (int i = 0; i < m; ++i) s.vis[i] = 1.0f;
         }
+        if (exact && exact_others) {
+            for (int i = 0; i < m; ++i)
+                s.vis[i] *= exact->visible_fraction(part_index, block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
+        }
+        const bool field_occluders = !exact || exact_mode == ExactVisibilityMode::Self;
 
         // Other parts' shadows: receiver point and light direction in the occluder's frame.
-        for (size_t e = offsets_[slot_base + l]; e < offsets_[slot_base + l + 1]; ++e) {
+        for (size_t e = offsets_[slot_base + l]; field_occluders && e < offsets_[slot_base + l + 1]; ++e) {
             const int o = occluders_[e];
             const PartPose& occluder = poses_[o];
             if (per_occluder && !s.cone_ready[o]) prepare_occluder(s, block_sphere, part_index, o, n, vertex_culling);

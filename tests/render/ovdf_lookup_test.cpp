@@ -6,7 +6,6 @@
 
 #include <random>
 
-#include "lightfit/rsl.h"
 #include "src/render/ovdf_lookup.h"
 #include "tests/render/render_test_scenes.h"
 

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "fields/svdf.h"
+#include "lightfit/rsl.h"
 #include "src/render/part_fields.h"
 #include "tests/trace/trace_test_scenes.h"
 
