@@ -27,6 +27,9 @@ public:
 // Builds a model from a scene material; throws rsl::Error naming the material
 // and the bad parameter (unknown model, missing/out-of-range value).
 std::shared_ptr<const Brdf> make_brdf(const MaterialDesc& material);
+// make_brdf for every material of a scene, in order; errors also name the
+// scene file ("scene.json: material 'm' (phong): parameter ...").
+std::vector<std::shared_ptr<const Brdf>> make_scene_brdfs(const Scene& scene);
 
 // The model names make_brdf accepts (the `model` key of a scene material).
 const std::vector<std::string>& brdf_model_names();

@@ -130,4 +130,17 @@ std::shared_ptr<const Brdf> make_brdf(const MaterialDesc& material) {
     return brdf;
 }
 
+std::vector<std::shared_ptr<const Brdf>> make_scene_brdfs(const Scene& scene) {
+    std::vector<std::shared_ptr<const Brdf>> brdfs;
+    for (const MaterialDesc& material : scene.materials) {
+        try {
+            brdfs.push_back(make_brdf(material));
+        } catch (const Error& e) {
+            if (scene.source.empty()) throw;
+            throw_file_error(scene.source, "{}", e.what());
+        }
+    }
+    return brdfs;
+}
+
 }  // namespace rsl

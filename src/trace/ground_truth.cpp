@@ -93,7 +93,7 @@ GroundTruth::GroundTruth(const Scene& scene, const CubeMap& environment, float t
     : scene_(scene), cube_(environment), options_(options), posed_(scene, t) {
     RSL_CHECK_GE(options_.texel_subdivision, 1);
     RSL_CHECK_GE(options_.light_max_side, 8);
-    for (const MaterialDesc& material : scene.materials) materials_.push_back(make_brdf(material));
+    materials_ = make_scene_brdfs(scene);
     for (size_t p = 0; p < scene.parts.size(); ++p) {
         const Part& part = scene.parts[p];
         if (part.material < 0 || part.material >= int(materials_.size()))

@@ -168,3 +168,21 @@ TEST_CASE("make_brdf names the material and the bad parameter", "[brdf][models]"
     CHECK_NOTHROW(make_brdf(material("ward", {{"kd", {0.5f}}, {"ks", {0.5f}}, {"alpha", {1.0f}}})));
     CHECK_NOTHROW(make_brdf(material("phong", {{"ks", {1.0f}}, {"exponent", {0}}})));
 }
+
+TEST_CASE("make_scene_brdfs builds every material in order and names the scene file on errors", "[brdf][models]") {
+    Scene scene;
+    scene.source = "scenes/kitchen.json";
+    scene.materials = {material("lambert", {{"albedo", {0.5f}}}),
+                       material("phong", {{"ks", {0.5f}}, {"exponent", {20}}})};
+    const auto brdfs = make_scene_brdfs(scene);
+    REQUIRE(brdfs.size() == 2);
+    CHECK(brdfs[0]->model() == "lambert");
+    CHECK(brdfs[1]->model() == "phong");
+
+    scene.materials.push_back(material("phong", {{"ks", {0.5f}}}));
+    scene.materials.back().name = "shiny";
+    CHECK_THROWS_WITH(make_scene_brdfs(scene), Catch::StartsWith("scenes/kitchen.json: material 'shiny' (phong)") &&
+                                                   Catch::Contains("exponent"));
+    scene.source.clear();  // a scene built in code has no file to name
+    CHECK_THROWS_WITH(make_scene_brdfs(scene), Catch::StartsWith("material 'shiny' (phong)"));
+}
