@@ -163,8 +163,10 @@ struct GeneratedTree {
         scenes = root / "assets" / "scenes";
         fs::remove_all(base);
         fs::create_directories(scenes);
+        // The scene files only: a field cache (.rsl-cache/) may sit beside them.
         for (const auto& entry : fs::directory_iterator(fs::path(RSL_SOURCE_DIR) / "assets" / "scenes"))
-            fs::copy_file(entry.path(), scenes / entry.path().filename());
+            if (entry.is_regular_file() && entry.path().extension() == ".json")
+                fs::copy_file(entry.path(), scenes / entry.path().filename());
         if (fs::exists(RSL_SHARED_ASSETS)) fs::create_directory_symlink(fs::absolute(RSL_SHARED_ASSETS).parent_path(), base / "shared");
         first_report = generate_assets(generated);
     }
