@@ -19,7 +19,7 @@ MaterialDesc chrome() { return named("chrome", material("phong", {{"kd", {0.1f}}
 float center_value(const BrdfTable& t) { return t.square_average(Vec2(0, -0.3f), 0.1f, Vec3(0, 0.5f, 0.866f)).g; }
 }  // namespace
 
-TEST_CASE("identical materials share one table; parts can swap materials", "[brdf][library]") {
+TEST_CASE("identical materials share one table, parts can swap materials", "[brdf][library]") {
     BrdfTableOptions small;
     small.view_samples = 8;
     MaterialLibrary lib(small);

@@ -57,7 +57,7 @@ TEST_CASE("texel-aligned squares are exact to float precision", "[brdf][table]")
         }
 }
 
-TEST_CASE("squares outside the table count zero; the average is over the whole square", "[brdf][table]") {
+TEST_CASE("squares outside the table count zero, the average is over the whole square", "[brdf][table]") {
     auto brdf = make_brdf(material("lambert", {{"albedo", {0.9f}}}));
     auto table = BrdfTable::build(*brdf);
     const Vec3 view(0, 0, 1);

@@ -14,7 +14,7 @@ TEST_CASE("FNV-1a 64 matches the reference test vectors and chains", "[binary_io
     CHECK(fnv1a64("bar", 3, fnv1a64("foo", 3)) == fnv1a64("foobar", 6));
 }
 
-TEST_CASE("BinaryWriter and BinaryReader round trip; short reads name the file", "[binary_io]") {
+TEST_CASE("BinaryWriter and BinaryReader round trip, short reads name the file", "[binary_io]") {
     BinaryWriter w;
     w.put(uint32_t(0xdeadbeef));
     w.put(Vec3(1.5f, -2, 3));
