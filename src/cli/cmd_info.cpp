@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "src/brdf/brdf.h"
 #include "src/cli/command.h"
 #include "src/cli/info.h"
 #include "src/core/envmap.h"
@@ -135,6 +136,7 @@ void print_mesh_file(const std::filesystem::path& path) {
 
 void print_scene_file(const std::filesystem::path& path) {
     const Scene scene = load_scene(path);
+    make_scene_brdfs(scene);  // checks every material's parameters (and reads measured BRDF files) up front
     fmt::print("{}: scene '{}'\n", path.string(), scene.name);
     print_scene_body(scene);
     const PrecomputeSettings& p = scene.precompute;

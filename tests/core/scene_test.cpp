@@ -208,6 +208,14 @@ TEST_CASE("rsl info describes meshes and scenes and fails on bad files", "[scene
     const std::string message((std::istreambuf_iterator<char>(err_in)), {});
     CHECK(message.find("corrupt.obj: line 2") != std::string::npos);
     CHECK(std::system((rsl + " info " + (dir / "nothing.obj").string() + " > /dev/null 2>&1").c_str()) != 0);
+    // A material with a bad parameter is caught by `rsl info`, naming the scene and the parameter.
+    write_text(dir / "bad_material.json", R"({ "parts": [{ "obj": "tet.obj" }],
+        "materials": { "shiny": { "model": "phong", "ks": [0.5, 0.5, 0.5] } }, "part_materials": { "*": "shiny" } })");
+    const auto [material_status, material_text] = test::run_rsl("info " + (dir / "bad_material.json").string());
+    INFO(material_text);
+    CHECK(material_status != 0);
+    CHECK(material_text.find((dir / "bad_material.json").string() + ": material 'shiny' (phong): parameter 'exponent'") !=
+          std::string::npos);
 
     const std::filesystem::path meshes = std::filesystem::path(RSL_SHARED_ASSETS) / "meshes";
     if (!std::filesystem::exists(meshes)) {
