@@ -1,9 +1,11 @@
 #pragma once
 // Helpers shared by the test suites: per-process scratch folders, small file
-// writers, and capture of rsl::warn() output.
+// helpers, the message of an expected rsl::Error, running the `rsl` program,
+// and capture of rsl::warn() output.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
