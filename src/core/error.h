@@ -33,7 +33,8 @@ template <typename... Args>
 // never prints itself, so tests and tools can capture warnings.
 using WarningHandler = std::function<void(const std::string& message)>;
 // Installs `handler` (empty: back to stderr) and returns the previous one.
-// Thread-safe; warnings from parallel code are delivered one at a time.
+// Thread-safe; warnings from parallel code are delivered one at a time (so a
+// handler must not warn itself).
 WarningHandler set_warning_handler(WarningHandler handler);
 void emit_warning(const std::string& message);
 
