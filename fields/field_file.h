@@ -28,7 +28,10 @@
 
 namespace rsl {
 
-inline constexpr uint32_t kFieldFormatVersion = 1;
+// Bumped whenever what a table means changes, not only the layout: version 2
+// stores OVDF tables zoomed to each shell's bounding cone (fields/ovdf.h), so
+// version-1 OVDF files, which would read back as valid, are rebaked.
+inline constexpr uint32_t kFieldFormatVersion = 2;
 enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
 
 // Positions, normals, tangents and indices: everything the tables depend on.
