@@ -1,9 +1,10 @@
 // `rsl render SCENE --time T -o out.exr`: the CPU runtime renderer
-// (docs/RENDERER.md). Per-vertex colours from the RSL sum, interpolated by
+// (docs/RENDERER.md), or with --backend gl the GPU one (docs/GPU.md). Per-vertex colours from the RSL sum, interpolated by
 // primary rays exactly as `rsl truth` does (form_image), written as EXR + PNG,
 // and optionally as per-vertex .rslv for `rsl compare`.
 #include <chrono>
 #include <cstdio>
+#include <memory>
 
 #include <fmt/core.h>
 
@@ -11,6 +12,9 @@
 #include "src/render/render_setup.h"
 #include "src/core/error.h"
 #include "src/trace/image_formation.h"
+#ifdef RSL_HAVE_GL
+#include "src/gl/headless_renderer.h"
+#endif
 
 namespace rsl::cli {
 namespace {
@@ -54,7 +58,9 @@ std::filesystem::path numbered(const std::filesystem::path& path, int frame) {
 }
 
 void run_render(const RenderArgs& args) {
-    if (args.backend == "gl") throw_error("--backend gl: the GPU renderer is not built yet (issue 8); use --backend cpu");
+#ifndef RSL_HAVE_GL
+    if (args.backend == "gl") throw_error("--backend gl: this rsl was built without OpenGL (RSL_BUILD_GL=OFF)");
+#endif
     if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
     if (args.samples < 1) throw_error("--samples {}: expected at least 1", args.samples);
     const std::filesystem::path output(args.output);
@@ -72,13 +78,38 @@ void run_render(const RenderArgs& args) {
     if (!args.quiet)
         fmt::print(stderr, "fields: {} loaded from the cache, {} baked ({:.1f} s)\n", setup.fields_loaded,
                    setup.fields_baked, setup.bake_seconds);
-    Renderer renderer(scene, setup.environment_lights, setup.fields, options);
+    // Both backends shade the same per-vertex sum; image formation is shared.
+    std::unique_ptr<Renderer> cpu;
+#ifdef RSL_HAVE_GL
+    std::unique_ptr<gl::HeadlessGlRenderer> gpu;
+    if (args.backend == "gl") {
+        gpu = std::make_unique<gl::HeadlessGlRenderer>(scene, setup.environment_lights, setup.fields, options);
+        if (!args.quiet) fmt::print(stderr, "GPU: {}\n", gpu->device());
+    }
+#endif
+    if (args.backend == "cpu") cpu = std::make_unique<Renderer>(scene, setup.environment_lights, setup.fields, options);
+    auto set_time = [&](float t) {
+        if (cpu) cpu->set_time(t);
+#ifdef RSL_HAVE_GL
+        if (gpu) gpu->set_time(t);
+#endif
+    };
+    auto shade = [&](VertexColors& out) {
+        if (cpu) cpu->shade(out);
+#ifdef RSL_HAVE_GL
+        if (gpu) gpu->shade(out);
+#endif
+    };
 
     const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
     const int width = args.width > 0 ? args.width : scene.camera.width;
     const int height = args.height > 0 ? args.height : scene.camera.height;
     PosedScene posed(scene, times.front());
-    VertexColors colors = renderer.make_output();
+    VertexColors colors;
+    if (cpu) colors = cpu->make_output();
+#ifdef RSL_HAVE_GL
+    if (gpu) colors = gpu->make_output();
+#endif
     ImageFormationOptions formation;
     formation.samples_per_side = args.samples;
     // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
@@ -88,8 +119,8 @@ void run_render(const RenderArgs& args) {
     for (size_t f = 0; f < times.size(); ++f) {
         const float t = times[f];
         const auto start = std::chrono::steady_clock::now();
-        renderer.set_time(t);
-        renderer.shade(colors);
+        set_time(t);
+        shade(colors);
         const auto shaded = std::chrono::steady_clock::now();
         posed.set_time(t);
         const Image image = form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, formation);
@@ -98,12 +129,17 @@ void run_render(const RenderArgs& args) {
         write_exr_and_png(exr, image, tone);
         if (!args.vertex_output.empty())
             write_vertex_colors(times.size() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output), colors);
-        const RenderStats& stats = renderer.stats();
-        fmt::print("t={:.3f}: {} vertices x {} lights, shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} culled) -> {}\n",
-                   t, stats.vertices, stats.lights,
-                   1e3 * std::chrono::duration<double>(shaded - start).count(),
-                   1e3 * std::chrono::duration<double>(formed - shaded).count(), stats.occluder_pairs,
-                   stats.occluder_pairs_culled, exr.string());
+        const double shading_ms = 1e3 * std::chrono::duration<double>(shaded - start).count();
+        const double image_ms = 1e3 * std::chrono::duration<double>(formed - shaded).count();
+        if (cpu) {
+            const RenderStats& stats = cpu->stats();
+            fmt::print("t={:.3f}: {} vertices x {} lights, shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} culled) -> {}\n",
+                       t, stats.vertices, stats.lights, shading_ms, image_ms, stats.occluder_pairs,
+                       stats.occluder_pairs_culled, exr.string());
+        } else {
+            fmt::print("t={:.3f}: {} vertices, GPU shading + read-back {:.1f} ms, image {:.1f} ms -> {}\n", t,
+                       colors.vertex_count(), shading_ms, image_ms, exr.string());
+        }
     }
 }
 

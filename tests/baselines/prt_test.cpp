@@ -115,7 +115,7 @@ TEST_CASE("SH diffuse transfer of an unoccluded upward plane under a constant sk
     }
 }
 
-TEST_CASE("PRT transport reproduces the ground truth; Haar with every term is exact") {
+TEST_CASE("PRT transport reproduces the ground truth, and Haar with every term is exact") {
     for (bool glossy : {false, true}) {
         const Scene scene = make_shadow_scene(glossy);
         const CubeMap sky = make_sky(16);
