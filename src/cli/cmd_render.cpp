@@ -24,6 +24,7 @@ struct RenderArgs {
     float time = 0;
     std::string frames;
     int lights = 30;
+    bool same_face = false;
     std::string backend = "cpu";
     bool no_self = false, no_occluders = false, no_culling = false;
     std::vector<std::string> materials;
@@ -68,6 +69,7 @@ void run_render(const RenderArgs& args) {
 
     RenderOptions options;
     options.environment_lights = args.lights;
+    options.cross_face_lights = !args.same_face;
     options.self_visibility = !args.no_self;
     options.occluders = !args.no_occluders;
     options.occluder_culling = !args.no_culling;
@@ -154,6 +156,7 @@ RegisterCommand render_command({"render",
         app.add_option("--lights,-k", args->lights, "Number of environment RSLs")->capture_default_str();
         app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer)")
             ->check(CLI::IsMember({"cpu", "gl"}))->capture_default_str();
+        app.add_flag("--same-face", args->same_face, "Fit light regions within one cube face only (the paper's rule)");
         app.add_flag("--no-self", args->no_self, "Switch self-visibility (SVDF) off");
         app.add_flag("--no-occluders", args->no_occluders, "Switch the other parts' shadows (OVDF) off");
         app.add_flag("--no-culling", args->no_culling, "Look every occluder up (for checking the culling)");

@@ -14,6 +14,7 @@ class ExactVisibility;  // src/render/exact_visibility.h
 
 struct RenderOptions {
     int environment_lights = 30;     // K: RSLs fitted to the environment map
+    bool cross_face_lights = true;   // fit regions across cube-face borders (docs/LIGHTFIT.md)
     bool environment = true;         // shade with the environment's RSLs
     bool local_lights = true;        // shade with the scene's sphere lights
     bool self_visibility = true;     // multiply by the SVDF average

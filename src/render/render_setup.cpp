@@ -35,7 +35,7 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
     if (!s.environment.file.empty() && options.environment) {
         auto start = std::chrono::steady_clock::now();
         setup.environment = load_environment(s.environment.file, s.environment.resolution);
-        setup.environment_lights = fit_environment_lights(setup.environment, options.environment_lights);
+        setup.environment_lights = fit_environment_lights(setup.environment, options.environment_lights, options.cross_face_lights);
         setup.fit_seconds = seconds_since(start);
         if (progress)
             std::fprintf(stderr, "%s: %zu RSLs fitted in %.2f s\n", s.environment.file.string().c_str(),

@@ -17,9 +17,10 @@ namespace {
 constexpr int kBlockSize = 256;  // must match shade_block.cpp's scratch size
 }
 
-RslSet fit_environment_lights(const CubeMap& environment, int lights) {
+RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face) {
     lightfit::DecomposeOptions options;
     options.lights = lights;
+    options.cross_face = cross_face;
     return lightfit::decompose(environment, options);
 }
 

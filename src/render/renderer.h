@@ -106,6 +106,6 @@ private:
 };
 
 // The environment map fitted with K RSLs (lightfit, default options).
-RslSet fit_environment_lights(const CubeMap& environment, int lights);
+RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face = true);
 
 }  // namespace rsl
