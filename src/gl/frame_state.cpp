@@ -12,7 +12,10 @@ FrameState::FrameState(const Scene& scene, const PartFields& fields) {
     for (size_t p = 0; p < parts; ++p) {
         local_bounds_.push_back(scene.parts[p].mesh.bounding_sphere());
         occluder_fields_.push_back(p < fields.occluder.size() ? fields.occluder[p] : nullptr);
-        local_reach_.push_back(occluder_fields_.back() ? occluder_fields_.back()->reach() : BoundingSphere{});
+        const OccluderField* field = occluder_fields_.back().get();
+        culling_parts_.emplace_back();
+        culling_parts_.back().field = field;
+        culling_parts_.back().local_reach = field ? field->reach() : BoundingSphere{};
     }
     poses_.resize(parts);
 }
@@ -42,68 +45,26 @@ void FrameState::update(const Scene& scene, const RslSet& environment, const Ren
     update_masks(scene, options);
 }
 
-// The CPU renderer's occluder lists as bit masks (renderer.cpp,
-// update_occluder_lists): the same tests in the same order.
+// The CPU renderer's occluder lists (culling.h, the same function) as bit
+// masks, and the occluder spheres grown by the footprints it computed.
 void FrameState::update_masks(const Scene& scene, const RenderOptions& options) {
     const size_t parts = poses_.size();
-    const size_t environment = squares_.size();
-    light_count_ = int(environment + light_positions_.size());
+    for (size_t p = 0; p < parts; ++p) {
+        culling_parts_[p].transform = poses_[p].transform;
+        culling_parts_[p].world_bounds = poses_[p].world_bounds;
+    }
+    update_occluder_lists(culling_parts_, CullingLights{squares_, light_positions_, scene.lights}, options, lists_);
+    light_count_ = int(squares_.size() + light_positions_.size());
     masks_.assign(parts * size_t(light_count_), 0u);
+    for (size_t slot = 0; slot < masks_.size(); ++slot)
+        for (size_t e = lists_.offsets[slot]; e < lists_.offsets[slot + 1]; ++e) masks_[slot] |= 1u << lists_.occluders[e];
     spheres_.assign(parts * parts, Vec4(0.0f));
     for (size_t receiver = 0; receiver < parts; ++receiver)
         for (size_t o = 0; o < parts; ++o) {
-            if (o == receiver || !occluder_fields_[o]) continue;
-            const BoundingSphere& r = poses_[receiver].world_bounds;
-            const BoundingSphere reach = transform_sphere(poses_[o].transform, local_reach_[o]);
-            const float scale = reach.radius / std::max(local_reach_[o].radius, 1e-30f);
-            const float distance = glm::length(r.center - reach.center) / scale;
-            const float grow = scale * occluder_fields_[o]->footprint(
-                                           std::max(0.0f, distance - r.radius / scale),
-                                           std::min(local_reach_[o].radius, distance + r.radius / scale));
+            if (o == receiver || !culling_parts_[o].field) continue;
             const BoundingSphere& sphere = poses_[o].world_bounds;
-            spheres_[receiver * parts + o] = Vec4(sphere.center, sphere.radius + grow);
+            spheres_[receiver * parts + o] = Vec4(sphere.center, sphere.radius + lists_.growth[receiver * parts + o]);
         }
-    pairs_ = culled_ = 0;
-    for (size_t receiver = 0; receiver < parts; ++receiver) {
-        const BoundingSphere& r = poses_[receiver].world_bounds;
-        for (size_t l = 0; l < size_t(light_count_); ++l) {
-            const bool lit = l < environment ? options.environment : options.local_lights;
-            if (!options.occluders || !lit) continue;
-            uint32_t& mask = masks_[receiver * light_count_ + l];
-            for (size_t o = 0; o < parts; ++o) {
-                if (o == receiver || !occluder_fields_[o]) continue;
-                ++pairs_;
-                bool keep = true;
-                if (options.occluder_culling) {
-                    const BoundingSphere& occluder = poses_[o].world_bounds;
-                    const BoundingSphere reach = transform_sphere(poses_[o].transform, local_reach_[o]);
-                    // The field blends samples up to `footprint` away from the
-                    // receiver: test the receiver grown by it, so that culling
-                    // never changes a lookup's result.
-                    const float scale = reach.radius / std::max(local_reach_[o].radius, 1e-30f);
-                    const float distance = glm::length(r.center - reach.center) / scale;
-                    const float grow = scale * occluder_fields_[o]->footprint(
-                                                   std::max(0.0f, distance - r.radius / scale),
-                                                   std::min(local_reach_[o].radius, distance + r.radius / scale));
-                    const BoundingSphere grown{r.center, r.radius + grow};
-                    if (beyond_reach(r, reach)) {
-                        keep = false;
-                    } else if (l < environment) {
-                        const SquareLight& square = squares_[l];
-                        keep = may_shadow_direction(grown, occluder, square.direction,
-                                                    square_cone_half_angle(square.half_edge));
-                    } else {
-                        const size_t i = l - environment;
-                        keep = may_shadow_sphere_light(grown, occluder, light_positions_[i], scene.lights[i].radius);
-                    }
-                }
-                if (keep)
-                    mask |= 1u << o;
-                else
-                    ++culled_;
-            }
-        }
-    }
 }
 
 }  // namespace rsl::gl

@@ -1,6 +1,7 @@
 #pragma once
 // What changes every frame, computed on the CPU exactly as the CPU renderer
-// does (src/render/renderer.cpp, set_time and update_occluder_lists): part
+// does (src/render/renderer.cpp set_time; the occluder lists by the same
+// culling.h function): part
 // poses, the environment's square lights rotated to time t, local light
 // positions, the camera, and per (receiver part, light) the set of occluder
 // parts whose OVDF lookups run (culling.h decides). The GPU pass receives it
@@ -11,6 +12,7 @@
 
 #include "lightfit/rsl.h"
 #include "src/core/scene.h"
+#include "src/render/culling.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"
@@ -50,14 +52,16 @@ public:
     // shader's per-vertex cone test; radius 0 where no field.
     const std::vector<Vec4>& occluder_spheres() const { return spheres_; }
     int light_count() const { return light_count_; }
-    size_t occluder_pairs() const { return pairs_; }
-    size_t occluder_pairs_culled() const { return culled_; }
+    size_t occluder_pairs() const { return lists_.pairs; }
+    size_t occluder_pairs_culled() const { return lists_.culled; }
 
 private:
     void update_masks(const Scene& scene, const RenderOptions& options);
 
-    std::vector<BoundingSphere> local_bounds_, local_reach_;
-    std::vector<std::shared_ptr<const OccluderField>> occluder_fields_;
+    std::vector<BoundingSphere> local_bounds_;
+    std::vector<std::shared_ptr<const OccluderField>> occluder_fields_;  // keeps culling_parts_' fields alive
+    std::vector<CullingPart> culling_parts_;
+    OccluderLists lists_;
     std::vector<PartPose> poses_;
     std::vector<SquareLight> squares_;
     std::vector<Vec3> light_positions_;
@@ -65,7 +69,6 @@ private:
     std::vector<uint32_t> masks_;
     std::vector<Vec4> spheres_;
     int light_count_ = 0;
-    size_t pairs_ = 0, culled_ = 0;
 };
 
 }  // namespace rsl::gl

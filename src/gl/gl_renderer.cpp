@@ -2,6 +2,7 @@
 
 #include "src/brdf/material_library.h"
 #include "src/core/error.h"
+#include "src/render/renderer.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl::gl {
@@ -52,13 +53,7 @@ GlRenderer::GlRenderer(const Scene& scene, RslSet environment_lights, PartFields
       environment_(std::move(environment_lights)),
       fields_(std::move(fields)),
       frame_(scene, fields_) {
-    if (scene.parts.empty()) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
-    fields_.self.resize(scene.parts.size());
-    fields_.occluder.resize(scene.parts.size());
-    for (size_t p = 0; p < scene.parts.size(); ++p)
-        if (fields_.self[p] && size_t(fields_.self[p]->vertex_count()) != scene.parts[p].mesh.vertex_count())
-            throw_file_error(scene.source, "part '{}': its SVDF has {} vertices, the mesh {}", scene.parts[p].name,
-                             fields_.self[p]->vertex_count(), scene.parts[p].mesh.vertex_count());
+    check_part_fields(scene, fields_);
 
     const PackedGeometry geometry = pack_geometry(scene, fields_);
     const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride);

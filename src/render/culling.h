@@ -5,9 +5,15 @@
 // direction of the light, so that culling never changes an image (pinned by
 // tests/render/culling_test.cpp against brute-force rays).
 #include <algorithm>
+#include <span>
+#include <vector>
 
 #include "src/core/math.h"
 #include "src/core/mesh.h"
+#include "src/core/scene.h"
+#include "src/render/part_fields.h"
+#include "src/render/render_options.h"
+#include "src/render/square_lights.h"
 
 namespace rsl {
 
@@ -57,5 +63,44 @@ inline BoundingSphere transform_sphere(const Mat4& m, const BoundingSphere& s) {
     const float scale = std::max({glm::length(l[0]), glm::length(l[1]), glm::length(l[2])});
     return BoundingSphere{Vec3(m * Vec4(s.center, 1.0f)), s.radius * scale};
 }
+
+// A part as the per-frame occluder culling sees it: its occluder field (null:
+// casts no shadow through lookups) with that field's reach in the part's own
+// frame, and its pose at the current time.
+struct CullingPart {
+    const OccluderField* field = nullptr;
+    BoundingSphere local_reach;
+    Mat4 transform{1.0f};
+    BoundingSphere world_bounds;
+};
+
+// The lights of one frame: environment squares (world space) first, then the
+// local sphere lights at `light_positions` (radii from `lights`).
+struct CullingLights {
+    std::span<const SquareLight> environment;
+    std::span<const Vec3> light_positions;
+    std::span<const LocalLight> lights;
+};
+
+// The per-frame occluder lists, shared by the CPU renderer and the GL frame
+// state so that both run exactly the same lookups.
+//   occluders[offsets[p·L + l] .. offsets[p·L + l + 1]): the occluder parts
+//   whose lookups run for receiver part p and light l (L lights in all);
+//   growth[p·P + o]: how much occluder o's field footprint grows receiver p in
+//   culling tests (world units; 0 where o has no field or o == p).
+// Reusing one OccluderLists across frames does not allocate.
+struct OccluderLists {
+    std::vector<int> occluders;
+    std::vector<size_t> offsets;
+    std::vector<float> growth;
+    size_t pairs = 0;   // (receiver, occluder, light) triples considered
+    size_t culled = 0;  // ... of which culled
+};
+
+// Fills `out` for the parts and lights of one frame. Without culling every
+// other part with a field is listed; lights switched off by `options` (and all
+// lights without options.occluders) list none.
+void update_occluder_lists(std::span<const CullingPart> parts, const CullingLights& lights,
+                           const RenderOptions& options, OccluderLists& out);
 
 }  // namespace rsl

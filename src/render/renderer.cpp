@@ -24,6 +24,17 @@ RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross
     return lightfit::decompose(environment, options);
 }
 
+void check_part_fields(const Scene& scene, PartFields& fields) {
+    const size_t parts = scene.parts.size();
+    if (parts == 0) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
+    fields.self.resize(parts);
+    fields.occluder.resize(parts);
+    for (size_t p = 0; p < parts; ++p)
+        if (fields.self[p] && size_t(fields.self[p]->vertex_count()) != scene.parts[p].mesh.vertex_count())
+            throw_file_error(scene.source, "part '{}': its SVDF has {} vertices, the mesh {}", scene.parts[p].name,
+                             fields.self[p]->vertex_count(), scene.parts[p].mesh.vertex_count());
+}
+
 Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fields, const RenderOptions& options)
     : scene_(scene),
       options_(options),
@@ -31,22 +42,20 @@ Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fie
       fields_(std::move(fields)),
       materials_(scene, options) {
     const size_t parts = scene.parts.size();
-    if (parts == 0) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
-    fields_.self.resize(parts);
-    fields_.occluder.resize(parts);
+    check_part_fields(scene, fields_);
     for (size_t p = 0; p < parts; ++p) {
         const Part& part = scene.parts[p];
         const size_t n = part.mesh.vertex_count();
         if (part.mesh.normals.size() != n)
             throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
                              part.mesh.normals.size(), n);
-        if (fields_.self[p] && size_t(fields_.self[p]->vertex_count()) != n)
-            throw_file_error(scene.source, "part '{}': its SVDF has {} vertices, the mesh {}", part.name,
-                             fields_.self[p]->vertex_count(), n);
         for (size_t begin = 0; begin < n; begin += kBlockSize)
             blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kBlockSize))});
         local_bounds_.push_back(part.mesh.bounding_sphere());
         local_reach_.push_back(fields_.occluder[p] ? fields_.occluder[p]->reach() : BoundingSphere{});
+        culling_parts_.emplace_back();
+        culling_parts_.back().field = fields_.occluder[p].get();
+        culling_parts_.back().local_reach = local_reach_.back();
         // Compressed OVDFs blended by coefficients take the split lookup.
         const auto* ovdf = dynamic_cast<const OvdfOccluder*>(fields_.occluder[p].get());
         const bool fast = options_.fast_occluder_lookups && ovdf && ovdf->blend() == OvdfBlend::AlignedCoefficients;
@@ -61,9 +70,7 @@ Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fie
     environment_squares_.resize(rsls_.lights.size());
     light_positions_.resize(scene.lights.size());
     const size_t light_count = rsls_.lights.size() + scene.lights.size();
-    offsets_.assign(parts * light_count + 1, 0);
     occluders_.reserve(parts * light_count * (parts - 1));
-    occluder_growth_.assign(parts * parts, 0.0f);
     set_time(0.0f);
 }
 
@@ -92,57 +99,15 @@ void Renderer::set_time(float t) {
     update_occluder_lists();
 }
 
-// For every receiver part and light, the occluder parts whose lookups run.
-// Without culling every other part with a field is listed.
 void Renderer::update_occluder_lists() {
-    const size_t parts = scene_.parts.size();
-    const size_t environment = rsls_.lights.size();
-    const size_t lights = environment + scene_.lights.size();
-    occluders_.clear();
-    stats_.occluder_pairs = stats_.occluder_pairs_culled = 0;
-    size_t slot = 0;
-    for (size_t receiver = 0; receiver < parts; ++receiver) {
-        const BoundingSphere& r = poses_[receiver].world_bounds;
-        for (size_t l = 0; l < lights; ++l) {
-            offsets_[slot++] = occluders_.size();
-            const bool lit = l < environment ? options_.environment : options_.local_lights;
-            if (!options_.occluders || !lit) continue;
-            for (size_t o = 0; o < parts; ++o) {
-                if (o == receiver || !fields_.occluder[o]) continue;
-                ++stats_.occluder_pairs;
-                bool keep = true;
-                if (options_.occluder_culling) {
-                    const BoundingSphere& occluder = poses_[o].world_bounds;
-                    const BoundingSphere reach = transform_sphere(poses_[o].transform, local_reach_[o]);
-                    // The field blends samples up to `footprint` away from the
-                    // receiver: test the receiver grown by it, so that culling
-                    // never changes a lookup's result.
-                    const float scale = reach.radius / std::max(local_reach_[o].radius, 1e-30f);
-                    const float distance = glm::length(r.center - reach.center) / scale;
-                    const float grow = scale * fields_.occluder[o]->footprint(
-                                                   std::max(0.0f, distance - r.radius / scale),
-                                                   std::min(local_reach_[o].radius, distance + r.radius / scale));
-                    occluder_growth_[receiver * parts + o] = grow;
-                    const BoundingSphere grown{r.center, r.radius + grow};
-                    if (beyond_reach(r, reach)) {
-                        keep = false;
-                    } else if (l < environment) {
-                        const SquareLight& square = environment_squares_[l];
-                        keep = may_shadow_direction(grown, occluder, square.direction,
-                                                    square_cone_half_angle(square.half_edge));
-                    } else {
-                        const size_t i = l - environment;
-                        keep = may_shadow_sphere_light(grown, occluder, light_positions_[i], scene_.lights[i].radius);
-                    }
-                }
-                if (keep)
-                    occluders_.push_back(int(o));
-                else
-                    ++stats_.occluder_pairs_culled;
-            }
-        }
+    for (size_t p = 0; p < poses_.size(); ++p) {
+        culling_parts_[p].transform = poses_[p].transform;
+        culling_parts_[p].world_bounds = poses_[p].world_bounds;
     }
-    offsets_[slot] = occluders_.size();
+    rsl::update_occluder_lists(culling_parts_, CullingLights{environment_squares_, light_positions_, scene_.lights},
+                               options_, occluder_lists_);
+    stats_.occluder_pairs = occluder_lists_.pairs;
+    stats_.occluder_pairs_culled = occluder_lists_.culled;
 }
 
 VertexColors Renderer::make_output() const {

@@ -95,15 +95,22 @@ private:
     std::vector<Vec3> light_positions_;
     std::vector<Color> light_radiance_;
     Vec3 camera_{0};
-    // Occluders that can shadow receiver part p for light l:
-    // occluders_[offsets_[p·L + l] .. offsets_[p·L + l + 1]).
-    std::vector<int> occluders_;
-    std::vector<size_t> offsets_;
-    // Per (receiver, occluder): how much the occluder's field footprint grows
-    // the receiver in culling tests (world units).
-    std::vector<float> occluder_growth_;
+    // Per part: its field and pose as the occluder culling sees them.
+    std::vector<CullingPart> culling_parts_;
+    // Occluders that can shadow receiver part p for light l (culling.h, shared
+    // with the GL renderer); the names below are its fields as shade_block.cpp
+    // reads them: occluders_[offsets_[p·L + l] .. offsets_[p·L + l + 1]), and
+    // per (receiver, occluder) the footprint growth of the receiver.
+    OccluderLists occluder_lists_;
+    std::vector<int>& occluders_ = occluder_lists_.occluders;
+    std::vector<size_t>& offsets_ = occluder_lists_.offsets;
+    std::vector<float>& occluder_growth_ = occluder_lists_.growth;
     RenderStats stats_;
 };
+
+// Checks `fields` against the scene's parts (an SVDF must have the mesh's
+// vertex count) and gives it one entry per part (missing ones null).
+void check_part_fields(const Scene& scene, PartFields& fields);
 
 // The environment map fitted with K RSLs (lightfit, default options).
 RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face = true);
