@@ -99,31 +99,42 @@ float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_ed
     return visible_fraction_from_distance(distance(point, light, blend), half_edge);
 }
 
-float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) const {
-    const Vec3 v = point - center;
-    const float d = glm::length(v);
-    if (d >= shell_radii_.back()) return kVdtNoBoundaryDistance;  // no shadow beyond the outer shell
-    const Vec3 dir = d > 0 ? v / d : Vec3(0, 0, 1);
+OvdfLocation Ovdf::locate(const Vec3& point, float d) const {
+    OvdfLocation at;
+    const Vec3 dir = d > 0 ? (point - center) / d : Vec3(0, 0, 1);
     const int shells = params.shells, n = params.cube_resolution;
     const float u = std::clamp(shell_coordinate(d), 0.0f, float(shells - 1));  // clamped inside
-    const int s0 = std::min(int(u), shells - 2);
-    const float fs = u - float(s0);
+    at.s0 = std::min(int(u), shells - 2);
+    at.fs = u - float(at.s0);
     // Cube face and bilinear position among the face's sample directions.
-    int face = 0;
     float best = -2;
     for (int f = 0; f < 6; ++f) {
         const float c = glm::dot(dir, face_normal_[f]);
-        if (c > best) best = c, face = f;
+        if (c > best) best = c, at.face = f;
     }
-    const float x = std::clamp((glm::dot(dir, face_s_[face]) / best + 1.0f) * 0.5f * n - 0.5f, 0.0f, float(n - 1));
-    const float y = std::clamp((glm::dot(dir, face_t_[face]) / best + 1.0f) * 0.5f * n - 0.5f, 0.0f, float(n - 1));
+    const float x = std::clamp((glm::dot(dir, face_s_[at.face]) / best + 1.0f) * 0.5f * n - 0.5f, 0.0f, float(n - 1));
+    const float y = std::clamp((glm::dot(dir, face_t_[at.face]) / best + 1.0f) * 0.5f * n - 0.5f, 0.0f, float(n - 1));
     const int i0 = std::min(int(x), n - 2), j0 = std::min(int(y), n - 2);
     const float fx = x - float(i0), fy = y - float(j0);
     const int ii[4] = {i0, i0 + 1, i0, i0 + 1}, jj[4] = {j0, j0, j0 + 1, j0 + 1};
     const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-
+    for (int q = 0; q < 4; ++q) at.ii[q] = ii[q], at.jj[q] = jj[q], at.w[q] = w[q];
     // The receiver's own pole frame, twisted by the face rule like its samples.
-    const Frame aligned = Frame::from_normal_tangent(-dir, face_s_[face]);
+    at.aligned = Frame::from_normal_tangent(-dir, face_s_[at.face]);
+    return at;
+}
+
+float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) const {
+    const Vec3 v = point - center;
+    const float d = glm::length(v);
+    if (d >= shell_radii_.back()) return kVdtNoBoundaryDistance;  // no shadow beyond the outer shell
+    const OvdfLocation at = locate(point, d);
+    const int s0 = at.s0, face = at.face;
+    const float fs = at.fs;
+    const int* ii = at.ii;
+    const int* jj = at.jj;
+    const float* w = at.w;
+    const Frame& aligned = at.aligned;
     const Vec2 plane = lookup_plane_point(aligned.to_local(light));
     const float radial = glm::length(plane);
     float distance = 0;

@@ -96,6 +96,19 @@ struct OvdfBakeStats {
     CpcaReport compression;
 };
 
+// Where a receiver point sits among an OVDF's samples: the two shells around
+// its distance (clamped inside the inner shell), the cube face and the four
+// bilinear sample taps of its direction, and its own pole frame ("aligned",
+// twisted by the face rule like the samples). Shared by every lookup path.
+struct OvdfLocation {
+    int s0 = 0;      // lower shell; the upper one is s0 + 1
+    float fs = 0;    // weight of the upper shell
+    int face = 0;
+    int ii[4] = {}, jj[4] = {};  // sample taps (i, j) on the face
+    float w[4] = {};             // their bilinear weights
+    Frame aligned;               // z = from the point towards the part's center
+};
+
 class Ovdf {
 public:
     OvdfParams params;
@@ -129,6 +142,10 @@ public:
 
     // The blended signed distance (plane units) that visible_fraction uses.
     float distance(const Vec3& point, const Vec3& light, OvdfBlend blend = OvdfBlend::AlignedCoefficients) const;
+
+    // The samples around `point` (occluder frame) at distance d = |point −
+    // center|; callers handle d beyond the outer shell first.
+    OvdfLocation locate(const Vec3& point, float d) const;
 
     // Distance (plane units) of sample `sample`'s reconstructed VDT at plane
     // point p (its shell's zoom and cone bound applied).

@@ -12,7 +12,6 @@
 // pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp. Receiver
 // points whose four samples straddle PCA segments (the field then blends four
 // reconstructions) are marked for the field's own lookup.
-#include <array>
 
 #include "fields/ovdf.h"
 #include "fields/vdt.h"
@@ -82,7 +81,6 @@ private:
     const float* tables_;
     int vectors_, dims_, vdt_resolution_;
     float outer_;
-    std::array<Vec3, 6> face_normal_{}, face_s_{}, face_t_{};
 };
 
 }  // namespace rsl
