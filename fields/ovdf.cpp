@@ -18,7 +18,10 @@ namespace rsl {
 OvdfZoom ovdf_zoom(float distance, float radius) {
     OvdfZoom z;
     if (distance <= radius) return z;  // inside the bounding sphere: the whole square, no cone
-    z.cone = std::sqrt(2.0f) * std::sin(0.5f * std::asin(radius / distance));
+    // √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d: square roots only,
+    // which GLSL evaluates exactly as here (the shader's asin is approximate).
+    const float x = radius / distance;
+    z.cone = x / std::sqrt(1.0f + std::sqrt(1.0f - x * x));
     z.zoom = std::max(1.0f, kOvdfZoomEdge / z.cone);
     return z;
 }
@@ -181,7 +184,9 @@ float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) cons
             }
         }
     }
-    return distance;
+    // The part lies in the bounding cone seen from the point itself, tighter
+    // than the outer shell's and exact: lights beyond it are unshadowed.
+    return std::max(distance, radial - ovdf_zoom(d, radius).cone);
 }
 
 namespace {

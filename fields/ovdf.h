@@ -24,7 +24,11 @@
 // scale); outside the table, where the held edge value would be too small,
 // the cone gives the lower bound D ≥ |p| − e (the occluded set lies in the
 // disk), so each shell's distance is max(D′/k, |p| − e). Inside the bounding
-// sphere (d ≤ R) k = 1 and there is no bound.
+// sphere (d ≤ R) k = 1 and there is no bound. The blend of the two shells
+// then takes the same bound once more with the cone seen from the receiver
+// point itself, which is exact and tighter than the nearer shell's: blending
+// cannot spread a shadow beyond it, and a renderer can skip every light whose
+// square lies beyond it (src/render/ovdf_lookup.h OvdfLookup::unshadowed).
 //
 // Lookups run in the occluder's frame (the part's own coordinates).
 #include <algorithm>

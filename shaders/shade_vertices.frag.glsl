@@ -209,6 +209,13 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     vec4 shells = part_texel(part, 16);
     vec4 grid = part_texel(part, 17);
     vec3 dir = d > 0.0 ? v / d : vec3(0.0, 0.0, 1.0);
+    // The part lies in its bounding cone seen from the point (ovdf_zoom's
+    // cone, Ovdf::distance's last bound): lights beyond it are unshadowed.
+    // √2·sin(½·asin x) without the driver's asin/sin approximations (ovdf_zoom).
+    float sin_cone = center.w / d;
+    float cone = d > center.w ? sin_cone / sqrt(1.0 + sqrt(1.0 - sin_cone * sin_cone)) : 1e6;
+    float limit = h + cone;
+    if (dot(light, -dir) <= 1.0 - limit * limit) return 1.0;
     int shell_count = int(shells.x), n = int(grid.x), vdt_n = int(grid.y), stride = int(grid.z), m = int(grid.w);
     float u = clamp(shell_coordinate(shells, d, center.w), 0.0, float(shell_count - 1));
     int s0 = min(int(u), shell_count - 2);
@@ -274,7 +281,7 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
             distance += ws * max(blended / zoom.x, radial - zoom.y);
         }
     }
-    return visible_fraction_from_distance(distance, h);
+    return visible_fraction_from_distance(max(distance, radial - cone), h);
 }
 
 // Half-angle of a cone around the light's direction holding the part of its

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-
 namespace rsl {
 
 OvdfLookup::OvdfLookup(const Ovdf& field)
@@ -13,44 +12,64 @@ OvdfLookup::OvdfLookup(const Ovdf& field)
       vdt_resolution_(field.params.vdt_resolution),
       outer_(field.shell_radius(field.params.shells - 1)) {}
 
-void OvdfLookup::prepare(const Vec3& point, OvdfPoint& out) const {
+void OvdfLookup::locate(const Vec3& point, OvdfPoint& out) const {
     const Ovdf& f = *field_;
     const Vec3 v = point - f.center;
     const float d = glm::length(v);
-    if (d >= outer_ || !usable()) {
-        out.kind = d >= outer_ ? OvdfPoint::Outside : OvdfPoint::Slow;
+    out.distance = d;
+    if (d >= outer_) {
+        out.kind = OvdfPoint::Outside;
         return;
     }
+    out.kind = OvdfPoint::Located;
+    out.z = d > 0 ? -v / d : Vec3(0, 0, -1);  // Ovdf::locate's pole
+    out.cone = ovdf_zoom(d, f.radius).cone;
+}
+
+int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) const {
+    const Ovdf& f = *field_;
     // The same sample location as the field's own lookup.
-    const OvdfLocation at = f.locate(point, d);
-    const int s0 = at.s0, face = at.face;
-    const float fs = at.fs;
-    const int* ii = at.ii;
-    const int* jj = at.jj;
-    const float* w = at.w;
-    const Frame& aligned = at.aligned;
-    out.x = aligned.x, out.y = aligned.y, out.z = aligned.z;
-    for (int k = 0; k < 2; ++k) {
-        const int shell = s0 + k;
-        const float ws = k == 0 ? 1.0f - fs : fs;
-        const int segment = f.segment_of(shell, face, ii[0], jj[0]);
-        if (ws != 0.0f && segment != f.segment_of(shell, face, ii[3], jj[3])) {
-            out.kind = OvdfPoint::Slow;  // four reconstructions in their own segments
-            return;
-        }
-        out.row_offset[k] = int(size_t(segment) * dims_ * (vectors_ + 1));
-        out.mean_weight[k] = ws;
-        out.zoom[k] = f.shell_zoom(shell);
-        float* c = out.coefficients[k];
-        for (int m = 0; m < vectors_; ++m) c[m] = 0.0f;
-        if (ws == 0.0f) continue;
-        for (int q = 0; q < 4; ++q) {
-            const float* sample = f.model.coefficients_of(f.sample_index(shell, face, ii[q], jj[q]));
-            for (int m = 0; m < vectors_; ++m) c[m] += w[q] * sample[m];
-        }
-        for (int m = 0; m < vectors_; ++m) c[m] *= ws;
+    const OvdfLocation at = f.locate(point, out.distance);
+    out.x = at.aligned.x, out.y = at.aligned.y, out.z = at.aligned.z;
+    out.terms = terms;
+    if (!usable()) {
+        out.kind = OvdfPoint::Slow;
+        return 0;
     }
-    out.kind = OvdfPoint::Fast;
+    int used = 0;
+    for (int k = 0; k < 2; ++k) {
+        const int shell = at.s0 + k;
+        const float ws = k == 0 ? 1.0f - at.fs : at.fs;
+        out.shell_weight[k] = ws;
+        out.zoom[k] = f.shell_zoom(shell);
+        out.term_count[k] = 0;
+        if (ws == 0.0f) continue;
+        // One term per PCA segment among the four samples (one, except on seams).
+        const int first = used;
+        for (int q = 0; q < 4; ++q) {
+            if (at.w[q] == 0.0f) continue;
+            const int segment = f.segment_of(shell, at.face, at.ii[q], at.jj[q]);
+            const int row_offset = int(size_t(segment) * dims_ * (vectors_ + 1));
+            OvdfTerm* term = terms + first;
+            while (term != terms + used && term->row_offset != row_offset) ++term;
+            if (term == terms + used) {
+                term->row_offset = row_offset;
+                term->mean_weight = 0.0f;
+                for (int m = 0; m < vectors_; ++m) term->coefficients[m] = 0.0f;
+                ++used;
+            }
+            const float* sample = f.model.coefficients_of(f.sample_index(shell, at.face, at.ii[q], at.jj[q]));
+            term->mean_weight += at.w[q];
+            for (int m = 0; m < vectors_; ++m) term->coefficients[m] += at.w[q] * sample[m];
+        }
+        for (int t = first; t < used; ++t) {
+            terms[t].mean_weight *= ws;
+            for (int m = 0; m < vectors_; ++m) terms[t].coefficients[m] *= ws;
+        }
+        out.term_count[k] = used - first;
+    }
+    out.kind = OvdfPoint::Prepared;
+    return used;
 }
 
 }  // namespace rsl

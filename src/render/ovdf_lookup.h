@@ -3,44 +3,78 @@
 // AlignedCoefficients) split into the part that depends on the receiver point
 // only — shell pair and weights, cube face and the four samples' blended PCA
 // coefficients, the receiver's aligned pole frame — and the part that depends
-// on the light: the plane point, four bilinear taps per shell and two
-// reconstructions. A vertex is looked up for every light (30–100) with the
-// same point, so the first part is computed once per (vertex, occluder) and
-// the per-light cost drops to two 4-row dot products.
+// on the light: the plane point, four bilinear taps per shell and one
+// reconstruction per PCA segment the samples fall in. A vertex is looked up
+// for every light (30–100) with the same point, so the first part is computed
+// once per (vertex, occluder) and the per-light cost drops to a few 4-row dot
+// products.
+//
+// The point half runs in two steps so that most (vertex, occluder) pairs stop
+// after the cheap one: locate() finds the bounding cone seen from the point,
+// which alone decides most lights (unshadowed()); prepare() blends the
+// samples, only for points some light needs.
 //
 // It mirrors fields/ovdf.cpp (same formulas, same order of blending) and is
-// pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp. Receiver
-// points whose four samples straddle PCA segments (the field then blends four
-// reconstructions) are marked for the field's own lookup.
+// pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp.
 
 #include "fields/ovdf.h"
 #include "fields/vdt.h"
 
 namespace rsl {
 
+// One PCA segment's share of a lookup at one of the two bracketing shells:
+// its samples' coefficients blended with their bilinear and shell weights.
+struct OvdfTerm {
+    static constexpr int kMaxVectors = 12;
+    int row_offset = 0;     // start of the segment's table
+    float mean_weight = 0;  // weight of the mean row (the blend weights of the samples in this segment)
+    float coefficients[kMaxVectors];
+};
+
 // The receiver-point half of a lookup (occluder frame).
 struct OvdfPoint {
-    static constexpr int kMaxVectors = 12;
-    enum Kind : int { Outside = 0, Fast = 1, Slow = 2 };  // beyond the outer shell: distance "no boundary"
+    static constexpr int kMaxTerms = 8;  // two shells × four samples in four segments at most
+    // Outside: beyond the outer shell (distance "no boundary"); Located: only
+    // the cone is known; Prepared: terms are ready; Slow: the field's own lookup.
+    enum Kind : int { Outside = 0, Located = 1, Prepared = 2, Slow = 3 };
     int kind = Outside;
-    int row_offset[2] = {0, 0};  // per bracketing shell: start of its segment's table
-    Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};  // the aligned pole frame
-    float mean_weight[2] = {0, 0};             // the shell weight (multiplies the mean row)
-    OvdfZoom zoom[2];                          // per bracketing shell: its table zoom and cone
-    float coefficients[2][kMaxVectors];        // blended coefficients × shell weight
+    Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};  // the aligned pole frame (z: towards the part's center)
+    // Plane radius of the part's bounding cone seen from the point (kOvdfNoCone
+    // inside the bounding sphere): lights with |p| − cone ≥ h are unshadowed.
+    float cone = kOvdfNoCone;
+    float distance = 0;            // from the field's center
+    float shell_weight[2] = {0, 0};
+    OvdfZoom zoom[2];              // per bracketing shell: its table zoom and cone
+    int term_count[2] = {0, 0};    // terms of each shell, shell 0's first
+    const OvdfTerm* terms = nullptr;
 };
 
 class OvdfLookup {
 public:
     explicit OvdfLookup(const Ovdf& field);
     const Ovdf& field() const { return *field_; }
-    // Whether the fast path applies at all (few enough PCA vectors).
-    bool usable() const { return field_->model.vectors <= OvdfPoint::kMaxVectors; }
+    // Whether prepare() applies at all (few enough PCA vectors); otherwise
+    // located points are looked up by the field itself.
+    bool usable() const { return field_->model.vectors <= OvdfTerm::kMaxVectors; }
 
-    void prepare(const Vec3& point, OvdfPoint& out) const;
+    // The cheap step: Outside, or Located with the pole and the cone.
+    void locate(const Vec3& point, OvdfPoint& out) const;
+    // The sample blend of a Located point, written to `terms` (room for
+    // OvdfPoint::kMaxTerms, which must outlive the point's lookups); returns
+    // how many were used. Leaves the point Prepared (Slow when !usable()).
+    int prepare(const Vec3& point, OvdfPoint& q, OvdfTerm* terms) const;
+
+    // Whether the lookup for light direction `light` (occluder frame) and a
+    // square of half-edge h certainly gives 1: the square lies beyond the
+    // bound |p| − cone that distance() applies (|p|² = 1 − z in the pole frame).
+    static bool unshadowed(const OvdfPoint& q, const Vec3& light, float half_edge) {
+        const float limit = half_edge + q.cone;
+        return glm::dot(light, q.z) <= 1.0f - limit * limit;
+    }
 
     // Blended signed distance (plane units) for a unit light direction; equals
-    // field().distance(point, light, AlignedCoefficients) for Fast points.
+    // field().distance(point, light, AlignedCoefficients) up to rounding.
+    // `q` must be Outside, Prepared or Slow.
     float distance(const OvdfPoint& q, const Vec3& point, const Vec3& light) const {
         if (q.kind == OvdfPoint::Outside) return kVdtNoBoundaryDistance;
         if (q.kind == OvdfPoint::Slow) return field_->distance(point, light, OvdfBlend::AlignedCoefficients);
@@ -50,8 +84,9 @@ public:
         const int n = vdt_resolution_, stride = vectors_ + 1;
         const float hi = float(n - 1);
         float distance = 0;
+        const OvdfTerm* term = q.terms;
         for (int k = 0; k < 2; ++k) {
-            if (q.mean_weight[k] == 0.0f) continue;
+            if (q.term_count[k] == 0) continue;
             // bilinear_taps (fields/vdt.cpp) at the shell's zoomed table point, inline.
             const float zoom = q.zoom[k].zoom;
             const float u = std::clamp((zoom * p.x + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
@@ -61,19 +96,20 @@ public:
             const int base = j0 * n + i0;
             const int index[4] = {base, base + 1, base + n, base + n + 1};
             const float weight[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-            const float* table = tables_ + q.row_offset[k];
-            const float* c = q.coefficients[k];
             float value = 0;  // × shell weight, table units
-            for (int t = 0; t < 4; ++t) {
-                const float* row = table + size_t(index[t]) * stride;
-                float r = q.mean_weight[k] * row[0];
-                for (int m = 0; m < vectors_; ++m) r += c[m] * row[m + 1];
-                value += weight[t] * r;
+            for (const OvdfTerm* end = term + q.term_count[k]; term != end; ++term) {
+                const float* table = tables_ + term->row_offset;
+                for (int t = 0; t < 4; ++t) {
+                    const float* row = table + size_t(index[t]) * stride;
+                    float r = term->mean_weight * row[0];
+                    for (int m = 0; m < vectors_; ++m) r += term->coefficients[m] * row[m + 1];
+                    value += weight[t] * r;
+                }
             }
             // ovdf_plane_distance, scaled by the (positive) shell weight.
-            distance += std::max(value / zoom, q.mean_weight[k] * (radial - q.zoom[k].cone));
+            distance += std::max(value / zoom, q.shell_weight[k] * (radial - q.zoom[k].cone));
         }
-        return distance;
+        return std::max(distance, radial - q.cone);  // the receiver's own cone (Ovdf::distance)
     }
 
 private:

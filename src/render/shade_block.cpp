@@ -18,7 +18,7 @@ namespace {
 
 constexpr int kBlock = 256;
 // Scenes with more parts skip the per-vertex occluder test for the rest.
-constexpr int kMaxConeParts = 32;
+constexpr int kMaxOccluderParts = 32;
 
 }  // namespace
 
@@ -41,66 +41,39 @@ struct Renderer::BlockScratch {
     alignas(64) float qx[kBlock], qy[kBlock], tx[kBlock], ty[kBlock], qh[kBlock];
     alignas(64) float qvx[kBlock], qvy[kBlock], qvz[kBlock];
     alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
-    // Per query: half-angle of a cone around the light holding its square.
-    alignas(64) float beta[kBlock];
-    // Per occluder part and vertex: the direction to the occluder's (grown)
-    // bounding sphere and the half-angle it subtends (π: the vertex is inside).
-    alignas(64) float cone_x[kMaxConeParts][kBlock], cone_y[kMaxConeParts][kBlock], cone_z[kMaxConeParts][kBlock];
-    alignas(64) float cone_angle[kMaxConeParts][kBlock];
-    bool cone_ready[kMaxConeParts];
-    bool block_outside[kMaxConeParts];  // the whole block lies beyond the occluder's outer shell
+    bool occluder_ready[kMaxOccluderParts];
+    bool block_outside[kMaxOccluderParts];  // the whole block lies beyond the occluder's outer shell
     // Per occluder part and vertex: the light-independent half of its OVDF
-    // lookup (OvdfLookup), prepared once per block; sized on first use.
+    // lookup (OvdfLookup), located once per block and prepared on first need,
+    // and the terms the prepared points use; both sized on first use.
     std::vector<OvdfPoint> points;
+    std::vector<OvdfTerm> terms;
+    size_t terms_used = 0;
 };
 
-namespace {
 
-// Half-angle of a cone around a light's direction that holds the part of its
-// square (half-edge h) above the horizon, for a vertex where the light has
-// local z = lz. The plane segment from the square's center to any of its
-// points above the horizon stays within radius ρ_max = max(1, |p|),
-// |p| = √(1 − lz), where the inverse map stretches lengths by at most
-// √2 / cos(θ/2) = √2 / √(1 − ρ²/2) (see square_cone_half_angle).
-inline float vertex_square_cone(float lz, float h) {
-    const float rho2 = std::min(2.0f, std::max(1.0f, 1.0f - lz));
-    const float denominator = std::sqrt(std::max(1e-12f, 1.0f - 0.5f * rho2));
-    return std::min(kPi, 2.0f * h / denominator);
-}
-
-}  // namespace
-
-// Per block and occluder, before its first lookup: each vertex's cone towards
-// the occluder's bounding sphere (grown by its field's footprint, as in the
-// per-part test), whether the block lies beyond the field's outer shell, and
-// each vertex's prepared OVDF point.
-void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int receiver, int o, int n,
+// Per block and occluder, before its first lookup: whether the block lies
+// beyond the field's outer shell, and each vertex's prepared OVDF point (its
+// samples, and the bounding cone behind the per-light test).
+void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int o, int n,
                                 bool culling) const {
     const PartPose& occluder = poses_[o];
-    const size_t parts = scene_.parts.size();
-    s.cone_ready[o] = true;
+    s.occluder_ready[o] = true;
     s.block_outside[o] = false;
     if (culling) {
         const BoundingSphere reach = transform_sphere(occluder.transform, local_reach_[o]);
         s.block_outside[o] = beyond_reach(block_sphere, reach);
         if (s.block_outside[o]) return;
     }
-    if (culling) {
-    const BoundingSphere& sphere = occluder.world_bounds;
-    const float radius = sphere.radius + occluder_growth_[size_t(receiver) * parts + o];
-    for (int k = 0; k < n; ++k) {
-        const Vec3 to = sphere.center - Vec3(s.px[k], s.py[k], s.pz[k]);
-        const float distance = glm::length(to);
-        const Vec3 u = distance > 0.0f ? to / distance : Vec3(0, 0, 1);
-        s.cone_x[o][k] = u.x, s.cone_y[o][k] = u.y, s.cone_z[o][k] = u.z;
-        s.cone_angle[o][k] = distance > radius ? std::asin(radius / distance) : kPi;
-    }
-    }
     if (const OvdfLookup* fast = fast_lookups_[o].get()) {
-        if (s.points.size() < parts * kBlock) s.points.resize(parts * kBlock);  // first frame only
+        const size_t parts = scene_.parts.size();
+        if (s.points.size() < parts * kBlock) {  // first frame only
+            s.points.resize(parts * kBlock);
+            s.terms.resize(parts * kBlock * OvdfPoint::kMaxTerms);
+        }
         OvdfPoint* points = s.points.data() + size_t(o) * kBlock;
         for (int k = 0; k < n; ++k)
-            fast->prepare(Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f)), points[k]);
+            fast->locate(Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f)), points[k]);
     }
 }
 
@@ -115,11 +88,12 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
     const int n = block.end - block.begin;
     const bool has_tangents = !mesh.tangents.empty();
-    // Per-occluder scratch (cones, prepared OVDF points) for scenes of up to kMaxConeParts parts.
-    const bool per_occluder = int(scene_.parts.size()) <= kMaxConeParts;
+    // Per-occluder scratch (prepared OVDF points) for scenes of up to kMaxOccluderParts parts.
+    const bool per_occluder = int(scene_.parts.size()) <= kMaxOccluderParts;
     const bool vertex_culling = options_.occluder_culling && per_occluder;
     if (per_occluder)
-        for (size_t o = 0; o < scene_.parts.size(); ++o) s.cone_ready[o] = false;
+        for (size_t o = 0; o < scene_.parts.size(); ++o) s.occluder_ready[o] = false;
+    s.terms_used = 0;
 
     // World position, shading frame (as PosedScene::vertex) and local view.
     for (int k = 0; k < n; ++k) {
@@ -207,7 +181,6 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                 s.qvx[m] = s.vx[k], s.qvy[m] = s.vy[k];
             }
             s.qvz[m] = s.vz[k];
-            s.beta[m] = vertex_culling ? vertex_square_cone(s.lz[k], s.half[k]) : kPi;
             ++m;
         }
         if (m == 0) continue;
@@ -244,7 +217,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         for (size_t e = offsets_[slot_base + l]; field_occluders && e < offsets_[slot_base + l + 1]; ++e) {
             const int o = occluders_[e];
             const PartPose& occluder = poses_[o];
-            if (per_occluder && !s.cone_ready[o]) prepare_occluder(s, block_sphere, part_index, o, n, vertex_culling);
+            if (per_occluder && !s.occluder_ready[o]) prepare_occluder(s, block_sphere, o, n, vertex_culling);
             if (vertex_culling && s.block_outside[o]) {
                 ++counts.block_occluders_culled;
                 continue;
@@ -267,23 +240,18 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             for (int i = 0; i < m; ++i) {
                 if (!(s.vis[i] > 0.0f)) continue;  // already black: later occluders cannot change it
                 const int k = s.index[i];
-                if (vertex_culling) {
-                    // Skip when the light's cone and the occluder's cone are disjoint.
-                    const float reach = s.beta[i] + s.cone_angle[o][k];
-                    if (reach < kPi) {
-                        const float c = s.dx[k] * s.cone_x[o][k] + s.dy[k] * s.cone_y[o][k] + s.dz[k] * s.cone_z[o][k];
-                        if (c < std::cos(reach)) continue;
-                    }
-                }
                 const Vec3 dir = is_environment ? light_local
                                                 : glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
                 if (fast) {
-                    const OvdfPoint& q = s.points[size_t(o) * kBlock + k];
+                    OvdfPoint& q = s.points[size_t(o) * kBlock + k];
                     if (q.kind == OvdfPoint::Outside) continue;
+                    // Exact: the lookup itself would give 1 (the bounding-cone bound).
+                    if (vertex_culling && OvdfLookup::unshadowed(q, dir, s.qh[i])) continue;
                     ++counts.occluder_lookups;
-                    const Vec3 point = q.kind == OvdfPoint::Slow
-                                           ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
-                                           : Vec3(0);
+                    const bool needs_point = q.kind != OvdfPoint::Prepared;
+                    const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
+                                                   : Vec3(0);
+                    if (q.kind == OvdfPoint::Located) s.terms_used += fast->prepare(point, q, s.terms.data() + s.terms_used);
                     s.vis[i] *= visible_fraction_from_distance(fast->distance(q, point, dir), s.qh[i]);
                 } else {
                     ++counts.occluder_lookups;

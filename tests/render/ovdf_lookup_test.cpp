@@ -1,7 +1,8 @@
 // The renderer's split OVDF lookup (src/render/ovdf_lookup.h) against the
 // field's own lookup, Ovdf::distance with aligned-coefficient blending, at
 // random receiver points (inside the inner shell, between shells, on cube-face
-// and PCA-segment seams, beyond the outer shell) and random lights.
+// and PCA-segment seams, beyond the outer shell) and random lights; and its
+// cheap cone test against the full lookup.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -26,14 +27,22 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
     std::mt19937 rng{11};
     std::normal_distribution<float> normal;
     std::uniform_real_distribution<float> uniform(0, 1);
-    int fast = 0, slow = 0, outside = 0, shadowed = 0;
+    int fast = 0, seam = 0, outside = 0, shadowed = 0, unshadowed = 0;
     for (int trial = 0; trial < 4000; ++trial) {
         const Vec3 dir = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
         const float distance = field.radius * params.outer_radius * 1.2f * uniform(rng);
         const Vec3 point = field.center + distance * dir;
         OvdfPoint q;
-        lookup.prepare(point, q);
-        fast += q.kind == OvdfPoint::Fast, slow += q.kind == OvdfPoint::Slow, outside += q.kind == OvdfPoint::Outside;
+        OvdfTerm terms[OvdfPoint::kMaxTerms];
+        lookup.locate(point, q);
+        if (q.kind == OvdfPoint::Located) {
+            const int used = lookup.prepare(point, q, terms);
+            REQUIRE(used == q.term_count[0] + q.term_count[1]);
+            REQUIRE(used <= OvdfPoint::kMaxTerms);
+            // On a PCA-segment seam the samples of a shell fall in several segments.
+            (q.term_count[0] > 1 || q.term_count[1] > 1 ? seam : fast)++;
+        }
+        outside += q.kind == OvdfPoint::Outside;
         for (int l = 0; l < 4; ++l) {
             // Lights biased towards the occluder so that many lookups see it.
             const Vec3 light = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)) - 1.5f * dir);
@@ -41,13 +50,20 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
             const float got = lookup.distance(q, point, light);
             REQUIRE(got == Approx(expected).margin(2e-5f).epsilon(1e-5f));
             shadowed += expected < 0.0f;
+            // The cheap cone test claims 1 only where the lookup gives it.
+            const float h = 0.3f * uniform(rng);
+            if (q.kind != OvdfPoint::Outside && OvdfLookup::unshadowed(q, light, h)) {
+                ++unshadowed;
+                REQUIRE(visible_fraction_from_distance(expected, h) >= 1.0f - 1e-5f);
+            }
         }
     }
     // Every kind of point occurred, and most lookups take the fast path.
     CHECK(outside > 100);
-    CHECK(slow > 100);
-    CHECK(fast > 2 * slow);
+    CHECK(seam > 100);
+    CHECK(fast > 2 * seam);
     CHECK(shadowed > 500);
+    CHECK(unshadowed > 1000);
 }
 
 }  // namespace
