@@ -12,24 +12,16 @@ OvdfLookup::OvdfLookup(const Ovdf& field)
       vdt_resolution_(field.params.vdt_resolution),
       outer_(field.shell_radius(field.params.shells - 1)) {}
 
-void OvdfLookup::locate(const Vec3& point, OvdfPoint& out) const {
-    const Ovdf& f = *field_;
-    const Vec3 v = point - f.center;
-    const float d = glm::length(v);
-    out.distance = d;
-    if (d >= outer_) {
-        out.kind = OvdfPoint::Outside;
-        return;
-    }
-    out.kind = OvdfPoint::Located;
-    out.z = d > 0 ? -v / d : Vec3(0, 0, -1);  // Ovdf::locate's pole
-    out.cone = ovdf_zoom(d, f.radius).cone;
-}
-
 int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) const {
     const Ovdf& f = *field_;
+    const float d = glm::length(point - f.center);
+    if (d >= outer_) {
+        out.kind = OvdfPoint::Outside;
+        return 0;
+    }
+    out.cone = ovdf_zoom(d, f.radius).cone;
     // The same sample location as the field's own lookup.
-    const OvdfLocation at = f.locate(point, out.distance);
+    const OvdfLocation at = f.locate(point, d);
     out.x = at.aligned.x, out.y = at.aligned.y, out.z = at.aligned.z;
     out.terms = terms;
     if (!usable()) {

@@ -9,10 +9,10 @@
 // once per (vertex, occluder) and the per-light cost drops to a few 4-row dot
 // products.
 //
-// The point half runs in two steps so that most (vertex, occluder) pairs stop
-// after the cheap one: locate() finds the bounding cone seen from the point,
-// which alone decides most lights (unshadowed()); prepare() blends the
-// samples, only for points some light needs.
+// Most (vertex, occluder, light) lookups never need the blend: the part lies
+// in its bounding cone seen from the vertex, and unshadowed() decides from
+// that cone alone that a light's square lies beyond it (the lookup's last
+// bound), so a renderer prepares a point only when some light needs it.
 //
 // It mirrors fields/ovdf.cpp (same formulas, same order of blending) and is
 // pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp.
@@ -34,15 +34,14 @@ struct OvdfTerm {
 // The receiver-point half of a lookup (occluder frame).
 struct OvdfPoint {
     static constexpr int kMaxTerms = 8;  // two shells × four samples in four segments at most
-    // Outside: beyond the outer shell (distance "no boundary"); Located: only
-    // the cone is known; Prepared: terms are ready; Slow: the field's own lookup.
-    enum Kind : int { Outside = 0, Located = 1, Prepared = 2, Slow = 3 };
+    // Outside: beyond the outer shell (distance "no boundary"); Prepared:
+    // terms are ready; Slow: the field's own lookup.
+    enum Kind : int { Outside = 0, Prepared = 1, Slow = 2 };
     int kind = Outside;
     Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};  // the aligned pole frame (z: towards the part's center)
     // Plane radius of the part's bounding cone seen from the point (kOvdfNoCone
     // inside the bounding sphere): lights with |p| − cone ≥ h are unshadowed.
     float cone = kOvdfNoCone;
-    float distance = 0;            // from the field's center
     float shell_weight[2] = {0, 0};
     OvdfZoom zoom[2];              // per bracketing shell: its table zoom and cone
     int term_count[2] = {0, 0};    // terms of each shell, shell 0's first
@@ -57,19 +56,18 @@ public:
     // located points are looked up by the field itself.
     bool usable() const { return field_->model.vectors <= OvdfTerm::kMaxVectors; }
 
-    // The cheap step: Outside, or Located with the pole and the cone.
-    void locate(const Vec3& point, OvdfPoint& out) const;
-    // The sample blend of a Located point, written to `terms` (room for
-    // OvdfPoint::kMaxTerms, which must outlive the point's lookups); returns
-    // how many were used. Leaves the point Prepared (Slow when !usable()).
+    // The point half of a lookup: Outside, or Prepared with its sample blend
+    // written to `terms` (room for OvdfPoint::kMaxTerms, which must outlive
+    // the point's lookups; Slow when !usable()). Returns the terms used.
     int prepare(const Vec3& point, OvdfPoint& q, OvdfTerm* terms) const;
 
-    // Whether the lookup for light direction `light` (occluder frame) and a
-    // square of half-edge h certainly gives 1: the square lies beyond the
-    // bound |p| − cone that distance() applies (|p|² = 1 − z in the pole frame).
-    static bool unshadowed(const OvdfPoint& q, const Vec3& light, float half_edge) {
-        const float limit = half_edge + q.cone;
-        return glm::dot(light, q.z) <= 1.0f - limit * limit;
+    // Whether the lookup certainly gives 1 for a light whose direction has
+    // cosine `cos_to_center` with the pole and a square of half-edge h: the
+    // square lies beyond the bound |p| − cone that distance() applies (|p|² =
+    // 1 − cos in the pole frame). Branch-free, for vectorized loops.
+    static bool unshadowed(float cos_to_center, float cone, float half_edge) {
+        const float limit = half_edge + cone;
+        return cos_to_center <= 1.0f - limit * limit;
     }
 
     // Blended signed distance (plane units) for a unit light direction; equals

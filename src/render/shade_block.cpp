@@ -43,9 +43,18 @@ struct Renderer::BlockScratch {
     alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
     bool occluder_ready[kMaxOccluderParts];
     bool block_outside[kMaxOccluderParts];  // the whole block lies beyond the occluder's outer shell
+    // Per occluder part and vertex: the part's bounding cone seen from the
+    // vertex — the unit direction to its center (world) and the cone's plane
+    // radius (OvdfLookup::unshadowed) — which alone decides most lights.
+    // Vertices beyond the field's outer shell get a zero direction and radius
+    // −1, which every square (h < 1) clears.
+    alignas(64) float pole_x[kMaxOccluderParts][kBlock], pole_y[kMaxOccluderParts][kBlock];
+    alignas(64) float pole_z[kMaxOccluderParts][kBlock], cone[kMaxOccluderParts][kBlock];
+    alignas(64) bool prepared[kMaxOccluderParts][kBlock];
+    alignas(64) bool needed[kBlock];  // per vertex: the current (light, occluder) needs a lookup
     // Per occluder part and vertex: the light-independent half of its OVDF
-    // lookup (OvdfLookup), located once per block and prepared on first need,
-    // and the terms the prepared points use; both sized on first use.
+    // lookup, prepared on first need, and the terms the prepared points use;
+    // both sized on first use.
     std::vector<OvdfPoint> points;
     std::vector<OvdfTerm> terms;
     size_t terms_used = 0;
@@ -53,8 +62,7 @@ struct Renderer::BlockScratch {
 
 
 // Per block and occluder, before its first lookup: whether the block lies
-// beyond the field's outer shell, and each vertex's prepared OVDF point (its
-// samples, and the bounding cone behind the per-light test).
+// beyond the field's outer shell, and each vertex's bounding cone of the part.
 void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int o, int n,
                                 bool culling) const {
     const PartPose& occluder = poses_[o];
@@ -65,15 +73,40 @@ void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sph
         s.block_outside[o] = beyond_reach(block_sphere, reach);
         if (s.block_outside[o]) return;
     }
-    if (const OvdfLookup* fast = fast_lookups_[o].get()) {
-        const size_t parts = scene_.parts.size();
-        if (s.points.size() < parts * kBlock) {  // first frame only
-            s.points.resize(parts * kBlock);
-            s.terms.resize(parts * kBlock * OvdfPoint::kMaxTerms);
+    for (int k = 0; k < n; ++k) s.prepared[o][k] = false;
+    const OvdfLookup* fast = fast_lookups_[o].get();
+    if (!fast || !culling) {  // no cone: every light is looked up
+        for (int k = 0; k < n; ++k) {
+            s.pole_x[o][k] = s.pole_y[o][k] = s.pole_z[o][k] = 0.0f;
+            s.cone[o][k] = kOvdfNoCone;
         }
-        OvdfPoint* points = s.points.data() + size_t(o) * kBlock;
-        for (int k = 0; k < n; ++k)
-            fast->locate(Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f)), points[k]);
+        return;
+    }
+    if (s.points.size() < scene_.parts.size() * kBlock) {  // first frame only
+        s.points.resize(scene_.parts.size() * kBlock);
+        s.terms.resize(scene_.parts.size() * kBlock * OvdfPoint::kMaxTerms);
+    }
+    // As OvdfLookup::prepare, in the occluder's frame (ratios d/R are the
+    // same in the world), written out so that the loop vectorizes.
+    const Ovdf& field = fast->field();
+    const Mat4& m = occluder.inverse;
+    const Mat3& to_world = occluder.linear;
+    const float radius = field.radius, outer = field.shell_radius(field.params.shells - 1);
+    for (int k = 0; k < n; ++k) {
+        const float vx = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0] - field.center.x;
+        const float vy = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1] - field.center.y;
+        const float vz = m[0][2] * s.px[k] + m[1][2] * s.py[k] + m[2][2] * s.pz[k] + m[3][2] - field.center.z;
+        const float d = std::sqrt(vx * vx + vy * vy + vz * vz);
+        const bool inside = d < outer;
+        const float inv = inside && d > 0.0f ? -1.0f / d : 0.0f;  // the pole points towards the center
+        const float ux = vx * inv, uy = vy * inv, uz = vz * inv;
+        s.pole_x[o][k] = to_world[0][0] * ux + to_world[1][0] * uy + to_world[2][0] * uz;
+        s.pole_y[o][k] = to_world[0][1] * ux + to_world[1][1] * uy + to_world[2][1] * uz;
+        s.pole_z[o][k] = to_world[0][2] * ux + to_world[1][2] * uy + to_world[2][2] * uz;
+        // ovdf_zoom's cone: √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d.
+        const float x = std::min(radius / std::max(d, 1e-30f), 1.0f);
+        const float cone = d > radius ? x / std::sqrt(1.0f + std::sqrt(1.0f - x * x)) : kOvdfNoCone;
+        s.cone[o][k] = inside ? cone : -1.0f;
     }
 }
 
@@ -237,24 +270,33 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             // An environment light has one direction in the occluder's frame.
             const Vec3 light_local = is_environment ? glm::normalize(occluder.inverse_linear * environment_squares_[l].direction)
                                                     : Vec3(0);
+            // Which vertices' squares reach into the part's bounding cone (the
+            // lookup gives exactly 1 for the others).
+            const float* pole_x = s.pole_x[o];
+            const float* pole_y = s.pole_y[o];
+            const float* pole_z = s.pole_z[o];
+            const float* cone = s.cone[o];
+            for (int k = 0; k < n; ++k) {
+                const float c = s.dx[k] * pole_x[k] + s.dy[k] * pole_y[k] + s.dz[k] * pole_z[k];
+                s.needed[k] = !OvdfLookup::unshadowed(c, cone[k], s.half[k]);
+            }
             for (int i = 0; i < m; ++i) {
-                if (!(s.vis[i] > 0.0f)) continue;  // already black: later occluders cannot change it
                 const int k = s.index[i];
+                if (!s.needed[k] || !(s.vis[i] > 0.0f)) continue;  // black already: later occluders cannot change it
                 const Vec3 dir = is_environment ? light_local
                                                 : glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
+                ++counts.occluder_lookups;
                 if (fast) {
                     OvdfPoint& q = s.points[size_t(o) * kBlock + k];
-                    if (q.kind == OvdfPoint::Outside) continue;
-                    // Exact: the lookup itself would give 1 (the bounding-cone bound).
-                    if (vertex_culling && OvdfLookup::unshadowed(q, dir, s.qh[i])) continue;
-                    ++counts.occluder_lookups;
-                    const bool needs_point = q.kind != OvdfPoint::Prepared;
+                    const bool needs_point = !s.prepared[o][k] || q.kind == OvdfPoint::Slow;
                     const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
                                                    : Vec3(0);
-                    if (q.kind == OvdfPoint::Located) s.terms_used += fast->prepare(point, q, s.terms.data() + s.terms_used);
+                    if (!s.prepared[o][k]) {
+                        s.terms_used += fast->prepare(point, q, s.terms.data() + s.terms_used);
+                        s.prepared[o][k] = true;
+                    }
                     s.vis[i] *= visible_fraction_from_distance(fast->distance(q, point, dir), s.qh[i]);
                 } else {
-                    ++counts.occluder_lookups;
                     const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
                     s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
                 }

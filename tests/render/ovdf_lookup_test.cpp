@@ -34,9 +34,8 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
         const Vec3 point = field.center + distance * dir;
         OvdfPoint q;
         OvdfTerm terms[OvdfPoint::kMaxTerms];
-        lookup.locate(point, q);
-        if (q.kind == OvdfPoint::Located) {
-            const int used = lookup.prepare(point, q, terms);
+        const int used = lookup.prepare(point, q, terms);
+        if (q.kind == OvdfPoint::Prepared) {
             REQUIRE(used == q.term_count[0] + q.term_count[1]);
             REQUIRE(used <= OvdfPoint::kMaxTerms);
             // On a PCA-segment seam the samples of a shell fall in several segments.
@@ -52,7 +51,7 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
             shadowed += expected < 0.0f;
             // The cheap cone test claims 1 only where the lookup gives it.
             const float h = 0.3f * uniform(rng);
-            if (q.kind != OvdfPoint::Outside && OvdfLookup::unshadowed(q, light, h)) {
+            if (q.kind != OvdfPoint::Outside && OvdfLookup::unshadowed(glm::dot(light, q.z), q.cone, h)) {
                 ++unshadowed;
                 REQUIRE(visible_fraction_from_distance(expected, h) >= 1.0f - 1e-5f);
             }
