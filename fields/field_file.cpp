@@ -1,5 +1,6 @@
 #include "fields/field_file.h"
 
+#include <cmath>
 #include <cstring>
 
 #include <Imath/half.h>
@@ -101,6 +102,10 @@ void write_field(const fs::path& path, FieldKind kind, uint64_t mesh, const std:
         w.put(ovdf->radius);
     }
     put_model(w, model, half_tables);
+    if (ovdf) {
+        RSL_CHECK_EQ(ovdf->surface_distance.size(), ovdf->params.sample_count());
+        w.put_bytes(ovdf->surface_distance.data(), ovdf->surface_distance.size() * sizeof(float));
+    }
     write_file_atomically(path, w.finish_with_checksum());
 }
 
@@ -267,6 +272,10 @@ Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
     if (h.dims != ovdf.params.vdt_resolution * ovdf.params.vdt_resolution ||
         size_t(h.samples) != ovdf.params.sample_count() || h.clusters != ovdf.params.segment_count())
         throw_file_error(path, "model sizes do not match the OVDF parameters");
+    ovdf.surface_distance.resize(ovdf.params.sample_count());
+    r.get_bytes(ovdf.surface_distance.data(), ovdf.surface_distance.size() * sizeof(float), "surface distances");
+    for (const float s : ovdf.surface_distance)
+        if (!std::isfinite(s)) throw_file_error(path, "non-finite surface distance in the OVDF");
     check_fully_read(path, r);
     ovdf.prepare();
     return ovdf;

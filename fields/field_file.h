@@ -30,8 +30,9 @@ namespace rsl {
 
 // Bumped whenever what a table means changes, not only the layout: version 2
 // stores OVDF tables zoomed to each shell's bounding cone (fields/ovdf.h), so
-// version-1 OVDF files, which would read back as valid, are rebaked.
-inline constexpr uint32_t kFieldFormatVersion = 2;
+// version-1 OVDF files, which would read back as valid, are rebaked. Version
+// 3: OVDF samples inside the part trace from the surface outside them.
+inline constexpr uint32_t kFieldFormatVersion = 3;
 enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
 
 // Positions, normals, tangents and indices: everything the tables depend on.

@@ -127,11 +127,27 @@ OvdfLocation Ovdf::locate(const Vec3& point, float d) const {
     return at;
 }
 
+float Ovdf::surface_distance_at(const OvdfLocation& at) const {
+    if (surface_distance.empty()) return 1.0f;
+    const int n = params.cube_resolution;
+    float blended = 0;
+    for (int k = 0; k < 2; ++k) {
+        const float ws = k == 0 ? 1.0f - at.fs : at.fs;
+        if (ws == 0.0f) continue;
+        float value = 0;
+        for (int q = 0; q < 4; ++q)
+            value += at.w[q] * surface_distance[size_t(((at.s0 + k) * 6 + at.face) * n + at.jj[q]) * n + at.ii[q]];
+        blended += ws * value;
+    }
+    return blended;
+}
+
 float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) const {
     const Vec3 v = point - center;
     const float d = glm::length(v);
     if (d >= shell_radii_.back()) return kVdtNoBoundaryDistance;  // no shadow beyond the outer shell
     const OvdfLocation at = locate(point, d);
+    if (d < radius && surface_distance_at(at) < 0.0f) return -kVdtNoBoundaryDistance;  // inside the part
     const int s0 = at.s0, face = at.face;
     const float fs = at.fs;
     const int* ii = at.ii;
@@ -264,6 +280,59 @@ void trace_zoomed_coverage(const RayScene& scene, const ZoomedSampling& z, const
     }
 }
 
+// Probes a point with 14 rays (axes and cube diagonals). It lies inside the
+// closed part when every probe meets it and nearly all meet a back face; an
+// open mesh (a ground plane seen from below) lets most probes escape, so it is
+// never "inside". `nearest` is the closest hit (an upper bound on the distance
+// to the surface).
+struct Probe {
+    bool inside = false;
+    float nearest = 1e30f;
+};
+Probe probe_part(const RayScene& scene, const Vec3& point) {
+    Probe probe;
+    int back_faces = 0, hits = 0;
+    for (int k = 0; k < 14; ++k) {
+        const Vec3 dir = k < 6 ? Vec3(k == 0 ? 1 : k == 1 ? -1 : 0, k == 2 ? 1 : k == 3 ? -1 : 0, k == 4 ? 1 : k == 5 ? -1 : 0)
+                               : glm::normalize(Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+        const RayHit hit = scene.intersect(point, dir);
+        if (!hit.hit) continue;
+        ++hits;
+        probe.nearest = std::min(probe.nearest, hit.t);
+        back_faces += glm::dot(hit.geometric_normal, dir) > 0.0f;
+    }
+    probe.inside = hits == 14 && back_faces >= 12;
+    return probe;
+}
+
+// Where a shell sample traces its table from, and its signed distance to the
+// surface. A sample inside the part would see nothing but the part's inside —
+// a fully shadowed table that, blended with its neighbours, blackens receivers
+// just outside the surface (parts meeting at joints). It traces instead from
+// the first point outside along its outward radial line (the same pole and
+// zoom): the view a receiver near that surface actually has. Its distance is
+// the nearest probe hit, capped at R, negative inside.
+struct SampleOrigin {
+    Vec3 position;
+    float surface_distance;
+};
+SampleOrigin sample_origin(const RayScene& scene, const Vec3& position, const Vec3& outward, float radius) {
+    SampleOrigin origin{position, radius};
+    Probe probe = probe_part(scene, position);
+    if (!probe.inside) {
+        origin.surface_distance = std::min(probe.nearest, radius);
+        return origin;
+    }
+    origin.surface_distance = -std::min(probe.nearest, radius);
+    for (int layer = 0; layer < 8 && probe.inside; ++layer) {
+        const RayHit exit = scene.intersect(origin.position, outward);
+        if (!exit.hit) break;
+        origin.position += (exit.t + 1e-3f * radius) * outward;
+        probe = probe_part(scene, origin.position);
+    }
+    return origin;
+}
+
 }  // namespace
 
 Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats* stats,
@@ -296,6 +365,7 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats
     ovdf.model.clusters = segments;
     ovdf.model.tables.assign(size_t(segments) * dims * (params.vectors + 1), 0.0f);
     ovdf.model.assignment.assign(params.sample_count(), 0);
+    ovdf.surface_distance.assign(params.sample_count(), 0.0f);
     ovdf.model.coefficients.assign(params.sample_count() * params.vectors, 0.0f);
     std::atomic<int> done{0};
     std::mutex stats_mutex;
@@ -310,8 +380,12 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats
         scratch.coverage.resize(dims);
         for (size_t k = 0; k < samples.size(); ++k) {
             const int i = si * side + int(k) % side, j = sj * side + int(k) / side;
-            trace_zoomed_coverage(scene, samplings[shell], ovdf.sample_position(shell, face, i, j),
-                                  ovdf.sample_frame(face, i, j), scratch);
+            const Frame& frame = ovdf.sample_frame(face, i, j);
+            SampleOrigin origin{ovdf.sample_position(shell, face, i, j), ovdf.shell_radius(shell) - ovdf.radius};
+            if (ovdf.shell_radius(shell) < ovdf.radius)  // beyond the bounding sphere nothing is inside
+                origin = sample_origin(scene, origin.position, -frame.z, ovdf.radius);
+            ovdf.surface_distance[ovdf.sample_index(shell, face, i, j)] = origin.surface_distance;
+            trace_zoomed_coverage(scene, samplings[shell], origin.position, frame, scratch);
             compute_vdt(nv, scratch.coverage.data(), tables.data() + k * dims, params.mode, scratch.vdt);
         }
         CpcaModel local;

@@ -119,6 +119,11 @@ public:
     Vec3 center{0};
     float radius = 1;  // bounding-sphere radius R
     CpcaModel model;   // samples = shells × 6 × N², clusters = segments
+    // Per sample: its signed distance to the part's surface, negative inside
+    // (where the table was traced from the surface outside; bake_ovdf). Blended
+    // like the tables, it tells a receiver that lies inside the part — a
+    // neighbouring part sunk into this one at a joint — which sees nothing.
+    std::vector<float> surface_distance;
 
     // Set up geometry (radii, frames) for params/center/radius.
     void prepare();
@@ -150,6 +155,10 @@ public:
     // The samples around `point` (occluder frame) at distance d = |point −
     // center|; callers handle d beyond the outer shell first.
     OvdfLocation locate(const Vec3& point, float d) const;
+    // The blended surface distance at a location: where it is negative within
+    // the bounding sphere, the point is inside the part and every lookup is
+    // fully shadowed.
+    float surface_distance_at(const OvdfLocation& at) const;
 
     // Distance (plane units) of sample `sample`'s reconstructed VDT at plane
     // point p (its shell's zoom and cone bound applied).

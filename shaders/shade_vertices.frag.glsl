@@ -236,6 +236,21 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     ivec4 ii = ivec4(i0, i0 + 1, i0, i0 + 1), jj = ivec4(j0, j0, j0 + 1, j0 + 1);
     vec4 w = vec4((1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy);
     int tables = int(bases.x), coefficients = int(bases.y), dims = vdt_n * vdt_n;
+    // A receiver inside the part (its samples' blended surface distance is
+    // negative; Ovdf::surface_distance_at) sees nothing.
+    int surface_base = int(bases.z) + 12 * n * n + shell_count;
+    float surface = 0.0;
+    for (int k = 0; k < 2; ++k) {
+        float ws = k == 0 ? 1.0 - fs : fs;
+        if (ws == 0.0) continue;
+        float value = 0.0;
+        for (int q = 0; q < 4; ++q) {
+            int sample = (((s0 + k) * 6 + face) * n + jj[q]) * n + ii[q];
+            value += w[q] * fetch(u_ovdf_frames, surface_base + sample / 4)[sample % 4];
+        }
+        surface += ws * value;
+    }
+    if (d < center.w && surface < 0.0) return 0.0;
     // The receiver's own pole frame, twisted by the face rule like its
     // samples (OvdfBlend::AlignedCoefficients, the CPU's default): one
     // plane point for all eight samples.

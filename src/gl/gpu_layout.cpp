@@ -124,6 +124,14 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
                 }
         for (int shell = 0; shell < op.shells; ++shell)  // after the frames: (zoom, cone, 0, 0)
             g.ovdf_frames.push_back(Vec4(o.shell_zoom(shell).zoom, o.shell_zoom(shell).cone, 0.0f, 0.0f));
+        // Then the samples' surface distances, four to a texel (1: outside, for a field without them).
+        const size_t samples = op.sample_count();
+        for (size_t s = 0; s < samples; s += 4) {
+            Vec4 texel(1.0f);
+            for (size_t c = 0; c < 4 && s + c < samples; ++c)
+                texel[int(c)] = o.surface_distance.empty() ? 1.0f : o.surface_distance[s + c];
+            g.ovdf_frames.push_back(texel);
+        }
         record[kSlotOvdfCenter] = Vec4(o.center, o.radius);
         record[kSlotOvdfBases] = Vec4(float(tables), float(coefficients), float(frames), o.shell_radius(op.shells - 1));
         record[kSlotOvdfShells] = Vec4(float(op.shells), float(int(op.spacing)), op.inner_radius, op.outer_radius);

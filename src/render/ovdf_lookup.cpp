@@ -23,6 +23,10 @@ int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) cons
     // The same sample location as the field's own lookup.
     const OvdfLocation at = f.locate(point, d);
     out.x = at.aligned.x, out.y = at.aligned.y, out.z = at.aligned.z;
+    if (d < f.radius && f.surface_distance_at(at) < 0.0f) {
+        out.kind = OvdfPoint::Inside;
+        return 0;
+    }
     out.terms = terms;
     if (!usable()) {
         out.kind = OvdfPoint::Slow;

@@ -34,9 +34,10 @@ struct OvdfTerm {
 // The receiver-point half of a lookup (occluder frame).
 struct OvdfPoint {
     static constexpr int kMaxTerms = 8;  // two shells × four samples in four segments at most
-    // Outside: beyond the outer shell (distance "no boundary"); Prepared:
-    // terms are ready; Slow: the field's own lookup.
-    enum Kind : int { Outside = 0, Prepared = 1, Slow = 2 };
+    // Outside: beyond the outer shell (distance "no boundary"); Inside: within
+    // the part (fully shadowed); Prepared: terms are ready; Slow: the field's
+    // own lookup.
+    enum Kind : int { Outside = 0, Inside = 1, Prepared = 2, Slow = 3 };
     int kind = Outside;
     Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};  // the aligned pole frame (z: towards the part's center)
     // Plane radius of the part's bounding cone seen from the point (kOvdfNoCone
@@ -75,6 +76,7 @@ public:
     // `q` must be Outside, Prepared or Slow.
     float distance(const OvdfPoint& q, const Vec3& point, const Vec3& light) const {
         if (q.kind == OvdfPoint::Outside) return kVdtNoBoundaryDistance;
+        if (q.kind == OvdfPoint::Inside) return -kVdtNoBoundaryDistance;
         if (q.kind == OvdfPoint::Slow) return field_->distance(point, light, OvdfBlend::AlignedCoefficients);
         const Vec3 local(glm::dot(light, q.x), glm::dot(light, q.y), glm::dot(light, q.z));
         const Vec2 p = lookup_plane_point(local);

@@ -75,16 +75,16 @@ void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sph
     }
     for (int k = 0; k < n; ++k) s.prepared[o][k] = false;
     const OvdfLookup* fast = fast_lookups_[o].get();
+    if (fast && s.points.size() < scene_.parts.size() * kBlock) {  // first frame only
+        s.points.resize(scene_.parts.size() * kBlock);
+        s.terms.resize(scene_.parts.size() * kBlock * OvdfPoint::kMaxTerms);
+    }
     if (!fast || !culling) {  // no cone: every light is looked up
         for (int k = 0; k < n; ++k) {
             s.pole_x[o][k] = s.pole_y[o][k] = s.pole_z[o][k] = 0.0f;
             s.cone[o][k] = kOvdfNoCone;
         }
         return;
-    }
-    if (s.points.size() < scene_.parts.size() * kBlock) {  // first frame only
-        s.points.resize(scene_.parts.size() * kBlock);
-        s.terms.resize(scene_.parts.size() * kBlock * OvdfPoint::kMaxTerms);
     }
     // As OvdfLookup::prepare, in the occluder's frame (ratios d/R are the
     // same in the world), written out so that the loop vectorizes.

@@ -212,3 +212,55 @@ TEST_CASE("OVDF of a thin bar matches ray-traced visibility at every distance", 
         CHECK(blocked_error / blocked < 0.25);
     }
 }
+
+TEST_CASE("OVDF lights receivers just outside a part and darkens those inside it", "[ovdf]") {
+    // A limb-like box whose inner shells (0.4 R … R) cross its surface: shell
+    // samples inside it trace from the surface outside them, and their signed
+    // surface distances tell receivers inside the box (a neighbouring part
+    // sunk into it at a joint) from those just outside.
+    const TriangleMesh box = thin_box(1.0f, 0.3f);
+    OvdfParams params;
+    params.shells = 10;
+    params.cube_resolution = 16;
+    params.vdt_resolution = 16;
+    params.vectors = 6;
+    const Ovdf ovdf = bake_ovdf(box, params);
+    RayScene scene;
+    scene.add_instance(scene.add_mesh(box), Mat4(1.0f));
+    scene.commit();
+
+    std::mt19937 rng(3);
+    std::normal_distribution<float> g;
+    std::uniform_real_distribution<float> u(0, 1);
+    double outside_error = 0;
+    int outside = 0, inside = 0, inside_dark = 0;
+    for (int trial = 0; trial < 600; ++trial) {
+        // A point on the box's side (y = +0.3 or z = +0.3 face), then moved off
+        // it by up to 0.06 (a fifth of the half-width) or into it by as much.
+        const float x = -0.95f + 1.9f * u(rng), t = -0.28f + 0.56f * u(rng);
+        const bool y_face = trial % 2 == 0;
+        const Vec3 normal = y_face ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+        const Vec3 surface = y_face ? Vec3(x, 0.3f, t) : Vec3(x, t, 0.3f);
+        const bool in = trial % 3 == 0;
+        const Vec3 point = surface + (in ? -1.0f : 1.0f) * (0.01f + 0.05f * u(rng)) * normal;
+        const Vec3 light = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+        const float got = ovdf.visible_fraction(point, light, 0.002f);
+        if (in) {
+            ++inside;
+            inside_dark += got == 0.0f;
+        } else {
+            const float truth = scene.occluded(point, light, 0.0f, 1e30f) ? 0.0f : 1.0f;
+            outside_error += std::abs(got - truth);
+            ++outside;
+        }
+    }
+    std::printf("OVDF near a box's surface: outside mean |visible − traced| %.3f (%d), inside dark %d of %d\n",
+                outside_error / outside, outside, inside_dark, inside);
+    // Single directions this close to a surface are hard for any sampled
+    // field (measured: 0.33, and 168 of 200 inside points dark: the samples
+    // are 0.1–0.2 apart, the points 0.01–0.06 deep). Samples traced from
+    // inside the box, as before, gave fully shadowed tables that, blended in,
+    // darkened the points outside: mean error 0.58.
+    CHECK(outside_error / outside < 0.4);
+    CHECK(inside_dark >= 0.75 * inside);
+}
