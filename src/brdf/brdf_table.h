@@ -68,6 +68,9 @@ public:
     static std::shared_ptr<const BrdfTable> build(const Brdf& brdf, const BrdfTableOptions& options = {});
 
     bool isotropic() const { return isotropic_; }
+    // Every slice holds the same texels (e.g. Lambert, or Phong with ks = 0),
+    // detected at build: lookups then read one slice whatever the view.
+    bool view_independent() const { return view_independent_; }
     const BrdfTableOptions& options() const { return options_; }
     const PlaneGrid& grid() const { return grid_; }
     int slice_count() const { return static_cast<int>(slice_views_.size()); }
@@ -86,7 +89,8 @@ public:
     // The same for one slice, without view interpolation.
     Color slice_square_average(int s, const Vec2& center, float half_edge) const;
     // Batched square_average: out[k] for queries k = 0..count−1. No allocation;
-    // split large batches across threads at the call site.
+    // split large batches across threads at the call site. square_average is
+    // a batch of one, so the two agree bit for bit (brdf_table_lookup.cpp).
     void square_average_batch(const SquareQueries& queries, const ColorOutputs& out) const;
 
     // Raw storage (for the GL uploader): per slice (N+1)² corners × RGB floats,
@@ -97,24 +101,24 @@ public:
     size_t memory_bytes() const;
 
 private:
-    struct Taps;
-    struct ViewWeights {
-        int slice[4];
-        float weight[4];
-        int count;
-    };
     BrdfTable() = default;
-    Taps taps(float cx, float cy, float h) const;
-    Color slice_integral(int s, const Taps& t) const;
-    ViewWeights view_weights(float vx, float vy, float vz) const;
     void store_slice(int s, const Color* texels);
+    void detect_view_independence();
+    template <int Slices>
+    void batch_kernel(const SquareQueries& queries, const ColorOutputs& out) const;
 
     bool isotropic_ = true;
+    bool view_independent_ = false;
+    size_t slice_floats_ = 0;  // (N+1)² × 3
+    int last_slice_ = 0;
     BrdfTableOptions options_;
     PlaneGrid grid_;
     std::vector<Vec3> slice_views_;
     std::vector<Color> texels_;  // slice-major texel averages
     std::vector<float> sat_;
+    // The batch kernel reads a corner pair as 8 floats, 2 past the pair: past
+    // the end of sat_ on the last slice's last row. It reads that slice here.
+    std::vector<float> last_slice_padded_;  // the last slice's corners + 8 zeros
     std::vector<Color> offsets_;
 };
 

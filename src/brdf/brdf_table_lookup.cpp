@@ -1,0 +1,303 @@
+// BRDF table lookups. The batched kernel (the CPU renderer calls it once per
+// block of vertices and light) works in two passes over blocks of 64 queries:
+//   1. 8 queries at a time in vector lanes: the 4×4 SAT corner taps of each
+//      square and its view weights (which slices, how much of each);
+//   2. one query at a time: per slice, the 4 corner rows × 2 corner pairs as
+//      8 unaligned loads of 8 floats (lanes R G B R G B of corners a and a+1,
+//      2 unused), scaled by (view weight × row weight) and summed; the column
+//      weights and the two corners of a pair are combined once at the end.
+// The split keeps pass 2's dependency chains short (addresses are ready), so
+// consecutive queries overlap. square_average is a batch of one.
+#include <cstring>
+
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
+#include "src/brdf/brdf_table.h"
+
+// The 32-byte vector helpers below are internal and inlined; without AVX
+// (RSL_NATIVE off) GCC warns that returning one differs from an AVX build's
+// ABI, which cannot matter here.
+#if defined(__GNUC__)  // GCC and Clang
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+namespace rsl {
+namespace {
+
+// std::clamp(x, 0, hi), written so that it compiles to maxss/minss (NaN → 0).
+inline float clamp_to(float x, float hi) {
+    x = x > 0.0f ? x : 0.0f;
+    return x < hi ? x : hi;
+}
+
+// The 4×4 SAT corner taps of one square: along x, the two corners bracketing
+// the right edge (weights +(1−f), +f) and the left edge (−(1−f), −f); the same
+// along y. The integral over the square is Σ_m Σ_n wx[m]·wy[n]·S(ax[m], by[n]).
+struct Taps {
+    int ax[4], by[4];
+    float wx[4], wy[4];
+    float clipped_area;   // texel units: area of the square inside [0, N]²
+    float inv_full_area;  // 1 / (full square area in texel units)
+};
+
+// Corner pair bracketing coordinate x ∈ [0, n], with the weight of the upper one.
+inline void bracket(float x, int n, int& lower, float& upper_weight) {
+    lower = std::min(static_cast<int>(x), n - 1);
+    upper_weight = x - static_cast<float>(lower);
+}
+
+inline Taps square_taps(float cx, float cy, float h, int n) {
+    const float scale = 0.5f * static_cast<float>(n);  // plane → texel units
+    h = std::max(h, 1e-6f);
+    const float x0 = clamp_to((cx - h + 1.0f) * scale, float(n));
+    const float x1 = clamp_to((cx + h + 1.0f) * scale, float(n));
+    const float y0 = clamp_to((cy - h + 1.0f) * scale, float(n));
+    const float y1 = clamp_to((cy + h + 1.0f) * scale, float(n));
+    Taps t;
+    int a0, a1, b0, b1;
+    float f0, f1, g0, g1;
+    bracket(x0, n, a0, f0);
+    bracket(x1, n, a1, f1);
+    bracket(y0, n, b0, g0);
+    bracket(y1, n, b1, g1);
+    t.ax[0] = a1, t.ax[1] = a1 + 1, t.ax[2] = a0, t.ax[3] = a0 + 1;
+    t.wx[0] = 1.0f - f1, t.wx[1] = f1, t.wx[2] = f0 - 1.0f, t.wx[3] = -f0;
+    t.by[0] = b1, t.by[1] = b1 + 1, t.by[2] = b0, t.by[3] = b0 + 1;
+    t.wy[0] = 1.0f - g1, t.wy[1] = g1, t.wy[2] = g0 - 1.0f, t.wy[3] = -g0;
+    t.clipped_area = (x1 - x0) * (y1 - y0);
+    const float edge = 2.0f * h * scale;
+    t.inv_full_area = 1.0f / (edge * edge);
+    return t;
+}
+
+}  // namespace
+
+Color BrdfTable::slice_square_average(int s, const Vec2& center, float half_edge) const {
+    const Taps t = square_taps(center.x, center.y, half_edge, grid_.n);
+    if (t.clipped_area <= 0.0f) return Color(0.0f);
+    const size_t row = static_cast<size_t>(grid_.n + 1) * 3;
+    const float* corners = sat_.data() + static_cast<size_t>(s) * slice_floats_;
+    Color sum(0.0f);
+    for (int m = 0; m < 4; ++m)
+        for (int l = 0; l < 4; ++l) {
+            const float* c = corners + t.by[m] * row + 3 * t.ax[l];
+            sum += t.wx[l] * t.wy[m] * Color(c[0], c[1], c[2]);
+        }
+    return (sum + offsets_[s] * t.clipped_area) * t.inv_full_area;
+}
+
+namespace {
+
+// Eight floats or ints (GCC/Clang vector extension): one AVX register with
+// -march=native, two SSE registers otherwise.
+typedef float Float8 __attribute__((vector_size(32)));
+typedef int Int8 __attribute__((vector_size(32)));
+
+inline Float8 load8(const float* p) {
+    Float8 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+// Weights of a corner pair's lanes: 1 − f on the first corner's R G B, f on
+// the second's, as one FMA (f·B + A) rather than lane by lane.
+inline Float8 pair_weights(float f) {
+    constexpr Float8 a{1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    constexpr Float8 b{-1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f, 0.0f, 0.0f};
+    return f * b + a;
+}
+
+inline void store8(float* p, const Float8& v) { std::memcpy(p, &v, sizeof v); }
+inline void store8(int* p, const Int8& v) { std::memcpy(p, &v, sizeof v); }
+inline Float8 splat(float x) { return Float8{} + x; }
+inline Int8 splat(int x) { return Int8{} + x; }
+inline Float8 to_float(const Int8& x) { return __builtin_convertvector(x, Float8); }
+inline Int8 truncate(const Float8& x) { return __builtin_convertvector(x, Int8); }
+inline Int8 min8(const Int8& a, const Int8& b) { return a < b ? a : b; }
+inline Float8 max8(const Float8& a, const Float8& b) { return a > b ? a : b; }
+inline Float8 clamp8(const Float8& x, const Float8& hi) {  // clamp_to, lane by lane
+    const Float8 y = max8(x, Float8{});
+    return y < hi ? y : hi;
+}
+inline Float8 sqrt8(const Float8& x) {
+#if defined(__AVX__)
+    return (Float8)_mm256_sqrt_ps((__m256)x);
+#else
+    Float8 y;
+    for (int i = 0; i < 8; ++i) y[i] = std::sqrt(x[i]);
+    return y;
+#endif
+}
+
+// 8 consecutive inputs from i; zeros past `count` (the last group of a batch).
+// Always inlined: GCC would otherwise split off the tail copy as a function of
+// its own, whose -Wpsabi warning (without AVX) the pragma above cannot reach.
+[[gnu::always_inline]] inline Float8 load_group(const float* p, size_t i, size_t count) {
+    if (i + 8 <= count) return load8(p + i);
+    Float8 v{};
+    for (size_t j = i; j < count; ++j) v[j - i] = p[j];
+    return v;
+}
+
+// bracket, for 8 lanes.
+inline void bracket8(const Float8& x, int n, Int8& lower, Float8& upper_weight) {
+    lower = min8(truncate(x), splat(n - 1));
+    upper_weight = x - to_float(lower);
+}
+// Linear interpolation between V samples at (k + ½)/V of a coordinate in [0, 1]
+// scaled by V (t = u·V − ½), clamped to the first and last sample.
+inline void sample_lerp8(const Float8& x, int v, Int8& k0, Float8& w) {
+    const Float8 t = clamp8(x, splat(static_cast<float>(v - 1)));
+    k0 = min8(truncate(t), splat(v - 2));
+    w = t - to_float(k0);
+}
+
+constexpr int kBlock = 64;  // queries per pass
+
+// Pass 1's results for one block, per query: what pass 2 needs to read the
+// table, with the view weights already multiplied into the row weights.
+template <int Slices>
+struct BlockTaps {
+    alignas(32) int row_upper[kBlock], row_lower[kBlock];  // b1·(N+1)·3, b0·(N+1)·3
+    alignas(32) int col_upper[kBlock], col_lower[kBlock];  // 3·a1, 3·a0
+    alignas(32) int first_slice[kBlock];
+    alignas(32) float f_upper[kBlock], f_lower[kBlock];    // f1, f0
+    alignas(32) float weight[Slices][4][kBlock];           // view weight × wy
+    alignas(32) float offset_weight[Slices][kBlock];       // view weight × clipped area
+    alignas(32) float clipped[kBlock], inv_area[kBlock];
+};
+
+}  // namespace
+
+// The two passes (see the top of the file). Slices: 1 (view-independent), 2
+// (isotropic, linear in the view's plane radius), 4 (anisotropic, bilinear on
+// the V×V grid). Pass 1 computes what square_taps computes, lane by lane.
+template <int Slices>
+void BrdfTable::batch_kernel(const SquareQueries& q, const ColorOutputs& out) const {
+    const int n = grid_.n;
+    const int row = (n + 1) * 3;
+    const int v = options_.view_samples;
+    const float scale = 0.5f * static_cast<float>(n);
+    const float* const sat = sat_.data();
+    const float* const padded = last_slice_padded_.data();
+    const size_t slice_floats = slice_floats_;
+    const int last = last_slice_;
+    const Color* const offsets = offsets_.data();
+    BlockTaps<Slices> b;
+    for (size_t begin = 0; begin < q.count; begin += kBlock) {
+        const size_t count = std::min(q.count - begin, static_cast<size_t>(kBlock));
+        for (size_t g = 0; g < count; g += 8) {
+            const size_t i = begin + g;
+            Float8 h = q.half_edge ? load_group(q.half_edge, i, q.count) : splat(q.uniform_half_edge);
+            h = max8(h, splat(1e-6f));
+            const Float8 cx = load_group(q.center_x, i, q.count), cy = load_group(q.center_y, i, q.count);
+            const Float8 fn = splat(static_cast<float>(n));
+            const Float8 x0 = clamp8((cx - h + 1.0f) * scale, fn), x1 = clamp8((cx + h + 1.0f) * scale, fn);
+            const Float8 y0 = clamp8((cy - h + 1.0f) * scale, fn), y1 = clamp8((cy + h + 1.0f) * scale, fn);
+            Int8 a0, a1, b0, b1;
+            Float8 f0, f1, g0, g1;
+            bracket8(x0, n, a0, f0);
+            bracket8(x1, n, a1, f1);
+            bracket8(y0, n, b0, g0);
+            bracket8(y1, n, b1, g1);
+            const Float8 clipped = (x1 - x0) * (y1 - y0);
+            const Float8 edge = 2.0f * h * scale;
+            const Float8 wy[4] = {1.0f - g1, g1, g0 - 1.0f, -g0};
+            Float8 view_weight[Slices];
+            Int8 first = Int8{};
+            if constexpr (Slices == 1) {
+                view_weight[0] = splat(1.0f);
+            } else if constexpr (Slices == 2) {
+                const Float8 radius = sqrt8(clamp8(1.0f - load_group(q.view_z, i, q.count), splat(1.0f)));
+                Float8 w;
+                sample_lerp8(radius * float(v) - 0.5f, v, first, w);
+                view_weight[0] = 1.0f - w, view_weight[1] = w;
+            } else {
+                // hemisphere_to_plane, clamped to the horizon, on the V×V grid.
+                const Float8 z = max8(load_group(q.view_z, i, q.count), splat(-0.999f));
+                const Float8 s = 1.0f / sqrt8(max8(1.0f + z, splat(1e-12f)));
+                Float8 px = load_group(q.view_x, i, q.count) * s, py = load_group(q.view_y, i, q.count) * s;
+                const Float8 len2 = px * px + py * py;
+                const Float8 len = sqrt8(len2);
+                px = len2 > 1.0f ? px / len : px;
+                py = len2 > 1.0f ? py / len : py;
+                Int8 i0, j0;
+                Float8 wi, wj;
+                sample_lerp8((px + 1.0f) * 0.5f * float(v) - 0.5f, v, i0, wi);
+                sample_lerp8((py + 1.0f) * 0.5f * float(v) - 0.5f, v, j0, wj);
+                first = j0 * v + i0;
+                view_weight[0] = (1.0f - wi) * (1.0f - wj), view_weight[1] = wi * (1.0f - wj);
+                view_weight[2] = (1.0f - wi) * wj, view_weight[3] = wi * wj;
+            }
+            store8(b.row_upper + g, b1 * row);
+            store8(b.row_lower + g, b0 * row);
+            store8(b.col_upper + g, a1 * 3);
+            store8(b.col_lower + g, a0 * 3);
+            store8(b.first_slice + g, first);
+            store8(b.f_upper + g, f1);
+            store8(b.f_lower + g, f0);
+            for (int s = 0; s < Slices; ++s) {
+                for (int m = 0; m < 4; ++m) store8(b.weight[s][m] + g, view_weight[s] * wy[m]);
+                store8(b.offset_weight[s] + g, view_weight[s] * clipped);
+            }
+            store8(b.clipped + g, clipped);
+            store8(b.inv_area + g, 1.0f / (edge * edge));
+        }
+        for (size_t k = 0; k < count; ++k) {
+            float* const r = out.r + begin + k;
+            float* const gr = out.g + begin + k;
+            float* const bl = out.b + begin + k;
+            if (b.clipped[k] <= 0.0f) {  // entirely outside the table (FMA would leave ±ulp residues)
+                *r = *gr = *bl = 0.0f;
+                continue;
+            }
+            const int rows[4] = {b.row_upper[k], b.row_upper[k] + row, b.row_lower[k], b.row_lower[k] + row};
+            Float8 upper[Slices], lower[Slices];  // corner pairs (a1, a1+1) and (a0, a0+1)
+            Color offset(0.0f);
+            for (int s = 0; s < Slices; ++s) {
+                const int slice = b.first_slice[k] + (s & 1) + (s >> 1) * v;
+                const float* corners = slice == last ? padded : sat + slice * slice_floats;
+                const float* upper_pair = corners + b.col_upper[k];
+                const float* lower_pair = corners + b.col_lower[k];
+                upper[s] = Float8{}, lower[s] = Float8{};
+                for (int m = 0; m < 4; ++m) {
+                    const float w = b.weight[s][m][k];
+                    upper[s] += w * load8(upper_pair + rows[m]);
+                    lower[s] += w * load8(lower_pair + rows[m]);
+                }
+                offset += b.offset_weight[s][k] * offsets[slice];
+            }
+            for (int s = 1; s < Slices; ++s) upper[0] += upper[s], lower[0] += lower[s];
+            // Upper pair: weights (1 − f1, f1); lower: (f0 − 1, −f0) = −(1 − f0, f0).
+            const Float8 sum = upper[0] * pair_weights(b.f_upper[k]) - lower[0] * pair_weights(b.f_lower[k]);
+            *r = (sum[0] + sum[3] + offset.r) * b.inv_area[k];
+            *gr = (sum[1] + sum[4] + offset.g) * b.inv_area[k];
+            *bl = (sum[2] + sum[5] + offset.b) * b.inv_area[k];
+        }
+    }
+}
+
+void BrdfTable::square_average_batch(const SquareQueries& q, const ColorOutputs& out) const {
+    if (view_independent_) {  // all slices equal: slice 0 at weight 1 is exact
+        batch_kernel<1>(q, out);
+    } else if (isotropic_) {
+        batch_kernel<2>(q, out);
+    } else {
+        batch_kernel<4>(q, out);
+    }
+}
+
+Color BrdfTable::square_average(const Vec2& center, float half_edge, const Vec3& view) const {
+    Color out;
+    SquareQueries q;
+    q.center_x = &center.x, q.center_y = &center.y;
+    q.half_edge = &half_edge;
+    q.view_x = &view.x, q.view_y = &view.y, q.view_z = &view.z;
+    q.count = 1;
+    square_average_batch(q, ColorOutputs{&out.r, &out.g, &out.b});
+    return out;
+}
+
+}  // namespace rsl
