@@ -75,7 +75,8 @@ private:
     struct BlockScratch;  // shade_block.cpp
     void update_occluder_lists();
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts) const;
-    void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, int n, bool culling) const;
+    void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
+    void prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
 
     const Scene& scene_;
     RenderOptions options_;

@@ -43,6 +43,13 @@ struct Renderer::BlockScratch {
     alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
     bool occluder_ready[kMaxOccluderParts];
     bool block_outside[kMaxOccluderParts];  // the whole block lies beyond the occluder's outer shell
+    bool vertices_ready[kMaxOccluderParts];  // the per-vertex poles and cones below are computed
+    // Per occluder part: the bounding cone as the whole block sees it — the
+    // direction from the block's center to the part's, how far any vertex's
+    // pole can turn from it (radians), and the largest cone plane radius of
+    // any vertex (negative: some vertex may lie in the bounding sphere).
+    Vec3 block_pole[kMaxOccluderParts];
+    float block_spread[kMaxOccluderParts], block_cone[kMaxOccluderParts];
     // Per occluder part and vertex: the part's bounding cone seen from the
     // vertex — the unit direction to its center (world) and the cone's plane
     // radius (OvdfLookup::unshadowed) — which alone decides most lights.
@@ -62,17 +69,49 @@ struct Renderer::BlockScratch {
 
 
 // Per block and occluder, before its first lookup: whether the block lies
-// beyond the field's outer shell, and each vertex's bounding cone of the part.
-void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int o, int n,
-                                bool culling) const {
+// beyond the field's outer shell, and the part's bounding cone as the whole
+// block sees it (O(1): from the block's bounding sphere).
+void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int o, bool culling) const {
     const PartPose& occluder = poses_[o];
     s.occluder_ready[o] = true;
+    s.vertices_ready[o] = false;
     s.block_outside[o] = false;
-    if (culling) {
-        const BoundingSphere reach = transform_sphere(occluder.transform, local_reach_[o]);
-        s.block_outside[o] = beyond_reach(block_sphere, reach);
-        if (s.block_outside[o]) return;
-    }
+    s.block_cone[o] = -1.0f;
+    if (!culling) return;
+    const BoundingSphere reach = transform_sphere(occluder.transform, local_reach_[o]);
+    s.block_outside[o] = beyond_reach(block_sphere, reach);
+    const OvdfLookup* fast = fast_lookups_[o].get();
+    if (s.block_outside[o] || !fast) return;
+    // Every vertex is at distance ≥ d − r from the part's center, so its cone
+    // radius is at most the cone at d − r (it grows as the distance shrinks),
+    // and its pole is within asin(r / d) of the block center's.
+    const Ovdf& field = fast->field();
+    const BoundingSphere part = transform_sphere(occluder.transform, BoundingSphere{field.center, field.radius});
+    const Vec3 to_part = part.center - block_sphere.center;
+    const float d = glm::length(to_part);
+    if (!(d - block_sphere.radius > part.radius)) return;  // a vertex may lie in the bounding sphere: no cone
+    s.block_pole[o] = to_part / d;
+    s.block_spread[o] = std::asin(std::min(1.0f, block_sphere.radius / d));
+    s.block_cone[o] = ovdf_zoom(d - block_sphere.radius, part.radius).cone;
+}
+
+// Whether an environment light (unit world direction, square half-edge h)
+// clears the part's bounding cone at every vertex of the block: then every
+// vertex's OvdfLookup::unshadowed test passes, with a margin for rounding.
+inline bool block_unshadowed(const Vec3& pole, float spread, float cone, const Vec3& light, float half_edge) {
+    if (cone < 0.0f) return false;
+    const float limit = half_edge + cone;
+    if (limit * limit >= 2.0f) return false;  // the cone and square cover every direction
+    const float needed = std::acos(1.0f - limit * limit);  // the angle to the pole each vertex needs
+    const float angle = std::acos(std::clamp(glm::dot(light, pole), -1.0f, 1.0f));
+    return angle - spread >= needed + 1e-3f;
+}
+
+// Each vertex's bounding cone of the part, before the first light that the
+// block-level test does not decide.
+void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool culling) const {
+    const PartPose& occluder = poses_[o];
+    s.vertices_ready[o] = true;
     for (int k = 0; k < n; ++k) s.prepared[o][k] = false;
     const OvdfLookup* fast = fast_lookups_[o].get();
     if (fast && s.points.size() < scene_.parts.size() * kBlock) {  // first frame only
@@ -250,14 +289,20 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         for (size_t e = offsets_[slot_base + l]; field_occluders && e < offsets_[slot_base + l + 1]; ++e) {
             const int o = occluders_[e];
             const PartPose& occluder = poses_[o];
-            if (per_occluder && !s.occluder_ready[o]) prepare_occluder(s, block_sphere, o, n, vertex_culling);
+            if (per_occluder && !s.occluder_ready[o]) prepare_occluder(s, block_sphere, o, vertex_culling);
             if (vertex_culling && s.block_outside[o]) {
                 ++counts.block_occluders_culled;
                 continue;
             }
             if (vertex_culling && is_environment) {
-                // The whole block against the light's cone (as the per-part test).
+                // The whole block against the light's square: the part's
+                // bounding cone seen from the block, then (as the per-part
+                // test) the light's cone against the part's grown sphere.
                 const SquareLight& sq = environment_squares_[l];
+                if (block_unshadowed(s.block_pole[o], s.block_spread[o], s.block_cone[o], sq.direction, sq.half_edge)) {
+                    ++counts.block_occluders_culled;
+                    continue;
+                }
                 const BoundingSphere grown{block_sphere.center,
                                            block_sphere.radius + occluder_growth_[size_t(part_index) * scene_.parts.size() + o]};
                 if (!may_shadow_direction(grown, occluder.world_bounds, sq.direction, square_cone_half_angle(sq.half_edge))) {
@@ -265,6 +310,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                     continue;
                 }
             }
+            if (per_occluder && !s.vertices_ready[o]) prepare_occluder_vertices(s, o, n, vertex_culling);
             const OvdfLookup* fast = per_occluder ? fast_lookups_[o].get() : nullptr;
             const OccluderField& field = *fields_.occluder[o];
             // An environment light has one direction in the occluder's frame.
