@@ -2,11 +2,14 @@
 // per-vertex case (coherent 16-ray packets from one origin, all cores), the
 // same rays one at a time for comparison, and the time of the robot scene's
 // full ground truth at 6×32×32 texels.
+// `rsl bench image`: primary rays per second of image formation (form_image,
+// tiles of coherent packets) against the same rays traced one at a time.
 #include <chrono>
 #include <filesystem>
 
 #include <fmt/core.h>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include "assets/generate/primitives.h"
@@ -14,6 +17,7 @@
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 #include "src/trace/ground_truth.h"
+#include "src/trace/image_formation.h"
 
 namespace rsl::cli {
 namespace {
@@ -151,6 +155,103 @@ RegisterBenchmark truth_benchmark({"truth",
             ? CubeMap(robot_n) : load_environment(robot.environment.file, robot_n);
         emit_truth(fmt::format("robot t=0, its environment 6x{}x{}", robot_n, robot_n), robot, environment, 0.0f);
         if (!options.quick) emit_truth("robot t=0, white 6x32x32", robot, white_cube(32), 0.0f);
+    }});
+
+// The image of per-vertex colours traced one ray at a time, rows in parallel:
+// what form_image did before it traced tiles of packets (the reference).
+Image form_image_single_rays(const PosedScene& posed, const PinholeCamera& camera, const VertexColors& colors,
+                             int s) {
+    Image image(camera.width, camera.height, 4);
+    const float inv_samples = 1.0f / float(s * s);
+    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height, 1), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y != rows.end(); ++y)
+            for (int x = 0; x < camera.width; ++x) {
+                Color sum(0);
+                int covered = 0;
+                for (int b = 0; b < s; ++b)
+                    for (int a = 0; a < s; ++a) {
+                        const Vec3 dir = camera.direction(float(x) + (float(a) + 0.5f) / float(s),
+                                                          float(y) + (float(b) + 0.5f) / float(s));
+                        const RayHit hit = posed.rays().intersect(camera.eye, dir);
+                        if (!hit.hit) continue;
+                        sum += interpolate_vertex_colors(posed.scene(), colors, hit);
+                        ++covered;
+                    }
+                float* pixel = image.at(x, y);
+                for (int c = 0; c < 3; ++c) pixel[c] = sum[c] * inv_samples;
+                pixel[3] = float(covered) * inv_samples;
+            }
+    });
+    return image;
+}
+
+void emit_image(const std::string& case_name, const Scene& scene, int width, int height, bool quick) {
+    PosedScene posed(scene, 0.0f);
+    // Posing the parts at a new time (transforms, top-level commit): what
+    // `rsl render` adds to each frame's image time besides form_image.
+    const double pose_seconds = best_seconds(quick ? 3 : 15, [&] {
+        posed.set_time(0.5f);
+        posed.set_time(0.0f);
+    }) / 2;
+    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, 0.0f, width, height);
+    VertexColors colors;
+    colors.scene_name = scene.name;
+    for (const Part& part : scene.parts) {
+        colors.add_part(part.name, part.mesh.vertex_count());
+        for (size_t v = 0; v < part.mesh.vertex_count(); ++v)
+            colors.parts.back()[v] = Color(0.5f) + 0.5f * glm::sin(part.mesh.positions[v] * 7.0f);
+    }
+    const int repeats = quick ? 3 : 15;
+    for (int s : {1, 2}) {
+        ImageFormationOptions options;
+        options.samples_per_side = s;
+        Image packets, single;
+        double best[2], cpu[2];
+        for (int variant = 0; variant < 2; ++variant) {
+            Image& out = variant == 0 ? packets : single;
+            best[variant] = 1e30;
+            cpu[variant] = 1e30;
+            for (int r = 0; r < repeats; ++r) {
+                const auto start = BenchClock::now();
+                const double cpu_start = process_cpu_seconds();
+                out = variant == 0 ? form_image(posed, camera, colors, options)
+                                   : form_image_single_rays(posed, camera, colors, s);
+                best[variant] = std::min(best[variant], seconds_since(start));
+                cpu[variant] = std::min(cpu[variant], process_cpu_seconds() - cpu_start);
+            }
+        }
+        double max_difference = 0;
+        for (size_t i = 0; i < packets.pixels.size(); ++i)
+            max_difference = std::max(max_difference, double(std::abs(packets.pixels[i] - single.pixels[i])));
+        const double rays = double(width) * height * s * s;
+        bench_emit({{"bench", "image"},
+                    {"case", fmt::format("{} {}x{}, {}x{} samples per pixel", case_name, width, height, s, s)},
+                    {"parts", scene.parts.size()},
+                    {"primary_rays", rays},
+                    {"seconds", best[0]},
+                    {"cpu_seconds", cpu[0]},
+                    {"primary_rays_per_second", rays / best[0]},
+                    {"primary_rays_per_cpu_second", rays / cpu[0]},
+                    {"single_ray_seconds", best[1]},
+                    {"single_ray_cpu_seconds", cpu[1]},
+                    {"single_rays_per_second", rays / best[1]},
+                    {"speedup", best[1] / best[0]},
+                    {"max_pixel_difference", max_difference},
+                    {"pose_seconds", pose_seconds}});
+    }
+}
+
+RegisterBenchmark image_benchmark({"image",
+    "Image formation: primary rays per second (tiles of packets vs single rays), robot and spheres at 640x480",
+    [](const BenchOptions& options) {
+        const int width = options.quick ? 160 : 640, height = options.quick ? 120 : 480;
+        emit_image("spheres", synthetic_scene(options.quick), width, height, options.quick);
+        const fs::path robot_path = fs::path(RSL_SOURCE_DIR) / "assets" / "scenes" / "robot.json";
+        if (!fs::exists(robot_path) || !fs::exists(options.generated_assets / "robot.glb")) {
+            bench_emit({{"bench", "image"}, {"case", "robot"}, {"skipped", "run `rsl assets` first: missing " + robot_path.string()}});
+            return;
+        }
+        emit_image("robot", load_scene(robot_path), width, height, options.quick);
     }});
 
 }  // namespace

@@ -26,7 +26,17 @@ struct PinholeCamera {
     static PinholeCamera at_time(const Camera& camera, float t, int width, int height);
     // Unit direction through image position (px, py) in pixels: (0, 0) is the
     // top-left corner of the image, (width, height) the bottom-right.
-    Vec3 direction(float px, float py) const;
+    Vec3 direction(float px, float py) const { return direction_through(screen_x(px), screen_y(py)); }
+
+    // The same in two steps, for batches of rays (bit for bit the same
+    // direction): image-plane coordinates at unit distance, then the unit
+    // direction through them.
+    float screen_x(float px) const {
+        const float aspect = float(width) / float(height);
+        return (2.0f * px / float(width) - 1.0f) * tan_half_fov_y * aspect;
+    }
+    float screen_y(float py) const { return (1.0f - 2.0f * py / float(height)) * tan_half_fov_y; }
+    Vec3 direction_through(float sx, float sy) const { return glm::normalize(forward + sx * right + sy * up); }
 };
 
 struct ImageFormationOptions {
@@ -38,7 +48,9 @@ struct ImageFormationOptions {
 // Colour of a primary-ray hit (called from worker threads).
 using HitShader = std::function<Color(const RayHit& hit, const Vec3& ray_direction)>;
 
-// Traces the image; every hit is coloured by `shade`. RGBA, all cores.
+// Traces the image; every hit is coloured by `shade`. RGBA, all cores. Rays
+// are traced in coherent packets over square tiles of pixels, and each pixel
+// sums its samples in the order a ray at a time would (same hits, same sums).
 Image trace_image(const PosedScene& scene, const PinholeCamera& camera, const ImageFormationOptions& options,
                   const HitShader& shade, const ProgressCallback& progress = {});
 

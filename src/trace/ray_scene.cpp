@@ -246,4 +246,57 @@ void RayScene::occluded_batch(const Vec3& origin, const Vec3* dirs, const float*
                                std::min(kPacketSize, count - start), t_near, visible + start);
 }
 
+void RayScene::intersect_packet(const Vec3& origin, const float* dir_x, const float* dir_y, const float* dir_z,
+                                int count, RayHit* hits, bool geometric_normals) const {
+    impl_->require_committed();
+    RSL_CHECK(count >= 0 && count <= kPrimaryPacket);
+    static_assert(kPrimaryPacket == 16, "one RTCRayHit16 per packet");
+    alignas(64) RTCRayHit16 query;
+    alignas(64) std::array<int, kPrimaryPacket> valid;
+    for (int k = 0; k < kPrimaryPacket; ++k) {
+        const bool active = k < count;
+        valid[k] = active ? -1 : 0;
+        query.ray.org_x[k] = origin.x, query.ray.org_y[k] = origin.y, query.ray.org_z[k] = origin.z;
+        query.ray.dir_x[k] = active ? dir_x[k] : 0.0f;
+        query.ray.dir_y[k] = active ? dir_y[k] : 0.0f;
+        query.ray.dir_z[k] = active ? dir_z[k] : 1.0f;
+        query.ray.tnear[k] = 0.0f;
+        query.ray.tfar[k] = active ? 1e30f : 0.0f;  // intersect()'s default range
+        query.ray.time[k] = 0;
+        query.ray.mask[k] = ~0u;
+        query.ray.id[k] = unsigned(k);
+        query.ray.flags[k] = 0;
+        query.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        query.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+        query.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    // Coherent: Embree traces the packet's frustum through the BVH, about
+    // twice the speed of per-ray traversal for primary rays. The flag hangs
+    // rtcOccluded16 (see occluded_packet), not rtcIntersect16: the trace
+    // tests' shadow rays traced through rtcIntersect16 with this flag, and
+    // 4000 random instanced scenes under TBB, all returned.
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect16(valid.data(), impl_->top, &context, &query);
+    for (int k = 0; k < count; ++k) {
+        RayHit& hit = hits[k];
+        if (query.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+            hit = RayHit{};
+            continue;
+        }
+        hit.hit = true;
+        hit.t = query.ray.tfar[k];
+        hit.instance = int(query.hit.instID[0][k]);
+        hit.triangle = int(query.hit.primID[k]);
+        hit.u = query.hit.u[k];
+        hit.v = query.hit.v[k];
+        hit.geometric_normal = Vec3(0);
+        if (geometric_normals) {
+            const Vec3 ng_object(query.hit.Ng_x[k], query.hit.Ng_y[k], query.hit.Ng_z[k]);
+            hit.geometric_normal = glm::normalize(impl_->normal_matrices[hit.instance] * ng_object);
+        }
+    }
+}
+
 }  // namespace rsl

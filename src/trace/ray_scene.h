@@ -71,6 +71,16 @@ public:
     void occluded_batch(const Vec3& origin, const Vec3* dirs, const float* t_fars, int count,
                         float t_near, uint8_t* visible) const;
 
+    // Closest hits of one coherent packet of up to kPrimaryPacket rays from a
+    // shared origin (a camera's primary rays through neighbouring pixels),
+    // directions as structure of arrays: hits[k] is what
+    // intersect(origin, dir k) gives (the same hit; u, v and t up to float
+    // rounding of Embree's packet kernels). The geometric normal costs a
+    // normalization per hit, so it is filled only when asked for (else zero).
+    static constexpr int kPrimaryPacket = 16;
+    void intersect_packet(const Vec3& origin, const float* dir_x, const float* dir_y, const float* dir_z,
+                          int count, RayHit* hits, bool geometric_normals = true) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

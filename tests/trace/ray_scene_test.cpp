@@ -124,6 +124,56 @@ TEST_CASE("occluded_batch equals single-ray queries, for shared and per-ray t_fa
     }
 }
 
+TEST_CASE("intersect_packet gives intersect()'s hit for every ray, coherent or not, full or partial", "[trace][ray_scene]") {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> uni(-1, 1);
+    RayScene scene;
+    scene.add_instance(scene.add_mesh(test::make_icosphere(0.5f, 3)), random_pose(rng));
+    scene.add_instance(scene.add_mesh(test::make_icosphere(0.3f, 2)), random_pose(rng));
+    scene.add_instance(scene.add_mesh(test::make_plane(3.0f, 5)), glm::translate(Mat4(1.0f), Vec3(0, -0.8f, 0)));
+    scene.commit();
+    constexpr int kPacket = RayScene::kPrimaryPacket;
+    int hits = 0, misses = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const Vec3 origin = 3.0f * Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(0, 1.0f, 0);
+        const int count = 1 + trial % kPacket;
+        // Half the packets are narrow cones (a camera's neighbouring pixels),
+        // half point anywhere (every octant, many misses).
+        const bool coherent = trial % 2 == 0;
+        const Vec3 axis = glm::normalize(0.5f * Vec3(uni(rng), uni(rng), uni(rng)) - origin);
+        float dx[kPacket], dy[kPacket], dz[kPacket];
+        for (int k = 0; k < count; ++k) {
+            const Vec3 d = coherent ? glm::normalize(axis + 0.05f * Vec3(uni(rng), uni(rng), uni(rng)))
+                                    : glm::normalize(Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(0, 0, 1e-3f));
+            dx[k] = d.x, dy[k] = d.y, dz[k] = d.z;
+        }
+        RayHit packet[kPacket], bare[kPacket];
+        scene.intersect_packet(origin, dx, dy, dz, count, packet);
+        scene.intersect_packet(origin, dx, dy, dz, count, bare, false);
+        for (int k = 0; k < count; ++k) {
+            const RayHit single = scene.intersect(origin, Vec3(dx[k], dy[k], dz[k]));
+            REQUIRE(packet[k].hit == single.hit);
+            REQUIRE(bare[k].hit == single.hit);
+            if (!single.hit) {
+                ++misses;
+                continue;
+            }
+            ++hits;
+            for (const RayHit* h : {&packet[k], &bare[k]}) {
+                REQUIRE(h->instance == single.instance);
+                REQUIRE(h->triangle == single.triangle);
+                REQUIRE(h->t == Approx(single.t).epsilon(1e-5));
+                REQUIRE(h->u == Approx(single.u).margin(1e-5));
+                REQUIRE(h->v == Approx(single.v).margin(1e-5));
+            }
+            REQUIRE(glm::length(packet[k].geometric_normal - single.geometric_normal) < 1e-5f);
+            REQUIRE(bare[k].geometric_normal == Vec3(0));
+        }
+    }
+    REQUIRE(hits > 500);
+    REQUIRE(misses > 500);
+}
+
 TEST_CASE("Moving an instance changes queries after commit without rebuilding", "[trace][ray_scene]") {
     RayScene scene;
     const int mesh = scene.add_mesh(test::make_icosphere(0.5f, 2));
