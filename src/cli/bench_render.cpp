@@ -124,5 +124,14 @@ RegisterBenchmark render_accuracy_benchmark({"render-accuracy",
     "Per-vertex relative L2 error of the RSL renderer vs the ground truth (docs/RESULTS.md); slow",
     bench_render_accuracy});
 
+void bench_render_accuracy_goal(const BenchOptions& options) {
+    for (const AccuracyRow& row : render_accuracy_goal_rows(options.shared_assets, options.quick))
+        bench_emit(accuracy_row_json(row));
+}
+
+RegisterBenchmark render_goal_benchmark({"render-goal",
+    "The accuracy goal rows: glossy robot under grace, t = 0/0.5/1, K = 10-100, the scene's own field settings",
+    bench_render_accuracy_goal});
+
 }  // namespace
 }  // namespace rsl::cli

@@ -78,10 +78,24 @@ public:
         if (q.kind == OvdfPoint::Outside) return kVdtNoBoundaryDistance;
         if (q.kind == OvdfPoint::Inside) return -kVdtNoBoundaryDistance;
         if (q.kind == OvdfPoint::Slow) return field_->distance(point, light, OvdfBlend::AlignedCoefficients);
+        // The usual vector counts get fully unrolled row blends.
+        switch (vectors_) {
+            case 4: return prepared_distance<4>(q, light);
+            case 6: return prepared_distance<6>(q, light);
+            case 8: return prepared_distance<8>(q, light);
+            default: return prepared_distance<0>(q, light);
+        }
+    }
+
+private:
+    // distance() of a Prepared point; V = the PCA vector count (0: vectors_).
+    template <int V>
+    float prepared_distance(const OvdfPoint& q, const Vec3& light) const {
+        const int vectors = V > 0 ? V : vectors_, stride = vectors + 1;
         const Vec3 local(glm::dot(light, q.x), glm::dot(light, q.y), glm::dot(light, q.z));
         const Vec2 p = lookup_plane_point(local);
         const float radial = std::sqrt(p.x * p.x + p.y * p.y);
-        const int n = vdt_resolution_, stride = vectors_ + 1;
+        const int n = vdt_resolution_;
         const float hi = float(n - 1);
         float distance = 0;
         const OvdfTerm* term = q.terms;
@@ -93,18 +107,20 @@ public:
             const float v = std::clamp((zoom * p.y + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
             const int i0 = std::min(int(u), n - 2), j0 = std::min(int(v), n - 2);
             const float fx = u - float(i0), fy = v - float(j0);
-            const int base = j0 * n + i0;
-            const int index[4] = {base, base + 1, base + n, base + n + 1};
-            const float weight[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+            const size_t base = size_t(j0 * n + i0) * stride, below = size_t(n) * stride;
+            const float w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
             float value = 0;  // × shell weight, table units
             for (const OvdfTerm* end = term + q.term_count[k]; term != end; ++term) {
-                const float* table = tables_ + term->row_offset;
-                for (int t = 0; t < 4; ++t) {
-                    const float* row = table + size_t(index[t]) * stride;
-                    float r = term->mean_weight * row[0];
-                    for (int m = 0; m < vectors_; ++m) r += term->coefficients[m] * row[m + 1];
-                    value += weight[t] * r;
-                }
+                // Σ_taps w·(mean + c·basis) = mean·(Σ w·row₀) + Σ_m c_m·(Σ w·row_m+1):
+                // the bilinear blend of the four rows, then one dot product.
+                const float* r00 = tables_ + term->row_offset + base;
+                const float* r01 = r00 + below;
+                float blended[OvdfTerm::kMaxVectors + 1];
+                for (int m = 0; m < stride; ++m)
+                    blended[m] = w00 * r00[m] + w10 * r00[m + stride] + w01 * r01[m] + w11 * r01[m + stride];
+                float r = term->mean_weight * blended[0];
+                for (int m = 0; m < vectors; ++m) r += term->coefficients[m] * blended[m + 1];
+                value += r;
             }
             // ovdf_plane_distance, scaled by the (positive) shell weight.
             distance += std::max(value / zoom, q.shell_weight[k] * (radial - q.zoom[k].cone));
@@ -112,7 +128,6 @@ public:
         return std::max(distance, radial - q.cone);  // the receiver's own cone (Ovdf::distance)
     }
 
-private:
     const Ovdf* field_;
     const float* tables_;
     int vectors_, dims_, vdt_resolution_;

@@ -72,34 +72,33 @@ std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const fs::path
     return scene;
 }
 
-std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bool quick, bool progress) {
-    struct SceneCase {
-        std::string name, file;
-        std::vector<float> times;
-        bool needs_shared;
-    };
-    std::vector<SceneCase> scenes = {{"robot", "robot.json", {0.0f, 0.5f, 1.0f}, false},
-                                     {"kitchen", "kitchen.json", {1.0f}, false},
-                                     {"bunny", "bunny.json", {0.0f}, true}};
-    std::vector<int> light_counts = {10, 30, 60, 100};
-    if (quick) {
-        scenes.resize(1);
-        scenes[0].times = {0.0f};
-        light_counts = {10, 30};
-    }
+namespace {
+
+struct SceneCase {
+    std::string name, file;
+    std::vector<float> times;
+    bool needs_shared = false;
+    bool scene_settings = false;  // the scene file's own precompute settings, not bench_precompute()
+    bool glossy_only = false;
+    std::string only_environment;  // empty: all of them
+};
+
+std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, const std::vector<int>& light_counts,
+                                       const fs::path& shared_assets, bool quick, bool progress) {
     std::vector<AccuracyRow> rows;
     for (const SceneCase& sc : scenes) {
         if (sc.needs_shared && !fs::exists(shared_assets)) continue;
         for (const bool glossy : {true, false}) {
-            if (quick && !glossy) continue;
+            if ((quick || sc.glossy_only) && !glossy) continue;
             auto scene = std::make_shared<Scene>(load_scene(scenes_dir() / sc.file));
-            scene->precompute = bench_precompute();
+            if (!sc.scene_settings) scene->precompute = bench_precompute();
             if (!glossy) make_diffuse(*scene);
             // Fields depend on geometry only: bake once per scene and material set.
             RenderOptions bake_options;
             bake_options.environment = false;
             const RenderSetup setup = prepare_render(scene, bake_options, progress);
             for (const NamedEnvironment& env : table_environments(shared_assets, scene->environment.resolution, quick)) {
+                if (!sc.only_environment.empty() && env.name != sc.only_environment) continue;
                 for (float t : sc.times) {
                     auto start = std::chrono::steady_clock::now();
                     GroundTruth truth(*scene, env.map, t);
@@ -107,6 +106,7 @@ std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bo
                     const double truth_seconds = since(start);
                     for (int k : light_counts) {
                         AccuracyRow row{sc.name, env.name, glossy ? "glossy" : "diffuse", t, k};
+                        row.settings = sc.scene_settings ? "scene" : "bench";
                         const RslSet rsls = fit_environment_lights(env.map, k);
                         RenderOptions options;
                         Renderer renderer(*scene, rsls, setup.fields, options);
@@ -144,9 +144,34 @@ std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bo
     return rows;
 }
 
+}  // namespace
+
+std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bool quick, bool progress) {
+    std::vector<SceneCase> scenes = {{"robot", "robot.json", {0.0f, 0.5f, 1.0f}},
+                                     {"kitchen", "kitchen.json", {1.0f}},
+                                     {"bunny", "bunny.json", {0.0f}, true}};
+    std::vector<int> light_counts = {10, 30, 60, 100};
+    if (quick) {
+        scenes.resize(1);
+        scenes[0].times = {0.0f};
+        light_counts = {10, 30};
+    }
+    return accuracy_rows(scenes, light_counts, shared_assets, quick, progress);
+}
+
+std::vector<AccuracyRow> render_accuracy_goal_rows(const fs::path& shared_assets, bool quick, bool progress) {
+    SceneCase robot{"robot", "robot.json", {0.0f, 0.5f, 1.0f}};
+    robot.scene_settings = true, robot.glossy_only = true, robot.only_environment = "grace";
+    robot.needs_shared = true;  // grace is one of the shared probes
+    if (quick) robot.times = {0.0f};
+    return accuracy_rows({robot}, quick ? std::vector<int>{30} : std::vector<int>{10, 30, 60, 100}, shared_assets,
+                         false, progress);
+}
+
 nlohmann::json accuracy_row_json(const AccuracyRow& row) {
     return {{"bench", "render-accuracy"},
             {"scene", row.scene},
+            {"precompute", row.settings},
             {"time", row.time},
             {"environment", row.environment},
             {"material", row.material},

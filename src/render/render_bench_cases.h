@@ -44,12 +44,19 @@ struct AccuracyRow {
     double light_error = -1;  // truth under the RSL reconstruction of the map vs truth (light approximation alone); -1: not measured
     double no_occluder_error = 0;  // renderer without the OVDF factor vs truth
     double truth_seconds = 0, render_seconds = 0;
+    std::string settings = "bench";  // precompute: "bench" (bench_precompute()) or "scene" (the scene file's)
 };
 
 // Every row of the table (slow: one ground truth per scene × time ×
 // environment × material). quick: the robot at t = 0 under grace only, K = 10, 30.
 std::vector<AccuracyRow> render_accuracy_table(const std::filesystem::path& shared_assets, bool quick,
                                                bool progress = true);
+// The goal rows: the glossy robot under grace at t = 0, 0.5, 1 with
+// the scene file's own precompute settings (the paper's: 16 shells, 32² cube
+// and VDTs, 8 vectors; fields from the scene's cache, baked once), K = 10, 30,
+// 60, 100 (quick: t = 0, K = 30).
+std::vector<AccuracyRow> render_accuracy_goal_rows(const std::filesystem::path& shared_assets, bool quick,
+                                                   bool progress = true);
 nlohmann::json accuracy_row_json(const AccuracyRow& row);
 
 }  // namespace rsl
