@@ -27,6 +27,34 @@ struct CpcaOptions {
     bool half_precision_tables = true;
 };
 
+// Σ_t w_t·(mean_weight·row_t[0] + Σ_m c_m·row_t[m+1]) over four rows of
+// `vectors` + 1 floats: the bilinear blend of the rows first, then one dot
+// product (fewer operations than four reconstructions, and the loops unroll
+// for a compile-time V; V = 0 takes `vectors`).
+template <int V>
+inline float blend_rows_dot(const float* const rows[4], const float w[4], float mean_weight, const float* c,
+                            int vectors) {
+    constexpr int kMaxStride = 33;
+    const int n = V > 0 ? V : vectors;
+    float blended[kMaxStride];
+    blended[0] = w[0] * rows[0][0] + w[1] * rows[1][0] + w[2] * rows[2][0] + w[3] * rows[3][0];
+    for (int m = 1; m <= n; ++m) blended[m] = w[0] * rows[0][m] + w[1] * rows[1][m] + w[2] * rows[2][m] + w[3] * rows[3][m];
+    float value = mean_weight * blended[0];
+    for (int m = 0; m < n; ++m) value += c[m] * blended[m + 1];
+    return value;
+}
+
+// blend_rows_dot with the usual vector counts unrolled.
+inline float blend_rows_dot_any(const float* const rows[4], const float w[4], float mean_weight, const float* c,
+                                int vectors) {
+    switch (vectors) {
+        case 4: return blend_rows_dot<4>(rows, w, mean_weight, c, vectors);
+        case 6: return blend_rows_dot<6>(rows, w, mean_weight, c, vectors);
+        case 8: return blend_rows_dot<8>(rows, w, mean_weight, c, vectors);
+        default: return blend_rows_dot<0>(rows, w, mean_weight, c, vectors);
+    }
+}
+
 struct CpcaModel {
     int dims = 0, vectors = 0, clusters = 0;
     std::vector<float> tables;        // clusters × dims × (vectors + 1), texel-major
@@ -47,6 +75,18 @@ struct CpcaModel {
         return value;
     }
     void reconstruct(int sample, float* out) const;
+    // Σ_t weight_t · reconstruct(sample, index_t), as lookups need it.
+    float reconstruct_bilinear(int sample, const int index[4], const float weight[4]) const {
+        if (vectors > 32) {
+            float value = 0;
+            for (int t = 0; t < 4; ++t) value += weight[t] * reconstruct(sample, index[t]);
+            return value;
+        }
+        const int cluster = assignment[sample];
+        const float* const rows[4] = {row(cluster, index[0]), row(cluster, index[1]), row(cluster, index[2]),
+                                      row(cluster, index[3])};
+        return blend_rows_dot_any(rows, weight, 1.0f, coefficients_of(sample), vectors);
+    }
 
     // Bytes as stored in a field file (tables as half or float, one uint16 or
     // int32 cluster index and float coefficients per sample).

@@ -44,9 +44,7 @@ public:
     // Reconstructed signed distance at plane point p.
     float distance(int vertex, const Vec2& p) const {
         const BilinearTaps taps = bilinear_taps(params.resolution, p);
-        float d = 0;
-        for (int k = 0; k < 4; ++k) d += taps.weight[k] * model.reconstruct(vertex, taps.index[k]);
-        return d;
+        return model.reconstruct_bilinear(vertex, taps.index, taps.weight);
     }
     // Visible fraction of the axis-aligned square (center, half-edge) of the
     // vertex's local plane.

@@ -61,7 +61,26 @@ struct BilinearTaps {
     int index[4];
     float weight[4];
 };
-BilinearTaps bilinear_taps(int n, const Vec2& p);
+inline BilinearTaps bilinear_taps(int n, const Vec2& p) {
+    // Texel centers sit at integer coordinates after the −½ shift.
+    const float hi = float(n - 1);
+    const float u = std::clamp((p.x + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
+    const float v = std::clamp((p.y + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
+    const int i0 = std::min(int(u), n - 2);
+    const int j0 = std::min(int(v), n - 2);
+    const float fx = u - float(i0), fy = v - float(j0);
+    BilinearTaps taps;
+    const int base = j0 * n + i0;
+    taps.index[0] = base;
+    taps.index[1] = base + 1;
+    taps.index[2] = base + n;
+    taps.index[3] = base + n + 1;
+    taps.weight[0] = (1 - fx) * (1 - fy);
+    taps.weight[1] = fx * (1 - fy);
+    taps.weight[2] = (1 - fx) * fy;
+    taps.weight[3] = fx * fy;
+    return taps;
+}
 
 inline float sample_bilinear(int n, const float* table, const Vec2& p) {
     const BilinearTaps taps = bilinear_taps(n, p);

@@ -96,31 +96,20 @@ private:
         const Vec2 p = lookup_plane_point(local);
         const float radial = std::sqrt(p.x * p.x + p.y * p.y);
         const int n = vdt_resolution_;
-        const float hi = float(n - 1);
         float distance = 0;
         const OvdfTerm* term = q.terms;
         for (int k = 0; k < 2; ++k) {
             if (q.term_count[k] == 0) continue;
-            // bilinear_taps (fields/vdt.cpp) at the shell's zoomed table point, inline.
             const float zoom = q.zoom[k].zoom;
-            const float u = std::clamp((zoom * p.x + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
-            const float v = std::clamp((zoom * p.y + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
-            const int i0 = std::min(int(u), n - 2), j0 = std::min(int(v), n - 2);
-            const float fx = u - float(i0), fy = v - float(j0);
-            const size_t base = size_t(j0 * n + i0) * stride, below = size_t(n) * stride;
-            const float w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+            const BilinearTaps taps = bilinear_taps(n, zoom * p);
+            const size_t below = size_t(n) * stride;
+            const float* const weights = taps.weight;
             float value = 0;  // × shell weight, table units
             for (const OvdfTerm* end = term + q.term_count[k]; term != end; ++term) {
-                // Σ_taps w·(mean + c·basis) = mean·(Σ w·row₀) + Σ_m c_m·(Σ w·row_m+1):
-                // the bilinear blend of the four rows, then one dot product.
-                const float* r00 = tables_ + term->row_offset + base;
-                const float* r01 = r00 + below;
-                float blended[OvdfTerm::kMaxVectors + 1];
-                for (int m = 0; m < stride; ++m)
-                    blended[m] = w00 * r00[m] + w10 * r00[m + stride] + w01 * r01[m] + w11 * r01[m + stride];
-                float r = term->mean_weight * blended[0];
-                for (int m = 0; m < vectors; ++m) r += term->coefficients[m] * blended[m + 1];
-                value += r;
+                // bilinear_taps' four texels: (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1).
+                const float* r00 = tables_ + term->row_offset + size_t(taps.index[0]) * stride;
+                const float* const rows[4] = {r00, r00 + stride, r00 + below, r00 + below + stride};
+                value += blend_rows_dot<V>(rows, weights, term->mean_weight, term->coefficients, vectors);
             }
             // ovdf_plane_distance, scaled by the (positive) shell weight.
             distance += std::max(value / zoom, q.shell_weight[k] * (radial - q.zoom[k].cone));

@@ -147,9 +147,10 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
 }  // namespace
 
 std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bool quick, bool progress) {
-    std::vector<SceneCase> scenes = {{"robot", "robot.json", {0.0f, 0.5f, 1.0f}},
-                                     {"kitchen", "kitchen.json", {1.0f}},
-                                     {"bunny", "bunny.json", {0.0f}, true}};
+    std::vector<SceneCase> scenes(3);
+    scenes[0].name = "robot", scenes[0].file = "robot.json", scenes[0].times = {0.0f, 0.5f, 1.0f};
+    scenes[1].name = "kitchen", scenes[1].file = "kitchen.json", scenes[1].times = {1.0f};
+    scenes[2].name = "bunny", scenes[2].file = "bunny.json", scenes[2].times = {0.0f}, scenes[2].needs_shared = true;
     std::vector<int> light_counts = {10, 30, 60, 100};
     if (quick) {
         scenes.resize(1);
@@ -160,7 +161,8 @@ std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bo
 }
 
 std::vector<AccuracyRow> render_accuracy_goal_rows(const fs::path& shared_assets, bool quick, bool progress) {
-    SceneCase robot{"robot", "robot.json", {0.0f, 0.5f, 1.0f}};
+    SceneCase robot;
+    robot.name = "robot", robot.file = "robot.json", robot.times = {0.0f, 0.5f, 1.0f};
     robot.scene_settings = true, robot.glossy_only = true, robot.only_environment = "grace";
     robot.needs_shared = true;  // grace is one of the shared probes
     if (quick) robot.times = {0.0f};
