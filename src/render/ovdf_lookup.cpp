@@ -40,8 +40,22 @@ int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) cons
         out.zoom[k] = f.shell_zoom(shell);
         out.term_count[k] = 0;
         if (ws == 0.0f) continue;
-        // One term per PCA segment among the four samples (one, except on seams).
         const int first = used;
+        const int segment = f.segment_of(shell, at.face, at.ii[0], at.jj[0]);
+        if (segment == f.segment_of(shell, at.face, at.ii[3], at.jj[3])) {
+            // The usual case: all four samples in one (rectangular) segment.
+            OvdfTerm& term = terms[used++];
+            term.row_offset = int(size_t(segment) * dims_ * (vectors_ + 1));
+            term.mean_weight = ws;
+            const float* c[4];
+            for (int q = 0; q < 4; ++q) c[q] = f.model.coefficients_of(f.sample_index(shell, at.face, at.ii[q], at.jj[q]));
+            const float w0 = ws * at.w[0], w1 = ws * at.w[1], w2 = ws * at.w[2], w3 = ws * at.w[3];
+            for (int m = 0; m < vectors_; ++m)
+                term.coefficients[m] = w0 * c[0][m] + w1 * c[1][m] + w2 * c[2][m] + w3 * c[3][m];
+            out.term_count[k] = 1;
+            continue;
+        }
+        // On a seam: one term per PCA segment among the four samples.
         for (int q = 0; q < 4; ++q) {
             if (at.w[q] == 0.0f) continue;
             const int segment = f.segment_of(shell, at.face, at.ii[q], at.jj[q]);
