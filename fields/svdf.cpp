@@ -63,4 +63,9 @@ Svdf bake_svdf(const TriangleMesh& mesh, const SvdfParams& params, SvdfBakeStats
     return svdf;
 }
 
+void Svdf::visible_fraction_batch(int first_vertex, const int* vertex, const float* x, const float* y, const float* h,
+                                  int count, float* out) const {
+    for (int i = 0; i < count; ++i) out[i] = visible_fraction(first_vertex + vertex[i], Vec2(x[i], y[i]), h[i]);
+}
+
 }  // namespace rsl

@@ -51,6 +51,11 @@ public:
     float visible_fraction(int vertex, const Vec2& center, float half_edge) const {
         return visible_fraction_from_distance(distance(vertex, center), half_edge);
     }
+    // visible_fraction for `count` squares: vertex first_vertex + vertex[i],
+    // center (x[i], y[i]), half-edge h[i] → out[i] (the renderer's batch; a
+    // loop of its own so that the lookup inlines into it).
+    void visible_fraction_batch(int first_vertex, const int* vertex, const float* x, const float* y, const float* h,
+                                int count, float* out) const;
     // Same for a local direction (unit, vertex frame) and half-edge.
     float visible_fraction(int vertex, const Vec3& local_direction, float half_edge) const {
         return visible_fraction(vertex, lookup_plane_point(local_direction), half_edge);

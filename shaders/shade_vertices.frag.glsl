@@ -45,7 +45,7 @@ uniform vec3 u_face_t[6];
 layout(location = 0) out vec4 o_color;
 
 vec4 fetch(sampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0); }
-vec4 part_texel(int part, int slot) { return fetch(u_parts, part * 18 + slot); }  // kPartStride = 18
+vec4 part_texel(int part, int slot) { return fetch(u_parts, part * 20 + slot); }  // kPartStride = 20
 
 // ---- frames and the equal-area map (src/core/math.h, hemisphere.h) ----
 
@@ -299,8 +299,26 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     return visible_fraction_from_distance(max(distance, radial - cone), h);
 }
 
+// The slab rule (src/render/square_lights.h clears_box_face): a receiver
+// beyond a face of the occluder's bounding box is unshadowed by it when the
+// light's square leaves that face's plane outwards (point, light: its frame).
+float square_cone_sine(float h) {
+    float rho_max = min(kSqrt2, 1.0 + kSqrt2 * h);
+    float sin_half = rho_max / kSqrt2;
+    float cos_half = sqrt(max(0.0, 1.0 - sin_half * sin_half));
+    if (cos_half < 1e-3) return 2.0;
+    float beta = min(3.14159265359, 2.0 * h / cos_half);
+    return beta >= 0.5 * 3.14159265359 ? 2.0 : sin(beta);
+}
+bool clears_box_face(int part, vec3 point, vec3 light, float h) {
+    vec3 lo = part_texel(part, 18).xyz, hi = part_texel(part, 19).xyz;
+    vec3 sides = vec3(greaterThan(point, hi)) - vec3(lessThan(point, lo));
+    vec3 s = sides * light;
+    return max(s.x, max(s.y, s.z)) >= square_cone_sine(h);
+}
+
 // Half-angle of a cone around the light's direction holding the part of its
-// square above the horizon, for local z = lz (shade_block.cpp vertex_square_cone).
+// square above the horizon, for local z = lz (a bound for may_occlude).
 float vertex_square_cone(float lz, float h) {
     float rho2 = min(2.0, max(1.0, 1.0 - lz));
     float denominator = sqrt(max(1e-12, 1.0 - 0.5 * rho2));
@@ -406,6 +424,7 @@ void main() {
                 mat4 inverse = mat4(part_texel(o, 7), part_texel(o, 8), part_texel(o, 9), part_texel(o, 10));
                 vec3 point = (inverse * vec4(p, 1.0)).xyz;
                 vec3 dir = normalize(mat3(inverse) * direction);
+                if (clears_box_face(o, point, dir, h)) continue;
                 visibility *= ovdf_visible_fraction(o, point, dir, h);
             }
             color += integral * brdf * visibility;

@@ -76,6 +76,9 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
         const int first = int(g.positions.size());
         g.first_vertex.push_back(first);
         record[kSlotVertices] = Vec4(float(first), 0, 0, 0);
+        const Bounds box = mesh.bounds();
+        record[kSlotBoxLow] = Vec4(box.lo, 0.0f);
+        record[kSlotBoxHigh] = Vec4(box.hi, 0.0f);
 
         const Svdf* svdf = p < fields.self.size() ? fields.self[p].get() : nullptr;
         if (svdf) {

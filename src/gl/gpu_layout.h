@@ -28,7 +28,7 @@
 
 namespace rsl::gl {
 
-inline constexpr int kPartStride = 18;
+inline constexpr int kPartStride = 20;
 // Texel slots inside a part record.
 enum PartSlot : int {
     kSlotTransform = 0,   // 4 columns
@@ -41,6 +41,8 @@ enum PartSlot : int {
     kSlotOvdfBases = 15,  // (tables base, coefficients base, frames base, outer shell radius)
     kSlotOvdfShells = 16, // (shells, spacing, inner radius, outer radius)
     kSlotOvdfGrid = 17,   // (cube resolution, VDT resolution, stride, segments per side)
+    kSlotBoxLow = 18,     // (the mesh's bounding box low corner, 0): the slab rule (square_lights.h)
+    kSlotBoxHigh = 19,    // (high corner, 0)
 };
 
 // Texels of a reconstruction row or coefficient row for k basis vectors.

@@ -52,6 +52,7 @@ Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fie
         for (size_t begin = 0; begin < n; begin += kBlockSize)
             blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kBlockSize))});
         local_bounds_.push_back(part.mesh.bounding_sphere());
+        local_boxes_.push_back(part.mesh.bounds());
         local_reach_.push_back(fields_.occluder[p] ? fields_.occluder[p]->reach() : BoundingSphere{});
         culling_parts_.emplace_back();
         culling_parts_.back().field = fields_.occluder[p].get();

@@ -77,6 +77,8 @@ private:
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
     void prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
+    void occluder_factors(BlockScratch& s, int part_index, int light, int occluder, int n, int m, bool per_occluder,
+                          RenderStats& counts) const;
 
     const Scene& scene_;
     RenderOptions options_;
@@ -85,6 +87,7 @@ private:
     MaterialTables materials_;
     std::vector<Block> blocks_;
     std::vector<BoundingSphere> local_bounds_;       // per part, in its own frame
+    std::vector<Bounds> local_boxes_;                // per part, in its own frame (the slab rule, square_lights.h)
     std::vector<BoundingSphere> local_reach_;        // per part: its occluder field's reach (radius 0: none)
     // Per part: the fast split lookup of its OVDF (null: the field's own lookup).
     std::vector<std::unique_ptr<const OvdfLookup>> fast_lookups_;

@@ -58,6 +58,10 @@ struct Renderer::BlockScratch {
     alignas(64) float pole_x[kMaxOccluderParts][kBlock], pole_y[kMaxOccluderParts][kBlock];
     alignas(64) float pole_z[kMaxOccluderParts][kBlock], cone[kMaxOccluderParts][kBlock];
     alignas(64) bool prepared[kMaxOccluderParts][kBlock];
+    // Per occluder part and vertex: which side of the part's bounding box it
+    // lies on along each axis of the part's frame (box_sides, the slab rule).
+    alignas(64) float side_x[kMaxOccluderParts][kBlock], side_y[kMaxOccluderParts][kBlock];
+    alignas(64) float side_z[kMaxOccluderParts][kBlock];
     alignas(64) bool needed[kBlock];  // per vertex: the current (light, occluder) needs a lookup
     // Per occluder part and vertex: the light-independent half of its OVDF
     // lookup, prepared on first need, and the terms the prepared points use;
@@ -118,23 +122,24 @@ void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool cul
         s.points.resize(scene_.parts.size() * kBlock);
         s.terms.resize(scene_.parts.size() * kBlock * OvdfPoint::kMaxTerms);
     }
-    if (!fast || !culling) {  // no cone: every light is looked up
-        for (int k = 0; k < n; ++k) {
-            s.pole_x[o][k] = s.pole_y[o][k] = s.pole_z[o][k] = 0.0f;
-            s.cone[o][k] = kOvdfNoCone;
-        }
-        return;
-    }
-    // As OvdfLookup::prepare, in the occluder's frame (ratios d/R are the
-    // same in the world), written out so that the loop vectorizes.
-    const Ovdf& field = fast->field();
+    // In the occluder's frame, written out so that the loop vectorizes: the
+    // box sides (the slab rule), and as OvdfLookup::prepare the pole and the
+    // cone (ratios d/R are the same in the world).
+    const Bounds& box = local_boxes_[o];
+    const bool cones = fast && culling;
+    const Vec3 center = fast ? fast->field().center : Vec3(0);
+    const float radius = fast ? fast->field().radius : 0.0f;
+    const float outer = fast ? fast->field().shell_radius(fast->field().params.shells - 1) : 0.0f;
     const Mat4& m = occluder.inverse;
     const Mat3& to_world = occluder.linear;
-    const float radius = field.radius, outer = field.shell_radius(field.params.shells - 1);
     for (int k = 0; k < n; ++k) {
-        const float vx = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0] - field.center.x;
-        const float vy = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1] - field.center.y;
-        const float vz = m[0][2] * s.px[k] + m[1][2] * s.py[k] + m[2][2] * s.pz[k] + m[3][2] - field.center.z;
+        const float x = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0];
+        const float y = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1];
+        const float z = m[0][2] * s.px[k] + m[1][2] * s.py[k] + m[2][2] * s.pz[k] + m[3][2];
+        s.side_x[o][k] = x > box.hi.x ? 1.0f : x < box.lo.x ? -1.0f : 0.0f;  // box_sides
+        s.side_y[o][k] = y > box.hi.y ? 1.0f : y < box.lo.y ? -1.0f : 0.0f;
+        s.side_z[o][k] = z > box.hi.z ? 1.0f : z < box.lo.z ? -1.0f : 0.0f;
+        const float vx = x - center.x, vy = y - center.y, vz = z - center.z;
         const float d = std::sqrt(vx * vx + vy * vy + vz * vz);
         const bool inside = d < outer;
         const float inv = inside && d > 0.0f ? -1.0f / d : 0.0f;  // the pole points towards the center
@@ -143,9 +148,74 @@ void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool cul
         s.pole_y[o][k] = to_world[0][1] * ux + to_world[1][1] * uy + to_world[2][1] * uz;
         s.pole_z[o][k] = to_world[0][2] * ux + to_world[1][2] * uy + to_world[2][2] * uz;
         // ovdf_zoom's cone: √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d.
-        const float x = std::min(radius / std::max(d, 1e-30f), 1.0f);
-        const float cone = d > radius ? x / std::sqrt(1.0f + std::sqrt(1.0f - x * x)) : kOvdfNoCone;
-        s.cone[o][k] = inside ? cone : -1.0f;
+        const float ratio = std::min(radius / std::max(d, 1e-30f), 1.0f);
+        const float cone = d > radius ? ratio / std::sqrt(1.0f + std::sqrt(1.0f - ratio * ratio)) : kOvdfNoCone;
+        // No cone (no culling, or not an OVDF): every light is looked up.
+        s.cone[o][k] = !cones ? kOvdfNoCone : inside ? cone : -1.0f;
+    }
+}
+
+// One occluder's factor for the block's queries of light l: the masks (its
+// bounding cone, the slab rule) and then the OVDF lookups, multiplied into
+// s.vis. Out of line so that the lookups inline into its loop.
+void Renderer::occluder_factors(BlockScratch& s, int part_index, int l, int o, int n, int m, bool per_occluder,
+                                RenderStats& counts) const {
+    const PartPose& occluder = poses_[o];
+    const bool is_environment = size_t(l) < environment_squares_.size();
+    const OvdfLookup* fast = per_occluder ? fast_lookups_[o].get() : nullptr;
+    const OccluderField& field = *fields_.occluder[o];
+    // An environment light has one direction in the occluder's frame.
+    const Vec3 light_local = is_environment ? glm::normalize(occluder.inverse_linear * environment_squares_[size_t(l)].direction)
+                                            : Vec3(0);
+    // Which vertices' squares reach into the part's bounding cone (the
+    // lookup gives exactly 1 for the others).
+    if (!per_occluder) {  // no per-occluder scratch: every vertex is looked up
+        for (int k = 0; k < n; ++k) s.needed[k] = true;
+    } else {
+        const float* pole_x = s.pole_x[o];
+        const float* pole_y = s.pole_y[o];
+        const float* pole_z = s.pole_z[o];
+        const float* cone = s.cone[o];
+        for (int k = 0; k < n; ++k) {
+            const float c = s.dx[k] * pole_x[k] + s.dy[k] * pole_y[k] + s.dz[k] * pole_z[k];
+            s.needed[k] = !OvdfLookup::unshadowed(c, cone[k], s.half[k]);
+        }
+        // The slab rule (square_lights.h): part of the factor itself, so
+        // it applies with and without culling.
+        if (is_environment) {
+            const float sin_beta = square_cone_sine(environment_squares_[size_t(l)].half_edge);
+            const float* side_x = s.side_x[o];
+            const float* side_y = s.side_y[o];
+            const float* side_z = s.side_z[o];
+            for (int k = 0; k < n; ++k)
+                s.needed[k] = s.needed[k] && !clears_box_face(Vec3(side_x[k], side_y[k], side_z[k]), light_local, sin_beta);
+        }
+    }
+    for (int i = 0; i < m; ++i) {
+        const int k = s.index[i];
+        if (!s.needed[k] || !(s.vis[i] > 0.0f)) continue;  // black already: later occluders cannot change it
+        const Vec3 dir = is_environment ? light_local
+                                        : glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
+        if (!is_environment || !per_occluder) {  // the slab rule, unless the mask applied it
+            const Vec3 sides = per_occluder ? Vec3(s.side_x[o][k], s.side_y[o][k], s.side_z[o][k])
+                                            : box_sides(local_boxes_[o], Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f)));
+            if (clears_box_face(sides, dir, square_cone_sine(s.qh[i]))) continue;
+        }
+        ++counts.occluder_lookups;
+        if (fast) {
+            OvdfPoint& q = s.points[size_t(o) * kBlock + k];
+            const bool needs_point = !s.prepared[o][k] || q.kind == OvdfPoint::Slow;
+            const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
+                                           : Vec3(0);
+            if (!s.prepared[o][k]) {
+                s.terms_used += fast->prepare(point, q, s.terms.data() + s.terms_used);
+                s.prepared[o][k] = true;
+            }
+            s.vis[i] *= visible_fraction_from_distance(fast->distance(q, point, dir), s.qh[i]);
+        } else {
+            const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
+            s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
+        }
     }
 }
 
@@ -274,8 +344,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             for (int i = 0; i < m; ++i)
                 s.vis[i] = exact->visible_fraction(part_index, block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
         } else if (svdf) {
-            for (int i = 0; i < m; ++i)
-                s.vis[i] = svdf->visible_fraction(block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
+            svdf->visible_fraction_batch(block.begin, s.index, s.qx, s.qy, s.qh, m, s.vis);
         } else {
             for (int i = 0; i < m; ++i) s.vis[i] = 1.0f;
         }
@@ -311,42 +380,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                 }
             }
             if (per_occluder && !s.vertices_ready[o]) prepare_occluder_vertices(s, o, n, vertex_culling);
-            const OvdfLookup* fast = per_occluder ? fast_lookups_[o].get() : nullptr;
-            const OccluderField& field = *fields_.occluder[o];
-            // An environment light has one direction in the occluder's frame.
-            const Vec3 light_local = is_environment ? glm::normalize(occluder.inverse_linear * environment_squares_[l].direction)
-                                                    : Vec3(0);
-            // Which vertices' squares reach into the part's bounding cone (the
-            // lookup gives exactly 1 for the others).
-            const float* pole_x = s.pole_x[o];
-            const float* pole_y = s.pole_y[o];
-            const float* pole_z = s.pole_z[o];
-            const float* cone = s.cone[o];
-            for (int k = 0; k < n; ++k) {
-                const float c = s.dx[k] * pole_x[k] + s.dy[k] * pole_y[k] + s.dz[k] * pole_z[k];
-                s.needed[k] = !OvdfLookup::unshadowed(c, cone[k], s.half[k]);
-            }
-            for (int i = 0; i < m; ++i) {
-                const int k = s.index[i];
-                if (!s.needed[k] || !(s.vis[i] > 0.0f)) continue;  // black already: later occluders cannot change it
-                const Vec3 dir = is_environment ? light_local
-                                                : glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
-                ++counts.occluder_lookups;
-                if (fast) {
-                    OvdfPoint& q = s.points[size_t(o) * kBlock + k];
-                    const bool needs_point = !s.prepared[o][k] || q.kind == OvdfPoint::Slow;
-                    const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
-                                                   : Vec3(0);
-                    if (!s.prepared[o][k]) {
-                        s.terms_used += fast->prepare(point, q, s.terms.data() + s.terms_used);
-                        s.prepared[o][k] = true;
-                    }
-                    s.vis[i] *= visible_fraction_from_distance(fast->distance(q, point, dir), s.qh[i]);
-                } else {
-                    const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
-                    s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
-                }
-            }
+            occluder_factors(s, part_index, int(l), o, n, m, per_occluder, counts);
         }
 
         for (int i = 0; i < m; ++i) {

@@ -18,6 +18,7 @@
 
 #include "src/core/hemisphere.h"
 #include "src/core/math.h"
+#include "src/core/mesh.h"
 
 namespace rsl {
 
@@ -65,6 +66,26 @@ inline float square_cone_half_angle(float half_edge) {
     const float cos_half = std::sqrt(std::max(0.0f, 1.0f - sin_half * sin_half));
     if (cos_half < 1e-3f) return kPi;
     return std::min(kPi, 2.0f * half_edge / cos_half);
+}
+
+// The slab rule of the occluder factor: a part lies in its bounding box, so a
+// receiver beyond one of the box's faces (side s_a = ±1 along axis a, 0 when
+// within the slab) is unshadowed by it from every direction that leaves that
+// face's plane outwards. A square of half-edge h around the unit direction L
+// (both in the part's frame) does so when some s_a·L_a ≥ sin β(h), β =
+// square_cone_half_angle(h): its directions are within β of L. Then the
+// factor is exactly 1, whatever the OVDF's interpolation says (both renderers
+// apply it, with and without culling; docs/RENDERER.md).
+inline bool clears_box_face(const Vec3& sides, const Vec3& light, float sin_beta) {
+    return std::max({sides.x * light.x, sides.y * light.y, sides.z * light.z}) >= sin_beta;
+}
+inline float square_cone_sine(float half_edge) {
+    const float beta = square_cone_half_angle(half_edge);
+    return beta >= 0.5f * kPi ? 2.0f : std::sin(beta);  // 2: never clears
+}
+inline Vec3 box_sides(const Bounds& box, const Vec3& p) {
+    const auto side = [](float x, float lo, float hi) { return x > hi ? 1.0f : x < lo ? -1.0f : 0.0f; };
+    return Vec3(side(p.x, box.lo.x, box.hi.x), side(p.y, box.lo.y, box.hi.y), side(p.z, box.lo.z, box.hi.z));
 }
 
 // Whether a square of half-edge h centered on local direction w can overlap the

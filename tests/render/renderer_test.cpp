@@ -67,12 +67,15 @@ TEST_CASE("one part, one RSL: 2r²·I × BRDF average × SVDF average", "[render
         for (const Color& c : off_colors.parts[0]) CHECK(c.r == Approx(unshadowed.r).epsilon(2e-3));
     }
     SECTION("with an occluder: point and light in the occluder's frame") {
-        // The occluder: far below, turned 90° about Z, so that its frame maps
-        // world (x, y, z) to (y, −x, z) after removing its translation.
+        // The occluder: centered below, turned 90° about Z, so that its frame
+        // maps world (x, y, z) to (y, −x, z) after removing its translation.
+        // Its mesh (a sphere of radius 20) only sets its bounding box, which
+        // holds the receiver, so that the slab rule (square_lights.h) leaves
+        // the test field's factor alone.
         Transform pose;
         pose.translation = Vec3(0, -5, 0);
         pose.rotation = glm::angleAxis(0.5f * kPi, Vec3(0, 0, 1));
-        add_part(scene, make_plane(1.0f, 1, "occluder"), pose);
+        add_part(scene, test::make_icosphere(20.0f, 1, "occluder"), pose);
         PartFields fields;
         fields.occluder = {nullptr, std::make_shared<LinearTestField>()};
         RenderOptions options;
