@@ -318,7 +318,8 @@ bool clears_box_face(int part, vec3 point, vec3 light, float h) {
 }
 
 // Half-angle of a cone around the light's direction holding the part of its
-// square above the horizon, for local z = lz (a bound for may_occlude).
+// square above the horizon, for local z = lz (a bound for may_occlude, which
+// the CPU renderer replaced by the exact cone test in the lookup itself).
 float vertex_square_cone(float lz, float h) {
     float rho2 = min(2.0, max(1.0, 1.0 - lz));
     float denominator = sqrt(max(1e-12, 1.0 - 0.5 * rho2));
