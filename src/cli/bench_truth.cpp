@@ -157,34 +157,6 @@ RegisterBenchmark truth_benchmark({"truth",
         if (!options.quick) emit_truth("robot t=0, white 6x32x32", robot, white_cube(32), 0.0f);
     }});
 
-// The image of per-vertex colours traced one ray at a time, rows in parallel:
-// what form_image did before it traced tiles of packets (the reference).
-Image form_image_single_rays(const PosedScene& posed, const PinholeCamera& camera, const VertexColors& colors,
-                             int s) {
-    Image image(camera.width, camera.height, 4);
-    const float inv_samples = 1.0f / float(s * s);
-    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height, 1), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y != rows.end(); ++y)
-            for (int x = 0; x < camera.width; ++x) {
-                Color sum(0);
-                int covered = 0;
-                for (int b = 0; b < s; ++b)
-                    for (int a = 0; a < s; ++a) {
-                        const Vec3 dir = camera.direction(float(x) + (float(a) + 0.5f) / float(s),
-                                                          float(y) + (float(b) + 0.5f) / float(s));
-                        const RayHit hit = posed.rays().intersect(camera.eye, dir);
-                        if (!hit.hit) continue;
-                        sum += interpolate_vertex_colors(posed.scene(), colors, hit);
-                        ++covered;
-                    }
-                float* pixel = image.at(x, y);
-                for (int c = 0; c < 3; ++c) pixel[c] = sum[c] * inv_samples;
-                pixel[3] = float(covered) * inv_samples;
-            }
-    });
-    return image;
-}
-
 void emit_image(const std::string& case_name, const Scene& scene, int width, int height, bool quick) {
     PosedScene posed(scene, 0.0f);
     // Posing the parts at a new time (transforms, top-level commit): what
@@ -214,8 +186,11 @@ void emit_image(const std::string& case_name, const Scene& scene, int width, int
             for (int r = 0; r < repeats; ++r) {
                 const auto start = BenchClock::now();
                 const double cpu_start = process_cpu_seconds();
+                const auto shade = [&](const RayHit& hit, const Vec3&) {
+                    return interpolate_vertex_colors(posed.scene(), colors, hit);
+                };
                 out = variant == 0 ? form_image(posed, camera, colors, options)
-                                   : form_image_single_rays(posed, camera, colors, s);
+                                   : trace_image_one_ray_at_a_time(posed, camera, options, shade);
                 best[variant] = std::min(best[variant], seconds_since(start));
                 cpu[variant] = std::min(cpu[variant], process_cpu_seconds() - cpu_start);
             }

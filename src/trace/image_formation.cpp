@@ -216,4 +216,34 @@ Image form_image(const PosedScene& scene, const PinholeCamera& camera, const Ver
     }, {});
 }
 
+Image trace_image_one_ray_at_a_time(const PosedScene& scene, const PinholeCamera& camera,
+                                    const ImageFormationOptions& options, const HitShader& shade) {
+    const int s = options.samples_per_side;
+    const float inv_samples = 1.0f / float(s * s);
+    Image image(camera.width, camera.height, 4);
+    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height, 1), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y != rows.end(); ++y)
+            for (int x = 0; x < camera.width; ++x) {
+                Color sum(0);
+                int covered = 0;
+                for (int b = 0; b < s; ++b)
+                    for (int a = 0; a < s; ++a) {
+                        const Vec3 dir = camera.direction(float(x) + (float(a) + 0.5f) / float(s),
+                                                          float(y) + (float(b) + 0.5f) / float(s));
+                        const RayHit hit = scene.rays().intersect(camera.eye, dir);
+                        if (hit.hit) {
+                            sum += shade(hit, dir);
+                            ++covered;
+                        } else if (options.opaque_background) {
+                            sum += options.background;
+                        }
+                    }
+                float* pixel = image.at(x, y);
+                for (int c = 0; c < 3; ++c) pixel[c] = sum[c] * inv_samples;
+                pixel[3] = options.opaque_background ? 1.0f : float(covered) * inv_samples;
+            }
+    });
+    return image;
+}
+
 }  // namespace rsl

@@ -54,6 +54,12 @@ using HitShader = std::function<Color(const RayHit& hit, const Vec3& ray_directi
 Image trace_image(const PosedScene& scene, const PinholeCamera& camera, const ImageFormationOptions& options,
                   const HitShader& shade, const ProgressCallback& progress = {});
 
+// The reference for trace_image: the same primary rays traced one at a time
+// (rows in parallel), each pixel's samples summed in the same (b, a) order, so
+// that packets must give the same image. For tests and benchmarks.
+Image trace_image_one_ray_at_a_time(const PosedScene& scene, const PinholeCamera& camera,
+                                    const ImageFormationOptions& options, const HitShader& shade);
+
 // Per-vertex colours interpolated with the hit's barycentrics.
 Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, const RayHit& hit);
 

@@ -116,37 +116,6 @@ Scene packet_test_scene() {
     return scene;
 }
 
-// What trace_image computed before it traced tiles of packets: one ray at a
-// time, each pixel's samples summed in (b, a) order.
-template <class Shade>
-Image one_ray_at_a_time(const PosedScene& posed, const PinholeCamera& camera, const ImageFormationOptions& options,
-                        Shade&& shade) {
-    const int s = options.samples_per_side;
-    const float inv_samples = 1.0f / float(s * s);
-    Image image(camera.width, camera.height, 4);
-    for (int y = 0; y < camera.height; ++y)
-        for (int x = 0; x < camera.width; ++x) {
-            Color sum(0);
-            int covered = 0;
-            for (int b = 0; b < s; ++b)
-                for (int a = 0; a < s; ++a) {
-                    const Vec3 dir = camera.direction(float(x) + (float(a) + 0.5f) / float(s),
-                                                      float(y) + (float(b) + 0.5f) / float(s));
-                    const RayHit hit = posed.rays().intersect(camera.eye, dir);
-                    if (hit.hit) {
-                        sum += shade(hit, dir);
-                        ++covered;
-                    } else if (options.opaque_background) {
-                        sum += options.background;
-                    }
-                }
-            float* pixel = image.at(x, y);
-            for (int c = 0; c < 3; ++c) pixel[c] = sum[c] * inv_samples;
-            pixel[3] = options.opaque_background ? 1.0f : float(covered) * inv_samples;
-        }
-    return image;
-}
-
 }  // namespace
 
 TEST_CASE("Tiles of ray packets give the image of one ray at a time: same hits, same sums", "[trace][image]") {
@@ -185,13 +154,13 @@ TEST_CASE("Tiles of ray packets give the image of one ray at a time: same hits, 
             REQUIRE(bad_normals == 0);
             REQUIRE(last_done == size_t(width) * height);
             REQUIRE(last_total == size_t(width) * height);
-            const Image expected_hits = one_ray_at_a_time(posed, camera, options, identity);
+            const Image expected_hits = trace_image_one_ray_at_a_time(posed, camera, options, identity);
             REQUIRE(hits.pixels == expected_hits.pixels);
 
             // Interpolated vertex colours: the same hits, so the same colours
             // up to the rounding of the packet kernels' barycentrics.
             const Image image = form_image(posed, camera, colors, options);
-            const Image expected = one_ray_at_a_time(posed, camera, options, [&](const RayHit& hit, const Vec3&) {
+            const Image expected = trace_image_one_ray_at_a_time(posed, camera, options, [&](const RayHit& hit, const Vec3&) {
                 return interpolate_vertex_colors(scene, colors, hit);
             });
             int covered = 0, empty = 0;
@@ -217,5 +186,5 @@ TEST_CASE("Tiles of ray packets give the image of one ray at a time: same hits, 
     opaque.background = Color(0.25f, 0.5f, 2.0f);
     const PinholeCamera camera = PinholeCamera::at_time(scene.camera, 0.0f, 23, 17);
     REQUIRE(trace_image(posed, camera, opaque, identity).pixels ==
-            one_ray_at_a_time(posed, camera, opaque, identity).pixels);
+            trace_image_one_ray_at_a_time(posed, camera, opaque, identity).pixels);
 }
