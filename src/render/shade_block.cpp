@@ -353,6 +353,10 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                 s.vis[i] *= exact->visible_fraction(part_index, block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
         }
         const bool field_occluders = !exact || exact_mode == ExactVisibilityMode::Self;
+        // A square whose BRDF average is 0 (clipped away below the horizon)
+        // adds nothing whatever its visibility: no occluder lookups for it.
+        for (int i = 0; i < m; ++i)
+            if (s.br[i] == 0.0f && s.bg[i] == 0.0f && s.bb[i] == 0.0f) s.vis[i] = 0.0f;
 
         // Other parts' shadows: receiver point and light direction in the occluder's frame.
         for (size_t e = offsets_[slot_base + l]; field_occluders && e < offsets_[slot_base + l + 1]; ++e) {
