@@ -301,7 +301,10 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
 
 // The slab rule (src/render/square_lights.h clears_box_face): a receiver
 // beyond a face of the occluder's bounding box is unshadowed by it when the
-// light's square leaves that face's plane outwards (point, light: its frame).
+// light's square leaves that face's plane outwards. point: in the part's
+// frame; light: inverse_linear·(world direction), not normalized, so that the
+// test holds in the world for any scale (the face normals are the rows of
+// inverse_linear).
 float square_cone_sine(float h) {
     float rho_max = min(kSqrt2, 1.0 + kSqrt2 * h);
     float sin_half = rho_max / kSqrt2;
@@ -310,10 +313,12 @@ float square_cone_sine(float h) {
     float beta = min(3.14159265359, 2.0 * h / cos_half);
     return beta >= 0.5 * 3.14159265359 ? 2.0 : sin(beta);
 }
-bool clears_box_face(int part, vec3 point, vec3 light, float h) {
+bool clears_box_face(int part, vec3 point, vec3 light, mat3 inverse_linear, float h) {
     vec3 lo = part_texel(part, 18).xyz, hi = part_texel(part, 19).xyz;
     vec3 sides = vec3(greaterThan(point, hi)) - vec3(lessThan(point, lo));
-    vec3 s = sides * light;
+    mat3 rows = transpose(inverse_linear);
+    vec3 face_scale = vec3(length(rows[0]), length(rows[1]), length(rows[2]));
+    vec3 s = sides * light / face_scale;
     return max(s.x, max(s.y, s.z)) >= square_cone_sine(h);
 }
 
@@ -425,7 +430,7 @@ void main() {
                 mat4 inverse = mat4(part_texel(o, 7), part_texel(o, 8), part_texel(o, 9), part_texel(o, 10));
                 vec3 point = (inverse * vec4(p, 1.0)).xyz;
                 vec3 dir = normalize(mat3(inverse) * direction);
-                if (clears_box_face(o, point, dir, h)) continue;
+                if (clears_box_face(o, point, mat3(inverse) * direction, mat3(inverse), h)) continue;
                 visibility *= ovdf_visible_fraction(o, point, dir, h);
             }
             color += integral * brdf * visibility;

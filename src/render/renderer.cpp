@@ -84,6 +84,10 @@ void Renderer::set_time(float t) {
         pose.normal = glm::transpose(glm::inverse(pose.linear));
         pose.inverse = glm::inverse(pose.transform);
         pose.inverse_linear = Mat3(pose.inverse);
+        for (int a = 0; a < 3; ++a)
+            pose.face_scale[a] = glm::length(Vec3(pose.inverse_linear[0][a], pose.inverse_linear[1][a], pose.inverse_linear[2][a]));
+        const Vec3 axes(glm::length(pose.linear[0]), glm::length(pose.linear[1]), glm::length(pose.linear[2]));
+        pose.uniform_scale = std::max({axes.x, axes.y, axes.z}) <= (1.0f + 1e-4f) * std::min({axes.x, axes.y, axes.z});
         pose.world_bounds = transform_sphere(pose.transform, local_bounds_[p]);
     }
     const Mat3 rotation = scene_.environment.rotation_at(t);

@@ -70,6 +70,10 @@ private:
         Mat3 linear{1.0f}, normal{1.0f};
         Mat4 inverse{1.0f};
         Mat3 inverse_linear{1.0f};
+        // Lengths of inverse_linear's rows: a world direction w lies at
+        // (inverse_linear·w)_a / face_scale_a from the part's box face a (the slab rule).
+        Vec3 face_scale{1.0f};
+        bool uniform_scale = true;  // the block-level cone test measures angles in the world
         BoundingSphere world_bounds;
     };
     struct BlockScratch;  // shade_block.cpp

@@ -51,7 +51,8 @@ struct Renderer::BlockScratch {
     Vec3 block_pole[kMaxOccluderParts];
     float block_spread[kMaxOccluderParts], block_cone[kMaxOccluderParts];
     // Per occluder part and vertex: the part's bounding cone seen from the
-    // vertex — the unit direction to its center (world) and the cone's plane
+    // vertex — the unit direction to its center (in the part's frame, where
+    // the lookup measures the light) and the cone's plane
     // radius (OvdfLookup::unshadowed) — which alone decides most lights.
     // Vertices beyond the field's outer shell get a zero direction and radius
     // −1, which every square (h < 1) clears.
@@ -131,7 +132,6 @@ void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool cul
     const float radius = fast ? fast->field().radius : 0.0f;
     const float outer = fast ? fast->field().shell_radius(fast->field().params.shells - 1) : 0.0f;
     const Mat4& m = occluder.inverse;
-    const Mat3& to_world = occluder.linear;
     for (int k = 0; k < n; ++k) {
         const float x = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0];
         const float y = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1];
@@ -143,10 +143,7 @@ void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool cul
         const float d = std::sqrt(vx * vx + vy * vy + vz * vz);
         const bool inside = d < outer;
         const float inv = inside && d > 0.0f ? -1.0f / d : 0.0f;  // the pole points towards the center
-        const float ux = vx * inv, uy = vy * inv, uz = vz * inv;
-        s.pole_x[o][k] = to_world[0][0] * ux + to_world[1][0] * uy + to_world[2][0] * uz;
-        s.pole_y[o][k] = to_world[0][1] * ux + to_world[1][1] * uy + to_world[2][1] * uz;
-        s.pole_z[o][k] = to_world[0][2] * ux + to_world[1][2] * uy + to_world[2][2] * uz;
+        s.pole_x[o][k] = vx * inv, s.pole_y[o][k] = vy * inv, s.pole_z[o][k] = vz * inv;
         // ovdf_zoom's cone: √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d.
         const float ratio = std::min(radius / std::max(d, 1e-30f), 1.0f);
         const float cone = d > radius ? ratio / std::sqrt(1.0f + std::sqrt(1.0f - ratio * ratio)) : kOvdfNoCone;
@@ -176,19 +173,32 @@ void Renderer::occluder_factors(BlockScratch& s, int part_index, int l, int o, i
         const float* pole_y = s.pole_y[o];
         const float* pole_z = s.pole_z[o];
         const float* cone = s.cone[o];
-        for (int k = 0; k < n; ++k) {
-            const float c = s.dx[k] * pole_x[k] + s.dy[k] * pole_y[k] + s.dz[k] * pole_z[k];
-            s.needed[k] = !OvdfLookup::unshadowed(c, cone[k], s.half[k]);
+        if (is_environment) {
+            for (int k = 0; k < n; ++k) {
+                const float c = light_local.x * pole_x[k] + light_local.y * pole_y[k] + light_local.z * pole_z[k];
+                s.needed[k] = !OvdfLookup::unshadowed(c, cone[k], s.half[k]);
+            }
+        } else {  // each vertex's light direction, moved into the part's frame
+            const Mat3& il = occluder.inverse_linear;
+            for (int k = 0; k < n; ++k) {
+                const float x = il[0][0] * s.dx[k] + il[1][0] * s.dy[k] + il[2][0] * s.dz[k];
+                const float y = il[0][1] * s.dx[k] + il[1][1] * s.dy[k] + il[2][1] * s.dz[k];
+                const float z = il[0][2] * s.dx[k] + il[1][2] * s.dy[k] + il[2][2] * s.dz[k];
+                const float c = (x * pole_x[k] + y * pole_y[k] + z * pole_z[k]) / std::sqrt(x * x + y * y + z * z);
+                s.needed[k] = !OvdfLookup::unshadowed(c, cone[k], s.half[k]);
+            }
         }
         // The slab rule (square_lights.h): part of the factor itself, so
         // it applies with and without culling.
         if (is_environment) {
             const float sin_beta = square_cone_sine(environment_squares_[size_t(l)].half_edge);
+            const Vec3 light = occluder.inverse_linear * environment_squares_[size_t(l)].direction;
             const float* side_x = s.side_x[o];
             const float* side_y = s.side_y[o];
             const float* side_z = s.side_z[o];
             for (int k = 0; k < n; ++k)
-                s.needed[k] = s.needed[k] && !clears_box_face(Vec3(side_x[k], side_y[k], side_z[k]), light_local, sin_beta);
+                s.needed[k] = s.needed[k] &&
+                              !clears_box_face(Vec3(side_x[k], side_y[k], side_z[k]), light, occluder.face_scale, sin_beta);
         }
     }
     for (int i = 0; i < m; ++i) {
@@ -199,7 +209,8 @@ void Renderer::occluder_factors(BlockScratch& s, int part_index, int l, int o, i
         if (!is_environment || !per_occluder) {  // the slab rule, unless the mask applied it
             const Vec3 sides = per_occluder ? Vec3(s.side_x[o][k], s.side_y[o][k], s.side_z[o][k])
                                             : box_sides(local_boxes_[o], Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f)));
-            if (clears_box_face(sides, dir, square_cone_sine(s.qh[i]))) continue;
+            const Vec3 light = occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]);
+            if (clears_box_face(sides, light, occluder.face_scale, square_cone_sine(s.qh[i]))) continue;
         }
         ++counts.occluder_lookups;
         if (fast) {
@@ -372,7 +383,8 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                 // bounding cone seen from the block, then (as the per-part
                 // test) the light's cone against the part's grown sphere.
                 const SquareLight& sq = environment_squares_[l];
-                if (block_unshadowed(s.block_pole[o], s.block_spread[o], s.block_cone[o], sq.direction, sq.half_edge)) {
+                if (occluder.uniform_scale &&
+                    block_unshadowed(s.block_pole[o], s.block_spread[o], s.block_cone[o], sq.direction, sq.half_edge)) {
                     ++counts.block_occluders_culled;
                     continue;
                 }

@@ -79,6 +79,13 @@ inline float square_cone_half_angle(float half_edge) {
 inline bool clears_box_face(const Vec3& sides, const Vec3& light, float sin_beta) {
     return std::max({sides.x * light.x, sides.y * light.y, sides.z * light.z}) >= sin_beta;
 }
+// The same for a world direction w given as inverse_linear·w (not normalized)
+// and the lengths of inverse_linear's rows: the face normals are those rows,
+// so the test holds in the world whatever the part's scale.
+inline bool clears_box_face(const Vec3& sides, const Vec3& inverse_linear_light, const Vec3& face_scale,
+                            float sin_beta) {
+    return clears_box_face(sides, inverse_linear_light / face_scale, sin_beta);
+}
 inline float square_cone_sine(float half_edge) {
     const float beta = square_cone_half_angle(half_edge);
     return beta >= 0.5f * kPi ? 2.0f : std::sin(beta);  // 2: never clears

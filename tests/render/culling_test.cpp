@@ -150,12 +150,15 @@ TEST_CASE("culling does not change the colours", "[render][culling]") {
     for (int i = 0; i < 5; ++i) {
         Transform pose;
         pose.translation = spots[i];
+        // Scaled parts too: the cone and slab tests must hold in their frames.
+        if (i == 1) pose.scale = Vec3(0.6f);
+        if (i == 4) pose.scale = Vec3(1.4f, 0.7f, 1.0f), pose.rotation = glm::angleAxis(0.7f, Vec3(0.6f, 0.8f, 0.0f));
         test::add_part(scene, test::make_icosphere(0.3f, 2, "sphere" + std::to_string(i)), pose);
     }
     LocalLight light;
     light.radius = 0.05f;
     light.power = Color(2.0f);
-    light.position = Vec3(2.5f, 0.8f, 2.5f);
+    light.position = Vec3(0.3f, 0.9f, 0.4f);  // among the spheres
     scene.lights.push_back(light);
     scene.camera.position = Vec3(2, 6, 7);
     PrecomputeSettings& pre = scene.precompute;
