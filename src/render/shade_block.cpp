@@ -192,13 +192,14 @@ void Renderer::occluder_factors(BlockScratch& s, int part_index, int l, int o, i
         // it applies with and without culling.
         if (is_environment) {
             const float sin_beta = square_cone_sine(environment_squares_[size_t(l)].half_edge);
-            const Vec3 light = occluder.inverse_linear * environment_squares_[size_t(l)].direction;
+            // clears_box_face's world form, its division hoisted out of the loop.
+            const Vec3 light = occluder.inverse_linear * environment_squares_[size_t(l)].direction / occluder.face_scale;
             const float* side_x = s.side_x[o];
             const float* side_y = s.side_y[o];
             const float* side_z = s.side_z[o];
             for (int k = 0; k < n; ++k)
                 s.needed[k] = s.needed[k] &&
-                              !clears_box_face(Vec3(side_x[k], side_y[k], side_z[k]), light, occluder.face_scale, sin_beta);
+                              !clears_box_face(Vec3(side_x[k], side_y[k], side_z[k]), light, sin_beta);
         }
     }
     for (int i = 0; i < m; ++i) {
