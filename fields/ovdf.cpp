@@ -18,10 +18,7 @@ namespace rsl {
 OvdfZoom ovdf_zoom(float distance, float radius) {
     OvdfZoom z;
     if (distance <= radius) return z;  // inside the bounding sphere: the whole square, no cone
-    // √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d: square roots only,
-    // which GLSL evaluates exactly as here (the shader's asin is approximate).
-    const float x = radius / distance;
-    z.cone = x / std::sqrt(1.0f + std::sqrt(1.0f - x * x));
+    z.cone = ovdf_cone_radius(distance, radius);
     z.zoom = std::max(1.0f, kOvdfZoomEdge / z.cone);
     return z;
 }

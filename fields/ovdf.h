@@ -33,6 +33,7 @@
 // Lookups run in the occluder's frame (the part's own coordinates).
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 
@@ -51,6 +52,13 @@ struct OvdfZoom {
     float zoom = 1;             // table point = zoom × plane point
     float cone = kOvdfNoCone;   // plane radius of the bounding cone's edge
 };
+// Plane radius of the bounding cone of a part of bounding radius R seen from
+// distance d > R: √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d — square
+// roots only, which GLSL evaluates exactly as here (its asin is approximate).
+inline float ovdf_cone_radius(float distance, float radius) {
+    const float x = std::min(radius / std::max(distance, 1e-30f), 1.0f);
+    return x / std::sqrt(1.0f + std::sqrt(1.0f - x * x));
+}
 // The zoom of tables sampled at distance `distance` from a part of bounding radius `radius`.
 OvdfZoom ovdf_zoom(float distance, float radius);
 

@@ -240,7 +240,7 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     // negative; Ovdf::surface_distance_at) sees nothing.
     int surface_base = int(bases.z) + 12 * n * n + shell_count;
     float surface = 0.0;
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < 2 && d < center.w; ++k) {
         float ws = k == 0 ? 1.0 - fs : fs;
         if (ws == 0.0) continue;
         float value = 0.0;

@@ -144,9 +144,7 @@ void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool cul
         const bool inside = d < outer;
         const float inv = inside && d > 0.0f ? -1.0f / d : 0.0f;  // the pole points towards the center
         s.pole_x[o][k] = vx * inv, s.pole_y[o][k] = vy * inv, s.pole_z[o][k] = vz * inv;
-        // ovdf_zoom's cone: √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d.
-        const float ratio = std::min(radius / std::max(d, 1e-30f), 1.0f);
-        const float cone = d > radius ? ratio / std::sqrt(1.0f + std::sqrt(1.0f - ratio * ratio)) : kOvdfNoCone;
+        const float cone = d > radius ? ovdf_cone_radius(d, radius) : kOvdfNoCone;  // as ovdf_zoom
         // No cone (no culling, or not an OVDF): every light is looked up.
         s.cone[o][k] = !cones ? kOvdfNoCone : inside ? cone : -1.0f;
     }
