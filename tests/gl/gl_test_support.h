@@ -11,6 +11,7 @@
 #include "src/gl/headless_context.h"
 #include "src/render/renderer.h"
 #include "src/trace/vertex_colors.h"
+#include "tests/render/render_test_scenes.h"
 
 namespace rsl::test {
 
@@ -18,21 +19,6 @@ inline gl::HeadlessContext& gl_context() {
     static gl::HeadlessContext context;
     context.make_current();
     return context;
-}
-
-inline RslSet random_rsls(int count, uint32_t seed) {
-    std::mt19937 rng{seed};
-    std::normal_distribution<float> normal;
-    std::uniform_real_distribution<float> uniform(0.05f, 0.5f);
-    RslSet set;
-    for (int i = 0; i < count; ++i) {
-        RotatableSquareLight light;
-        light.center = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
-        light.half_diagonal = uniform(rng);
-        light.radiance = Color(uniform(rng), uniform(rng), uniform(rng)) * 4.0f;
-        set.lights.push_back(light);
-    }
-    return set;
 }
 
 struct ColorDifference {

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers of the renderer tests: hand-made fields and small scenes.
 #include <memory>
+#include <random>
 
 #include "fields/svdf.h"
 #include "lightfit/rsl.h"
@@ -37,5 +38,22 @@ inline RslSet single_rsl(const Vec3& center, float half_diagonal, const Color& r
 // Average of cos θ = 1 − |p|² (the equal-area map) over the plane square
 // [c ± h]², when it lies inside the unit disk: 1 − |c|² − 2h²/3.
 inline float square_average_cosine(const Vec2& c, float h) { return 1.0f - glm::dot(c, c) - 2.0f * h * h / 3.0f; }
+
+// `count` environment RSLs in random directions, half-diagonals uniform in
+// [min_half_diagonal, 0.5], radiance up to 2 per channel (fixed seed).
+inline RslSet random_rsls(int count, uint32_t seed, float min_half_diagonal = 0.05f) {
+    std::mt19937 rng{seed};
+    std::normal_distribution<float> normal;
+    std::uniform_real_distribution<float> uniform(min_half_diagonal, 0.5f);
+    RslSet set;
+    for (int i = 0; i < count; ++i) {
+        RotatableSquareLight light;
+        light.center = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+        light.half_diagonal = uniform(rng);
+        light.radiance = Color(uniform(rng), uniform(rng), uniform(rng)) * 4.0f;
+        set.lights.push_back(light);
+    }
+    return set;
+}
 
 }  // namespace rsl::test

@@ -156,21 +156,6 @@ Scene fields_scene() {
     return scene;
 }
 
-RslSet random_rsls(int count, uint64_t seed) {
-    std::mt19937 rng{static_cast<uint32_t>(seed)};
-    std::normal_distribution<float> normal;
-    std::uniform_real_distribution<float> uniform(0.1f, 0.5f);
-    RslSet set;
-    for (int i = 0; i < count; ++i) {
-        RotatableSquareLight light;
-        light.center = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
-        light.half_diagonal = uniform(rng);
-        light.radiance = Color(uniform(rng), uniform(rng), uniform(rng)) * 4.0f;
-        set.lights.push_back(light);
-    }
-    return set;
-}
-
 // Puts every top-level node under a new root with the given rotation.
 void rotate_scene(Scene& scene, const Quat& rotation) {
     SceneNode root;
@@ -190,7 +175,7 @@ void rotate_scene(Scene& scene, const Quat& rotation) {
 TEST_CASE("rotating the environment by R equals rotating the scene by R⁻¹", "[render]") {
     const Scene scene = fields_scene();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    const RslSet lights = random_rsls(12, 7);
+    const RslSet lights = test::random_rsls(12, 7, 0.1f);
     RenderOptions options;
     options.occluder_culling = false;  // the same lookups both ways
 
