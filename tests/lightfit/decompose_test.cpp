@@ -202,9 +202,11 @@ TEST_CASE("a uniform map splits into regions of similar size", "[lightfit][decom
     for (int k = 0; k < map.texel_count(); ++k) map.radiance(k) = Color(1.0f);
     // Greedy pairwise merging grows regions in doublings and prefers square
     // shapes, so sizes come in steps; measured on this map (K 24..96): largest
-    // / smallest ≤ 4.0 with the paper's rule, ≤ 5.2 with the increase rule;
-    // coefficient of variation ≤ 0.37 and ≤ 0.47. A merge that lets one region
-    // run away (or never merges some texels) breaks both bounds by far.
+    // / smallest ≤ 4.0 with the paper's rule, ≤ 5.2 with the increase rule on
+    // an AVX-512 build and 6.4 on an AVX2 one (on a uniform map every merge
+    // ties, and rounding picks among them); coefficient of variation ≤ 0.37
+    // and ≤ 0.47. A merge that lets one region run away (or never merges some
+    // texels) breaks both bounds by far.
     for (int k : {24, 96})
         for (MergeCost cost : {MergeCost::kMergedError, MergeCost::kErrorIncrease})
             for (bool cross : {true, false}) {
@@ -217,7 +219,7 @@ TEST_CASE("a uniform map splits into regions of similar size", "[lightfit][decom
                 for (double a : area) variance += (a - mean) * (a - mean) / area.size();
                 INFO("K " << k << ", cost " << int(cost) << ", cross_face " << cross << ": solid angles "
                           << *smallest << " .. " << *largest);
-                CHECK(*largest / *smallest < 6.0);
+                CHECK(*largest / *smallest < 8.0);
                 CHECK(std::sqrt(variance) / mean < 0.5);
             }
 }
