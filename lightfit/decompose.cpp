@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "src/core/error.h"
+#include "src/core/image.h"
 
 namespace rsl::lightfit {
 
@@ -169,6 +170,18 @@ private:
 RslSet decompose(const CubeMap& map, const DecomposeOptions& options) {
     RSL_CHECK_GT(map.texel_count(), 0);
     RSL_CHECK_GE(options.lights, 1);
+    // Readers refuse such maps (check_radiance); maps built in code are
+    // checked here, since the fit's float sums overflow on them (it then
+    // compares NaN costs for minutes).
+    for (int k = 0; k < map.texel_count(); ++k) {
+        const Color& c = map.radiance(k);
+        for (int channel = 0; channel < 3; ++channel)
+            if (!(c[channel] >= 0.0f && c[channel] <= kMaxRadiance))
+                throw_error("environment texel {} (direction {}, {}, {}) has radiance {} (channel {}): must be finite, "
+                            "non-negative and at most 1e15",
+                            k, map.texel_direction(k).x, map.texel_direction(k).y, map.texel_direction(k).z,
+                            c[channel], "RGB"[channel]);
+    }
     Merger merger(map, options);
     merger.run();
     return merger.result();

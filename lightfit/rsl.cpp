@@ -6,6 +6,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/json_file.h"
 
 namespace rsl {
 
@@ -90,12 +91,7 @@ void save_rsl_set(const std::filesystem::path& path, const RslSet& set) {
 }
 
 RslSet load_rsl_set(const std::filesystem::path& path) {
-    json root;
-    try {
-        root = json::parse(read_file(path));
-    } catch (const json::parse_error& e) {
-        throw_file_error(path, "not valid JSON ({})", e.what());
-    }
+    const json root = read_json_file(path);
     if (!root.is_object()) throw_file_error(path, "expected a JSON object at the top level");
     const auto format = field<std::string>(path, root, "file", "format");
     if (format != kFormat) throw_file_error(path, "format is '{}', expected '{}'", format, kFormat);

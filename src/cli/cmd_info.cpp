@@ -38,6 +38,18 @@ void print_environment(const std::filesystem::path& path) {
     const char* layout = image.width == 2 * image.height ? "latitude-longitude"
                          : image.height == 6 * image.width ? "cube (vertical strip)"
                                                             : "unrecognized";
+    const bool declared = lowercase_extension(path) == ".exr" && read_exr_envmap_kind(path) != EnvmapKind::None;
+    if (layout == std::string_view("unrecognized") && !declared) {
+        // An image rsl rendered (or any HDR picture): no environment to describe.
+        float peak = 0;
+        double sum = 0;
+        for (float v : image.pixels) peak = std::max(peak, v), sum += v;
+        fmt::print("{}: HDR image (not an environment map layout)\n", path.string());
+        fmt::print("  image:             {} x {}, {} channels\n", image.width, image.height, image.channels);
+        fmt::print("  values:            mean {:.4g}, max {:.4g}\n", sum / double(std::max<size_t>(1, image.pixels.size())),
+                   peak);
+        return;
+    }
     fmt::print("{}: environment map\n", path.string());
     fmt::print("  image:             {} x {}, {} channels, {} layout\n", image.width, image.height, image.channels, layout);
     constexpr int kResolution = 32;
@@ -155,7 +167,8 @@ RegisterInfoHandler environment_info({"environment", [](const auto& p) { return 
                                       print_environment});
 RegisterInfoHandler mesh_info({"mesh", [](const auto& p) { return has_extension(p, {".obj", ".gltf", ".glb"}); },
                                print_mesh_file});
-RegisterInfoHandler scene_info({"scene", [](const auto& p) { return has_extension(p, {".json"}); }, print_scene_file});
+RegisterInfoHandler scene_info({"scene", [](const auto& p) { return has_extension(p, {".json"}) && !is_light_set_file(p); },
+                                print_scene_file});
 
 // ---- the command ----------------------------------------------------------
 
@@ -184,7 +197,8 @@ RegisterCommand info_command(
          app.add_option("files", *files,
                         "Files to describe: .exr/.hdr environment maps (size, layout, energy per channel, brightest "
                         "direction), .obj/.gltf/.glb meshes (counts, bounds, degenerate triangles), .json scenes "
-                        "(parts, materials, environment, lights, camera, animation)")
+                        "(parts, materials, environment, lights, camera, animation), and what rsl writes: .rslf fields, .rslv "
+                        "per-vertex colours, .json light sets")
              ->required();
          app.callback([files] { run_info(*files); });
      }});

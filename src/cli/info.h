@@ -26,4 +26,8 @@ struct RegisterInfoHandler {
 // Lower-case extension with the dot (".exr"), for `accepts`.
 std::string lowercase_extension(const std::filesystem::path& path);
 
+// Whether `path` is a light set written by `rsl fit` (a .json whose "format"
+// is "rsl-lights"), not a scene file.
+bool is_light_set_file(const std::filesystem::path& path);
+
 }  // namespace rsl::cli

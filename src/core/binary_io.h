@@ -31,7 +31,9 @@ public:
         static_assert(std::is_trivially_copyable_v<T>);
         bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
     }
-    void put_bytes(const void* data, size_t count) { bytes_.append(static_cast<const char*>(data), count); }
+    void put_bytes(const void* data, size_t count) {
+        if (count) bytes_.append(static_cast<const char*>(data), count);  // data may be null when empty
+    }
     // u32 length, then the bytes.
     void put_string(std::string_view s) {
         put(uint32_t(s.size()));
@@ -70,6 +72,7 @@ public:
     }
     void get_bytes(void* out, size_t count, const char* what = "payload") {
         need(count, what);
+        if (count == 0) return;  // `out` may then be an empty vector's null data(); memcpy forbids null
         std::memcpy(out, bytes_.data() + at_, count);
         at_ += count;
     }

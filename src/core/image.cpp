@@ -61,10 +61,13 @@ void check_radiance(const fs::path& path, const Image& image) {
     const size_t count = image.pixels.size();
     for (size_t k = 0; k < count; ++k) {
         const float v = image.pixels[k];
-        if (std::isfinite(v) && v >= 0.0f) continue;
+        if (v >= 0.0f && v <= kMaxRadiance) continue;  // false for NaN
         const size_t pixel = k / image.channels;
         const int x = int(pixel % size_t(image.width)), y = int(pixel / size_t(image.width));
-        const char* what = std::isnan(v) ? "NaN" : std::isinf(v) ? "infinite" : "negative";
+        const char* what = std::isnan(v)   ? "NaN"
+                           : std::isinf(v) ? "infinite"
+                           : v < 0.0f      ? "negative"
+                                           : "implausibly large (above 1e15; corrupt file?)";
         throw_file_error(path, "{} value {} at pixel (x={}, y={}) channel {}", what, v, x, y,
                          "RGBA"[k % image.channels]);
     }
@@ -86,6 +89,20 @@ Image read_exr(const fs::path& path) {
         const long long width = (long long)window.max.x - window.min.x + 1;
         const long long height = (long long)window.max.y - window.min.y + 1;
         check_dimensions(path, width, height);
+        // A corrupt data window is refused before the pixels are allocated:
+        // a file that declares a layout must have its shape, and no
+        // compression packs more than about 1,032 samples of 2 bytes (deflate's
+        // limit) into one byte of the file.
+        if (Imf::hasEnvmap(header)) {
+            const bool latlong = Imf::envmap(header) == Imf::ENVMAP_LATLONG;
+            if (latlong ? width != 2 * height : height != 6 * width)
+                throw_file_error(path, "declares a {} map, but its data window is {}×{} (corrupt header?)",
+                                 latlong ? "latitude-longitude (2:1)" : "cube (1:6 strip)", width, height);
+        }
+        const uintmax_t samples = uintmax_t(width) * height * (alpha ? 4 : 3);
+        if (samples * 2 / 1032 > fs::file_size(path))
+            throw_file_error(path, "its data window {}×{} needs more data than the file's {} bytes can hold (corrupt "
+                             "header?)", width, height, fs::file_size(path));
         image = Image(int(width), int(height), alpha ? 4 : 3);
 
         Imf::FrameBuffer frame;
@@ -282,6 +299,13 @@ Image read_radiance_hdr(const fs::path& path) {
     ByteReader in(path, bytes);
     const RadianceHeader header = read_radiance_header(path, in);
     const int width = header.width;
+    // The densest encoding, a run of 127 per two bytes in each of 4 channels
+    // after a 4-byte scanline header, bounds what the file can hold: a header
+    // that claims more is corrupt, and is refused before the image is allocated.
+    const size_t min_scanline_bytes = width >= 8 && width < 32768 ? 4 + 8 * ((size_t(width) + 126) / 127) : 4 * size_t(width);
+    if (in.remaining() / min_scanline_bytes < size_t(header.height))
+        throw_file_error(path, "truncated or corrupt: {}×{} pixels need at least {} bytes of data, the file has {}",
+                         width, header.height, min_scanline_bytes * header.height, in.remaining());
     Image image(width, header.height, 3);
     std::vector<unsigned char> rgbe(size_t(width) * 4);
     const float scale = 1.0f / header.exposure;

@@ -43,8 +43,15 @@ void write_exr(const std::filesystem::path& path, const Image& image, const ExrW
 // The `envmap` attribute of an EXR file's header (None when absent).
 EnvmapKind read_exr_envmap_kind(const std::filesystem::path& path);
 
+// The largest radiance an input image may hold. Real probes with an
+// unclipped sun stay below 1e10 (photometric units included); a value far
+// beyond is a corrupt file (flipped exponent bits), and squares and sums of
+// such values overflow the light fit's float arithmetic.
+inline constexpr float kMaxRadiance = 1e15f;
+
 // Throws rsl::Error naming `path` and the first pixel (x, y, channel) whose
-// value is NaN, infinite or negative. Readers call it; writers may too.
+// value is NaN, infinite, negative or above kMaxRadiance. Readers call it;
+// writers may too.
 void check_radiance(const std::filesystem::path& path, const Image& image);
 
 struct ToneMap {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/core/error.h"
+#include "src/core/json_file.h"
 #include "src/core/scene.h"
 
 namespace rsl {
@@ -144,23 +145,7 @@ private:
         }
     }
 
-    Json parse_file() const {
-        std::ifstream in(path_, std::ios::binary);
-        if (!in) throw_file_error(path_, "cannot open");
-        std::ostringstream buffer;
-        buffer << in.rdbuf();
-        const std::string text = buffer.str();
-        try {
-            return Json::parse(text);
-        } catch (const Json::parse_error& e) {
-            // nlohmann reports a byte offset; people need a line and column.
-            const size_t byte = std::min<size_t>(e.byte, text.size());
-            const size_t line = 1 + std::count(text.begin(), text.begin() + byte, '\n');
-            const size_t line_start = text.rfind('\n', byte ? byte - 1 : 0);
-            const size_t column = line_start == std::string::npos ? byte : byte - line_start - 1;
-            throw_file_error(path_, "line {}, column {}: invalid JSON: {}", line, column, e.what());
-        }
-    }
+    Json parse_file() const { return read_json_file(path_); }
 
     void check_keys(const Json& object, const std::string& where, std::initializer_list<const char*> allowed) const {
         for (const auto& [key, value] : object.items()) {

@@ -41,6 +41,12 @@ TEST_CASE("rsl fit writes K lights that keep the environment's energy, and a pre
     const DVec3 expected = load_environment(env, 8).energy(), got = set.total_energy();
     for (int ch = 0; ch < 3; ++ch) CHECK(got[ch] == Approx(expected[ch]).epsilon(1e-5));
     CHECK(fs::file_size(preview) > 100);
+    // `rsl info` tells the light set from a scene file and describes it.
+    const auto [info_status, info] = test::run_rsl("info " + lights.string());
+    INFO(info);
+    CHECK(info_status == 0);
+    CHECK(info.find("rotatable square lights") != std::string::npos);
+    CHECK(info.find("lights:            12") != std::string::npos);
 
     // Same-face with fewer lights than faces is refused, as is a missing file.
     CHECK(run(fmt::format("fit {} --lights 3 --same-face -o {}", env.string(), lights.string())) != 0);

@@ -87,7 +87,7 @@ TEST_CASE("a bad RSL file is refused with its name and the problem", "[lightfit]
         std::string name, from, to, message;
     };
     const std::vector<Case> cases = {
-        {"truncated", "", "", "not valid JSON"},
+        {"truncated", "", "", "invalid JSON"},
         {"wrong_format", "\"rsl-lights\"", "\"something-else\"", "format"},
         {"wrong_version", "\"version\": 1", "\"version\": 7", "version 7"},
         {"negative_radius", "\"half_diagonal\": ", "\"half_diagonal\": -", "lights[0].half_diagonal"},

@@ -51,6 +51,14 @@ TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cl
     REQUIRE(image.width == 40);
     REQUIRE(image.channels == 4);
 
+    // `rsl info` reads what `rsl truth` wrote: the per-vertex file and the image.
+    auto [info_status, info] = run_command(rsl + " info " + (dir / "truth.rslv").string() + " " + out.string());
+    INFO(info);
+    CHECK(info_status == 0);
+    CHECK(info.find("per-vertex colours") != std::string::npos);
+    CHECK(info.find("floor") != std::string::npos);
+    CHECK(info.find("HDR image (not an environment map layout)") != std::string::npos);
+
     auto [same_status, same] = run_command(rsl + " compare " + (dir / "truth.rslv").string() + " " + (dir / "truth.rslv").string());
     INFO(same);
     REQUIRE(same_status == 0);
