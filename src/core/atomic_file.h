@@ -9,9 +9,16 @@ namespace rsl {
 
 // Calls write(tmp_path) and renames tmp_path to `path` only if write returns
 // normally; on an exception the temporary file is removed and the error
-// propagates. Creates the parent directory if needed.
+// propagates. Creates the parent directory if needed. First removes the
+// temporaries of `path` that killed processes left (remove_stale_temporaries).
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path& tmp_path)>& write);
+
+// Removes the temporary files of `path` (".STEM.tmp-PID-N.EXT" beside it)
+// whose writing process no longer runs on this machine. (A process on another
+// machine writing to the same shared folder would look dead: don't share an
+// output folder between machines while both write.)
+void remove_stale_temporaries(const std::filesystem::path& path);
 
 // Convenience for in-memory contents (JSON, binary blobs).
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);

@@ -1,4 +1,10 @@
+#include <csignal>
 #include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -25,4 +31,47 @@ TEST_CASE("atomic write leaves no partial file on failure", "[atomic]") {
     for (auto& e : fs::directory_iterator(dir)) { (void)e; ++files; }
     CHECK(files == 1);  // no temporary left behind
     CHECK_THROWS_WITH(read_file(dir / "missing"), Catch::Contains("missing"));
+}
+
+TEST_CASE("a writer killed mid-write leaves no final file, and the next write sweeps its temporary", "[atomic][fault]") {
+    const fs::path dir = test::scratch_dir("atomic_killed");
+    const fs::path target = dir / "field.rslf";
+    const auto temporaries = [&] {
+        std::vector<fs::path> found;
+        for (const auto& entry : fs::directory_iterator(dir))
+            if (entry.path().filename().string().rfind(".field.tmp-", 0) == 0) found.push_back(entry.path());
+        return found;
+    };
+    // A live process's temporary (pid 1 always runs) must survive the sweep.
+    const fs::path live = dir / ".field.tmp-1-0.rslf";
+    write_file_atomically(dir / "unrelated.txt", "x");
+    { std::ofstream(live) << "in progress"; }
+    for (int trial = 0; trial < 3; ++trial) {
+        const pid_t child = ::fork();
+        REQUIRE(child >= 0);
+        if (child == 0) {
+            write_atomically(target, [](const fs::path& tmp) {
+                std::ofstream out(tmp, std::ios::binary);
+                out << std::string(1 << 16, 'a') << std::flush;
+                for (;;) ::pause();  // killed here, half written
+            });
+            std::_Exit(0);
+        }
+        // Wait for the child's temporary, then kill it at once.
+        for (int wait = 0; wait < 2000 && temporaries().size() < 2; ++wait) ::usleep(1000);
+        ::kill(child, SIGKILL);
+        int status = 0;
+        ::waitpid(child, &status, 0);
+        CHECK(WIFSIGNALED(status));
+        CHECK(temporaries().size() == 2);  // the dead child's and the live one
+        CHECK(!fs::exists(target));
+    }
+    // The rerun completes and removes what the dead writers left, not the live one's.
+    // (Each trial's dead temporary is swept by the next trial's child.)
+    write_file_atomically(target, "complete");
+    CHECK(read_file(target) == "complete");
+    const auto left = temporaries();
+    REQUIRE(left.size() == 1);
+    CHECK(left[0] == live);
+    fs::remove_all(dir);
 }
