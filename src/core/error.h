@@ -48,23 +48,46 @@ void warn_file(const std::filesystem::path& path, fmt::format_string<Args...> fo
     emit_warning(fmt::format("{}: {}", path.string(), fmt::format(format, std::forward<Args>(args)...)));
 }
 
+// A broken invariant: a bug in rsl, never the user's input. `rsl` prints it
+// as "internal error" and exits with status 2, apart from bad input
+// (rsl::Error, status 1), so a test can tell the two apart.
+class InternalError : public std::logic_error {
+public:
+    using std::logic_error::logic_error;
+};
+
+template <typename... Args>
+[[noreturn]] void throw_internal_error(fmt::format_string<Args...> format, Args&&... args) {
+    throw InternalError(fmt::format(format, std::forward<Args>(args)...));
+}
+
 // CHECK-style invariant that prints both sides, as pbrt's CHECK_EQ does.
 #define RSL_CHECK(cond)                                                                                   \
     do {                                                                                                  \
-        if (!(cond)) ::rsl::throw_error("{}:{}: check failed: {}", __FILE__, __LINE__, #cond);            \
+        if (!(cond)) ::rsl::throw_internal_error("{}:{}: check failed: {}", __FILE__, __LINE__, #cond);   \
     } while (0)
 #define RSL_CHECK_OP(a, op, b)                                                                            \
     do {                                                                                                  \
         auto&& rsl_a_ = (a);                                                                              \
         auto&& rsl_b_ = (b);                                                                              \
         if (!(rsl_a_ op rsl_b_))                                                                          \
-            ::rsl::throw_error("{}:{}: check failed: {} {} {} ({} vs {})", __FILE__, __LINE__, #a, #op, #b, \
-                               rsl_a_, rsl_b_);                                                           \
+            ::rsl::throw_internal_error("{}:{}: check failed: {} {} {} ({} vs {})", __FILE__, __LINE__, #a, \
+                                        #op, #b, rsl_a_, rsl_b_);                                         \
     } while (0)
 #define RSL_CHECK_EQ(a, b) RSL_CHECK_OP(a, ==, b)
 #define RSL_CHECK_LE(a, b) RSL_CHECK_OP(a, <=, b)
 #define RSL_CHECK_LT(a, b) RSL_CHECK_OP(a, <, b)
 #define RSL_CHECK_GE(a, b) RSL_CHECK_OP(a, >=, b)
 #define RSL_CHECK_GT(a, b) RSL_CHECK_OP(a, >, b)
+
+// The same for hot loops: checked in Debug builds, compiled out (the
+// condition not evaluated) in Release.
+#ifdef NDEBUG
+#define RSL_DCHECK(cond) \
+    do {                 \
+    } while (0)
+#else
+#define RSL_DCHECK(cond) RSL_CHECK(cond)
+#endif
 
 }  // namespace rsl

@@ -65,7 +65,7 @@ TEST_CASE("contact sheet labels draw only in the band under their tile", "[demos
                 REQUIRE(x < layout.gap + 60 + layout.gap);
             }
     REQUIRE(lit > 20);  // "K=10" is a few dozen pixels
-    REQUIRE_THROWS_AS(make_contact_sheet(tiles, {"only one"}, layout), Error);
+    REQUIRE_THROWS_AS(make_contact_sheet(tiles, {"only one"}, layout), InternalError);  // a caller bug, not input
     REQUIRE_THROWS_AS(make_contact_sheet({Image(4, 4, 3), Image(5, 4, 3)}, {}, layout), Error);
 }
 
