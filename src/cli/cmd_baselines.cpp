@@ -19,7 +19,7 @@
 #include "src/core/error.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/render/render_setup.h"
-#include "src/trace/image_formation.h"
+#include "src/frame/image_formation.h"
 
 namespace rsl::cli {
 namespace {

@@ -6,30 +6,12 @@
 
 #include <fmt/core.h>
 
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/cli/command.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 
 namespace rsl::cli {
-
-std::vector<Benchmark>& benchmark_registry() {
-    static std::vector<Benchmark> registry;
-    return registry;
-}
-
-namespace {
-std::vector<nlohmann::json>& collected() {
-    static std::vector<nlohmann::json> results;
-    return results;
-}
-}  // namespace
-
-void bench_emit(nlohmann::json result) {
-    std::fputs((result.dump() + "\n").c_str(), stdout);
-    std::fflush(stdout);
-    collected().push_back(std::move(result));
-}
 
 namespace {
 struct BenchArgs {
@@ -73,7 +55,7 @@ RegisterCommand bench_command({"bench",
                 b.run(options);
             }
             if (!args->json_out.empty())
-                write_file_atomically(args->json_out, nlohmann::json(collected()).dump(2));
+                write_file_atomically(args->json_out, nlohmann::json(bench_results()).dump(2));
         });
     }});
 }  // namespace

@@ -7,7 +7,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/trace/vertex_colors.h"
+#include "src/frame/vertex_colors.h"
 #include "tests/test_support.h"
 
 using namespace rsl;

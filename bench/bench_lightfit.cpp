@@ -9,7 +9,7 @@
 
 #include "lightfit/decompose.h"
 #include "lightfit/reconstruct.h"
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/core/envmap.h"
 
 namespace rsl::cli {

@@ -1,11 +1,11 @@
-#include "src/render/render_bench_cases.h"
+#include "bench/render_bench_cases.h"
 
 #include <chrono>
 #include <cstdio>
 
 #include "lightfit/reconstruct.h"
 #include "src/render/render_setup.h"
-#include "src/trace/error_metrics.h"
+#include "src/frame/error_metrics.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl {

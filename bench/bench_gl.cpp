@@ -11,7 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fields/cpca.h"
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/headless_context.h"
 #include "src/gl/viewer.h"

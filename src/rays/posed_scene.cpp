@@ -1,4 +1,4 @@
-#include "src/trace/posed_scene.h"
+#include "src/rays/posed_scene.h"
 
 #include "src/core/error.h"
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "src/core/image.h"
-#include "src/trace/vertex_colors.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl {
 

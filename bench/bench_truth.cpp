@@ -13,11 +13,11 @@
 #include <tbb/parallel_reduce.h>
 
 #include "assets/generate/primitives.h"
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 #include "src/trace/ground_truth.h"
-#include "src/trace/image_formation.h"
+#include "src/frame/image_formation.h"
 
 namespace rsl::cli {
 namespace {

@@ -3,7 +3,7 @@
 // part index. Moving to another time only updates instance transforms and
 // re-commits the top level; no part BVH is rebuilt.
 #include "src/core/scene.h"
-#include "src/trace/ray_scene.h"
+#include "src/rays/ray_scene.h"
 
 namespace rsl {
 

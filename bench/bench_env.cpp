@@ -10,7 +10,7 @@
 #include <fmt/core.h>
 #include <glm/gtc/quaternion.hpp>
 
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/core/envmap.h"
 #include "src/core/image.h"
 

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <filesystem>
 
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/core/scene.h"
 
 namespace rsl::cli {

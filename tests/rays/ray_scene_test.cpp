@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/error.h"
-#include "src/trace/ray_scene.h"
+#include "src/rays/ray_scene.h"
 #include "tests/trace/trace_test_scenes.h"
 
 using namespace rsl;

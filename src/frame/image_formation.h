@@ -10,9 +10,9 @@
 
 #include "src/core/image.h"
 #include "src/core/scene.h"
-#include "src/trace/posed_scene.h"
-#include "src/trace/progress.h"
-#include "src/trace/vertex_colors.h"
+#include "src/rays/posed_scene.h"
+#include "src/core/progress.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl {
 

@@ -6,9 +6,9 @@
 
 #include "fields/ovdf.h"
 #include "fields/svdf.h"
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/core/scene.h"
-#include "src/trace/ray_scene.h"
+#include "src/rays/ray_scene.h"
 
 namespace rsl::cli {
 namespace {

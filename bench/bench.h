@@ -1,5 +1,5 @@
 #pragma once
-// `rsl bench`: every benchmark registers itself from a src/cli/bench_<area>.cpp
+// `rsl bench`: every benchmark registers itself from a bench/bench_<area>.cpp
 // and prints one JSON object per line (machine-readable), e.g.
 //   {"bench":"lightfit","case":"grace 6x32x32 -> 30","seconds":0.21,...}
 // Times are wall-clock on the machine that runs it; prefer ratios measured in
@@ -24,6 +24,8 @@ struct BenchOptions {
 
 // Emit one result line (also collected for --json-out).
 void bench_emit(nlohmann::json result);
+// Every line emitted so far, in order.
+std::vector<nlohmann::json>& bench_results();
 
 // Timing helpers shared by the bench_<area>.cpp files.
 using BenchClock = std::chrono::steady_clock;

@@ -1,4 +1,4 @@
-#include "src/trace/image_formation.h"
+#include "src/frame/image_formation.h"
 
 #include <algorithm>
 #include <atomic>

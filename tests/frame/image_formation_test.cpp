@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/error.h"
-#include "src/trace/image_formation.h"
+#include "src/frame/image_formation.h"
 #include "tests/trace/trace_test_scenes.h"
 
 using namespace rsl;

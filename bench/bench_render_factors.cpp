@@ -10,11 +10,11 @@
 #include <functional>
 
 #include "lightfit/reconstruct.h"
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/render/exact_visibility.h"
-#include "src/render/render_bench_cases.h"
+#include "bench/render_bench_cases.h"
 #include "src/render/render_setup.h"
-#include "src/trace/error_metrics.h"
+#include "src/frame/error_metrics.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl::cli {

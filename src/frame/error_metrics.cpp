@@ -1,4 +1,4 @@
-#include "src/trace/error_metrics.h"
+#include "src/frame/error_metrics.h"
 
 #include <algorithm>
 #include <array>

@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/error.h"
-#include "src/trace/error_metrics.h"
+#include "src/frame/error_metrics.h"
 
 using namespace rsl;
 

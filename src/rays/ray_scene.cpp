@@ -2,7 +2,7 @@
 // BVH, built once) and a top-level scene of instances; moving a part updates
 // its instance transform and re-commits only the top level (a handful of
 // instances, microseconds).
-#include "src/trace/ray_scene.h"
+#include "src/rays/ray_scene.h"
 
 #include <array>
 #include <limits>

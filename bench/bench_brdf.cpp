@@ -8,7 +8,7 @@
 #include <thread>
 
 #include "src/brdf/brdf_table.h"
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/core/hemisphere.h"
 
 namespace rsl::cli {

@@ -6,7 +6,7 @@
 #include <fmt/core.h>
 
 #include "baselines/prt.h"
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 
 namespace rsl::cli {
 namespace {

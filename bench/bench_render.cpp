@@ -8,12 +8,12 @@
 
 #include <fmt/core.h>
 
-#include "src/cli/bench.h"
-#include "src/render/render_bench_cases.h"
+#include "bench/bench.h"
+#include "bench/render_bench_cases.h"
 #include "src/render/render_setup.h"
-#include "src/trace/error_metrics.h"
+#include "src/frame/error_metrics.h"
 #include "src/trace/ground_truth.h"
-#include "src/trace/image_formation.h"
+#include "src/frame/image_formation.h"
 
 namespace rsl::cli {
 namespace {
