@@ -16,10 +16,13 @@
 
 namespace rsl::cli {
 
+// Where the benchmarks find their inputs. The library knows no source tree:
+// `rsl bench` passes these (defaults under the checkout it was built from).
 struct BenchOptions {
     bool quick = false;                    // smaller cases, for smoke tests
     std::filesystem::path shared_assets;   // ../shared/assets (real probes/meshes), may be absent
     std::filesystem::path generated_assets;  // assets/generated
+    std::filesystem::path scenes;          // assets/scenes
 };
 
 // Emit one result line (also collected for --json-out).

@@ -153,7 +153,7 @@ RegisterBenchmark gl_benchmark({"gl", "GPU renderer: robot and kitchen fps (shad
     [](const BenchOptions& options) {
         gl::HeadlessContext context;
         const std::string device = context.description();
-        const fs::path scenes = fs::path(RSL_SOURCE_DIR) / "assets/scenes";
+        const fs::path& scenes = options.scenes;
         bench_sat_precision(scenes / "robot.json");
         bench_scene(scenes / "robot.json", options, device);
         bench_scene(scenes / "kitchen.json", options, device);

@@ -35,7 +35,7 @@ double median_seconds(int repeats, F&& f) {
 }
 
 void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
-    const auto scene = load_bench_scene(c, options.shared_assets);
+    const auto scene = load_bench_scene(c, options);
     if (!scene) {
         bench_emit({{"bench", "render"}, {"case", c.name}, {"skipped", "missing shared assets"}});
         return;
@@ -116,7 +116,7 @@ RegisterBenchmark render_benchmark({"render",
     "CPU RSL renderer: fps (shading, with image formation) and speed-up over the ground truth", bench_render});
 
 void bench_render_accuracy(const BenchOptions& options) {
-    for (const AccuracyRow& row : render_accuracy_table(options.shared_assets, options.quick))
+    for (const AccuracyRow& row : render_accuracy_table(options, options.quick))
         bench_emit(accuracy_row_json(row));
 }
 
@@ -125,7 +125,7 @@ RegisterBenchmark render_accuracy_benchmark({"render-accuracy",
     bench_render_accuracy});
 
 void bench_render_accuracy_goal(const BenchOptions& options) {
-    for (const AccuracyRow& row : render_accuracy_goal_rows(options.shared_assets, options.quick))
+    for (const AccuracyRow& row : render_accuracy_goal_rows(options, options.quick))
         bench_emit(accuracy_row_json(row));
 }
 

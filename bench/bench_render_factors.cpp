@@ -74,7 +74,7 @@ void bench_factors(const BenchOptions& options) {
     const std::vector<int> light_counts = options.quick ? std::vector<int>{30} : std::vector<int>{30, 100};
     const RenderBenchCase robot{"robot", "robot.json", false, 30, 0.5f};
     for (const Frame& frame : frames) {
-        const auto base = load_bench_scene(robot, options.shared_assets);
+        const auto base = load_bench_scene(robot, options);
         const std::string env_name =
             frame.environment == "scene" ? base->environment.file.stem().string() : frame.environment;
         const CubeMap map = frame.environment == "scene"

@@ -144,7 +144,7 @@ RegisterBenchmark truth_benchmark({"truth",
         emit_truth(fmt::format("spheres, white 6x{}x{}", n, n), spheres, white_cube(n), 0.0f);
         emit_packet_comparison(fmt::format("spheres, hemisphere of 6x{}x{}", n, n), spheres, n);
 
-        const fs::path robot_path = fs::path(RSL_SOURCE_DIR) / "assets" / "scenes" / "robot.json";
+        const fs::path robot_path = options.scenes / "robot.json";
         if (!fs::exists(robot_path) || !fs::exists(options.generated_assets / "robot.glb")) {
             bench_emit({{"bench", "truth"}, {"case", "robot"}, {"skipped", "run `rsl assets` first: missing " + robot_path.string()}});
             return;
@@ -221,7 +221,7 @@ RegisterBenchmark image_benchmark({"image",
     [](const BenchOptions& options) {
         const int width = options.quick ? 160 : 640, height = options.quick ? 120 : 480;
         emit_image("spheres", synthetic_scene(options.quick), width, height, options.quick);
-        const fs::path robot_path = fs::path(RSL_SOURCE_DIR) / "assets" / "scenes" / "robot.json";
+        const fs::path robot_path = options.scenes / "robot.json";
         if (!fs::exists(robot_path) || !fs::exists(options.generated_assets / "robot.glb")) {
             bench_emit({{"bench", "image"}, {"case", "robot"}, {"skipped", "run `rsl assets` first: missing " + robot_path.string()}});
             return;

@@ -18,8 +18,6 @@ double since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-fs::path scenes_dir() { return fs::path(RSL_SOURCE_DIR) / "assets/scenes"; }
-
 // Every part Lambertian (albedo 0.6): the "diffuse" rows.
 void make_diffuse(Scene& scene) {
     MaterialDesc lambert;
@@ -35,15 +33,15 @@ struct NamedEnvironment {
     std::string name;
     CubeMap map;
 };
-std::vector<NamedEnvironment> table_environments(const fs::path& shared, int n, bool quick) {
+std::vector<NamedEnvironment> table_environments(const cli::BenchOptions& assets, int n, bool quick) {
     std::vector<NamedEnvironment> result;
     for (const char* probe : {"grace", "ennis", "uffizi"}) {
-        const fs::path path = shared / "probes" / (std::string(probe) + ".hdr");
+        const fs::path path = assets.shared_assets / "probes" / (std::string(probe) + ".hdr");
         if (fs::exists(path)) result.push_back({probe, load_environment(path, n)});
         if (quick) return result;
     }
     // The project's generated sun and sky (assets/generated, made by `rsl assets`).
-    const fs::path sunsky = fs::path(RSL_SOURCE_DIR) / "assets/generated/sunsky.exr";
+    const fs::path sunsky = assets.generated_assets / "sunsky.exr";
     if (fs::exists(sunsky)) result.push_back({"sunsky", load_environment(sunsky, n)});
     return result;
 }
@@ -65,9 +63,9 @@ std::vector<RenderBenchCase> render_speed_cases(bool quick) {
             {"kitchen 30 RSLs", "kitchen.json", false, 30, 1.0f}};
 }
 
-std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const fs::path& shared_assets) {
-    if (c.needs_shared && !fs::exists(shared_assets)) return nullptr;
-    auto scene = std::make_shared<Scene>(load_scene(scenes_dir() / c.scene_file));
+std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const cli::BenchOptions& assets) {
+    if (c.needs_shared && !fs::exists(assets.shared_assets)) return nullptr;
+    auto scene = std::make_shared<Scene>(load_scene(assets.scenes / c.scene_file));
     scene->precompute = bench_precompute();
     return scene;
 }
@@ -84,20 +82,20 @@ struct SceneCase {
 };
 
 std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, const std::vector<int>& light_counts,
-                                       const fs::path& shared_assets, bool quick, bool progress) {
+                                       const cli::BenchOptions& assets, bool quick, bool progress) {
     std::vector<AccuracyRow> rows;
     for (const SceneCase& sc : scenes) {
-        if (sc.needs_shared && !fs::exists(shared_assets)) continue;
+        if (sc.needs_shared && !fs::exists(assets.shared_assets)) continue;
         for (const bool glossy : {true, false}) {
             if ((quick || sc.glossy_only) && !glossy) continue;
-            auto scene = std::make_shared<Scene>(load_scene(scenes_dir() / sc.file));
+            auto scene = std::make_shared<Scene>(load_scene(assets.scenes / sc.file));
             if (!sc.scene_settings) scene->precompute = bench_precompute();
             if (!glossy) make_diffuse(*scene);
             // Fields depend on geometry only: bake once per scene and material set.
             RenderOptions bake_options;
             bake_options.environment = false;
             const RenderSetup setup = prepare_render(scene, bake_options, progress);
-            for (const NamedEnvironment& env : table_environments(shared_assets, scene->environment.resolution, quick)) {
+            for (const NamedEnvironment& env : table_environments(assets, scene->environment.resolution, quick)) {
                 if (!sc.only_environment.empty() && env.name != sc.only_environment) continue;
                 for (float t : sc.times) {
                     auto start = std::chrono::steady_clock::now();
@@ -146,7 +144,7 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
 
 }  // namespace
 
-std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bool quick, bool progress) {
+std::vector<AccuracyRow> render_accuracy_table(const cli::BenchOptions& assets, bool quick, bool progress) {
     std::vector<SceneCase> scenes(3);
     scenes[0].name = "robot", scenes[0].file = "robot.json", scenes[0].times = {0.0f, 0.5f, 1.0f};
     scenes[1].name = "kitchen", scenes[1].file = "kitchen.json", scenes[1].times = {1.0f};
@@ -157,16 +155,16 @@ std::vector<AccuracyRow> render_accuracy_table(const fs::path& shared_assets, bo
         scenes[0].times = {0.0f};
         light_counts = {10, 30};
     }
-    return accuracy_rows(scenes, light_counts, shared_assets, quick, progress);
+    return accuracy_rows(scenes, light_counts, assets, quick, progress);
 }
 
-std::vector<AccuracyRow> render_accuracy_goal_rows(const fs::path& shared_assets, bool quick, bool progress) {
+std::vector<AccuracyRow> render_accuracy_goal_rows(const cli::BenchOptions& assets, bool quick, bool progress) {
     SceneCase robot;
     robot.name = "robot", robot.file = "robot.json", robot.times = {0.0f, 0.5f, 1.0f};
     robot.scene_settings = true, robot.glossy_only = true, robot.only_environment = "grace";
     robot.needs_shared = true;  // grace is one of the shared probes
     if (quick) robot.times = {0.0f};
-    return accuracy_rows({robot}, quick ? std::vector<int>{30} : std::vector<int>{10, 30, 60, 100}, shared_assets,
+    return accuracy_rows({robot}, quick ? std::vector<int>{30} : std::vector<int>{10, 30, 60, 100}, assets,
                          false, progress);
 }
 

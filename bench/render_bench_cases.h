@@ -9,13 +9,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/bench.h"
 #include "src/core/scene.h"
 
 namespace rsl {
 
 struct RenderBenchCase {
     std::string name;
-    std::string scene_file;   // under assets/scenes
+    std::string scene_file;   // under BenchOptions::scenes
     bool needs_shared = false;
     int lights = 30;
     float time = 0;
@@ -31,9 +32,9 @@ std::vector<RenderBenchCase> render_speed_cases(bool quick);
 // paper's) only make the fields more exact.
 PrecomputeSettings bench_precompute();
 
-// Loads the case's scene with bench_precompute(); null when it needs the
-// shared assets and they are absent.
-std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const std::filesystem::path& shared_assets);
+// Loads the case's scene (from assets.scenes) with bench_precompute(); null
+// when it needs the shared assets and they are absent.
+std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const cli::BenchOptions& assets);
 
 struct AccuracyRow {
     std::string scene, environment, material;
@@ -49,14 +50,13 @@ struct AccuracyRow {
 
 // Every row of the table (slow: one ground truth per scene × time ×
 // environment × material). quick: the robot at t = 0 under grace only, K = 10, 30.
-std::vector<AccuracyRow> render_accuracy_table(const std::filesystem::path& shared_assets, bool quick,
-                                               bool progress = true);
+// Scenes, probes and the generated sun and sky come from `assets`' folders.
+std::vector<AccuracyRow> render_accuracy_table(const cli::BenchOptions& assets, bool quick, bool progress = true);
 // The goal rows: the glossy robot under grace at t = 0, 0.5, 1 with
 // the scene file's own precompute settings (the paper's: 16 shells, 32² cube
 // and VDTs, 8 vectors; fields from the scene's cache, baked once), K = 10, 30,
 // 60, 100 (quick: t = 0, K = 30).
-std::vector<AccuracyRow> render_accuracy_goal_rows(const std::filesystem::path& shared_assets, bool quick,
-                                                   bool progress = true);
+std::vector<AccuracyRow> render_accuracy_goal_rows(const cli::BenchOptions& assets, bool quick, bool progress = true);
 nlohmann::json accuracy_row_json(const AccuracyRow& row);
 
 }  // namespace rsl

@@ -21,6 +21,7 @@ struct BenchArgs {
     std::string json_out;
     std::string shared = std::string(RSL_SOURCE_DIR) + "/../shared/assets";
     std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
+    std::string scenes = std::string(RSL_SOURCE_DIR) + "/assets/scenes";
 };
 
 RegisterCommand bench_command({"bench",
@@ -33,6 +34,7 @@ RegisterCommand bench_command({"bench",
         app.add_option("--json-out", args->json_out, "Also write all results as a JSON array to this file");
         app.add_option("--shared-assets", args->shared, "Folder of real probes/meshes (optional)")->capture_default_str();
         app.add_option("--generated-assets", args->generated, "The project's generated assets")->capture_default_str();
+        app.add_option("--scenes", args->scenes, "The project's scene files")->capture_default_str();
         app.callback([args] {
             auto& registry = benchmark_registry();
             std::sort(registry.begin(), registry.end(),
@@ -44,7 +46,7 @@ RegisterCommand bench_command({"bench",
             for (auto& name : args->names)
                 if (std::none_of(registry.begin(), registry.end(), [&](auto& b) { return b.name == name; }))
                     throw_error("unknown benchmark '{}' (see rsl bench --list)", name);
-            BenchOptions options{args->quick, args->shared, args->generated};
+            BenchOptions options{args->quick, args->shared, args->generated, args->scenes};
             bench_emit({{"bench", "machine"},
                         {"hardware_threads", std::thread::hardware_concurrency()},
                         {"quick", args->quick}});
