@@ -56,30 +56,6 @@ void adapt_scene(Scene& scene, const BaselinesExperiment& args) {
         }
 }
 
-// Relative L2 over the pixels the truth covers, and the H1-type error: the
-// same over forward differences between covered neighbours (DESIGN.md).
-struct ImageErrors {
-    double l2 = 0, h1 = 0;
-};
-ImageErrors image_errors(const Image& image, const Image& truth) {
-    auto covered = [&](int x, int y) { return truth.channels != 4 || truth.at(x, y)[3] > 0.0f; };
-    double diff = 0, norm = 0, grad_diff = 0, grad_norm = 0;
-    for (int y = 0; y < truth.height; ++y)
-        for (int x = 0; x < truth.width; ++x) {
-            if (!covered(x, y)) continue;
-            const DVec3 a = DVec3(image.rgb(x, y)), b = DVec3(truth.rgb(x, y));
-            diff += glm::dot(a - b, a - b);
-            norm += glm::dot(b, b);
-            for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
-                if (x + dx >= truth.width || y + dy >= truth.height || !covered(x + dx, y + dy)) continue;
-                const DVec3 ga = DVec3(image.rgb(x + dx, y + dy)) - a, gb = DVec3(truth.rgb(x + dx, y + dy)) - b;
-                grad_diff += glm::dot(ga - gb, ga - gb);
-                grad_norm += glm::dot(gb, gb);
-            }
-        }
-    return {norm > 0 ? std::sqrt(diff / norm) : 0.0, grad_norm > 0 ? std::sqrt(grad_diff / grad_norm) : 0.0};
-}
-
 // Median wall time of `repeats` calls, in milliseconds.
 template <typename Frame>
 double median_ms(int repeats, const Frame& frame) {
@@ -219,8 +195,8 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
         r.method = method, r.terms = terms;
         r.vertex_error = relative_l2_error(flat, truth_flat);
         r.image = form_image(posed, camera, layout.to_colors(scene, flat, method, t));
-        const ImageErrors errors = image_errors(r.image, results.front().image);
-        r.image_error = errors.l2, r.image_h1 = errors.h1;
+        const ImageErrorReport errors = compare_images(r.image, results.front().image);
+        r.image_error = errors.pixels.relative_l2(), r.image_h1 = errors.relative_h1();
         r.frame_ms = frame_ms, r.precompute_s = precompute_s, r.bytes = bytes;
         say(fmt::format("{} {}: vertex error {:.4f}, image error {:.4f} (H1 {:.4f}), {:.2f} ms", method, terms,
                         r.vertex_error, r.image_error, r.image_h1, frame_ms));

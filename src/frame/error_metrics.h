@@ -32,9 +32,14 @@ struct VertexErrorReport {
 // A and B must describe the same vertices (check_same_vertices).
 VertexErrorReport compare_vertex_colors(const VertexColors& a, const VertexColors& b);
 
+// The one image error of the project (`rsl compare`, the demos, the
+// baselines' tables; docs/TRUTH.md "Errors"): the pixels that count are those
+// the reference B covers (alpha > 0; all pixels when B has no alpha), so a
+// result is measured where the truth has a surface, and every method compared
+// with one truth is measured over the same pixels.
 struct ImageErrorReport {
-    ErrorStats pixels;    // over pixels covered in A or B (all pixels without alpha)
-    ErrorStats gradient;  // forward differences between covered neighbours
+    ErrorStats pixels;    // over the pixels B covers
+    ErrorStats gradient;  // forward differences between neighbours B both covers
     size_t covered = 0, total = 0;
     double relative_h1() const { return gradient.relative_l2(); }
 };

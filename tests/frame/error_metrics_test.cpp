@@ -60,6 +60,23 @@ TEST_CASE("Image errors: covered pixels only, H1 ignores constant offsets", "[tr
     REQUIRE(compare_images(steep, b).relative_h1() > 0.2);
 
     REQUIRE_THROWS_AS(compare_images(Image(8, 5, 4), b), Error);
+
+    // Only the reference's coverage counts: a pixel A covers outside B's
+    // silhouette is not measured, a pixel of B's that A misses is (in full).
+    Image spill = a;
+    spill.set_rgb(0, 0, Color(5.0f));
+    spill.at(0, 0)[3] = 1.0f;
+    const ImageErrorReport spilled = compare_images(spill, b);
+    REQUIRE(spilled.covered == 20);
+    REQUIRE(spilled.pixels.relative_l2() == Approx(r.pixels.relative_l2()).epsilon(1e-6));
+    Image hole = a;
+    hole.set_rgb(3, 2, Color(0));
+    hole.at(3, 2)[3] = 0.0f;
+    const ImageErrorReport holed = compare_images(hole, b);
+    REQUIRE(holed.covered == 20);
+    const DVec3 b32 = DVec3(b.rgb(3, 2));
+    REQUIRE(holed.pixels.diff_squared ==
+            Approx(19 * 3 * 0.05 * 0.05 + glm::dot(b32, b32)).epsilon(1e-4));
     const Image err = error_image(a, b);
     REQUIRE(err.rgb(0, 0) == Color(0));           // covered by neither: black
     REQUIRE(err.rgb(3, 2) == false_color(1.0f));  // uniform error at full scale
