@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-namespace rsl::cli {
+namespace rsl::bench {
 
 std::vector<Benchmark>& benchmark_registry() {
     static std::vector<Benchmark> registry;
@@ -20,4 +20,4 @@ void bench_emit(nlohmann::json result) {
     bench_results().push_back(std::move(result));
 }
 
-}  // namespace rsl::cli
+}  // namespace rsl::bench

@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace rsl::cli {
+namespace rsl::bench {
 
 // Where the benchmarks find their inputs. The library knows no source tree:
 // `rsl bench` passes these (defaults under the checkout it was built from).
@@ -63,4 +63,4 @@ struct RegisterBenchmark {
     explicit RegisterBenchmark(Benchmark b) { benchmark_registry().push_back(std::move(b)); }
 };
 
-}  // namespace rsl::cli
+}  // namespace rsl::bench

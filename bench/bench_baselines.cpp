@@ -8,7 +8,7 @@
 #include "baselines/prt.h"
 #include "bench/bench.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -162,4 +162,4 @@ RegisterBenchmark baselines_benchmark({"baselines",
     "SH and Haar PRT baselines: SH evaluation/rotation, lighting approximation, a small scene end to end", run});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

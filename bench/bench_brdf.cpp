@@ -11,7 +11,7 @@
 #include "bench/bench.h"
 #include "src/core/hemisphere.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 
 MaterialDesc material(const std::string& model, std::map<std::string, std::vector<float>> params) {
@@ -273,4 +273,4 @@ RegisterBenchmark brdf_benchmark({"brdf",
     }});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

@@ -14,7 +14,7 @@
 #include "src/core/envmap.h"
 #include "src/core/image.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 
 double worst_channel_error(const DVec3& got, const DVec3& want) {
@@ -110,4 +110,4 @@ RegisterBenchmark bench_env({"env",
     }});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

@@ -10,7 +10,7 @@
 #include "src/core/scene.h"
 #include "src/rays/ray_scene.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 namespace fs = std::filesystem;
 
@@ -247,4 +247,4 @@ RegisterBenchmark fields_benchmark({"fields",
     }});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

@@ -17,7 +17,7 @@
 #include "src/gl/viewer.h"
 #include "src/render/render_setup.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -160,5 +160,5 @@ RegisterBenchmark gl_benchmark({"gl", "GPU renderer: robot and kitchen fps (shad
     }});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench
 #endif  // RSL_HAVE_GL

@@ -12,7 +12,7 @@
 #include "bench/bench.h"
 #include "src/core/envmap.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 namespace fs = std::filesystem;
 
@@ -115,4 +115,4 @@ RegisterBenchmark lightfit_benchmark({"lightfit",
     bench_lightfit});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

@@ -15,7 +15,7 @@
 #include "src/trace/ground_truth.h"
 #include "src/frame/image_formation.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -134,4 +134,4 @@ RegisterBenchmark render_goal_benchmark({"render-goal",
     bench_render_accuracy_goal});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

@@ -17,7 +17,7 @@
 #include "src/frame/error_metrics.h"
 #include "src/trace/ground_truth.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -123,4 +123,4 @@ RegisterBenchmark render_factors_benchmark({"render-factors",
     "RSL renderer error vs truth with each approximation replaced by its exact value (slow)", bench_factors});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

@@ -7,7 +7,7 @@
 #include "bench/bench.h"
 #include "src/core/scene.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 namespace fs = std::filesystem;
 
@@ -67,4 +67,4 @@ void run(const BenchOptions& options) {
 RegisterBenchmark scene_benchmark({"scene", "OBJ/glTF/scene loading and part-transform evaluation", run});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

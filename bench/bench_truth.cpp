@@ -19,7 +19,7 @@
 #include "src/trace/ground_truth.h"
 #include "src/frame/image_formation.h"
 
-namespace rsl::cli {
+namespace rsl::bench {
 namespace {
 namespace fs = std::filesystem;
 
@@ -230,4 +230,4 @@ RegisterBenchmark image_benchmark({"image",
     }});
 
 }  // namespace
-}  // namespace rsl::cli
+}  // namespace rsl::bench

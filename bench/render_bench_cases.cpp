@@ -33,7 +33,7 @@ struct NamedEnvironment {
     std::string name;
     CubeMap map;
 };
-std::vector<NamedEnvironment> table_environments(const cli::BenchOptions& assets, int n, bool quick) {
+std::vector<NamedEnvironment> table_environments(const bench::BenchOptions& assets, int n, bool quick) {
     std::vector<NamedEnvironment> result;
     for (const char* probe : {"grace", "ennis", "uffizi"}) {
         const fs::path path = assets.shared_assets / "probes" / (std::string(probe) + ".hdr");
@@ -63,7 +63,7 @@ std::vector<RenderBenchCase> render_speed_cases(bool quick) {
             {"kitchen 30 RSLs", "kitchen.json", false, 30, 1.0f}};
 }
 
-std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const cli::BenchOptions& assets) {
+std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const bench::BenchOptions& assets) {
     if (c.needs_shared && !fs::exists(assets.shared_assets)) return nullptr;
     auto scene = std::make_shared<Scene>(load_scene(assets.scenes / c.scene_file));
     scene->precompute = bench_precompute();
@@ -82,7 +82,7 @@ struct SceneCase {
 };
 
 std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, const std::vector<int>& light_counts,
-                                       const cli::BenchOptions& assets, bool quick, bool progress) {
+                                       const bench::BenchOptions& assets, bool quick, bool progress) {
     std::vector<AccuracyRow> rows;
     for (const SceneCase& sc : scenes) {
         if (sc.needs_shared && !fs::exists(assets.shared_assets)) continue;
@@ -144,7 +144,7 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
 
 }  // namespace
 
-std::vector<AccuracyRow> render_accuracy_table(const cli::BenchOptions& assets, bool quick, bool progress) {
+std::vector<AccuracyRow> render_accuracy_table(const bench::BenchOptions& assets, bool quick, bool progress) {
     std::vector<SceneCase> scenes(3);
     scenes[0].name = "robot", scenes[0].file = "robot.json", scenes[0].times = {0.0f, 0.5f, 1.0f};
     scenes[1].name = "kitchen", scenes[1].file = "kitchen.json", scenes[1].times = {1.0f};
@@ -158,7 +158,7 @@ std::vector<AccuracyRow> render_accuracy_table(const cli::BenchOptions& assets, 
     return accuracy_rows(scenes, light_counts, assets, quick, progress);
 }
 
-std::vector<AccuracyRow> render_accuracy_goal_rows(const cli::BenchOptions& assets, bool quick, bool progress) {
+std::vector<AccuracyRow> render_accuracy_goal_rows(const bench::BenchOptions& assets, bool quick, bool progress) {
     SceneCase robot;
     robot.name = "robot", robot.file = "robot.json", robot.times = {0.0f, 0.5f, 1.0f};
     robot.scene_settings = true, robot.glossy_only = true, robot.only_environment = "grace";

@@ -34,7 +34,7 @@ PrecomputeSettings bench_precompute();
 
 // Loads the case's scene (from assets.scenes) with bench_precompute(); null
 // when it needs the shared assets and they are absent.
-std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const cli::BenchOptions& assets);
+std::shared_ptr<Scene> load_bench_scene(const RenderBenchCase& c, const bench::BenchOptions& assets);
 
 struct AccuracyRow {
     std::string scene, environment, material;
@@ -51,12 +51,12 @@ struct AccuracyRow {
 // Every row of the table (slow: one ground truth per scene × time ×
 // environment × material). quick: the robot at t = 0 under grace only, K = 10, 30.
 // Scenes, probes and the generated sun and sky come from `assets`' folders.
-std::vector<AccuracyRow> render_accuracy_table(const cli::BenchOptions& assets, bool quick, bool progress = true);
+std::vector<AccuracyRow> render_accuracy_table(const bench::BenchOptions& assets, bool quick, bool progress = true);
 // The goal rows: the glossy robot under grace at t = 0, 0.5, 1 with
 // the scene file's own precompute settings (the paper's: 16 shells, 32² cube
 // and VDTs, 8 vectors; fields from the scene's cache, baked once), K = 10, 30,
 // 60, 100 (quick: t = 0, K = 30).
-std::vector<AccuracyRow> render_accuracy_goal_rows(const cli::BenchOptions& assets, bool quick, bool progress = true);
+std::vector<AccuracyRow> render_accuracy_goal_rows(const bench::BenchOptions& assets, bool quick, bool progress = true);
 nlohmann::json accuracy_row_json(const AccuracyRow& row);
 
 }  // namespace rsl

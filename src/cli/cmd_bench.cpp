@@ -13,6 +13,13 @@
 
 namespace rsl::cli {
 
+// The benchmarks and their registry live in bench/ (library rsl_bench).
+using bench::BenchOptions;
+using bench::Benchmark;
+using bench::bench_emit;
+using bench::bench_results;
+using bench::benchmark_registry;
+
 namespace {
 struct BenchArgs {
     std::vector<std::string> names;
