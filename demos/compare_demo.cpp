@@ -18,7 +18,7 @@
 #include "demos/demo_support.h"
 #include "src/core/error.h"
 #include "src/render/render_setup.h"
-#include "src/trace/error_metrics.h"
+#include "src/frame/error_metrics.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl::demos {

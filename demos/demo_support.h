@@ -12,8 +12,8 @@
 #include "src/core/image.h"
 #include "src/core/scene.h"
 #include "src/render/render_options.h"
-#include "src/trace/posed_scene.h"
-#include "src/trace/vertex_colors.h"
+#include "src/rays/posed_scene.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl::demos {
 

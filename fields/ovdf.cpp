@@ -11,7 +11,7 @@
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/core/hemisphere.h"
-#include "src/trace/ray_scene.h"
+#include "src/rays/ray_scene.h"
 
 namespace rsl {
 

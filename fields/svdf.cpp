@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "src/core/error.h"
-#include "src/trace/ray_scene.h"
+#include "src/rays/ray_scene.h"
 
 namespace rsl {
 namespace {

@@ -24,8 +24,8 @@
 #include "fields/vdt.h"
 #include "src/core/math.h"
 #include "src/core/mesh.h"
-#include "src/trace/progress.h"
-#include "src/trace/ray_scene.h"
+#include "src/core/progress.h"
+#include "src/rays/ray_scene.h"
 
 namespace rsl {
 

@@ -9,6 +9,7 @@
 
 #include "assets/generate/environments.h"
 #include "assets/generate/kitchen.h"
+#include "assets/generate/orb.h"
 #include "assets/generate/robot.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
@@ -17,7 +18,7 @@ namespace rsl::assets {
 namespace fs = std::filesystem;
 
 std::vector<std::string> generated_file_names() {
-    return {"robot.glb",   "ground.obj",  "kitchen.glb",  "sunsky.exr",  "sunsky.png",
+    return {"robot.glb",   "ground.obj",  "orb.obj",      "kitchen.glb",  "sunsky.exr",  "sunsky.png",
             "studio.exr",  "studio.png",  "overcast.exr", "overcast.png"};
 }
 
@@ -77,6 +78,10 @@ GenerateReport generate_assets(const fs::path& dir, bool force) {
             write_obj(dir / "ground.obj", ground);
             note(fmt::format("ground.obj: 8 m x 8 m sheet, {} vertices, {} triangles", ground.vertex_count(),
                              ground.triangle_count()));
+            const TriangleMesh orb = make_orb();
+            write_obj(dir / "orb.obj", orb);
+            note(fmt::format("orb.obj: sphere in a tilted ring (the materials and compare demos), {} vertices, {} "
+                             "triangles", orb.vertex_count(), orb.triangle_count()));
         },
         [&] {
             const GeneratedModel kitchen = make_kitchen();

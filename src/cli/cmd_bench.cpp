@@ -6,30 +6,19 @@
 
 #include <fmt/core.h>
 
-#include "src/cli/bench.h"
+#include "bench/bench.h"
 #include "src/cli/command.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 
 namespace rsl::cli {
 
-std::vector<Benchmark>& benchmark_registry() {
-    static std::vector<Benchmark> registry;
-    return registry;
-}
-
-namespace {
-std::vector<nlohmann::json>& collected() {
-    static std::vector<nlohmann::json> results;
-    return results;
-}
-}  // namespace
-
-void bench_emit(nlohmann::json result) {
-    std::fputs((result.dump() + "\n").c_str(), stdout);
-    std::fflush(stdout);
-    collected().push_back(std::move(result));
-}
+// The benchmarks and their registry live in bench/ (library rsl_bench).
+using bench::BenchOptions;
+using bench::Benchmark;
+using bench::bench_emit;
+using bench::bench_results;
+using bench::benchmark_registry;
 
 namespace {
 struct BenchArgs {
@@ -39,6 +28,7 @@ struct BenchArgs {
     std::string json_out;
     std::string shared = std::string(RSL_SOURCE_DIR) + "/../shared/assets";
     std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
+    std::string scenes = std::string(RSL_SOURCE_DIR) + "/assets/scenes";
 };
 
 RegisterCommand bench_command({"bench",
@@ -51,6 +41,7 @@ RegisterCommand bench_command({"bench",
         app.add_option("--json-out", args->json_out, "Also write all results as a JSON array to this file");
         app.add_option("--shared-assets", args->shared, "Folder of real probes/meshes (optional)")->capture_default_str();
         app.add_option("--generated-assets", args->generated, "The project's generated assets")->capture_default_str();
+        app.add_option("--scenes", args->scenes, "The project's scene files")->capture_default_str();
         app.callback([args] {
             auto& registry = benchmark_registry();
             std::sort(registry.begin(), registry.end(),
@@ -62,7 +53,7 @@ RegisterCommand bench_command({"bench",
             for (auto& name : args->names)
                 if (std::none_of(registry.begin(), registry.end(), [&](auto& b) { return b.name == name; }))
                     throw_error("unknown benchmark '{}' (see rsl bench --list)", name);
-            BenchOptions options{args->quick, args->shared, args->generated};
+            BenchOptions options{args->quick, args->shared, args->generated, args->scenes};
             bench_emit({{"bench", "machine"},
                         {"hardware_threads", std::thread::hardware_concurrency()},
                         {"quick", args->quick}});
@@ -73,7 +64,7 @@ RegisterCommand bench_command({"bench",
                 b.run(options);
             }
             if (!args->json_out.empty())
-                write_file_atomically(args->json_out, nlohmann::json(collected()).dump(2));
+                write_file_atomically(args->json_out, nlohmann::json(bench_results()).dump(2));
         });
     }});
 }  // namespace

@@ -6,9 +6,9 @@
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
-#include "src/trace/error_metrics.h"
-#include "src/trace/image_formation.h"
-#include "src/trace/vertex_colors.h"
+#include "src/frame/error_metrics.h"
+#include "src/frame/image_formation.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl::cli {
 namespace {

@@ -4,7 +4,6 @@
 #include <fmt/core.h>
 
 #include "demos/demo.h"
-#include "demos/orb_mesh.h"
 #include "src/cli/command.h"
 #include "src/core/error.h"
 
@@ -22,14 +21,6 @@ void run_demo_command(const DemoArgs& args) {
     if (args.name == "list") {
         for (const demos::DemoInfo& demo : demos::demo_list())
             fmt::print("{:<10} {}  (demos/{})\n", demo.name, demo.description, demo.scene);
-        return;
-    }
-    if (args.name == "orb-mesh") {  // regenerates the materials/compare object
-        const std::filesystem::path path = args.out.empty() ? std::filesystem::path(RSL_SOURCE_DIR) / "demos/materials/orb.obj"
-                                                            : std::filesystem::path(args.out);
-        const TriangleMesh orb = demos::make_orb_mesh();
-        demos::write_obj(path, orb, "rsl demo orb-mesh: sphere in a tilted ring (demos/orb_mesh.cpp)");
-        fmt::print("{}: {} vertices, {} triangles\n", path.string(), orb.vertex_count(), orb.triangle_count());
         return;
     }
     if (args.frames < 0 || args.width < 0 || args.height < 0)

@@ -11,7 +11,7 @@
 #include "src/cli/command.h"
 #include "src/render/render_setup.h"
 #include "src/core/error.h"
-#include "src/trace/image_formation.h"
+#include "src/frame/image_formation.h"
 #ifdef RSL_HAVE_GL
 #include "src/gl/headless_renderer.h"
 #endif

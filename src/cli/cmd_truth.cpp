@@ -12,7 +12,7 @@
 #include "src/core/progress_report.h"
 #include "src/core/scene.h"
 #include "src/trace/ground_truth.h"
-#include "src/trace/image_formation.h"
+#include "src/frame/image_formation.h"
 
 namespace rsl::cli {
 namespace {

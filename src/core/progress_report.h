@@ -15,7 +15,7 @@ class ProgressReport {
 public:
     ProgressReport(std::string label, bool enabled) : label_(std::move(label)), enabled_(enabled) {}
 
-    // A ProgressCallback (src/trace/progress.h) for loops over `total` items.
+    // A ProgressCallback (src/core/progress.h) for loops over `total` items.
     void operator()(size_t done, size_t total) { update(double(done) / double(std::max<size_t>(total, 1))); }
 
     // fraction in [0, 1] of the whole job.

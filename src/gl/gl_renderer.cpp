@@ -3,7 +3,7 @@
 #include "src/brdf/material_library.h"
 #include "src/core/error.h"
 #include "src/render/renderer.h"
-#include "src/trace/ground_truth.h"
+#include "src/core/sphere_light.h"
 
 namespace rsl::gl {
 

@@ -22,7 +22,7 @@
 #include "src/gl/gpu_layout.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
-#include "src/trace/vertex_colors.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl::gl {
 

@@ -2,7 +2,7 @@
 // The GPU renderer with its own offscreen context, used like rsl::Renderer:
 // the entry point of `rsl render --backend gl` (and anything else that wants
 // GPU vertex colours without a window). Image formation stays the shared
-// CPU one (src/trace/image_formation.h), so images compare like for like.
+// CPU one (src/frame/image_formation.h), so images compare like for like.
 //
 //   gl::HeadlessGlRenderer renderer(scene, setup.environment_lights, setup.fields, options);
 //   VertexColors colors = renderer.make_output();

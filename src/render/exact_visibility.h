@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "src/core/scene.h"
-#include "src/trace/posed_scene.h"
-#include "src/trace/ray_scene.h"
+#include "src/rays/posed_scene.h"
+#include "src/rays/ray_scene.h"
 
 namespace rsl {
 

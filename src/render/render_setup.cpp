@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "fields/progress_report.h"
+#include "src/core/progress_report.h"
 #include "src/core/error.h"
 
 namespace rsl {

@@ -9,7 +9,7 @@
 #include "lightfit/decompose.h"
 #include "src/core/error.h"
 #include "src/render/ovdf_occluder.h"
-#include "src/trace/ground_truth.h"
+#include "src/core/sphere_light.h"
 
 namespace rsl {
 

@@ -26,7 +26,7 @@
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"
-#include "src/trace/vertex_colors.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl {
 

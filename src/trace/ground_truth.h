@@ -19,9 +19,10 @@
 #include "src/brdf/brdf.h"
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
-#include "src/trace/posed_scene.h"
-#include "src/trace/progress.h"
-#include "src/trace/vertex_colors.h"
+#include "src/core/sphere_light.h"
+#include "src/rays/posed_scene.h"
+#include "src/core/progress.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl {
 
@@ -46,12 +47,6 @@ struct EnvironmentSamples {
     size_t size() const { return directions.size(); }
     static EnvironmentSamples from_cube(const CubeMap& map, const Mat3& rotation, int subdivision);
 };
-
-// Radiance of a uniform spherical emitter of radius a and RGB power Φ:
-// Φ = L · π · 4πa²  ⇒  L = Φ / (4π² a²).
-inline Color sphere_light_radiance(const LocalLight& light) {
-    return light.power / (4.0f * kPi * kPi * light.radius * light.radius);
-}
 
 class GroundTruth {
 public:

@@ -8,7 +8,7 @@
 
 #include "fields/ovdf.h"
 #include "src/core/hemisphere.h"
-#include "src/trace/ray_scene.h"
+#include "src/rays/ray_scene.h"
 
 using namespace rsl;
 

@@ -6,7 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "fields/svdf.h"
-#include "src/trace/ray_scene.h"
+#include "src/rays/ray_scene.h"
 
 using namespace rsl;
 

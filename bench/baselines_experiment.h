@@ -1,0 +1,31 @@
+#pragma once
+// `rsl baselines` as a function: one static frame of a scene rendered with
+// every method against the ground truth (docs/BASELINES.md): SH PRT with 9,
+// 25 and 100 coefficients, Haar PRT with N = 20, 30, 60, 100 lighting terms,
+// the RSL renderer with K = 10, 30, 60, 100 lights. Environment light only
+// (local lights off for every method: the baselines have none).
+#include <string>
+#include <vector>
+
+namespace rsl {
+
+struct BaselinesExperiment {
+    std::string scene;                      // scene file (.json, .gltf/.glb, .obj)
+    std::string output = "out/baselines";   // folder for the table and figures
+    std::string environment;                // a probe instead of the scene's; empty: the scene's
+    float time = 0;
+    bool diffuse = false;  // every material Lambertian (its diffuse colour kept)
+    bool no_rsl = false;   // skip the RSL renderer (no field bake)
+    bool quiet = false;    // no progress lines on stderr
+    int resolution = 0;    // cube map N; 0: the scene's
+    int width = 320, height = 240, repeats = 5;
+    float haar_drop = 1e-3f;  // drop transport wavelets below this × the vertex's largest
+    std::vector<int> sh_orders{3, 5, 10}, haar_terms{20, 30, 60, 100}, rsl_lights{10, 30, 60, 100};
+};
+
+// Runs every method and writes OUTPUT/table.md, results.json, sheet.png
+// (images side by side), error_plot.png (error against the number of terms)
+// and one EXR + PNG per method; prints the table.
+void run_baselines_experiment(const BaselinesExperiment& experiment);
+
+}  // namespace rsl

@@ -1,0 +1,58 @@
+#pragma once
+// Errors of a result A against a reference B (DESIGN.md "Ground truth and
+// error"): relative L2 over vertices (RGB) or over covered pixels, maximum
+// error, per-part breakdown, and for images an H1-type error on gradients.
+#include <string>
+#include <vector>
+
+#include "src/core/image.h"
+#include "src/frame/vertex_colors.h"
+
+namespace rsl {
+
+// Accumulates ‖A − B‖² and ‖B‖² over RGB elements, in double.
+struct ErrorStats {
+    double diff_squared = 0, reference_squared = 0;
+    double max_error = 0;      // largest per-element RGB distance |a − b|
+    double max_reference = 0;  // largest per-element |b|
+    size_t count = 0;
+
+    void add(const Color& a, const Color& b);
+    // ‖A − B‖₂ / ‖B‖₂ (0 when both are 0; infinite when only B is).
+    double relative_l2() const;
+    // max |a − b| / max |b|.
+    double relative_max() const;
+};
+
+struct VertexErrorReport {
+    ErrorStats total;
+    std::vector<std::string> part_names;
+    std::vector<ErrorStats> parts;
+};
+// A and B must describe the same vertices (check_same_vertices).
+VertexErrorReport compare_vertex_colors(const VertexColors& a, const VertexColors& b);
+
+// The one image error of the project (`rsl compare`, the demos, the
+// baselines' tables; docs/TRUTH.md "Errors"): the pixels that count are those
+// the reference B covers (alpha > 0; all pixels when B has no alpha), so a
+// result is measured where the truth has a surface, and every method compared
+// with one truth is measured over the same pixels.
+struct ImageErrorReport {
+    ErrorStats pixels;    // over the pixels B covers
+    ErrorStats gradient;  // forward differences between neighbours B both covers
+    size_t covered = 0, total = 0;
+    double relative_h1() const { return gradient.relative_l2(); }
+};
+// Same size required (throws naming both); colours are compared as stored
+// (premultiplied by coverage).
+ImageErrorReport compare_images(const Image& a, const Image& b);
+
+// Perceptually ordered false colour (dark blue → cyan → yellow → red) for x in
+// [0, 1] (clamped), as linear RGB, so an sRGB PNG shows the intended colours.
+Color false_color(float x);
+
+// |a − b| per pixel (RGB distance) / scale in false colour; pixels covered by
+// neither image stay black. scale ≤ 0 means the largest error.
+Image error_image(const Image& a, const Image& b, float scale = 0);
+
+}  // namespace rsl

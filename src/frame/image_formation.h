@@ -1,0 +1,71 @@
+#pragma once
+// Image formation shared by the ground truth and the RSL renderer, so that
+// images compare like for like: primary rays from the scene camera through a
+// regular S×S grid of sample positions in every pixel (S = 1: the pixel
+// center); a sample that hits a triangle takes a colour from the hit, the
+// pixel is the average over its samples (background counted as black unless a
+// background is given) and alpha is the covered fraction. EXR convention:
+// colour is premultiplied by coverage.
+#include <functional>
+
+#include "src/core/image.h"
+#include "src/core/scene.h"
+#include "src/rays/posed_scene.h"
+#include "src/core/progress.h"
+#include "src/frame/vertex_colors.h"
+
+namespace rsl {
+
+// Pinhole camera at time t: row 0 at the top, vertical field of view from
+// Camera::fov_y_degrees, square pixels.
+struct PinholeCamera {
+    Vec3 eye{0}, forward{0, 0, -1}, right{1, 0, 0}, up{0, 1, 0};
+    float tan_half_fov_y = 0.36f;
+    int width = 640, height = 480;
+
+    static PinholeCamera at_time(const Camera& camera, float t, int width, int height);
+    // Unit direction through image position (px, py) in pixels: (0, 0) is the
+    // top-left corner of the image, (width, height) the bottom-right.
+    Vec3 direction(float px, float py) const { return direction_through(screen_x(px), screen_y(py)); }
+
+    // The same in two steps, for batches of rays (bit for bit the same
+    // direction): image-plane coordinates at unit distance, then the unit
+    // direction through them.
+    float screen_x(float px) const {
+        const float aspect = float(width) / float(height);
+        return (2.0f * px / float(width) - 1.0f) * tan_half_fov_y * aspect;
+    }
+    float screen_y(float py) const { return (1.0f - 2.0f * py / float(height)) * tan_half_fov_y; }
+    Vec3 direction_through(float sx, float sy) const { return glm::normalize(forward + sx * right + sy * up); }
+};
+
+struct ImageFormationOptions {
+    int samples_per_side = 1;  // S: S×S samples per pixel on a regular grid
+    bool opaque_background = false;
+    Color background{0};  // used when opaque_background: uncovered samples add this colour
+};
+
+// Colour of a primary-ray hit (called from worker threads).
+using HitShader = std::function<Color(const RayHit& hit, const Vec3& ray_direction)>;
+
+// Traces the image; every hit is coloured by `shade`. RGBA, all cores. Rays
+// are traced in coherent packets over square tiles of pixels, and each pixel
+// sums its samples in the order a ray at a time would (same hits, same sums).
+Image trace_image(const PosedScene& scene, const PinholeCamera& camera, const ImageFormationOptions& options,
+                  const HitShader& shade, const ProgressCallback& progress = {});
+
+// The reference for trace_image: the same primary rays traced one at a time
+// (rows in parallel), each pixel's samples summed in the same (b, a) order, so
+// that packets must give the same image. For tests and benchmarks.
+Image trace_image_one_ray_at_a_time(const PosedScene& scene, const PinholeCamera& camera,
+                                    const ImageFormationOptions& options, const HitShader& shade);
+
+// Per-vertex colours interpolated with the hit's barycentrics.
+Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, const RayHit& hit);
+
+// The image of per-vertex colours (the like-for-like image of a vertex result).
+// `colors` must describe `scene`'s parts (checked).
+Image form_image(const PosedScene& scene, const PinholeCamera& camera, const VertexColors& colors,
+                 const ImageFormationOptions& options = {});
+
+}  // namespace rsl

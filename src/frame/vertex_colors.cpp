@@ -1,0 +1,109 @@
+// Reader and writer of .rslv per-vertex colour files (format in vertex_colors.h).
+#include "src/frame/vertex_colors.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "src/core/atomic_file.h"
+#include "src/core/binary_io.h"
+#include "src/core/error.h"
+
+namespace rsl {
+
+namespace {
+
+constexpr char kMagic[8] = {'R', 'S', 'L', 'V', 'T', 'X', 'C', '\0'};
+static_assert(sizeof(Color) == 3 * sizeof(float), "Color must be three packed floats");
+
+}  // namespace
+
+size_t VertexColors::vertex_count() const {
+    size_t total = 0;
+    for (const auto& part : parts) total += part.size();
+    return total;
+}
+
+void VertexColors::add_part(const std::string& name, size_t vertices) {
+    part_names.push_back(name);
+    parts.emplace_back(vertices, Color(0));
+}
+
+void write_vertex_colors(const std::filesystem::path& path, const VertexColors& colors) {
+    RSL_CHECK_EQ(colors.part_names.size(), colors.parts.size());
+    BinaryWriter w;
+    w.put_bytes(kMagic, sizeof(kMagic));
+    w.put(kVertexColorsVersion);
+    w.put_string(colors.scene_name);
+    w.put_string(colors.producer);
+    w.put(colors.time);
+    w.put(uint32_t(colors.parts.size()));
+    for (size_t p = 0; p < colors.parts.size(); ++p) {
+        w.put_string(colors.part_names[p]);
+        w.put(uint64_t(colors.parts[p].size()));
+    }
+    for (const auto& part : colors.parts) w.put_bytes(part.data(), part.size() * sizeof(Color));
+    write_file_atomically(path, w.finish_with_checksum());
+}
+
+VertexColors read_vertex_colors(const std::filesystem::path& path) {
+    const std::string bytes = read_file(path);
+    if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+        throw_file_error(path, "not an rsl vertex-colour file (.rslv): wrong magic number");
+    const size_t header_and_data = bytes.size() >= sizeof(kMagic) + 12 ? bytes.size() - sizeof(uint64_t) : 0;
+    BinaryReader r(path, bytes, header_and_data);
+    char magic[sizeof(kMagic)];
+    r.get_bytes(magic, sizeof(magic), "magic number");
+    const uint32_t version = r.get<uint32_t>("version");
+    if (version != kVertexColorsVersion)
+        throw_file_error(path, "vertex-colour file version {}, this build reads version {}", version,
+                         kVertexColorsVersion);
+    if (!has_valid_checksum(bytes))
+        throw_file_error(path, "checksum mismatch: the file is corrupt or truncated");
+
+    VertexColors colors;
+    colors.scene_name = r.get_string("scene name");
+    colors.producer = r.get_string("producer");
+    colors.time = r.get<float>("time");
+    const uint32_t part_count = r.get<uint32_t>("part count");
+    std::vector<uint64_t> counts;
+    uint64_t total = 0;
+    for (uint32_t p = 0; p < part_count; ++p) {
+        colors.part_names.push_back(r.get_string("part name"));
+        counts.push_back(r.get<uint64_t>("vertex count"));
+        total += counts.back();
+        if (total > r.remaining())  // also guards the multiplication below
+            throw_file_error(path, "corrupt: {} vertices do not fit in the file", total);
+    }
+    if (total * sizeof(Color) != r.remaining())
+        throw_file_error(path, "corrupt: header says {} vertices ({} bytes of data), file holds {} bytes", total,
+                         total * sizeof(Color), r.remaining());
+    for (uint32_t p = 0; p < part_count; ++p) {
+        auto& part = colors.parts.emplace_back(counts[p]);
+        r.get_bytes(part.data(), counts[p] * sizeof(Color), "vertex data");
+        for (size_t v = 0; v < part.size(); ++v)
+            if (!std::isfinite(part[v].r) || !std::isfinite(part[v].g) || !std::isfinite(part[v].b))
+                throw_file_error(path, "non-finite colour at part '{}' vertex {}", colors.part_names[p], v);
+    }
+    return colors;
+}
+
+void check_same_vertices(const VertexColors& a, const std::filesystem::path& path_a, const VertexColors& b,
+                         const std::filesystem::path& path_b) {
+    auto mismatch = [&](const std::string& what) {
+        throw_error("{} and {} are not comparable: {}", path_a.string(), path_b.string(), what);
+    };
+    if (a.scene_name != b.scene_name) mismatch(fmt::format("scenes '{}' vs '{}'", a.scene_name, b.scene_name));
+    if (a.parts.size() != b.parts.size())
+        mismatch(fmt::format("{} parts vs {} parts", a.parts.size(), b.parts.size()));
+    for (size_t p = 0; p < a.parts.size(); ++p) {
+        if (a.part_names[p] != b.part_names[p])
+            mismatch(fmt::format("part {} is '{}' vs '{}'", p, a.part_names[p], b.part_names[p]));
+        if (a.parts[p].size() != b.parts[p].size())
+            mismatch(fmt::format("part '{}' has {} vs {} vertices", a.part_names[p], a.parts[p].size(),
+                                 b.parts[p].size()));
+    }
+    if (std::abs(a.time - b.time) > 1e-6f * std::max(1.0f, std::abs(b.time)))
+        mismatch(fmt::format("times {} s vs {} s", a.time, b.time));
+}
+
+}  // namespace rsl

@@ -1,0 +1,64 @@
+#include "src/rays/posed_scene.h"
+
+#include "src/core/error.h"
+
+namespace rsl {
+
+PosedScene::PosedScene(const Scene& scene, float t) : scene_(scene) {
+    if (scene.parts.empty()) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        const int mesh = rays_.add_mesh(scene.parts[p].mesh);
+        const int instance = rays_.add_instance(mesh, Mat4(1.0f));
+        RSL_CHECK(mesh == int(p) && instance == int(p));
+    }
+    transforms_.resize(scene.parts.size());
+    linear_.resize(scene.parts.size());
+    normal_.resize(scene.parts.size());
+    set_time(t);
+}
+
+void PosedScene::set_time(float t) {
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        const Mat4 m = scene_.part_transform_at(int(p), t);
+        transforms_[p] = m;
+        linear_[p] = Mat3(m);
+        normal_[p] = glm::transpose(glm::inverse(Mat3(m)));
+        rays_.set_transform(int(p), m);
+    }
+    rays_.commit();
+    offset_.scene_scale = rays_.world_diagonal();
+    time_ = t;
+}
+
+SurfacePoint PosedScene::vertex(int part, int v) const {
+    const TriangleMesh& mesh = scene_.parts[part].mesh;
+    SurfacePoint x;
+    x.position = Vec3(transforms_[part] * Vec4(mesh.positions[v], 1.0f));
+    const Vec3 n = glm::normalize(normal_[part] * mesh.normals[v]);
+    const Vec3 t = mesh.tangents.empty() ? Vec3(0) : linear_[part] * Vec3(mesh.tangents[v]);
+    x.frame = Frame::from_normal_tangent(n, t);
+    x.offset_normal = x.frame.z;
+    return x;
+}
+
+SurfacePoint PosedScene::hit_point(const RayHit& hit, const Vec3& ray_direction) const {
+    RSL_CHECK(hit.hit);
+    const TriangleMesh& mesh = scene_.parts[hit.instance].mesh;
+    const uint32_t* tri = &mesh.indices[3 * size_t(hit.triangle)];
+    const float w0 = 1.0f - hit.u - hit.v, w1 = hit.u, w2 = hit.v;
+    auto blend = [&](const auto& values) {
+        return w0 * Vec3(values[tri[0]]) + w1 * Vec3(values[tri[1]]) + w2 * Vec3(values[tri[2]]);
+    };
+    SurfacePoint x;
+    x.position = Vec3(transforms_[hit.instance] * Vec4(blend(mesh.positions), 1.0f));
+    Vec3 n = glm::normalize(normal_[hit.instance] * blend(mesh.normals));
+    const Vec3 t = mesh.tangents.empty() ? Vec3(0) : linear_[hit.instance] * blend(mesh.tangents);
+    const bool front = glm::dot(hit.geometric_normal, ray_direction) < 0;
+    x.offset_normal = front ? hit.geometric_normal : -hit.geometric_normal;
+    // A back face seen through a hole or an open mesh: shade the side we see.
+    if (glm::dot(n, x.offset_normal) < 0) n = -n;
+    x.frame = Frame::from_normal_tangent(n, t);
+    return x;
+}
+
+}  // namespace rsl

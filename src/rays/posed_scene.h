@@ -1,0 +1,47 @@
+#pragma once
+// A Scene's parts in a RayScene, posed at a time t. Instance id = mesh id =
+// part index. Moving to another time only updates instance transforms and
+// re-commits the top level; no part BVH is rebuilt.
+#include "src/core/scene.h"
+#include "src/rays/ray_scene.h"
+
+namespace rsl {
+
+// A mesh vertex in world space: where shadow rays start and the frame the BRDF
+// is evaluated in.
+struct SurfacePoint {
+    Vec3 position{0};
+    Vec3 offset_normal{0, 0, 1};  // unit; rays leave on this side (see RayOffset)
+    Frame frame;                  // shading frame: z = shading normal, x = tangent
+};
+
+class PosedScene {
+public:
+    explicit PosedScene(const Scene& scene, float t = 0);  // keeps a reference to `scene`
+
+    void set_time(float t);
+    float time() const { return time_; }
+    const Scene& scene() const { return scene_; }
+    const RayScene& rays() const { return rays_; }
+    const RayOffset& offset() const { return offset_; }
+
+    const Mat4& part_transform(int part) const { return transforms_[part]; }
+    // World-space vertex: position by the part's transform, normal by its
+    // inverse transpose, tangent by its linear part (exact also under
+    // non-uniform scale), frame by Gram-Schmidt (Frame::from_normal_tangent).
+    SurfacePoint vertex(int part, int vertex) const;
+    // World-space point of a primary-ray hit: barycentric position, shading
+    // normal and tangent; rays leave on the geometric normal's side that faces
+    // the incoming ray.
+    SurfacePoint hit_point(const RayHit& hit, const Vec3& ray_direction) const;
+
+private:
+    const Scene& scene_;
+    RayScene rays_;
+    RayOffset offset_;
+    float time_ = 0;
+    std::vector<Mat4> transforms_;
+    std::vector<Mat3> linear_, normal_;
+};
+
+}  // namespace rsl

@@ -1,0 +1,90 @@
+// Error measures against hand-computed values.
+#include <random>
+
+#include <catch2/catch.hpp>
+
+#include "src/core/error.h"
+#include "src/frame/error_metrics.h"
+
+using namespace rsl;
+
+TEST_CASE("Relative L2, max and per-part errors over vertices", "[trace][error]") {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> uni(0.1f, 2.0f);
+    VertexColors b;
+    b.add_part("p0", 50);
+    b.add_part("p1", 70);
+    for (auto& part : b.parts)
+        for (Color& c : part) c = Color(uni(rng), uni(rng), uni(rng));
+    // A = B scaled by (1 + e) on part 0 only: part 0's error is exactly e.
+    VertexColors a = b;
+    const float e = 0.03f;
+    for (Color& c : a.parts[0]) c *= 1.0f + e;
+    const VertexErrorReport r = compare_vertex_colors(a, b);
+    REQUIRE(r.parts[0].relative_l2() == Approx(e).epsilon(1e-4));
+    REQUIRE(r.parts[1].relative_l2() == 0.0);
+    REQUIRE(r.parts[1].count == 70);
+    double n0 = 0, n1 = 0, max0 = 0;
+    for (const Color& c : b.parts[0]) n0 += glm::dot(DVec3(c), DVec3(c)), max0 = std::max(max0, double(glm::length(c)));
+    for (const Color& c : b.parts[1]) n1 += glm::dot(DVec3(c), DVec3(c));
+    REQUIRE(r.total.relative_l2() == Approx(e * std::sqrt(n0 / (n0 + n1))).epsilon(1e-4));
+    REQUIRE(r.total.max_error == Approx(e * max0).epsilon(1e-4));
+    REQUIRE(r.total.count == 120);
+}
+
+TEST_CASE("Image errors: covered pixels only, H1 ignores constant offsets", "[trace][error]") {
+    Image b(8, 6, 4), a(8, 6, 4);
+    for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const bool inside = x >= 2 && x < 7 && y >= 1 && y < 5;
+            const Color c = inside ? Color(1.0f + 0.1f * x, 0.5f + 0.2f * y, 0.3f) : Color(0);
+            b.set_rgb(x, y, c);
+            b.at(x, y)[3] = inside ? 1.0f : 0.0f;
+            a.set_rgb(x, y, inside ? c + Color(0.05f) : Color(0));
+            a.at(x, y)[3] = b.at(x, y)[3];
+        }
+    const ImageErrorReport r = compare_images(a, b);
+    REQUIRE(r.covered == 20);
+    REQUIRE(r.total == 48);
+    double b2 = 0;
+    for (int y = 1; y < 5; ++y)
+        for (int x = 2; x < 7; ++x) b2 += glm::dot(DVec3(b.rgb(x, y)), DVec3(b.rgb(x, y)));
+    REQUIRE(r.pixels.relative_l2() == Approx(std::sqrt(20 * 3 * 0.05 * 0.05 / b2)).epsilon(1e-4));
+    REQUIRE(r.relative_h1() == Approx(0.0).margin(1e-6));  // constant offset: same gradients
+    REQUIRE(r.pixels.max_error == Approx(0.05 * std::sqrt(3.0)).epsilon(1e-4));
+
+    // A gradient difference is seen by H1: double B's slope in x.
+    Image steep = b;
+    for (int y = 1; y < 5; ++y)
+        for (int x = 2; x < 7; ++x) steep.at(x, y)[0] = 1.0f + 0.2f * x;
+    REQUIRE(compare_images(steep, b).relative_h1() > 0.2);
+
+    REQUIRE_THROWS_AS(compare_images(Image(8, 5, 4), b), Error);
+
+    // Only the reference's coverage counts: a pixel A covers outside B's
+    // silhouette is not measured, a pixel of B's that A misses is (in full).
+    Image spill = a;
+    spill.set_rgb(0, 0, Color(5.0f));
+    spill.at(0, 0)[3] = 1.0f;
+    const ImageErrorReport spilled = compare_images(spill, b);
+    REQUIRE(spilled.covered == 20);
+    REQUIRE(spilled.pixels.relative_l2() == Approx(r.pixels.relative_l2()).epsilon(1e-6));
+    Image hole = a;
+    hole.set_rgb(3, 2, Color(0));
+    hole.at(3, 2)[3] = 0.0f;
+    const ImageErrorReport holed = compare_images(hole, b);
+    REQUIRE(holed.covered == 20);
+    const DVec3 b32 = DVec3(b.rgb(3, 2));
+    REQUIRE(holed.pixels.diff_squared ==
+            Approx(19 * 3 * 0.05 * 0.05 + glm::dot(b32, b32)).epsilon(1e-4));
+    const Image err = error_image(a, b);
+    REQUIRE(err.rgb(0, 0) == Color(0));           // covered by neither: black
+    REQUIRE(err.rgb(3, 2) == false_color(1.0f));  // uniform error at full scale
+}
+
+TEST_CASE("False colours are ordered from dark to red and clamp", "[trace][error]") {
+    REQUIRE(luminance(false_color(0.0f)) < luminance(false_color(0.5f)));
+    REQUIRE(false_color(1.0f).r > false_color(1.0f).b);
+    REQUIRE(false_color(-3.0f) == false_color(0.0f));
+    REQUIRE(false_color(7.0f) == false_color(1.0f));
+}
