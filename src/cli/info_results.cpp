@@ -9,7 +9,7 @@
 #include "lightfit/rsl.h"
 #include "src/cli/info.h"
 #include "src/core/json_file.h"
-#include "src/trace/vertex_colors.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl::cli {
 
