@@ -258,7 +258,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
         const size_t bytes = field_bytes(setup.fields);
         for (int lights : args.rsl_lights) {
             const auto fit_start = Clock::now();
-            RslSet set = lights == options.environment_lights ? setup.environment_lights
+            RslSet set = lights == options.environment_lights ? setup.environment_lights.first
                                                                 : fit_environment_lights(setup.environment, lights);
             const double fit_s = lights == options.environment_lights ? setup.fit_seconds : seconds_since(fit_start);
             options.environment_lights = lights;

@@ -10,6 +10,7 @@
 
 #include "bench/bench.h"
 #include "bench/render_bench_cases.h"
+#include "src/backend/make_renderer.h"
 #include "src/render/render_setup.h"
 #include "src/frame/error_metrics.h"
 #include "src/trace/ground_truth.h"
@@ -43,14 +44,15 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     RenderOptions render_options;
     render_options.environment_lights = c.lights;
     const RenderSetup setup = prepare_render(scene, render_options, false);
-    Renderer renderer(*scene, setup.environment_lights, setup.fields, render_options);
-    VertexColors colors = renderer.make_output();
-    renderer.set_time(c.time);
-    renderer.shade(colors);  // warm-up: thread-local scratch, caches
+    const std::unique_ptr<VertexRenderer> renderer =
+        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render_options);
+    VertexColors colors = renderer->make_output();
+    renderer->set_time(c.time);
+    renderer->shade(colors);  // warm-up: thread-local scratch, caches
     const int repeats = options.quick ? 2 : 5;
     const double shade_seconds = median_seconds(repeats, [&] {
-        renderer.set_time(c.time);
-        renderer.shade(colors);
+        renderer->set_time(c.time);
+        renderer->shade(colors);
     });
     const int width = options.quick ? 160 : scene->camera.width, height = options.quick ? 120 : scene->camera.height;
     PosedScene posed(*scene, c.time);
@@ -64,27 +66,29 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     auto variant_seconds = [&](auto&& configure) {
         RenderOptions o = render_options;
         configure(o);
-        Renderer r(*scene, setup.environment_lights, setup.fields, o);
-        VertexColors out = r.make_output();
-        r.set_time(c.time);
-        r.shade(out);
-        return median_seconds(repeats, [&] { r.shade(out); });
+        const std::unique_ptr<VertexRenderer> r = make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, o);
+        VertexColors out = r->make_output();
+        r->set_time(c.time);
+        r->shade(out);
+        return median_seconds(repeats, [&] { r->shade(out); });
     };
     const double field_lookup_seconds = variant_seconds([](RenderOptions& o) { o.fast_occluder_lookups = false; });
     const double self_only_seconds = variant_seconds([](RenderOptions& o) { o.occluders = false; });
     const double brdf_only_seconds = variant_seconds([](RenderOptions& o) { o.occluders = o.self_visibility = false; });
 
-    GroundTruth truth(*scene, setup.environment, c.time);
+    // The map the renderer's RSLs stand for at c.time (blended when the scene blends two).
+    GroundTruth truth(*scene, setup.environment_at(c.time), c.time);
     auto start = Clock::now();
     const VertexColors reference = truth.shade_vertices();
     const double truth_seconds = since(start);
     const VertexErrorReport error = compare_vertex_colors(colors, reference);
-    const RenderStats& stats = renderer.stats();
+    const RenderStats& stats = renderer->stats();
     bench_emit({{"bench", "render"},
                 {"case", c.name},
                 {"vertices", stats.vertices},
                 {"parts", scene->parts.size()},
                 {"lights", stats.lights},
+                {"second_map_weight", setup.environment_lights.blends() ? scene->environment.blend_weight_at(c.time) : 0.0f},
                 {"lookups", stats.lookups},
                 {"occluder_pairs", stats.occluder_pairs},
                 {"occluder_pairs_culled", stats.occluder_pairs_culled},

@@ -11,6 +11,7 @@
 
 #include "lightfit/reconstruct.h"
 #include "bench/bench.h"
+#include "src/backend/make_renderer.h"
 #include "src/render/exact_visibility.h"
 #include "bench/render_bench_cases.h"
 #include "src/render/render_setup.h"
@@ -110,9 +111,10 @@ void bench_factors(const BenchOptions& options) {
                 render_options.environment = true;
                 start = Clock::now();
                 if (v.options) v.options(render_options, *scene, frame.time);
-                Renderer renderer(*scene, rsls, setup.fields, render_options);
-                renderer.set_time(frame.time);
-                const VertexColors colors = renderer.shade();
+                const std::unique_ptr<VertexRenderer> renderer =
+                    make_renderer(Backend::Cpu, *scene, rsls, setup.fields, render_options);
+                renderer->set_time(frame.time);
+                const VertexColors colors = renderer->shade();
                 emit(v.name, compare_vertex_colors(colors, reference).total.relative_l2(), since(start));
             }
         }

@@ -16,6 +16,7 @@
 #include "demos/contact_sheet.h"
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"
+#include "src/backend/make_renderer.h"
 #include "src/core/error.h"
 #include "src/render/render_setup.h"
 #include "src/frame/error_metrics.h"
@@ -45,7 +46,7 @@ DemoResult run_compare_demo(const DemoOptions& options) {
     FrameTiming truth_timing;
     truth_timing.time = t;
     auto begin = std::chrono::steady_clock::now();
-    const GroundTruth truth(*scene, setup.environment, t);
+    const GroundTruth truth(*scene, setup.environment_at(t), t);
     const VertexColors truth_colors = truth.shade_vertices();
     truth_timing.shade_seconds = seconds_between(begin, std::chrono::steady_clock::now());
     begin = std::chrono::steady_clock::now();
@@ -73,12 +74,14 @@ DemoResult run_compare_demo(const DemoOptions& options) {
         begin = std::chrono::steady_clock::now();
         RenderOptions k_options = render;
         k_options.environment_lights = lights;
-        RslSet set = lights == kLightCounts[0] ? setup.environment_lights : fit_environment_lights(setup.environment, lights);
-        Renderer renderer(*scene, std::move(set), setup.fields, k_options);
+        RslSet set =
+            lights == kLightCounts[0] ? setup.environment_lights.first : fit_environment_lights(setup.environment, lights);
+        const std::unique_ptr<VertexRenderer> renderer =
+            make_renderer(Backend::Cpu, *scene, std::move(set), setup.fields, k_options);
         timing.update_seconds = seconds_between(begin, std::chrono::steady_clock::now());  // fit + tables
         begin = std::chrono::steady_clock::now();
-        renderer.set_time(t);
-        vertex_results.push_back(renderer.shade());
+        renderer->set_time(t);
+        vertex_results.push_back(renderer->shade());
         timing.shade_seconds = seconds_between(begin, std::chrono::steady_clock::now());
         begin = std::chrono::steady_clock::now();
         images.push_back(form_frame(posed, *scene, t, vertex_results.back(), width, height));

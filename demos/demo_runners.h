@@ -15,11 +15,6 @@ DemoResult run_compare_demo(const DemoOptions& options);
 
 namespace rsl::demos {
 
-// Kitchen: weight of environment.second_file at time t (0 without one):
-// ½ − ½·cos(2πt / blend_period_seconds), so the first map at t = 0, the
-// second alone at half the period.
-float environment_blend_weight(const EnvironmentDesc& environment, float t);
-
 // Materials: the glossiness sweep. A roughness r in [0, 1] (0: mirror-like)
 // mapped onto each model's own parameter (Phong exponent 2/r² − 2, the
 // Beckmann-equivalent; Cook-Torrance roughness r; Ward α = r; anisotropic

@@ -3,12 +3,10 @@
 // and one small sphere light moving through the scene so that the parts cast
 // sharp shadows on the counter and on each other.
 //
-// The environment change: the CPU renderer takes one RSL set, so the demo
-// fits both maps and cross-fades them. Light transport is linear in the
-// lighting, so shading once with each map and blending the vertex colours
-// with weights (1 − w, w) is exactly the cross-fade of the two maps' RSL
-// radiance; both renderers include the local light, and as the weights sum to
-// 1 it is counted once. A renderer whose weight is 0 is skipped.
+// The environment change is the renderer core's (src/render/frame_setup.h):
+// the scene file's second map and period, both maps fitted with their own
+// RSLs, shaded in one pass with weights (1 − w(t), w(t)); at w = 0 or 1 only
+// one set is shaded.
 #include <chrono>
 
 #include <fmt/format.h>
@@ -16,16 +14,11 @@
 
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"
+#include "src/backend/make_renderer.h"
 #include "src/core/error.h"
 #include "src/render/render_setup.h"
 
 namespace rsl::demos {
-
-float environment_blend_weight(const EnvironmentDesc& environment, float t) {
-    if (environment.second_file.empty() || !(environment.blend_period_seconds > 0)) return 0.0f;
-    // 0 at t = 0, the second map alone at half the period, back at a full period.
-    return 0.5f - 0.5f * std::cos(2.0f * kPi * t / environment.blend_period_seconds);
-}
 
 DemoResult run_kitchen_demo(const DemoOptions& options) {
     DemoResult result;
@@ -37,38 +30,24 @@ DemoResult run_kitchen_demo(const DemoOptions& options) {
     RenderOptions render;
     if (options.quick) render.environment_lights = kQuickLights;
     const RenderSetup setup = prepare_render(scene, render, options.progress);
-    const CubeMap second_map = load_environment(scene->environment.second_file, scene->environment.resolution);
-    Renderer first(*scene, setup.environment_lights, setup.fields, render);
-    Renderer second(*scene, fit_environment_lights(second_map, render.environment_lights), setup.fields, render);
+    const std::unique_ptr<VertexRenderer> renderer =
+        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render);
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
 
-    VertexColors first_colors = first.make_output(), second_colors = second.make_output();
     SequenceSpec spec;
     spec.name = result.name;
     spec.shade = [&](int, float t, VertexColors& colors, FrameTiming& timing) {
         const auto begin = std::chrono::steady_clock::now();
-        const float w = environment_blend_weight(scene->environment, t);
-        std::vector<const VertexColors*> inputs;
-        std::vector<float> weights;
-        if (w < 1.0f) {
-            first.set_time(t);
-            first.shade(first_colors);
-            inputs.push_back(&first_colors), weights.push_back(1.0f - w);
-        }
-        if (w > 0.0f) {
-            second.set_time(t);
-            second.shade(second_colors);
-            inputs.push_back(&second_colors), weights.push_back(w);
-        }
-        weighted_sum(colors, inputs, weights);
+        renderer->set_time(t);
+        renderer->shade(colors);
         timing.shade_seconds = seconds_between(begin, std::chrono::steady_clock::now());
     };
     spec.label = [&](int, float t) {
-        return fmt::format("t={:.2f}s mix={:.0f}%", t, 100.0f * environment_blend_weight(scene->environment, t));
+        return fmt::format("t={:.2f}s mix={:.0f}%", t, 100.0f * scene->environment.blend_weight_at(t));
     };
-    render_sequence(spec, options, *scene, first.make_output(), result);
+    render_sequence(spec, options, *scene, renderer->make_output(), result);
     result.notes.push_back(fmt::format(
-        "{} vertices; {} and {} ({} RSLs each) cross-faded over {} s; {} local light(s)", scene->vertex_count(),
+        "{} vertices; {} and {} ({} RSLs each) blended by the renderer over a {} s period; {} local light(s)", scene->vertex_count(),
         scene->environment.file.filename().string(), scene->environment.second_file.filename().string(),
         render.environment_lights, scene->environment.blend_period_seconds, scene->lights.size()));
     return result;

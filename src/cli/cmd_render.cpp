@@ -8,13 +8,11 @@
 
 #include <fmt/core.h>
 
+#include "src/backend/make_renderer.h"
 #include "src/cli/command.h"
-#include "src/render/render_setup.h"
 #include "src/core/error.h"
 #include "src/frame/image_formation.h"
-#ifdef RSL_HAVE_GL
-#include "src/gl/headless_renderer.h"
-#endif
+#include "src/render/render_setup.h"
 
 namespace rsl::cli {
 namespace {
@@ -59,9 +57,7 @@ std::filesystem::path numbered(const std::filesystem::path& path, int frame) {
 }
 
 void run_render(const RenderArgs& args) {
-#ifndef RSL_HAVE_GL
-    if (args.backend == "gl") throw_error("--backend gl: this rsl was built without OpenGL (RSL_BUILD_GL=OFF)");
-#endif
+    const Backend backend = parse_backend(args.backend);
     if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
     if (args.samples < 1) throw_error("--samples {}: expected at least 1", args.samples);
     const std::filesystem::path output(args.output);
@@ -80,38 +76,20 @@ void run_render(const RenderArgs& args) {
     if (!args.quiet)
         fmt::print(stderr, "fields: {} loaded from the cache, {} baked ({:.1f} s)\n", setup.fields_loaded,
                    setup.fields_baked, setup.bake_seconds);
-    // Both backends shade the same per-vertex sum; image formation is shared.
-    std::unique_ptr<Renderer> cpu;
-#ifdef RSL_HAVE_GL
-    std::unique_ptr<gl::HeadlessGlRenderer> gpu;
-    if (args.backend == "gl") {
-        gpu = std::make_unique<gl::HeadlessGlRenderer>(scene, setup.environment_lights, setup.fields, options);
-        if (!args.quiet) fmt::print(stderr, "GPU: {}\n", gpu->device());
-    }
-#endif
-    if (args.backend == "cpu") cpu = std::make_unique<Renderer>(scene, setup.environment_lights, setup.fields, options);
-    auto set_time = [&](float t) {
-        if (cpu) cpu->set_time(t);
-#ifdef RSL_HAVE_GL
-        if (gpu) gpu->set_time(t);
-#endif
-    };
-    auto shade = [&](VertexColors& out) {
-        if (cpu) cpu->shade(out);
-#ifdef RSL_HAVE_GL
-        if (gpu) gpu->shade(out);
-#endif
-    };
+    // Every backend shades the same per-vertex sum; image formation is shared.
+    const std::unique_ptr<VertexRenderer> renderer =
+        make_renderer(backend, scene, setup.environment_lights, setup.fields, options);
+    if (!args.quiet && backend != Backend::Cpu) fmt::print(stderr, "{}\n", renderer->device());
+    if (!args.quiet && setup.environment_lights.blends())
+        fmt::print(stderr, "environment: {} blended with {} over a {} s period (docs/SCENE_FORMAT.md)\n",
+                   scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
+                   scene.environment.blend_period_seconds);
 
     const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
     const int width = args.width > 0 ? args.width : scene.camera.width;
     const int height = args.height > 0 ? args.height : scene.camera.height;
     PosedScene posed(scene, times.front());
-    VertexColors colors;
-    if (cpu) colors = cpu->make_output();
-#ifdef RSL_HAVE_GL
-    if (gpu) colors = gpu->make_output();
-#endif
+    VertexColors colors = renderer->make_output();
     ImageFormationOptions formation;
     formation.samples_per_side = args.samples;
     // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
@@ -121,8 +99,8 @@ void run_render(const RenderArgs& args) {
     for (size_t f = 0; f < times.size(); ++f) {
         const float t = times[f];
         const auto start = std::chrono::steady_clock::now();
-        set_time(t);
-        shade(colors);
+        renderer->set_time(t);
+        renderer->shade(colors);
         const auto shaded = std::chrono::steady_clock::now();
         posed.set_time(t);
         const Image image = form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, formation);
@@ -133,15 +111,14 @@ void run_render(const RenderArgs& args) {
             write_vertex_colors(times.size() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output), colors);
         const double shading_ms = 1e3 * std::chrono::duration<double>(shaded - start).count();
         const double image_ms = 1e3 * std::chrono::duration<double>(formed - shaded).count();
-        if (cpu) {
-            const RenderStats& stats = cpu->stats();
-            fmt::print("t={:.3f}: {} vertices x {} lights, shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} culled) -> {}\n",
-                       t, stats.vertices, stats.lights, shading_ms, image_ms, stats.occluder_pairs,
-                       stats.occluder_pairs_culled, exr.string());
-        } else {
-            fmt::print("t={:.3f}: {} vertices, GPU shading + read-back {:.1f} ms, image {:.1f} ms -> {}\n", t,
-                       colors.vertex_count(), shading_ms, image_ms, exr.string());
-        }
+        const RenderStats& stats = renderer->stats();
+        const std::string blend = setup.environment_lights.blends()
+                                      ? fmt::format(", second map {:.0f}%", 100.0f * scene.environment.blend_weight_at(t))
+                                      : "";
+        fmt::print("t={:.3f}: {} vertices x {} lights{}, {} shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} "
+                   "culled) -> {}\n",
+                   t, colors.vertex_count(), stats.lights, blend, renderer->backend(), shading_ms, image_ms,
+                   stats.occluder_pairs, stats.occluder_pairs_culled, exr.string());
     }
 }
 

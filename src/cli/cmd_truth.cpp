@@ -37,12 +37,15 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-CubeMap load_scene_environment(const Scene& scene, int resolution) {
+// The environment at time t: with `second_file`, the blend (1 − w)·first +
+// w·second of the scene format (EnvironmentDesc::blend_weight_at), which the
+// RSL renderer applies to its two RSL sets.
+CubeMap load_scene_environment(const Scene& scene, int resolution, float t) {
     if (scene.environment.file.empty()) return CubeMap(resolution);  // lights only
-    if (!scene.environment.second_file.empty())
-        warn_file(scene.source, "rsl truth does not apply environment blending (second_file); using {}",
-                  scene.environment.file.string());
-    return load_environment(scene.environment.file, resolution);
+    const CubeMap first = load_environment(scene.environment.file, resolution);
+    if (scene.environment.second_file.empty()) return first;
+    return blend_environments(first, load_environment(scene.environment.second_file, resolution),
+                              scene.environment.blend_weight_at(t));
 }
 
 void run_truth(const TruthArgs& args) {
@@ -57,7 +60,7 @@ void run_truth(const TruthArgs& args) {
 
     const Scene scene = load_scene(args.scene);
     const int resolution = args.resolution > 0 ? args.resolution : scene.environment.resolution;
-    const CubeMap environment = load_scene_environment(scene, resolution);
+    const CubeMap environment = load_scene_environment(scene, resolution, args.time);
     GroundTruthOptions options;
     options.texel_subdivision = args.subdivision;
     options.local_lights = !args.no_lights;
@@ -70,6 +73,10 @@ void run_truth(const TruthArgs& args) {
                    "{} lights; BVHs in {:.2f} s\n", scene.name, args.time, scene.parts.size(), scene.vertex_count(),
                    truth.environment_sample_count(), resolution, options.local_lights ? scene.lights.size() : 0,
                    setup_seconds);
+    if (!args.quiet && !scene.environment.second_file.empty())
+        fmt::print(stderr, "truth: environment {} blended with {}, weight of the second {:.3f}\n",
+                   scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
+                   scene.environment.blend_weight_at(args.time));
 
     const int width = args.width > 0 ? args.width : scene.camera.width;
     const int height = args.height > 0 ? args.height : scene.camera.height;

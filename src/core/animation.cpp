@@ -112,6 +112,11 @@ Mat3 EnvironmentDesc::rotation_at(float t) const {
     return Mat3(glm::rotate(Mat4(1.0f), glm::radians(degrees), glm::normalize(rotation_axis)));
 }
 
+float EnvironmentDesc::blend_weight_at(float t) const {
+    if (second_file.empty() || !(blend_period_seconds > 0)) return 0.0f;
+    return 0.5f - 0.5f * std::cos(2.0f * kPi * t / blend_period_seconds);
+}
+
 Mat4 Scene::node_world_at(int node, float t) const {
     if (node < 0) return Mat4(1.0f);
     RSL_CHECK_LT(size_t(node), nodes.size());

@@ -570,4 +570,12 @@ CubeMap load_environment(const fs::path& path, int n) {
                      image.width, image.height);
 }
 
+CubeMap blend_environments(const CubeMap& a, const CubeMap& b, float w) {
+    if (a.resolution() != b.resolution())
+        throw_error("environment blend: the maps have cube resolutions {} and {}", a.resolution(), b.resolution());
+    CubeMap out = a;
+    for (int k = 0; k < out.texel_count(); ++k) out.radiance(k) = (1.0f - w) * a.radiance(k) + w * b.radiance(k);
+    return out;
+}
+
 }  // namespace rsl

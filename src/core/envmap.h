@@ -99,6 +99,10 @@ DVec3 latlong_energy(const Image& latlong);
 // Rotated environment: L'(d) = L(R⁻¹ d), i.e. content at direction d moves to R d.
 CubeMap rotate(const CubeMap& map, const Mat3& rotation);
 
+// (1 − w)·a + w·b texel by texel (the scene format's environment blend);
+// the maps must have one resolution.
+CubeMap blend_environments(const CubeMap& a, const CubeMap& b, float w);
+
 // Lat-long image of a cube map (for previews and for writing environments as EXR).
 Image cube_to_latlong(const CubeMap& map, int width);
 

@@ -78,6 +78,12 @@ struct EnvironmentDesc {
     std::filesystem::path second_file;     // optional: blend towards this map over time
     float blend_period_seconds = 0;
     Mat3 rotation_at(float t) const;
+    // Weight w of the second map at time t (docs/SCENE_FORMAT.md): the
+    // environment is (1 − w)·file + w·second_file, both turned by
+    // rotation_at(t), with w = ½ − ½·cos(2π·t / blend_period_seconds): the
+    // first map alone at t = 0, the second alone at half the period, back at
+    // a full period. 0 without a second map.
+    float blend_weight_at(float t) const;
 };
 
 struct Camera {

@@ -1,69 +1,44 @@
 #include "src/gl/frame_state.h"
 
 #include "src/core/error.h"
-#include "src/render/culling.h"
 
 namespace rsl::gl {
 
-FrameState::FrameState(const Scene& scene, const PartFields& fields) {
-    const size_t parts = scene.parts.size();
-    if (parts > size_t(kMaxParts))
-        throw_file_error(scene.source, "the GL renderer handles at most {} parts; the scene has {}", kMaxParts, parts);
-    for (size_t p = 0; p < parts; ++p) {
-        local_bounds_.push_back(scene.parts[p].mesh.bounding_sphere());
-        occluder_fields_.push_back(p < fields.occluder.size() ? fields.occluder[p] : nullptr);
-        const OccluderField* field = occluder_fields_.back().get();
-        culling_parts_.emplace_back();
-        culling_parts_.back().field = field;
-        culling_parts_.back().local_reach = field ? field->reach() : BoundingSphere{};
-    }
-    poses_.resize(parts);
+namespace {
+const Scene& checked(const Scene& scene) {
+    if (scene.parts.size() > size_t(kMaxParts))
+        throw_file_error(scene.source, "the GL renderer handles at most {} parts; the scene has {}", kMaxParts,
+                         scene.parts.size());
+    return scene;
+}
+}  // namespace
+
+FrameState::FrameState(const Scene& scene, const PartFields& fields) : setup_(checked(scene), fields) {}
+
+void FrameState::update(const Scene& scene, const EnvironmentLights& environment, std::span<const LocalLight> lights,
+                        const RenderOptions& options, float t, const Mat3& extra_rotation,
+                        const std::optional<Vec3>& camera) {
+    setup_.update(scene, environment, lights, options, t, extra_rotation, camera);
+    update_masks();
 }
 
-void FrameState::update(const Scene& scene, const RslSet& environment, const RenderOptions& options, float t,
-                        const Mat3& extra_rotation, const Vec3* camera) {
-    for (size_t p = 0; p < poses_.size(); ++p) {
-        PartPose& pose = poses_[p];
-        pose.transform = scene.part_transform_at(int(p), t);
-        pose.normal = glm::transpose(glm::inverse(Mat3(pose.transform)));
-        pose.inverse = glm::inverse(pose.transform);
-        pose.world_bounds = transform_sphere(pose.transform, local_bounds_[p]);
-    }
-    const Mat3 rotation = extra_rotation * scene.environment.rotation_at(t);
-    squares_.resize(environment.lights.size());
-    for (size_t l = 0; l < squares_.size(); ++l) {
-        const RotatableSquareLight& rsl = environment.lights[l];
-        SquareLight& square = squares_[l];
-        square.direction = glm::normalize(rotation * rsl.center);
-        square.half_edge = square_half_edge_for_rsl(rsl.half_diagonal);
-        square.solid_angle = rsl.solid_angle();
-        square.integral = rsl.radiance * square.solid_angle;
-    }
-    light_positions_.resize(scene.lights.size());
-    for (size_t i = 0; i < scene.lights.size(); ++i) light_positions_[i] = scene.lights[i].position_at(t);
-    camera_ = camera ? *camera : scene.camera.position_at(t);
-    update_masks(scene, options);
-}
-
-// The CPU renderer's occluder lists (culling.h, the same function) as bit
-// masks, and the occluder spheres grown by the footprints it computed.
-void FrameState::update_masks(const Scene& scene, const RenderOptions& options) {
-    const size_t parts = poses_.size();
-    for (size_t p = 0; p < parts; ++p) {
-        culling_parts_[p].transform = poses_[p].transform;
-        culling_parts_[p].world_bounds = poses_[p].world_bounds;
-    }
-    update_occluder_lists(culling_parts_, CullingLights{squares_, light_positions_, scene.lights}, options, lists_);
-    light_count_ = int(squares_.size() + light_positions_.size());
+// The CPU renderer's occluder lists (the same FrameSetup) as bit masks, and
+// the occluder spheres grown by the footprints it computed.
+void FrameState::update_masks() {
+    const OccluderLists& lists = setup_.occluder_lists();
+    const auto& poses = setup_.poses();
+    const auto& parts_culling = setup_.culling_parts();
+    const size_t parts = poses.size();
+    light_count_ = int(setup_.environment_squares().size() + setup_.light_positions().size());
     masks_.assign(parts * size_t(light_count_), 0u);
     for (size_t slot = 0; slot < masks_.size(); ++slot)
-        for (size_t e = lists_.offsets[slot]; e < lists_.offsets[slot + 1]; ++e) masks_[slot] |= 1u << lists_.occluders[e];
+        for (size_t e = lists.offsets[slot]; e < lists.offsets[slot + 1]; ++e) masks_[slot] |= 1u << lists.occluders[e];
     spheres_.assign(parts * parts, Vec4(0.0f));
     for (size_t receiver = 0; receiver < parts; ++receiver)
         for (size_t o = 0; o < parts; ++o) {
-            if (o == receiver || !culling_parts_[o].field) continue;
-            const BoundingSphere& sphere = poses_[o].world_bounds;
-            spheres_[receiver * parts + o] = Vec4(sphere.center, sphere.radius + lists_.growth[receiver * parts + o]);
+            if (o == receiver || !parts_culling[o].field) continue;
+            const BoundingSphere& sphere = poses[o].world_bounds;
+            spheres_[receiver * parts + o] = Vec4(sphere.center, sphere.radius + lists.growth[receiver * parts + o]);
         }
 }
 

@@ -1,5 +1,7 @@
 #include "src/gl/gl_renderer.h"
 
+#include <algorithm>
+
 #include "src/brdf/material_library.h"
 #include "src/core/error.h"
 #include "src/render/renderer.h"
@@ -29,31 +31,22 @@ size_t texel_bytes(const ArrayTexture& array, size_t bytes_per_texel) {
 
 }  // namespace
 
-std::vector<std::shared_ptr<const BrdfTable>> scene_part_tables(const Scene& scene, const RenderOptions& options) {
-    MaterialLibrary library = MaterialLibrary::from_scene(scene, options.brdf_table);
-    for (const auto& [part_name, material_name] : options.material_override) {
-        int part = -1;
-        for (size_t p = 0; p < scene.parts.size(); ++p)
-            if (scene.parts[p].name == part_name) part = int(p);
-        if (part < 0) throw_file_error(scene.source, "material override: no part named '{}'", part_name);
-        const int material = library.find(material_name);
-        if (material < 0)
-            throw_file_error(scene.source, "material override for part '{}': no material named '{}'", part_name,
-                             material_name);
-        library.assign(part, material);
-    }
-    std::vector<std::shared_ptr<const BrdfTable>> tables;
-    for (int p = 0; p < library.part_count(); ++p) tables.push_back(library.table(library.part_material(p)));
-    return tables;
+namespace {
+PartFields checked(const Scene& scene, PartFields fields) {
+    check_part_fields(scene, fields);
+    return fields;
 }
+}  // namespace
 
-GlRenderer::GlRenderer(const Scene& scene, RslSet environment_lights, PartFields fields, const RenderOptions& options)
+GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
+                       const RenderOptions& options)
     : scene_(scene),
       options_(options),
       environment_(std::move(environment_lights)),
-      fields_(std::move(fields)),
+      local_lights_(scene.lights),
+      fields_(checked(scene, std::move(fields))),
+      library_(scene_material_library(scene, options)),
       frame_(scene, fields_) {
-    check_part_fields(scene, fields_);
 
     const PackedGeometry geometry = pack_geometry(scene, fields_);
     const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride);
@@ -70,11 +63,11 @@ GlRenderer::GlRenderer(const Scene& scene, RslSet environment_lights, PartFields
     glUniform3fv(uniform(shade_program_, "u_face_s"), 6, &geometry.face_s[0].x);
     glUniform3fv(uniform(shade_program_, "u_face_t"), 6, &geometry.face_t[0].x);
     upload_geometry(geometry);
-    set_part_tables(scene_part_tables(scene, options));
+    upload_all_tables();
     for (auto& frame : queries_)
         for (Query& query : frame) query = make_query();
     check_gl("creating the GL renderer");
-    set_time(0.0f);
+    set_local_lights(local_lights_);  // checks them, sizes the frame, poses at t = 0
 }
 
 GlRenderer::~GlRenderer() = default;
@@ -160,10 +153,11 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     check_gl("uploading the scene");
 }
 
-void GlRenderer::set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> tables) {
-    RSL_CHECK_EQ(tables.size(), scene_.parts.size());
+void GlRenderer::upload_all_tables() {
+    part_tables_.clear();
+    for (int p = 0; p < library_.part_count(); ++p) part_tables_.push_back(library_.table(library_.part_material(p)));
+    RSL_CHECK_EQ(part_tables_.size(), scene_.parts.size());
     const size_t old_bytes = materials_.sat.size() * sizeof(float) + materials_.offsets.size() * 16;
-    part_tables_ = std::move(tables);
     materials_ = pack_materials(part_tables_);
     const int corners = materials_.resolution + 1;
     GLint max_3d = 0;
@@ -183,10 +177,73 @@ void GlRenderer::set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> t
         update_array_texture(brdf_offsets_, materials_.offsets);
     else
         brdf_offsets_ = make_array_texture(materials_.offsets);
-    for (size_t p = 0; p < part_tables_.size(); ++p)
+    slots_.clear();
+    for (size_t p = 0; p < part_tables_.size(); ++p) {
         part_records_[p * kPartStride + kSlotMaterial] = materials_.part_material[p];
+        const int first = int(materials_.part_material[p].x);
+        if (std::none_of(slots_.begin(), slots_.end(), [&](const TableSlot& s) { return s.first_slice == first; }))
+            slots_.push_back(TableSlot{part_tables_[p], first, part_tables_[p]->slice_count()});
+    }
     gpu_bytes_ = gpu_bytes_ - old_bytes + materials_.sat.size() * sizeof(float) + materials_.offsets.size() * 16;
+    ++uploads_.full;
     check_gl("uploading the BRDF tables");
+}
+
+void GlRenderer::sync_materials() {
+    bool changed = false;
+    for (int p = 0; p < library_.part_count(); ++p)
+        changed = changed || library_.table(library_.part_material(p)) != part_tables_[size_t(p)];
+    if (!changed) return;  // the common frame: nothing to compare or allocate
+    std::vector<std::shared_ptr<const BrdfTable>> wanted;
+    for (int p = 0; p < library_.part_count(); ++p) wanted.push_back(library_.table(library_.part_material(p)));
+    // In place: every table the parts now use either already has slices, or
+    // takes over the slices of a table no part uses any more, of the same
+    // layout (slice count, resolution).
+    std::vector<int> slot_of(wanted.size(), -1);
+    std::vector<bool> slot_used(slots_.size(), false);
+    for (size_t p = 0; p < wanted.size(); ++p)
+        for (size_t s = 0; s < slots_.size(); ++s)
+            if (slots_[s].table == wanted[p]) slot_of[p] = int(s), slot_used[s] = true;
+    std::vector<std::pair<int, std::shared_ptr<const BrdfTable>>> moves;  // slot ← new table
+    for (size_t p = 0; p < wanted.size(); ++p) {
+        if (slot_of[p] >= 0) continue;
+        for (size_t q = 0; q < p; ++q)  // a new table shared by an earlier part
+            if (wanted[q] == wanted[p]) slot_of[p] = slot_of[q];
+        if (slot_of[p] >= 0) continue;
+        for (size_t s = 0; s < slots_.size() && slot_of[p] < 0; ++s)
+            if (!slot_used[s] && slots_[s].slices == wanted[p]->slice_count() &&
+                slots_[s].table->grid().n == wanted[p]->grid().n &&
+                slots_[s].table->isotropic() == wanted[p]->isotropic() &&
+                slots_[s].table->options().view_samples == wanted[p]->options().view_samples) {
+                slot_of[p] = int(s), slot_used[s] = true;
+                moves.emplace_back(int(s), wanted[p]);
+            }
+        if (slot_of[p] < 0) return upload_all_tables();
+    }
+    if (std::find(slot_used.begin(), slot_used.end(), false) != slot_used.end()) return upload_all_tables();
+    const int corners = materials_.resolution + 1;
+    glBindTexture(GL_TEXTURE_3D, brdf_.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    for (const auto& [s, table] : moves) {
+        TableSlot& slot = slots_[size_t(s)];
+        slot.table = table;
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, slot.first_slice, corners, corners, slot.slices, GL_RGB, GL_FLOAT,
+                        table->sat_data().data());
+        // The CPU copy of the SAT stays as packed (it is only read by a full upload).
+        for (int i = 0; i < slot.slices; ++i)
+            materials_.offsets[size_t(slot.first_slice + i)] = Vec4(table->offset(i), 0.0f);
+        ++uploads_.tables;
+    }
+    if (!moves.empty()) update_array_texture(brdf_offsets_, materials_.offsets);
+    for (size_t p = 0; p < wanted.size(); ++p) {
+        const TableSlot& slot = slots_[size_t(slot_of[p])];
+        // As pack_materials writes it: (first slice, isotropic, V, 0).
+        part_records_[p * kPartStride + kSlotMaterial] =
+            Vec4(float(slot.first_slice), slot.table->isotropic() ? 1.0f : 0.0f,
+                 float(slot.table->options().view_samples), 0.0f);
+    }
+    part_tables_ = std::move(wanted);
+    check_gl("uploading a BRDF table");
 }
 
 void GlRenderer::set_toggles(const RenderOptions& options) {
@@ -197,16 +254,39 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
     options_.occluder_culling = options.occluder_culling;
 }
 
-void GlRenderer::set_environment_lights(RslSet lights) { environment_ = std::move(lights); }
+void GlRenderer::set_environment_lights(EnvironmentLights lights) {
+    environment_ = std::move(lights);
+    frame_.reserve(environment_.light_count(), local_lights_.size());
+    update_frame();
+}
+
+void GlRenderer::set_local_lights(std::vector<LocalLight> lights) {
+    check_local_lights(scene_, lights);
+    local_lights_ = std::move(lights);
+    frame_.reserve(environment_.light_count(), local_lights_.size());
+    update_frame();
+}
 
 void GlRenderer::set_time(float t) {
     time_ = t;
-    frame_.update(scene_, environment_, options_, t);
+    view_rotation_ = Mat3(1.0f);
+    view_camera_.reset();
+    update_frame();
 }
 
 void GlRenderer::set_view(float t, const Vec3& camera, const Mat3& environment_rotation) {
     time_ = t;
-    frame_.update(scene_, environment_, options_, t, environment_rotation, &camera);
+    view_rotation_ = environment_rotation;
+    view_camera_ = camera;
+    update_frame();
+}
+
+void GlRenderer::update_frame() {
+    frame_.update(scene_, environment_, local_lights_, options_, time_, view_rotation_, view_camera_);
+    stats_.occluder_pairs = frame_.occluder_pairs();
+    stats_.occluder_pairs_culled = frame_.occluder_pairs_culled();
+    stats_.lights = size_t(frame_.light_count());
+    stats_.vertices = size_t(vertex_count_);
 }
 
 // Poses into the part records; lights (2 texels each); occluder masks.
@@ -221,9 +301,9 @@ void GlRenderer::upload_frame() {
         light_texels_.push_back(Vec4(square.direction, square.half_edge));
         light_texels_.push_back(Vec4(square.integral, 0.0f));
     }
-    for (size_t i = 0; i < scene_.lights.size(); ++i) {
-        light_texels_.push_back(Vec4(frame_.light_positions()[i], scene_.lights[i].radius));
-        light_texels_.push_back(Vec4(sphere_light_radiance(scene_.lights[i]), 1.0f));
+    for (size_t i = 0; i < local_lights_.size(); ++i) {
+        light_texels_.push_back(Vec4(frame_.light_positions()[i], local_lights_[i].radius));
+        light_texels_.push_back(Vec4(sphere_light_radiance(local_lights_[i]), 1.0f));
     }
     if (light_texels_.empty()) light_texels_.push_back(Vec4(0.0f));
     update_array_texture(lights_, light_texels_);
@@ -241,6 +321,7 @@ void GlRenderer::upload_frame() {
 void GlRenderer::shade() {
     collect_timings();
     Query* queries = queries_[frame_parity_];
+    sync_materials();
     upload_frame();
     glBeginQuery(GL_TIME_ELAPSED, queries[0].id());
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo_.id());

@@ -12,6 +12,12 @@
 // Everything static (meshes, SVDF, OVDF, BRDF tables) is uploaded once
 // (gpu_layout.h); every frame uploads part poses, lights and occluder masks
 // (a few KB). Needs a current OpenGL ≥ 3.3 core context for its lifetime.
+//
+// It is a VertexRenderer (src/render/vertex_renderer.h): the frame of time t
+// comes from the shared FrameSetup, the BRDF tables from its MaterialLibrary;
+// before a frame, a material whose revision() changed has its table
+// re-uploaded into its own slices of the stacked BRDF texture (only a change
+// of the tables' layout, e.g. isotropic → anisotropic, re-packs them all).
 #include <memory>
 #include <vector>
 
@@ -23,6 +29,7 @@
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
 #include "src/frame/vertex_colors.h"
+#include "src/render/vertex_renderer.h"
 
 namespace rsl::gl {
 
@@ -31,43 +38,62 @@ struct PassTimings {
     double shade_ms = 0, pack_ms = 0, display_ms = 0;
 };
 
-class GlRenderer {
+// How the BRDF texture was last brought up to date (counted since construction).
+struct MaterialUploads {
+    int full = 0;    // every table packed and uploaded
+    int tables = 0;  // single tables uploaded into their own slices
+};
+
+class GlRenderer final : public VertexRenderer {
 public:
     // `scene` must outlive the renderer. Tables: the scene's materials with
-    // options.material_override applied (as the CPU renderer's MaterialTables).
-    GlRenderer(const Scene& scene, RslSet environment_lights, PartFields fields, const RenderOptions& options);
-    ~GlRenderer();
+    // options.material_override applied (scene_material_library, as the CPU renderer).
+    GlRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields, const RenderOptions& options);
+    ~GlRenderer() override;
+    GlRenderer(const GlRenderer&) = delete;
+    GlRenderer& operator=(const GlRenderer&) = delete;
 
-    // Poses, lights and camera at time t (the scene's camera), as Renderer::set_time.
-    void set_time(float t);
+    std::string backend() const override { return "gl"; }
+    const Scene& scene() const override { return scene_; }
+
+    // Poses, lights and camera at time t (the scene's camera), by the shared FrameSetup.
+    void set_time(float t) override;
     // The viewer's variant: its own camera and an extra environment rotation.
-    void set_view(float t, const Vec3& camera, const Mat3& environment_rotation);
-    float time() const { return time_; }
+    void set_view(float t, const Vec3& camera, const Mat3& environment_rotation) override;
+    float time() const override { return time_; }
+
+    MaterialLibrary& materials() override { return library_; }
+    const MaterialLibrary& materials() const override { return library_; }
+    void set_environment_lights(EnvironmentLights lights) override;
+    const EnvironmentLights& environment_lights() const override { return environment_; }
+    void set_local_lights(std::vector<LocalLight> lights) override;
+    const std::vector<LocalLight>& local_lights() const override { return local_lights_; }
 
     // Runs the shading pass and fills the vertex-colour buffer (on the GPU).
     void shade();
-    // Copies the vertex-colour buffer to the CPU (tests, `rsl render --backend gl`).
-    VertexColors make_output() const;
+    // shade() and the colours copied to the CPU (tests, `rsl render --backend gl`).
+    void shade(VertexColors& out) override {
+        shade();
+        read_colors(out);
+    }
+    VertexColors make_output() const override;
     void read_colors(VertexColors& out) const;
     VertexColors shade_and_read() {
-        shade();
         VertexColors out = make_output();
-        read_colors(out);
+        shade(out);
         return out;
     }
+    // Occluder pairs of the frame (the shader does not count lookups).
+    const RenderStats& stats() const override { return stats_; }
 
     // Display pass into the bound framebuffer (depth test on, caller clears).
     void draw(const Mat4& view_projection, float exposure);
 
     // Live changes (the viewer): visibility/light toggles of `options` (not
-    // material overrides or table options, which go through set_part_tables).
+    // material overrides or table options: materials() is the library).
     void set_toggles(const RenderOptions& options);
     const RenderOptions& options() const { return options_; }
-    void set_environment_lights(RslSet lights);
-    const RslSet& environment_lights() const { return environment_; }
-    // One table per part; re-uploads the stacked BRDF texture.
-    void set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> tables);
-    const std::vector<std::shared_ptr<const BrdfTable>>& part_tables() const { return part_tables_; }
+    MaterialUploads material_uploads() const { return uploads_; }
 
     const FrameState& frame() const { return frame_; }
     PassTimings timings() const { return timings_; }
@@ -78,15 +104,33 @@ public:
 private:
     void upload_geometry(const PackedGeometry& geometry);
     void upload_frame();
+    void update_frame();
+    // Brings the BRDF texture up to the library: in place when only tables of
+    // the same layout changed, else a full pack (upload_all_tables).
+    void sync_materials();
+    void upload_all_tables();
     void collect_timings();
 
     const Scene& scene_;
     RenderOptions options_;
-    RslSet environment_;
+    EnvironmentLights environment_;
+    std::vector<LocalLight> local_lights_;
     PartFields fields_;
+    MaterialLibrary library_;
+    // What the BRDF texture holds: per part its table, per distinct table its
+    // slices (first, count); the revisions it was built from.
     std::vector<std::shared_ptr<const BrdfTable>> part_tables_;
+    struct TableSlot {
+        std::shared_ptr<const BrdfTable> table;
+        int first_slice = 0, slices = 0;
+    };
+    std::vector<TableSlot> slots_;
+    MaterialUploads uploads_;
     FrameState frame_;
     float time_ = 0;
+    Mat3 view_rotation_{1.0f};
+    std::optional<Vec3> view_camera_;
+    RenderStats stats_;
     int vertex_count_ = 0, rect_height_ = 1;
     std::vector<int> first_vertex_;
     std::vector<Vec4> part_records_;
@@ -111,8 +155,5 @@ private:
     int frame_parity_ = 0;
     PassTimings timings_;
 };
-
-// The per-part BRDF tables of the scene with the options' material overrides.
-std::vector<std::shared_ptr<const BrdfTable>> scene_part_tables(const Scene& scene, const RenderOptions& options);
 
 }  // namespace rsl::gl

@@ -1,13 +1,9 @@
 #pragma once
-// The GPU renderer with its own offscreen context, used like rsl::Renderer:
-// the entry point of `rsl render --backend gl` (and anything else that wants
-// GPU vertex colours without a window). Image formation stays the shared
-// CPU one (src/frame/image_formation.h), so images compare like for like.
-//
-//   gl::HeadlessGlRenderer renderer(scene, setup.environment_lights, setup.fields, options);
-//   VertexColors colors = renderer.make_output();
-//   renderer.set_time(t);
-//   renderer.shade(colors);   // shading pass on the GPU, colours read back
+// The GPU renderer with its own offscreen context: the VertexRenderer that
+// make_renderer(Backend::Gl, …) returns (`rsl render --backend gl`, the
+// benchmarks, anything that wants GPU vertex colours without a window).
+// Image formation stays the shared CPU one (src/frame/image_formation.h), so
+// images compare like for like. Every call makes its context current first.
 #include <string>
 
 #include "src/gl/gl_renderer.h"
@@ -15,25 +11,42 @@
 
 namespace rsl::gl {
 
-class HeadlessGlRenderer {
+class HeadlessGlRenderer final : public VertexRenderer {
 public:
-    HeadlessGlRenderer(const Scene& scene, RslSet environment_lights, PartFields fields, const RenderOptions& options)
+    HeadlessGlRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
+                       const RenderOptions& options)
         : renderer_(scene, std::move(environment_lights), std::move(fields), options) {}
     // The renderer's GL objects are deleted in this context (members are
     // destroyed after the body runs).
-    ~HeadlessGlRenderer() { context_.make_current(); }
+    ~HeadlessGlRenderer() override { context_.make_current(); }
     HeadlessGlRenderer(const HeadlessGlRenderer&) = delete;
     HeadlessGlRenderer& operator=(const HeadlessGlRenderer&) = delete;
 
-    void set_time(float t) { renderer_.set_time(t); }
-    VertexColors make_output() const { return renderer_.make_output(); }
-    void shade(VertexColors& out) {
-        context_.make_current();
-        renderer_.shade();
-        renderer_.read_colors(out);
+    std::string backend() const override { return "gl"; }
+    // "GPU: EGL surfaceless: OpenGL 4.5 (Core Profile) Mesa … on llvmpipe …"
+    std::string device() const override { return "GPU: " + context_.description(); }
+    const Scene& scene() const override { return renderer_.scene(); }
+
+    void set_time(float t) override { renderer_.set_time(t); }
+    void set_view(float t, const Vec3& camera, const Mat3& rotation) override { renderer_.set_view(t, camera, rotation); }
+    float time() const override { return renderer_.time(); }
+    // Edits only touch the library; the upload happens in shade().
+    MaterialLibrary& materials() override { return renderer_.materials(); }
+    const MaterialLibrary& materials() const override { return renderer_.materials(); }
+    void set_environment_lights(EnvironmentLights lights) override {
+        renderer_.set_environment_lights(std::move(lights));
     }
-    // "EGL surfaceless: OpenGL 4.5 (Core Profile) Mesa … on llvmpipe …"
-    const std::string& device() const { return context_.description(); }
+    const EnvironmentLights& environment_lights() const override { return renderer_.environment_lights(); }
+    void set_local_lights(std::vector<LocalLight> lights) override { renderer_.set_local_lights(std::move(lights)); }
+    const std::vector<LocalLight>& local_lights() const override { return renderer_.local_lights(); }
+    VertexColors make_output() const override { return renderer_.make_output(); }
+    void shade(VertexColors& out) override {
+        context_.make_current();
+        renderer_.shade(out);
+    }
+    using VertexRenderer::shade;
+    const RenderStats& stats() const override { return renderer_.stats(); }
+
     const GlRenderer& renderer() const { return renderer_; }
 
 private:

@@ -91,6 +91,7 @@ void handle_input(GLFWwindow* window, Input& input, ViewerState& state, float dt
             const float scale = 0.002f * state.camera.distance;
             light.position += scale * (dx * right - dy * up);
             light.path.reset();
+            state.lights_dirty = true;
         } else {
             state.camera.yaw -= 0.005f * dx;
             state.camera.pitch = std::clamp(state.camera.pitch + 0.005f * dy, -1.5f, 1.5f);
@@ -163,10 +164,10 @@ void run_viewer(const ViewerOptions& options) {
     ViewerState state;
     state.scene = scene.get();
     state.environment = &setup.environment;
+    if (setup.second_environment.resolution() > 0) state.second_environment = &setup.second_environment;
     state.renderer = &renderer;
-    state.materials = std::make_unique<MaterialLibrary>(MaterialLibrary::from_scene(*scene, options.render.brdf_table));
     state.toggles = options.render;
-    state.rsl_count = int(setup.environment_lights.lights.size());
+    state.rsl_count = int(setup.environment_lights.first.lights.size());
     state.time = options.start_time;
     state.exposure = options.exposure;
     state.panel = options.panel;
@@ -176,10 +177,6 @@ void run_viewer(const ViewerOptions& options) {
     state.camera.yaw = std::atan2(offset.x, offset.z);
     state.camera.pitch = std::asin(std::clamp(offset.y / std::max(state.camera.distance, 1e-6f), -1.0f, 1.0f));
     state.camera.fov_y_degrees = scene->camera.fov_y_degrees;
-    // Apply material overrides given on the command line to the library.
-    for (const auto& [part_name, material_name] : options.render.material_override)
-        for (size_t p = 0; p < scene->parts.size(); ++p)
-            if (scene->parts[p].name == part_name) state.materials->assign(int(p), state.materials->find(material_name));
 
     Input input;
     glfwGetCursorPos(window.window, &input.last_x, &input.last_y);

@@ -20,7 +20,8 @@ void parameter_range(const std::string& key, float& lo, float& hi) {
 }
 
 void material_editor(ViewerState& state, int material) {
-    MaterialDesc desc = state.materials->desc(material);
+    MaterialLibrary& library = state.renderer->materials();
+    MaterialDesc desc = library.desc(material);
     ImGui::PushID(material);
     if (ImGui::TreeNode(desc.name.c_str(), "%s (%s)", desc.name.c_str(), desc.model.c_str())) {
         for (auto& [key, value] : desc.params) {
@@ -35,8 +36,7 @@ void material_editor(ViewerState& state, int material) {
             }
             if (changed) {
                 try {
-                    state.materials->set_parameter(material, key, value);
-                    state.materials_dirty = true;
+                    library.set_parameter(material, key, value);  // the renderer uploads it before the next frame
                 } catch (const Error&) {
                     // Out of the model's range: the library kept the old value.
                 }
@@ -53,12 +53,9 @@ void apply_pending(ViewerState& state) {
     if (state.refit.valid() && state.refit.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         state.renderer->set_environment_lights(state.refit.get());
     }
-    if (state.materials_dirty) {
-        std::vector<std::shared_ptr<const BrdfTable>> tables;
-        for (int p = 0; p < state.materials->part_count(); ++p)
-            tables.push_back(state.materials->table(state.materials->part_material(p)));
-        state.renderer->set_part_tables(std::move(tables));
-        state.materials_dirty = false;
+    if (state.lights_dirty) {
+        state.renderer->set_local_lights(state.scene->lights);
+        state.lights_dirty = false;
     }
 }
 
@@ -84,19 +81,23 @@ void viewer_panel(ViewerState& state) {
             ImGui::SliderInt("RSLs", &state.rsl_count, 1, 100);
             if (ImGui::IsItemDeactivatedAfterEdit() && !state.refit.valid()) {
                 const CubeMap* environment = state.environment;
+                const CubeMap* second = state.second_environment;
                 const int count = state.rsl_count;
                 state.refit_count = count;
-                state.refit = std::async(std::launch::async, [environment, count] {
-                    return fit_environment_lights(*environment, count);
+                state.refit = std::async(std::launch::async, [environment, second, count] {
+                    return EnvironmentLights(fit_environment_lights(*environment, count),
+                                             second ? fit_environment_lights(*second, count) : RslSet{});
                 });
             }
             if (state.refit.valid()) ImGui::Text("fitting %d RSLs...", state.refit_count);
-            else ImGui::Text("%zu RSLs in use", state.renderer->environment_lights().lights.size());
+            else ImGui::Text("%zu RSLs in use", state.renderer->environment_lights().light_count());
         }
         if (!state.scene->lights.empty()) {
             LocalLight& light = state.scene->lights.front();
-            ImGui::DragFloat3("light (shift+drag)", &light.position.x, 0.01f);
-            light.path.reset();
+            if (ImGui::DragFloat3("light (shift+drag)", &light.position.x, 0.01f)) {
+                light.path.reset();
+                state.lights_dirty = true;
+            }
         }
     }
     if (ImGui::CollapsingHeader("Visibility factors", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -109,15 +110,12 @@ void viewer_panel(ViewerState& state) {
         if (changed) state.renderer->set_toggles(o);
     }
     if (ImGui::CollapsingHeader("Materials")) {
-        MaterialLibrary& library = *state.materials;
+        MaterialLibrary& library = state.renderer->materials();
         for (int p = 0; p < library.part_count(); ++p) {
             const int current = library.part_material(p);
             if (ImGui::BeginCombo(state.scene->parts[p].name.c_str(), library.desc(current).name.c_str())) {
                 for (int m = 0; m < library.material_count(); ++m)
-                    if (ImGui::Selectable(library.desc(m).name.c_str(), m == current)) {
-                        library.assign(p, m);
-                        state.materials_dirty = true;
-                    }
+                    if (ImGui::Selectable(library.desc(m).name.c_str(), m == current)) library.assign(p, m);
                 ImGui::EndCombo();
             }
         }

@@ -23,22 +23,22 @@ struct OrbitCamera {
 struct ViewerState {
     Scene* scene = nullptr;
     const CubeMap* environment = nullptr;
-    GlRenderer* renderer = nullptr;
-    std::unique_ptr<MaterialLibrary> materials;
+    const CubeMap* second_environment = nullptr;  // the blend's second map; null without one
+    GlRenderer* renderer = nullptr;  // its materials() is what the panel edits
     OrbitCamera camera;
     float time = 0, environment_degrees = 0, exposure = 0;
     bool playing = true, panel = true;
     RenderOptions toggles;
     int rsl_count = 30;
-    std::future<RslSet> refit;  // the background fit, when one runs
+    std::future<EnvironmentLights> refit;  // the background fit, when one runs
     int refit_count = 0;
-    bool materials_dirty = false;
+    bool lights_dirty = false;  // the scene's first light moved: hand the lights to the renderer
     double frame_ms = 0, fps = 0;
 };
 
 // Draws the panel and applies what changed (materials, toggles, RSL count).
 void viewer_panel(ViewerState& state);
-// Applies finished background work (a new RSL set) and material edits.
+// Applies finished background work (new RSL sets) and moved lights.
 void apply_pending(ViewerState& state);
 
 }  // namespace rsl::gl

@@ -24,6 +24,11 @@ std::map<std::string, std::string> parse_material_overrides(const std::vector<st
     return overrides;
 }
 
+CubeMap RenderSetup::environment_at(float t) const {
+    if (second_environment.resolution() == 0) return environment;
+    return blend_environments(environment, second_environment, scene->environment.blend_weight_at(t));
+}
+
 RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options, bool progress) {
     return prepare_render(std::make_shared<Scene>(load_scene(scene_path)), options, progress);
 }
@@ -35,11 +40,18 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
     if (!s.environment.file.empty() && options.environment) {
         auto start = std::chrono::steady_clock::now();
         setup.environment = load_environment(s.environment.file, s.environment.resolution);
-        setup.environment_lights = fit_environment_lights(setup.environment, options.environment_lights, options.cross_face_lights);
+        setup.environment_lights.first =
+            fit_environment_lights(setup.environment, options.environment_lights, options.cross_face_lights);
+        if (!s.environment.second_file.empty()) {
+            setup.second_environment = load_environment(s.environment.second_file, s.environment.resolution);
+            setup.environment_lights.second =
+                fit_environment_lights(setup.second_environment, options.environment_lights, options.cross_face_lights);
+        }
         setup.fit_seconds = seconds_since(start);
         if (progress)
-            std::fprintf(stderr, "%s: %zu RSLs fitted in %.2f s\n", s.environment.file.string().c_str(),
-                         setup.environment_lights.lights.size(), setup.fit_seconds);
+            std::fprintf(stderr, "%s: %zu RSLs fitted in %.2f s%s\n", s.environment.file.string().c_str(),
+                         setup.environment_lights.first.lights.size(), setup.fit_seconds,
+                         s.environment.second_file.empty() ? "" : " (and as many for the blend's second map)");
     }
     FieldBakeOptions bake;
     bake.self_visibility = options.self_visibility;

@@ -1,6 +1,7 @@
 #pragma once
 // Everything a renderer needs before its first frame, from a scene file:
-// the scene, its environment as a cube map, the environment's RSL set and the
+// the scene, its environment as a cube map (two when the scene blends two
+// maps, `second_file`), the environment's RSL sets (one per map) and the
 // parts' visibility fields (from the scene's field cache, <scene folder>/
 // .rsl-cache, baking only what is missing, with progress on stderr).
 // Shared by `rsl render`, `rsl bench render` and the error tables.
@@ -18,7 +19,12 @@ namespace rsl {
 struct RenderSetup {
     std::shared_ptr<Scene> scene;  // shared: renderers keep a reference to it
     CubeMap environment;           // resolution 0 when the scene has none
-    RslSet environment_lights;
+    CubeMap second_environment;    // environment.second_file; resolution 0 without a blend
+    // One RSL set per map (fitted on its own map; frame_setup.h blends them).
+    EnvironmentLights environment_lights;
+    // The map the ground truth integrates at time t: (1 − w)·first + w·second
+    // (EnvironmentDesc::blend_weight_at), or the first map without a blend.
+    CubeMap environment_at(float t) const;
     PartFields fields;
     double fit_seconds = 0, bake_seconds = 0;  // bake_seconds: loading and baking fields
     int fields_loaded = 0, fields_baked = 0;    // field files reused from / written to the cache

@@ -35,14 +35,23 @@ void check_part_fields(const Scene& scene, PartFields& fields) {
                              fields.self[p]->vertex_count(), scene.parts[p].mesh.vertex_count());
 }
 
-Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fields, const RenderOptions& options)
+namespace {
+PartFields checked(const Scene& scene, PartFields fields) {
+    check_part_fields(scene, fields);
+    return fields;
+}
+}  // namespace
+
+Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
+                   const RenderOptions& options)
     : scene_(scene),
       options_(options),
       rsls_(std::move(environment_lights)),
-      fields_(std::move(fields)),
-      materials_(scene, options) {
+      lights_(scene.lights),
+      fields_(checked(scene, std::move(fields))),
+      library_(scene_material_library(scene, options)),
+      frame_(scene, fields_) {
     const size_t parts = scene.parts.size();
-    check_part_fields(scene, fields_);
     for (size_t p = 0; p < parts; ++p) {
         const Part& part = scene.parts[p];
         const size_t n = part.mesh.vertex_count();
@@ -54,65 +63,66 @@ Renderer::Renderer(const Scene& scene, RslSet environment_lights, PartFields fie
         local_bounds_.push_back(part.mesh.bounding_sphere());
         local_boxes_.push_back(part.mesh.bounds());
         local_reach_.push_back(fields_.occluder[p] ? fields_.occluder[p]->reach() : BoundingSphere{});
-        culling_parts_.emplace_back();
-        culling_parts_.back().field = fields_.occluder[p].get();
-        culling_parts_.back().local_reach = local_reach_.back();
         // Compressed OVDFs blended by coefficients take the split lookup.
         const auto* ovdf = dynamic_cast<const OvdfOccluder*>(fields_.occluder[p].get());
         const bool fast = options_.fast_occluder_lookups && ovdf && ovdf->blend() == OvdfBlend::AlignedCoefficients;
         fast_lookups_.push_back(fast ? std::make_unique<const OvdfLookup>(ovdf->field()) : nullptr);
         if (fast_lookups_.back() && !fast_lookups_.back()->usable()) fast_lookups_.back().reset();
     }
-    for (const LocalLight& light : scene.lights) {
-        if (!(light.radius > 0.0f)) throw_file_error(scene.source, "local light with radius {}", light.radius);
-        light_radiance_.push_back(sphere_light_radiance(light));
-    }
-    poses_.resize(parts);
-    environment_squares_.resize(rsls_.lights.size());
-    light_positions_.resize(scene.lights.size());
-    const size_t light_count = rsls_.lights.size() + scene.lights.size();
-    occluders_.reserve(parts * light_count * (parts - 1));
-    set_time(0.0f);
+    part_tables_.assign(parts, nullptr);
+    synced_material_.assign(parts, -1);
+    sync_materials();
+    set_local_lights(lights_);  // checks them, sizes the frame's buffers, poses at t = 0
+}
+
+void Renderer::set_local_lights(std::vector<LocalLight> lights) {
+    check_local_lights(scene_, lights);
+    lights_ = std::move(lights);
+    light_radiance_.clear();
+    for (const LocalLight& light : lights_) light_radiance_.push_back(sphere_light_radiance(light));
+    frame_.reserve(rsls_.light_count(), lights_.size());
+    update_frame();
+}
+
+void Renderer::set_environment_lights(EnvironmentLights lights) {
+    rsls_ = std::move(lights);
+    frame_.reserve(rsls_.light_count(), lights_.size());
+    update_frame();
 }
 
 void Renderer::set_time(float t) {
     time_ = t;
-    for (size_t p = 0; p < scene_.parts.size(); ++p) {
-        PartPose& pose = poses_[p];
-        pose.transform = scene_.part_transform_at(int(p), t);
-        pose.linear = Mat3(pose.transform);
-        pose.normal = glm::transpose(glm::inverse(pose.linear));
-        pose.inverse = glm::inverse(pose.transform);
-        pose.inverse_linear = Mat3(pose.inverse);
-        for (int a = 0; a < 3; ++a)
-            pose.face_scale[a] = glm::length(Vec3(pose.inverse_linear[0][a], pose.inverse_linear[1][a], pose.inverse_linear[2][a]));
-        const Vec3 axes(glm::length(pose.linear[0]), glm::length(pose.linear[1]), glm::length(pose.linear[2]));
-        pose.uniform_scale = std::max({axes.x, axes.y, axes.z}) <= (1.0f + 1e-4f) * std::min({axes.x, axes.y, axes.z});
-        pose.world_bounds = transform_sphere(pose.transform, local_bounds_[p]);
-    }
-    const Mat3 rotation = scene_.environment.rotation_at(t);
-    for (size_t l = 0; l < rsls_.lights.size(); ++l) {
-        const RotatableSquareLight& rsl = rsls_.lights[l];
-        SquareLight& square = environment_squares_[l];
-        square.direction = glm::normalize(rotation * rsl.center);
-        square.half_edge = square_half_edge_for_rsl(rsl.half_diagonal);
-        square.solid_angle = rsl.solid_angle();
-        square.integral = rsl.radiance * square.solid_angle;
-    }
-    for (size_t i = 0; i < scene_.lights.size(); ++i) light_positions_[i] = scene_.lights[i].position_at(t);
-    camera_ = scene_.camera.position_at(t);
-    update_occluder_lists();
+    view_rotation_ = Mat3(1.0f);
+    view_camera_.reset();
+    update_frame();
 }
 
-void Renderer::update_occluder_lists() {
-    for (size_t p = 0; p < poses_.size(); ++p) {
-        culling_parts_[p].transform = poses_[p].transform;
-        culling_parts_[p].world_bounds = poses_[p].world_bounds;
+void Renderer::set_view(float t, const Vec3& camera, const Mat3& environment_rotation) {
+    time_ = t;
+    view_rotation_ = environment_rotation;
+    view_camera_ = camera;
+    update_frame();
+}
+
+void Renderer::update_frame() {
+    frame_.update(scene_, rsls_, lights_, options_, time_, view_rotation_, view_camera_);
+    stats_.occluder_pairs = frame_.occluder_lists().pairs;
+    stats_.occluder_pairs_culled = frame_.occluder_lists().culled;
+}
+
+// The library builds a table when a material is edited; here the parts only
+// pick up the pointers of what changed (no allocation, O(parts)).
+void Renderer::sync_materials() {
+    const int materials = library_.material_count();
+    if (synced_revision_.size() != size_t(materials)) synced_revision_.assign(size_t(materials), 0);
+    for (size_t p = 0; p < part_tables_.size(); ++p) {
+        const int m = library_.part_material(int(p));
+        if (m != synced_material_[p] || library_.revision(m) != synced_revision_[size_t(m)] || !part_tables_[p]) {
+            part_tables_[p] = &library_.part_table(int(p));
+            synced_material_[p] = m;
+        }
     }
-    rsl::update_occluder_lists(culling_parts_, CullingLights{environment_squares_, light_positions_, scene_.lights},
-                               options_, occluder_lists_);
-    stats_.occluder_pairs = occluder_lists_.pairs;
-    stats_.occluder_pairs_culled = occluder_lists_.culled;
+    for (int m = 0; m < materials; ++m) synced_revision_[size_t(m)] = library_.revision(m);
 }
 
 VertexColors Renderer::make_output() const {
@@ -126,6 +136,7 @@ VertexColors Renderer::make_output() const {
 void Renderer::shade(VertexColors& out) {
     RSL_CHECK_EQ(out.parts.size(), scene_.parts.size());
     for (size_t p = 0; p < scene_.parts.size(); ++p) RSL_CHECK_EQ(out.parts[p].size(), scene_.parts[p].mesh.vertex_count());
+    sync_materials();
     out.time = time_;
     std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
@@ -140,7 +151,7 @@ void Renderer::shade(VertexColors& out) {
     stats_.block_occluders_culled = block_culled.load();
     stats_.lookups = lookups.load();
     stats_.vertices = vertices.load();
-    stats_.lights = rsls_.lights.size() + scene_.lights.size();
+    stats_.lights = environment_squares_.size() + lights_.size();
 }
 
 }  // namespace rsl

@@ -14,70 +14,77 @@
 // lookups over all its vertices at a time (structure of arrays, a batch call
 // into the BRDF table), blocks run on all cores. set_time() and shade() do not
 // allocate once the first frame has sized the buffers.
+//
+// It is a VertexRenderer (vertex_renderer.h): the frame state of time t comes
+// from FrameSetup (frame_setup.h, shared with the GL renderer), the BRDF
+// tables from a MaterialLibrary that can be edited between frames.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "lightfit/rsl.h"
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 #include "src/render/culling.h"
-#include "src/render/material_tables.h"
+#include "src/render/frame_setup.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"
 #include "src/frame/vertex_colors.h"
+#include "src/render/vertex_renderer.h"
 
 namespace rsl {
 
-class Renderer {
+class Renderer final : public VertexRenderer {
 public:
     // `scene` must outlive the renderer. `environment_lights` is the
-    // environment's RSL set at rotation 0 (it is rotated by the environment's
-    // rotation at every set_time; fit_environment_lights makes it). `fields`
-    // may lack any field (that factor is then 1).
-    Renderer(const Scene& scene, RslSet environment_lights, PartFields fields, const RenderOptions& options);
+    // environment's RSL set (or the two sets of a blend) at rotation 0 (it is
+    // rotated by the environment's rotation at every set_time;
+    // fit_environment_lights makes it). `fields` may lack any field (that
+    // factor is then 1). The materials are the scene's with
+    // options.material_override applied.
+    Renderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields, const RenderOptions& options);
+    // Members refer to its own frame: neither copied nor moved.
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
 
-    // Poses parts, rotates the environment, moves lights and camera to time t,
-    // and recomputes the occluder lists (culling).
-    void set_time(float t);
-    float time() const { return time_; }
+    std::string backend() const override { return "cpu"; }
+    const Scene& scene() const override { return scene_; }
+
+    // Poses parts, rotates (and blends) the environment, moves lights and
+    // camera to time t, and recomputes the occluder lists (culling).
+    void set_time(float t) override;
+    void set_view(float t, const Vec3& camera, const Mat3& environment_rotation) override;
+    float time() const override { return time_; }
+
+    MaterialLibrary& materials() override { return library_; }
+    const MaterialLibrary& materials() const override { return library_; }
+    void set_environment_lights(EnvironmentLights lights) override;
+    const EnvironmentLights& environment_lights() const override { return rsls_; }
+    void set_local_lights(std::vector<LocalLight> lights) override;
+    const std::vector<LocalLight>& local_lights() const override { return lights_; }
 
     // Vertex colours of every part towards the camera; `out` must come from
     // make_output() (its buffers are reused, nothing is allocated).
-    void shade(VertexColors& out);
-    VertexColors make_output() const;
-    VertexColors shade() {
-        VertexColors out = make_output();
-        shade(out);
-        return out;
-    }
+    void shade(VertexColors& out) override;
+    using VertexRenderer::shade;
+    VertexColors make_output() const override;
 
-    const RenderStats& stats() const { return stats_; }
+    const RenderStats& stats() const override { return stats_; }
     const RenderOptions& options() const { return options_; }
-    const MaterialTables& materials() const { return materials_; }
-    const RslSet& environment_lights() const { return rsls_; }
-    // Square lights of the environment at the current time (world space).
+    // Square lights of the environment at the current time (world space, blend-weighted).
     const std::vector<SquareLight>& environment_squares() const { return environment_squares_; }
+    const FrameSetup& frame() const { return frame_; }
 
 private:
     struct Block {
         int part;
         int begin, end;  // vertex range
     };
-    struct PartPose {
-        Mat4 transform{1.0f};
-        Mat3 linear{1.0f}, normal{1.0f};
-        Mat4 inverse{1.0f};
-        Mat3 inverse_linear{1.0f};
-        // Lengths of inverse_linear's rows: a world direction w lies at
-        // (inverse_linear·w)_a / face_scale_a from the part's box face a (the slab rule).
-        Vec3 face_scale{1.0f};
-        bool uniform_scale = true;  // the block-level cone test measures angles in the world
-        BoundingSphere world_bounds;
-    };
     struct BlockScratch;  // shade_block.cpp
-    void update_occluder_lists();
+    void update_frame();
+    void sync_materials();
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
     void prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
@@ -86,9 +93,15 @@ private:
 
     const Scene& scene_;
     RenderOptions options_;
-    RslSet rsls_;
+    EnvironmentLights rsls_;
+    std::vector<LocalLight> lights_;
     PartFields fields_;
-    MaterialTables materials_;
+    MaterialLibrary library_;
+    // Per part: the table it is shaded with, refreshed from library_ before a
+    // frame when a material's revision or a part's assignment changed.
+    std::vector<const BrdfTable*> part_tables_;
+    std::vector<int> synced_material_;
+    std::vector<uint64_t> synced_revision_;
     std::vector<Block> blocks_;
     std::vector<BoundingSphere> local_bounds_;       // per part, in its own frame
     std::vector<Bounds> local_boxes_;                // per part, in its own frame (the slab rule, square_lights.h)
@@ -97,21 +110,22 @@ private:
     std::vector<std::unique_ptr<const OvdfLookup>> fast_lookups_;
 
     float time_ = 0;
-    std::vector<PartPose> poses_;
-    std::vector<SquareLight> environment_squares_;
-    std::vector<Vec3> light_positions_;
+    Mat3 view_rotation_{1.0f};
+    std::optional<Vec3> view_camera_;
+    // The frame at time_ (shared with the GL renderer); the names below are
+    // its fields as shade_block.cpp reads them.
+    FrameSetup frame_;
+    const std::vector<PartPose>& poses_ = frame_.poses();
+    const std::vector<SquareLight>& environment_squares_ = frame_.environment_squares();
+    const std::vector<Vec3>& light_positions_ = frame_.light_positions();
+    const Vec3& camera_ = frame_.camera();
     std::vector<Color> light_radiance_;
-    Vec3 camera_{0};
-    // Per part: its field and pose as the occluder culling sees them.
-    std::vector<CullingPart> culling_parts_;
-    // Occluders that can shadow receiver part p for light l (culling.h, shared
-    // with the GL renderer); the names below are its fields as shade_block.cpp
-    // reads them: occluders_[offsets_[p·L + l] .. offsets_[p·L + l + 1]), and
-    // per (receiver, occluder) the footprint growth of the receiver.
-    OccluderLists occluder_lists_;
-    std::vector<int>& occluders_ = occluder_lists_.occluders;
-    std::vector<size_t>& offsets_ = occluder_lists_.offsets;
-    std::vector<float>& occluder_growth_ = occluder_lists_.growth;
+    // Occluders that can shadow receiver part p for light l (culling.h):
+    // occluders_[offsets_[p·L + l] .. offsets_[p·L + l + 1]), and per
+    // (receiver, occluder) the footprint growth of the receiver.
+    const std::vector<int>& occluders_ = frame_.occluder_lists().occluders;
+    const std::vector<size_t>& offsets_ = frame_.occluder_lists().offsets;
+    const std::vector<float>& occluder_growth_ = frame_.occluder_lists().growth;
     RenderStats stats_;
 };
 

@@ -235,7 +235,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const int part_index = block.part;
     const TriangleMesh& mesh = scene_.parts[part_index].mesh;
     const PartPose& pose = poses_[part_index];
-    const BrdfTable& table = materials_.table_of(part_index);
+    const BrdfTable& table = *part_tables_[part_index];
     const bool isotropic = table.isotropic();
     const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
     const int n = block.end - block.begin;
@@ -301,7 +301,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         } else {
             const size_t i = l - environment;
             const Vec3 center = light_positions_[i];
-            const float radius = scene_.lights[i].radius;
+            const float radius = lights_[i].radius;
             const Color radiance = light_radiance_[i];
             for (int k = 0; k < n; ++k) {
                 const SquareLight sq = sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), center, radius, radiance);

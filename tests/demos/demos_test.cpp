@@ -171,19 +171,6 @@ TEST_CASE("unknown demo names are refused with the list", "[demos]") {
     }
 }
 
-TEST_CASE("environment cross-fade weight: first map at 0, second at half the period, periodic", "[demos]") {
-    EnvironmentDesc env;
-    REQUIRE(environment_blend_weight(env, 1.0f) == 0.0f);  // no second map
-    env.second_file = "b.exr";
-    env.blend_period_seconds = 8;
-    REQUIRE(environment_blend_weight(env, 0.0f) == Approx(0.0f).margin(1e-6));
-    REQUIRE(environment_blend_weight(env, 4.0f) == Approx(1.0f));
-    REQUIRE(environment_blend_weight(env, 2.0f) == Approx(0.5f));
-    REQUIRE(environment_blend_weight(env, 8.0f) == Approx(0.0f).margin(1e-6));
-    for (float t = 0; t < 4; t += 0.25f)
-        REQUIRE(environment_blend_weight(env, t + 0.25f) > environment_blend_weight(env, t));
-}
-
 TEST_CASE("weighted vertex-colour sum is the per-vertex linear combination", "[demos]") {
     VertexColors a, b, out;
     for (VertexColors* c : {&a, &b, &out}) c->add_part("p", 3), c->add_part("q", 1);

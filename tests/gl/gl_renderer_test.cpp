@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "src/gl/gl_renderer.h"
+#include "src/render/renderer.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
 
@@ -62,8 +63,8 @@ Scene moving_scene() {
     return scene;
 }
 
-void check_against_cpu(const Scene& scene, const RslSet& lights, const PartFields& fields, const RenderOptions& options,
-                       const std::vector<float>& times) {
+void check_against_cpu(const Scene& scene, const EnvironmentLights& lights, const PartFields& fields,
+                       const RenderOptions& options, const std::vector<float>& times) {
     test::gl_context();
     Renderer cpu(scene, lights, fields, options);
     gl::GlRenderer gpu(scene, lights, fields, options);
@@ -100,6 +101,58 @@ TEST_CASE("GL matches the CPU with each visibility factor switched off", "[gl-re
     SECTION("local lights only") { options.environment = false; }
     SECTION("environment only") { options.local_lights = false; }
     check_against_cpu(scene, lights, fields, options, {0.25f});
+}
+
+TEST_CASE("GL matches the CPU under a blend of two environments", "[gl-renderer]") {
+    Scene scene = moving_scene();
+    scene.environment.second_file = "second.exr";  // only its presence matters: the sets are given
+    scene.environment.blend_period_seconds = 8.0f;
+    scene.environment.rotation_degrees_per_second = 15.0f;
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    // t = 4/3: second map weight 0.25; t = 4: the second set alone.
+    check_against_cpu(scene, EnvironmentLights(test::random_rsls(8, 3), test::random_rsls(6, 11)), fields,
+                      RenderOptions{}, {0.0f, 4.0f / 3.0f, 4.0f});
+}
+
+TEST_CASE("GL material edits re-upload only the changed table and match the CPU", "[gl-renderer]") {
+    test::gl_context();
+    const Scene scene = moving_scene();
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    const RslSet lights = test::random_rsls(8, 5);
+    Renderer cpu(scene, lights, fields, RenderOptions{});
+    gl::GlRenderer gpu(scene, lights, fields, RenderOptions{});
+    auto compare = [&](const char* what) {
+        cpu.set_time(0.5f);
+        gpu.set_time(0.5f);
+        const test::ColorDifference d = test::compare_colors(gpu.shade_and_read(), cpu.shade(), kTolerance);
+        INFO(what << ": relative L2 " << d.relative_l2 << ", " << d.over_tolerance << " vertices over tolerance");
+        CHECK(d.relative_l2 < 1e-5);
+        CHECK(d.over_tolerance <= d.vertices / 1000);
+    };
+    compare("as loaded");
+    REQUIRE(gpu.material_uploads().full == 1);
+    // A parameter edit of the same model: in place, one table.
+    for (VertexRenderer* r : {static_cast<VertexRenderer*>(&cpu), static_cast<VertexRenderer*>(&gpu)})
+        r->set_material_parameter("glossy", "exponent", {80.0f});
+    compare("glossy exponent 80");
+    CHECK(gpu.material_uploads().full == 1);
+    CHECK(gpu.material_uploads().tables == 1);
+    // The edited CPU renderer equals one built on the edited scene.
+    Scene edited = scene;
+    edited.materials[1].params["exponent"] = {80.0f};
+    Renderer fresh(edited, lights, fields, RenderOptions{});
+    fresh.set_time(0.5f);
+    CHECK(test::compare_colors(cpu.shade(), fresh.shade(), 1e-7).max_relative == 0.0);
+    // Swapping a part onto a table already uploaded uploads nothing.
+    for (VertexRenderer* r : {static_cast<VertexRenderer*>(&cpu), static_cast<VertexRenderer*>(&gpu)})
+        r->set_part_material("small", "glossy");
+    compare("small sphere in glossy");
+    CHECK(gpu.material_uploads().tables == 1);
+    // Unknown names are errors that say which.
+    CHECK_THROWS_WITH(cpu.set_material_parameter("nope", "exponent", {2.0f}), Catch::Contains("nope"));
+    CHECK_THROWS_WITH(gpu.set_part_material("small", "nope"), Catch::Contains("nope"));
+    CHECK_THROWS_WITH(gpu.set_material_parameter("glossy", "exponent", {-1.0f}), Catch::Contains("exponent"));
+    compare("after refused edits");
 }
 
 TEST_CASE("GL matches the CPU on the robot over several frames with local lights", "[gl-robot]") {

@@ -1,0 +1,28 @@
+#pragma once
+// The one place that knows which renderers exist: callers name a backend and
+// get a VertexRenderer (src/render/vertex_renderer.h), with no #ifdef of their
+// own. The GL backend exists when rsl was built with RSL_BUILD_GL (its own
+// offscreen context: gl::HeadlessGlRenderer).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "src/render/vertex_renderer.h"
+
+namespace rsl {
+
+enum class Backend { Cpu, Gl };
+
+// "cpu" / "gl" → Backend; throws rsl::Error naming the known ones.
+Backend parse_backend(const std::string& name);
+std::string backend_name(Backend backend);
+// The backends this build has ("cpu", and "gl" with RSL_BUILD_GL).
+std::vector<std::string> available_backends();
+
+// `scene` must outlive the renderer. Throws rsl::Error when the backend was
+// not built (or, for gl, no OpenGL ≥ 3.3 context can be made).
+std::unique_ptr<VertexRenderer> make_renderer(Backend backend, const Scene& scene,
+                                              EnvironmentLights environment_lights, PartFields fields,
+                                              const RenderOptions& options);
+
+}  // namespace rsl
