@@ -19,7 +19,7 @@
 #include "src/core/scene.h"
 #include "src/render/frame_setup.h"
 #include "src/render/render_options.h"
-#include "src/trace/vertex_colors.h"
+#include "src/frame/vertex_colors.h"
 
 namespace rsl {
 

@@ -66,7 +66,7 @@ TEST_CASE("contact sheet labels draw only in the band under their tile", "[demos
             }
     REQUIRE(lit > 20);  // "K=10" is a few dozen pixels
     REQUIRE_THROWS_AS(make_contact_sheet(tiles, {"only one"}, layout), InternalError);  // a caller bug, not input
-    REQUIRE_THROWS_AS(make_contact_sheet({Image(4, 4, 3), Image(5, 4, 3)}, {}, layout), Error);
+    REQUIRE_THROWS_AS(make_contact_sheet({Image(4, 4, 3), Image(5, 4, 3)}, {}, layout), InternalError);
 }
 
 TEST_CASE("downsample is the box average of each factor x factor block", "[demos]") {
