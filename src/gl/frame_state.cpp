@@ -46,7 +46,7 @@ void FrameState::update(const Scene& scene, const RslSet& environment, const Ren
 }
 
 // The CPU renderer's occluder lists (culling.h, the same function) as bit
-// masks, and the occluder spheres grown by the footprints it computed.
+// masks.
 void FrameState::update_masks(const Scene& scene, const RenderOptions& options) {
     const size_t parts = poses_.size();
     for (size_t p = 0; p < parts; ++p) {
@@ -58,13 +58,6 @@ void FrameState::update_masks(const Scene& scene, const RenderOptions& options) 
     masks_.assign(parts * size_t(light_count_), 0u);
     for (size_t slot = 0; slot < masks_.size(); ++slot)
         for (size_t e = lists_.offsets[slot]; e < lists_.offsets[slot + 1]; ++e) masks_[slot] |= 1u << lists_.occluders[e];
-    spheres_.assign(parts * parts, Vec4(0.0f));
-    for (size_t receiver = 0; receiver < parts; ++receiver)
-        for (size_t o = 0; o < parts; ++o) {
-            if (o == receiver || !culling_parts_[o].field) continue;
-            const BoundingSphere& sphere = poses_[o].world_bounds;
-            spheres_[receiver * parts + o] = Vec4(sphere.center, sphere.radius + lists_.growth[receiver * parts + o]);
-        }
 }
 
 }  // namespace rsl::gl

@@ -47,10 +47,6 @@ public:
     // then local lights): bit o set when part o's OVDF is looked up.
     uint32_t occluder_mask(int part, int light) const { return masks_[size_t(part) * light_count_ + light]; }
     const std::vector<uint32_t>& masks() const { return masks_; }  // part-major, light_count per part
-    // Per (receiver, occluder), receiver-major: the occluder's world bounding
-    // sphere grown by its field's footprint (xyz center, w radius), for the
-    // shader's per-vertex cone test; radius 0 where no field.
-    const std::vector<Vec4>& occluder_spheres() const { return spheres_; }
     int light_count() const { return light_count_; }
     size_t occluder_pairs() const { return lists_.pairs; }
     size_t occluder_pairs_culled() const { return lists_.culled; }
@@ -67,7 +63,6 @@ private:
     std::vector<Vec3> light_positions_;
     Vec3 camera_{0};
     std::vector<uint32_t> masks_;
-    std::vector<Vec4> spheres_;
     int light_count_ = 0;
 };
 
