@@ -15,14 +15,6 @@
 
 namespace rsl {
 
-OvdfZoom ovdf_zoom(float distance, float radius) {
-    OvdfZoom z;
-    if (distance <= radius) return z;  // inside the bounding sphere: the whole square, no cone
-    z.cone = ovdf_cone_radius(distance, radius);
-    z.zoom = std::max(1.0f, kOvdfZoomEdge / z.cone);
-    return z;
-}
-
 void Ovdf::prepare() {
     const OvdfParams& p = params;
     RSL_CHECK_GE(p.shells, 2);
@@ -65,21 +57,7 @@ void Ovdf::prepare() {
 
 float Ovdf::shell_coordinate(float distance) const {
     const OvdfParams& p = params;
-    const float d = distance / radius, last = float(p.shells - 1);
-    switch (p.spacing) {
-        case ShellSpacing::Geometric:
-            return last * std::log(std::max(d, 1e-6f) / p.inner_radius) / std::log(p.outer_radius / p.inner_radius);
-        case ShellSpacing::Linear: return last * (d - p.inner_radius) / (p.outer_radius - p.inner_radius);
-        case ShellSpacing::InverseRadius:
-            return last * (1.0f / std::max(d, 1e-6f) - 1.0f / p.inner_radius) /
-                   (1.0f / p.outer_radius - 1.0f / p.inner_radius);
-    }
-    return 0;
-}
-
-int Ovdf::segment_of(int shell, int face, int i, int j) const {
-    const int m = params.segments_per_side, n = params.cube_resolution;
-    return ((shell * 6 + face) * m + j * m / n) * m + i * m / n;
+    return shading::ovdf_shell_coordinate(int(p.spacing), p.shells, p.inner_radius, p.outer_radius, distance / radius);
 }
 
 Vec3 Ovdf::sample_position(int shell, int face, int i, int j) const {
@@ -88,7 +66,7 @@ Vec3 Ovdf::sample_position(int shell, int face, int i, int j) const {
 
 float Ovdf::sample_distance(int sample, const Vec2& p) const {
     const int n = params.cube_resolution;
-    const OvdfZoom& zoom = shell_zoom_[sample / (6 * n * n)];
+    const OvdfZoom& zoom = shell_zoom_[sample / (shading::kCubeFaces * n * n)];
     const BilinearTaps taps = bilinear_taps(params.vdt_resolution, zoom.zoom * p);
     float d = 0;
     for (int k = 0; k < 4; ++k) d += taps.weight[k] * model.reconstruct(sample, taps.index[k]);
@@ -102,23 +80,15 @@ float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_ed
 OvdfLocation Ovdf::locate(const Vec3& point, float d) const {
     OvdfLocation at;
     const Vec3 dir = d > 0 ? (point - center) / d : Vec3(0, 0, 1);
-    const int shells = params.shells, n = params.cube_resolution;
-    const float u = std::clamp(shell_coordinate(d), 0.0f, float(shells - 1));  // clamped inside
-    at.s0 = std::min(int(u), shells - 2);
-    at.fs = u - float(at.s0);
+    const shading::ShellPair shells = shading::ovdf_shell_pair(shell_coordinate(d), params.shells);  // clamped inside
+    at.s0 = shells.lower;
+    at.fs = shells.upper_weight;
     // Cube face and bilinear position among the face's sample directions.
-    float best = -2;
-    for (int f = 0; f < 6; ++f) {
-        const float c = glm::dot(dir, face_normal_[f]);
-        if (c > best) best = c, at.face = f;
-    }
-    const float x = std::clamp((glm::dot(dir, face_s_[at.face]) / best + 1.0f) * 0.5f * n - 0.5f, 0.0f, float(n - 1));
-    const float y = std::clamp((glm::dot(dir, face_t_[at.face]) / best + 1.0f) * 0.5f * n - 0.5f, 0.0f, float(n - 1));
-    const int i0 = std::min(int(x), n - 2), j0 = std::min(int(y), n - 2);
-    const float fx = x - float(i0), fy = y - float(j0);
-    const int ii[4] = {i0, i0 + 1, i0, i0 + 1}, jj[4] = {j0, j0, j0 + 1, j0 + 1};
-    const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-    for (int q = 0; q < 4; ++q) at.ii[q] = ii[q], at.jj[q] = jj[q], at.w[q] = w[q];
+    const shading::CubeFace face = shading::cube_face(dir, face_normal_.data());
+    at.face = face.face;
+    const shading::SampleTaps taps =
+        shading::ovdf_sample_taps(dir, face.cosine, face_s_[at.face], face_t_[at.face], params.cube_resolution);
+    at.ii = taps.i, at.jj = taps.j, at.w = taps.weight;
     // The receiver's own pole frame, twisted by the face rule like its samples.
     at.aligned = Frame::from_normal_tangent(-dir, face_s_[at.face]);
     return at;
@@ -147,9 +117,9 @@ float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) cons
     if (d < radius && surface_distance_at(at) < 0.0f) return -kVdtNoBoundaryDistance;  // inside the part
     const int s0 = at.s0, face = at.face;
     const float fs = at.fs;
-    const int* ii = at.ii;
-    const int* jj = at.jj;
-    const float* w = at.w;
+    const glm::ivec4& ii = at.ii;
+    const glm::ivec4& jj = at.jj;
+    const Vec4& w = at.w;
     const Frame& aligned = at.aligned;
     const Vec2 plane = lookup_plane_point(aligned.to_local(light));
     const float radial = glm::length(plane);
@@ -199,7 +169,7 @@ float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) cons
     }
     // The part lies in the bounding cone seen from the point itself, tighter
     // than the outer shell's and exact: lights beyond it are unshadowed.
-    return std::max(distance, radial - ovdf_zoom(d, radius).cone);
+    return shading::ovdf_receiver_distance(distance, radial, ovdf_zoom(d, radius).cone);
 }
 
 namespace {

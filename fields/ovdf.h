@@ -43,29 +43,16 @@
 
 namespace rsl {
 
-// Where the bounding cone's edge lies in a zoomed table ([-1, 1]²).
-inline constexpr float kOvdfZoomEdge = 0.75f;
-// The cone radius used where there is no cone (d ≤ R): the bound never binds.
-inline constexpr float kOvdfNoCone = 1e6f;
-
-struct OvdfZoom {
-    float zoom = 1;             // table point = zoom × plane point
-    float cone = kOvdfNoCone;   // plane radius of the bounding cone's edge
-};
-// Plane radius of the bounding cone of a part of bounding radius R seen from
-// distance d > R: √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d — square
-// roots only, which GLSL evaluates exactly as here (its asin is approximate).
-inline float ovdf_cone_radius(float distance, float radius) {
-    const float x = std::min(radius / std::max(distance, 1e-30f), 1.0f);
-    return x / std::sqrt(1.0f + std::sqrt(1.0f - x * x));
-}
-// The zoom of tables sampled at distance `distance` from a part of bounding radius `radius`.
-OvdfZoom ovdf_zoom(float distance, float radius);
-
-// A shell's distance in plane units from its table value (table units) at plane point of radius `radial`.
-inline float ovdf_plane_distance(float table_distance, const OvdfZoom& z, float radial) {
-    return std::max(table_distance / z.zoom, radial - z.cone);
-}
+// The zoom and cone formulas (kOvdfZoomEdge, kOvdfNoCone, OvdfZoom,
+// ovdf_cone_radius: √2·sin(½·asin(R/d)) in square roots only, ovdf_zoom,
+// ovdf_plane_distance: max(D′/k, |p| − e)) are the shading core's
+// (src/shading/shading_core.h), shared with the GPU's shader.
+using shading::kOvdfNoCone;
+using shading::kOvdfZoomEdge;
+using shading::ovdf_cone_radius;
+using shading::ovdf_plane_distance;
+using shading::ovdf_zoom;
+using shading::OvdfZoom;
 
 enum class ShellSpacing : uint8_t { Geometric = 0, Linear = 1, InverseRadius = 2 };
 
@@ -116,8 +103,8 @@ struct OvdfLocation {
     int s0 = 0;      // lower shell; the upper one is s0 + 1
     float fs = 0;    // weight of the upper shell
     int face = 0;
-    int ii[4] = {}, jj[4] = {};  // sample taps (i, j) on the face
-    float w[4] = {};             // their bilinear weights
+    glm::ivec4 ii{0}, jj{0};  // sample taps (i, j) on the face (shading::ovdf_sample_taps)
+    Vec4 w{0};                // their bilinear weights
     Frame aligned;               // z = from the point towards the part's center
 };
 
@@ -141,10 +128,11 @@ public:
     // Continuous shell index of a distance (linear in the spacing's coordinate).
     float shell_coordinate(float distance) const;
     int sample_index(int shell, int face, int i, int j) const {
-        const int n = params.cube_resolution;
-        return ((shell * 6 + face) * n + j) * n + i;
+        return shading::ovdf_sample_index(shell, face, i, j, params.cube_resolution);
     }
-    int segment_of(int shell, int face, int i, int j) const;
+    int segment_of(int shell, int face, int i, int j) const {
+        return shading::ovdf_segment_of(shell, face, i, j, params.cube_resolution, params.segments_per_side);
+    }
     Vec3 sample_position(int shell, int face, int i, int j) const;
     const Frame& sample_frame(int face, int i, int j) const {
         return frames_[(face * params.cube_resolution + j) * params.cube_resolution + i];

@@ -44,7 +44,7 @@ public:
     // Reconstructed signed distance at plane point p.
     float distance(int vertex, const Vec2& p) const {
         const BilinearTaps taps = bilinear_taps(params.resolution, p);
-        return model.reconstruct_bilinear(vertex, taps.index, taps.weight);
+        return model.reconstruct_bilinear(vertex, &taps.index[0], &taps.weight[0]);
     }
     // Visible fraction of the axis-aligned square (center, half-edge) of the
     // vertex's local plane.

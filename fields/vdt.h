@@ -39,8 +39,8 @@ enum class VdtMode : uint8_t { Binary = 0, CoverageAware = 1 };
 
 // Value given to a table whose map has no boundary (all visible or all
 // blocked), in plane units: larger than any square's half-edge, so the
-// fraction is exactly 0 or 1.
-inline constexpr float kVdtNoBoundaryDistance = 4.0f;
+// fraction is exactly 0 or 1 (shading core).
+using shading::kVdtNoBoundaryDistance;
 
 // Scratch space so that tables can be computed in a hot loop without allocating.
 struct VdtWorkspace {
@@ -56,31 +56,9 @@ std::vector<float> compute_vdt(int n, const std::vector<float>& coverage, VdtMod
 
 // Bilinear interpolation between texel centers; outside the outermost centers
 // the edge value is held. Four taps (index, weight) so that compressed tables
-// reconstruct only the texels they need.
-struct BilinearTaps {
-    int index[4];
-    float weight[4];
-};
-inline BilinearTaps bilinear_taps(int n, const Vec2& p) {
-    // Texel centers sit at integer coordinates after the −½ shift.
-    const float hi = float(n - 1);
-    const float u = std::clamp((p.x + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
-    const float v = std::clamp((p.y + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
-    const int i0 = std::min(int(u), n - 2);
-    const int j0 = std::min(int(v), n - 2);
-    const float fx = u - float(i0), fy = v - float(j0);
-    BilinearTaps taps;
-    const int base = j0 * n + i0;
-    taps.index[0] = base;
-    taps.index[1] = base + 1;
-    taps.index[2] = base + n;
-    taps.index[3] = base + n + 1;
-    taps.weight[0] = (1 - fx) * (1 - fy);
-    taps.weight[1] = fx * (1 - fy);
-    taps.weight[2] = (1 - fx) * fy;
-    taps.weight[3] = fx * fy;
-    return taps;
-}
+// reconstruct only the texels they need (shading core, shared with the GPU).
+using shading::BilinearTaps;
+using shading::bilinear_taps;
 
 inline float sample_bilinear(int n, const float* table, const Vec2& p) {
     const BilinearTaps taps = bilinear_taps(n, p);
@@ -89,19 +67,10 @@ inline float sample_bilinear(int n, const float* table, const Vec2& p) {
     return sum;
 }
 
-// Plane point of a local direction for table lookups: hemisphere_to_plane,
-// except at (and numerically near) the antipode of the pole, whose image is
-// the whole circle |p| = √2; any point out there reads the table's far corner.
-inline Vec2 lookup_plane_point(const Vec3& local) {
-    if (local.z < -0.9999f) return Vec2(1.5f, 1.5f);
-    return hemisphere_to_plane(local);
-}
-
-// The VDT rule: visible fraction of a square of half-edge h whose center has
-// interpolated distance d.
-inline float visible_fraction_from_distance(float d, float half_edge) {
-    return std::clamp(0.5f + d / (2.0f * half_edge), 0.0f, 1.0f);
-}
+// The lookup plane point (antipode → the far corner) and the VDT rule
+// clamp(½ + d / 2h): shading core.
+using shading::lookup_plane_point;
+using shading::visible_fraction_from_distance;
 
 inline float vdt_visible_fraction(int n, const float* vdt, const Vec2& center, float half_edge) {
     return visible_fraction_from_distance(sample_bilinear(n, vdt, center), half_edge);

@@ -24,65 +24,21 @@
 #endif
 
 namespace rsl {
-namespace {
 
-// std::clamp(x, 0, hi), written so that it compiles to maxss/minss (NaN → 0).
-inline float clamp_to(float x, float hi) {
-    x = x > 0.0f ? x : 0.0f;
-    return x < hi ? x : hi;
-}
-
-// The 4×4 SAT corner taps of one square: along x, the two corners bracketing
-// the right edge (weights +(1−f), +f) and the left edge (−(1−f), −f); the same
-// along y. The integral over the square is Σ_m Σ_n wx[m]·wy[n]·S(ax[m], by[n]).
-struct Taps {
-    int ax[4], by[4];
-    float wx[4], wy[4];
-    float clipped_area;   // texel units: area of the square inside [0, N]²
-    float inv_full_area;  // 1 / (full square area in texel units)
-};
-
-// Corner pair bracketing coordinate x ∈ [0, n], with the weight of the upper one.
-inline void bracket(float x, int n, int& lower, float& upper_weight) {
-    lower = std::min(static_cast<int>(x), n - 1);
-    upper_weight = x - static_cast<float>(lower);
-}
-
-inline Taps square_taps(float cx, float cy, float h, int n) {
-    const float scale = 0.5f * static_cast<float>(n);  // plane → texel units
-    h = std::max(h, 1e-6f);
-    const float x0 = clamp_to((cx - h + 1.0f) * scale, float(n));
-    const float x1 = clamp_to((cx + h + 1.0f) * scale, float(n));
-    const float y0 = clamp_to((cy - h + 1.0f) * scale, float(n));
-    const float y1 = clamp_to((cy + h + 1.0f) * scale, float(n));
-    Taps t;
-    int a0, a1, b0, b1;
-    float f0, f1, g0, g1;
-    bracket(x0, n, a0, f0);
-    bracket(x1, n, a1, f1);
-    bracket(y0, n, b0, g0);
-    bracket(y1, n, b1, g1);
-    t.ax[0] = a1, t.ax[1] = a1 + 1, t.ax[2] = a0, t.ax[3] = a0 + 1;
-    t.wx[0] = 1.0f - f1, t.wx[1] = f1, t.wx[2] = f0 - 1.0f, t.wx[3] = -f0;
-    t.by[0] = b1, t.by[1] = b1 + 1, t.by[2] = b0, t.by[3] = b0 + 1;
-    t.wy[0] = 1.0f - g1, t.wy[1] = g1, t.wy[2] = g0 - 1.0f, t.wy[3] = -g0;
-    t.clipped_area = (x1 - x0) * (y1 - y0);
-    const float edge = 2.0f * h * scale;
-    t.inv_full_area = 1.0f / (edge * edge);
-    return t;
-}
-
-}  // namespace
+// The scalar taps are the shading core's (src/shading/shading_core.h
+// square_taps, shared with the GPU); pass 1 below computes the same lane by lane.
+using shading::SquareTaps;
+using shading::square_taps;
 
 Color BrdfTable::slice_square_average(int s, const Vec2& center, float half_edge) const {
-    const Taps t = square_taps(center.x, center.y, half_edge, grid_.n);
+    const SquareTaps t = square_taps(center, half_edge, grid_.n);
     if (t.clipped_area <= 0.0f) return Color(0.0f);
     const size_t row = static_cast<size_t>(grid_.n + 1) * 3;
     const float* corners = sat_.data() + static_cast<size_t>(s) * slice_floats_;
     Color sum(0.0f);
     for (int m = 0; m < 4; ++m)
         for (int l = 0; l < 4; ++l) {
-            const float* c = corners + t.by[m] * row + 3 * t.ax[l];
+            const float* c = corners + size_t(t.by[m]) * row + 3 * size_t(t.ax[l]);
             sum += t.wx[l] * t.wy[m] * Color(c[0], c[1], c[2]);
         }
     return (sum + offsets_[s] * t.clipped_area) * t.inv_full_area;
@@ -141,13 +97,14 @@ inline Float8 sqrt8(const Float8& x) {
     return v;
 }
 
-// bracket, for 8 lanes.
+// shading::corner_bracket, for 8 lanes.
 inline void bracket8(const Float8& x, int n, Int8& lower, Float8& upper_weight) {
     lower = min8(truncate(x), splat(n - 1));
     upper_weight = x - to_float(lower);
 }
-// Linear interpolation between V samples at (k + ½)/V of a coordinate in [0, 1]
-// scaled by V (t = u·V − ½), clamped to the first and last sample.
+// shading::sample_lerp, for 8 lanes: linear interpolation between V samples
+// at (k + ½)/V of a coordinate in [0, 1] scaled by V (t = u·V − ½), clamped
+// to the first and last sample.
 inline void sample_lerp8(const Float8& x, int v, Int8& k0, Float8& w) {
     const Float8 t = clamp8(x, splat(static_cast<float>(v - 1)));
     k0 = min8(truncate(t), splat(v - 2));

@@ -18,19 +18,10 @@
 
 namespace rsl {
 
-// Local direction (unit, any hemisphere except the exact antipode) → plane point.
-inline Vec2 hemisphere_to_plane(const Vec3& w) {
-    const float s = 1.0f / std::sqrt(std::max(1.0f + w.z, 1e-12f));
-    return Vec2(w.x * s, w.y * s);
-}
-
-// Plane point with |p| ≤ √2 → unit local direction. |p| < 1 is above the horizon.
-inline Vec3 plane_to_hemisphere(const Vec2& p) {
-    const float rho2 = std::min(glm::dot(p, p), 2.0f);
-    const float cos_theta = 1.0f - rho2;
-    const float s = std::sqrt(std::max(2.0f - rho2, 0.0f));  // √(1 + cosθ)
-    return Vec3(p.x * s, p.y * s, cos_theta);
-}
+// Local direction ↔ plane point (the map itself lives in the shading core,
+// shared with the GPU: src/shading/shading_core.h).
+using shading::hemisphere_to_plane;
+using shading::plane_to_hemisphere;
 
 // Plane area ↔ solid angle (the map is equal-area).
 inline constexpr float kSolidAnglePerPlaneArea = 2.0f;
@@ -38,7 +29,7 @@ inline constexpr float kSolidAnglePerPlaneArea = 2.0f;
 // An RSL of half-diagonal r has solid angle 2r²; in the plane it becomes an
 // axis-aligned square of the same measure: area r², so half-edge h = r / 2.
 // (The paper prints edge √2·r, which does not preserve measure; see DESIGN.md.)
-inline float square_half_edge_for_rsl(float half_diagonal) { return 0.5f * half_diagonal; }
+using shading::square_half_edge_for_rsl;
 inline float rsl_solid_angle(float half_diagonal) { return 2.0f * half_diagonal * half_diagonal; }
 
 // An N×N table over [-1, 1]²: texel (i, j), i along x and j along y, has its

@@ -6,6 +6,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "src/shading/shading_core.h"
+
 namespace rsl {
 
 using Vec2 = glm::vec2;
@@ -17,18 +19,14 @@ using Quat = glm::quat;
 using DVec3 = glm::dvec3;
 using Color = glm::vec3;  // linear RGB radiance or reflectance
 
-inline constexpr float kPi = std::numbers::pi_v<float>;
+inline constexpr float kPi = shading::kPi;
+inline constexpr float kSqrt2 = shading::kSqrt2;
 inline constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 
 inline float luminance(const Color& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
-// Any unit vector orthogonal to n (Duff et al. 2017, branchless ONB).
-inline Vec3 any_orthonormal(const Vec3& n) {
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float b = n.x * n.y * a;
-    return Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-}
+// Any unit vector orthogonal to n (the shading core's, shared with the GPU).
+using shading::any_orthonormal;
 
 // Local frame at a vertex: z = shading normal n, x = tangent t orthogonalized
 // against n, y = n × t. Visibility tables (SVDF) live in this frame.
@@ -41,11 +39,8 @@ struct Frame {
     // Gram-Schmidt: keeps n exactly, falls back to any orthonormal tangent when
     // t is (nearly) parallel to n or missing.
     static Frame from_normal_tangent(const Vec3& n, const Vec3& t) {
-        Vec3 z = glm::normalize(n);
-        Vec3 x = t - z * glm::dot(z, t);
-        const float len2 = glm::dot(x, x);
-        x = len2 > 1e-12f ? x / std::sqrt(len2) : any_orthonormal(z);
-        return Frame(x, glm::cross(z, x), z);
+        const shading::LocalFrame f = shading::frame_from_normal_tangent(n, t);
+        return Frame(f.x, f.y, f.z);
     }
     static Frame from_normal(const Vec3& n) { return from_normal_tangent(n, Vec3(0)); }
 

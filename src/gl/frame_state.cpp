@@ -22,24 +22,15 @@ void FrameState::update(const Scene& scene, const EnvironmentLights& environment
     update_masks();
 }
 
-// The CPU renderer's occluder lists (the same FrameSetup) as bit masks, and
-// the occluder spheres grown by the footprints it computed.
+// The CPU renderer's occluder lists (the same FrameSetup) as bit masks.
 void FrameState::update_masks() {
     const OccluderLists& lists = setup_.occluder_lists();
     const auto& poses = setup_.poses();
-    const auto& parts_culling = setup_.culling_parts();
     const size_t parts = poses.size();
     light_count_ = int(setup_.environment_squares().size() + setup_.light_positions().size());
     masks_.assign(parts * size_t(light_count_), 0u);
     for (size_t slot = 0; slot < masks_.size(); ++slot)
         for (size_t e = lists.offsets[slot]; e < lists.offsets[slot + 1]; ++e) masks_[slot] |= 1u << lists.occluders[e];
-    spheres_.assign(parts * parts, Vec4(0.0f));
-    for (size_t receiver = 0; receiver < parts; ++receiver)
-        for (size_t o = 0; o < parts; ++o) {
-            if (o == receiver || !parts_culling[o].field) continue;
-            const BoundingSphere& sphere = poses[o].world_bounds;
-            spheres_[receiver * parts + o] = Vec4(sphere.center, sphere.radius + lists.growth[receiver * parts + o]);
-        }
 }
 
 }  // namespace rsl::gl

@@ -4,8 +4,7 @@
 // poses, the environment's square lights rotated and blend-weighted to t,
 // local light positions, the camera, the culling's occluder lists), and what
 // the shader needs on top: per (receiver part, light) the occluder lists as
-// bit masks, and per (receiver, occluder) the occluder's grown bounding
-// sphere. Uploaded as small textures.
+// bit masks. Uploaded as a small texture.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -27,7 +26,7 @@ public:
     FrameState(const Scene& scene, const PartFields& fields);
 
     void reserve(size_t environment_lights, size_t local_lights) { setup_.reserve(environment_lights, local_lights); }
-    // The frame at time t (FrameSetup::update), then the masks and spheres.
+    // The frame at time t (FrameSetup::update), then the masks.
     void update(const Scene& scene, const EnvironmentLights& environment, std::span<const LocalLight> lights,
                 const RenderOptions& options, float t, const Mat3& extra_rotation = Mat3(1.0f),
                 const std::optional<Vec3>& camera = std::nullopt);
@@ -41,10 +40,6 @@ public:
     // then local lights): bit o set when part o's OVDF is looked up.
     uint32_t occluder_mask(int part, int light) const { return masks_[size_t(part) * light_count_ + light]; }
     const std::vector<uint32_t>& masks() const { return masks_; }  // part-major, light_count per part
-    // Per (receiver, occluder), receiver-major: the occluder's world bounding
-    // sphere grown by its field's footprint (xyz center, w radius), for the
-    // shader's per-vertex cone test; radius 0 where no field.
-    const std::vector<Vec4>& occluder_spheres() const { return spheres_; }
     int light_count() const { return light_count_; }
     size_t occluder_pairs() const { return setup_.occluder_lists().pairs; }
     size_t occluder_pairs_culled() const { return setup_.occluder_lists().culled; }
@@ -54,7 +49,6 @@ private:
 
     FrameSetup setup_;
     std::vector<uint32_t> masks_;
-    std::vector<Vec4> spheres_;
     int light_count_ = 0;
 };
 

@@ -97,6 +97,12 @@ GLuint compile(GLenum type, const std::string& name, const std::string& defines)
 
 }  // namespace
 
+std::string shading_prelude() {
+    // Source string 1 for the core, so that an error in it names its line.
+    return shader_layout_constants() + "#define RSL_SHARED\n#define RSL_CONST const\n#line 1 1\n" +
+           shader_text("shading_core.glsl") + "#line 2 0\n";
+}
+
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines) {
     const GLuint vs = compile(GL_VERTEX_SHADER, vertex, defines);
     GLuint fs = 0;

@@ -10,6 +10,7 @@
 
 #include "src/core/math.h"
 #include "src/gl/gl.h"
+#include "src/gl/gpu_layout.h"
 
 namespace rsl::gl {
 
@@ -66,6 +67,12 @@ Query make_query();
 // Throws rsl::Error with the driver's log, naming the shader file.
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines = "");
 
+// What the shading pass gets before its own text: the layout constants
+// (gpu_layout.h shader_layout_constants) and the shading core's GLSL part
+// (src/shading/shading_core.h, embedded as "shading_core.glsl"); then a
+// #line so that the driver's messages give the shader's own line numbers.
+std::string shading_prelude();
+
 // A flat array of vec4 (or half4) stored row-major in a 2D texture of fixed
 // width: element i is texel (i % width, i / width). Shaders read it with
 // texelFetch(tex, ivec2(i % width, i / width), 0).
@@ -74,8 +81,7 @@ struct ArrayTexture {
     int width = 1, height = 1;
     size_t size = 0;
 };
-// Width used for every array texture (a power of two the shaders share).
-inline constexpr int kArrayTextureWidth = 2048;
+// Width used for every array texture: kArrayTextureWidth (gpu_layout.h).
 // `internal_format`: GL_RGBA32F, or GL_RGBA16F for data that is exactly
 // representable in half precision (the driver converts from float).
 ArrayTexture make_array_texture(const std::vector<Vec4>& data, GLenum internal_format = GL_RGBA32F);

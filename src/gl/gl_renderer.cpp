@@ -15,7 +15,7 @@ namespace {
 enum Unit : int {
     kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitOccluders, kUnitBrdf,
     kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
-    kUnitOvdfFrames, kUnitOccluderSpheres, kUnitCount
+    kUnitOvdfFrames, kUnitCount
 };
 
 void bind_texture(int unit, GLenum target, GLuint texture) {
@@ -49,7 +49,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
       frame_(scene, fields_) {
 
     const PackedGeometry geometry = pack_geometry(scene, fields_);
-    const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride);
+    const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride) + shading_prelude();
     shade_program_ = build_program("fullscreen.vert.glsl", "shade_vertices.frag.glsl", defines);
     display_program_ = build_program("display.vert.glsl", "display.frag.glsl");
     glUseProgram(shade_program_.id());
@@ -57,7 +57,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
                                         "u_parts",           "u_lights",            "u_occluders",
                                         "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
                                         "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
-                                        "u_ovdf_frames",     "u_occluder_spheres"};
+                                        "u_ovdf_frames"};
     for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(shade_program_, samplers[unit]), unit);
     glUniform3fv(uniform(shade_program_, "u_face_normal"), 6, &geometry.face_normal[0].x);
     glUniform3fv(uniform(shade_program_, "u_face_s"), 6, &geometry.face_s[0].x);
@@ -97,7 +97,6 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
                   texel_bytes(ovdf_frames_, 16);
     parts_ = make_array_texture(part_records_);
     lights_ = make_array_texture({Vec4(0.0f)});
-    occluder_spheres_ = make_array_texture({Vec4(0.0f)});
     occluders_ = make_texture();
     glBindTexture(GL_TEXTURE_2D, occluders_.id());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -297,6 +296,7 @@ void GlRenderer::upload_frame() {
     update_array_texture(parts_, part_records_);
 
     light_texels_.clear();
+    static_assert(kLightTexels == 2, "two texels per light below");
     for (const SquareLight& square : frame_.environment_squares()) {
         light_texels_.push_back(Vec4(square.direction, square.half_edge));
         light_texels_.push_back(Vec4(square.integral, 0.0f));
@@ -307,7 +307,6 @@ void GlRenderer::upload_frame() {
     }
     if (light_texels_.empty()) light_texels_.push_back(Vec4(0.0f));
     update_array_texture(lights_, light_texels_);
-    update_array_texture(occluder_spheres_, frame_.occluder_spheres());
 
     glBindTexture(GL_TEXTURE_2D, occluders_.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -342,8 +341,6 @@ void GlRenderer::shade() {
     bind_texture(kUnitOvdfTables, GL_TEXTURE_2D, ovdf_tables_.texture.id());
     bind_texture(kUnitOvdfCoefficients, GL_TEXTURE_2D, ovdf_coefficients_.texture.id());
     bind_texture(kUnitOvdfFrames, GL_TEXTURE_2D, ovdf_frames_.texture.id());
-    bind_texture(kUnitOccluderSpheres, GL_TEXTURE_2D, occluder_spheres_.texture.id());
-    glUniform1i(uniform(shade_program_, "u_vertex_culling"), options_.occluder_culling ? 1 : 0);
     glUniform1i(uniform(shade_program_, "u_vertex_count"), vertex_count_);
     glUniform1i(uniform(shade_program_, "u_part_count"), int(scene_.parts.size()));
     glUniform1i(uniform(shade_program_, "u_environment_lights"), int(frame_.environment_squares().size()));

@@ -140,7 +140,7 @@ private:
 
     Program shade_program_, display_program_;
     Texture positions_, normals_, tangents_;
-    ArrayTexture parts_, lights_, brdf_offsets_, occluder_spheres_;
+    ArrayTexture parts_, lights_, brdf_offsets_;
     ArrayTexture svdf_tables_, svdf_coefficients_, ovdf_tables_, ovdf_coefficients_, ovdf_frames_;
     Texture occluders_, brdf_;
     Texture target_;

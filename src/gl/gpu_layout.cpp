@@ -54,6 +54,14 @@ void check_index(const Scene& scene, size_t size, const char* what) {
 
 }  // namespace
 
+std::string shader_layout_constants() {
+    std::string text = "// Generated from src/gl/gpu_layout.h (shader_layout_constants).\n";
+    for (const ShaderIntConstant& c : kShaderIntConstants) text += fmt::format("const int {} = {};\n", c.name, c.value);
+    // {:.9g} round-trips a float exactly.
+    text += fmt::format("const float kPi = {:.9g}f;\nconst float kSqrt2 = {:.9g}f;\n", shading::kPi, shading::kSqrt2);
+    return text;
+}
+
 void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, Vec4* record) {
     for (int c = 0; c < 4; ++c) record[kSlotTransform + c] = transform[c];
     for (int c = 0; c < 3; ++c) record[kSlotNormal + c] = Vec4(normal[c], 0.0f);
@@ -118,20 +126,22 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
         const int tables = append_tables(o.model, g.ovdf_tables, g.ovdf_tables_half);
         const int coefficients = append_coefficients(o.model, g.ovdf_coefficients);
         const int frames = int(g.ovdf_frames.size());
-        for (int face = 0; face < 6; ++face)
+        for (int face = 0; face < shading::kCubeFaces; ++face)
             for (int j = 0; j < n; ++j)
                 for (int i = 0; i < n; ++i) {
                     const Frame& frame = o.sample_frame(face, i, j);
-                    g.ovdf_frames.push_back(Vec4(frame.x, 0.0f));
+                    g.ovdf_frames.push_back(Vec4(frame.x, 0.0f));  // kOvdfFrameTexels
                     g.ovdf_frames.push_back(Vec4(frame.z, 0.0f));
                 }
+        const int zoom_records = int(g.ovdf_frames.size());
         for (int shell = 0; shell < op.shells; ++shell)  // after the frames: (zoom, cone, 0, 0)
             g.ovdf_frames.push_back(Vec4(o.shell_zoom(shell).zoom, o.shell_zoom(shell).cone, 0.0f, 0.0f));
         // Then the samples' surface distances, four to a texel (1: outside, for a field without them).
+        const int surfaces = int(g.ovdf_frames.size());
         const size_t samples = op.sample_count();
-        for (size_t s = 0; s < samples; s += 4) {
+        for (size_t s = 0; s < samples; s += kSurfacesPerTexel) {
             Vec4 texel(1.0f);
-            for (size_t c = 0; c < 4 && s + c < samples; ++c)
+            for (size_t c = 0; c < kSurfacesPerTexel && s + c < samples; ++c)
                 texel[int(c)] = o.surface_distance.empty() ? 1.0f : o.surface_distance[s + c];
             g.ovdf_frames.push_back(texel);
         }
@@ -139,6 +149,7 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
         record[kSlotOvdfBases] = Vec4(float(tables), float(coefficients), float(frames), o.shell_radius(op.shells - 1));
         record[kSlotOvdfShells] = Vec4(float(op.shells), float(int(op.spacing)), op.inner_radius, op.outer_radius);
         record[kSlotOvdfGrid] = Vec4(float(n), float(op.vdt_resolution), float(stride), float(op.segments_per_side));
+        record[kSlotOvdfRecords] = Vec4(float(zoom_records), float(surfaces), 0.0f, 0.0f);
     }
     g.first_vertex.push_back(int(g.positions.size()));
     check_index(scene, g.positions.size(), "the vertices");
@@ -146,6 +157,7 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
     check_index(scene, g.svdf_coefficients.size(), "the SVDF coefficients");
     check_index(scene, g.ovdf_tables.size(), "the OVDF tables");
     check_index(scene, g.ovdf_coefficients.size(), "the OVDF coefficients");
+    check_index(scene, g.ovdf_frames.size(), "the OVDF frames");
     return g;
 }
 

@@ -11,15 +11,23 @@
 //    normals    xyz = part-space normal,   w = SVDF cluster of the vertex (−1: none)
 //    tangents   xyz = part-space tangent (0: none)
 //  parts (kPartStride texels per part): pose, material, SVDF and OVDF records
+//  lights (kLightTexels per light): direction or position + half-edge or radius, integral or radiance
 //  SVDF / OVDF tables: per (cluster, texel) `stride` texels = [μ, b₀ … b_{k−1}] padded
 //  SVDF / OVDF coefficients: per vertex / sample `stride` texels = [1, w₀ … w_{k−1}] padded,
 //    so a reconstruction is Σ_t dot(table_t, coefficients_t)
 //  OVDF sample frames: per (face, i, j) two texels, x and z (y = z × x); then
-//    per shell one texel (table zoom, cone radius, 0, 0) (fields/ovdf.h OvdfZoom)
+//    per shell one texel (table zoom, cone radius, 0, 0) (fields/ovdf.h OvdfZoom);
+//    then the samples' surface distances, kSurfacesPerTexel to a texel. The
+//    part record's kSlotOvdfRecords holds where the last two start.
+//
+// The shader writes none of these numbers: shader_layout_constants() turns
+// kShaderIntConstants (and π, √2) into GLSL constants that the host prepends
+// to the shading pass, so this header is their one source.
 //  BRDF: one 3D texture (N+1)×(N+1)×slices of SAT corners (sat_data() order),
 //    all tables stacked along z; per slice its mean offset (RGB)
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "src/brdf/brdf_table.h"
@@ -28,7 +36,13 @@
 
 namespace rsl::gl {
 
-inline constexpr int kPartStride = 20;
+// Width of every array texture (gl_objects.h): a power of two, so that the
+// shader splits an index with a mask and a shift.
+inline constexpr int kArrayTextureWidth = 2048;
+inline constexpr int kArrayTextureShift = 11;
+static_assert(1 << kArrayTextureShift == kArrayTextureWidth);
+
+inline constexpr int kPartStride = 21;
 // Texel slots inside a part record.
 enum PartSlot : int {
     kSlotTransform = 0,   // 4 columns
@@ -43,7 +57,44 @@ enum PartSlot : int {
     kSlotOvdfGrid = 17,   // (cube resolution, VDT resolution, stride, segments per side)
     kSlotBoxLow = 18,     // (the mesh's bounding box low corner, 0): the slab rule (square_lights.h)
     kSlotBoxHigh = 19,    // (high corner, 0)
+    kSlotOvdfRecords = 20, // (first shell zoom record, first surface-distance texel, 0, 0), in the frames texture
 };
+static_assert(kSlotOvdfRecords < kPartStride);
+
+inline constexpr int kLightTexels = 2;        // per light in the lights texture
+inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
+inline constexpr int kSurfacesPerTexel = 4;   // OVDF surface distances, RGBA
+
+// The integer constants the shading pass reads, by their GLSL names.
+struct ShaderIntConstant {
+    const char* name;
+    int value;
+};
+inline constexpr ShaderIntConstant kShaderIntConstants[] = {
+    {"kArrayWidth", kArrayTextureWidth},
+    {"kArrayShift", kArrayTextureShift},
+    {"kPartStride", kPartStride},
+    {"kSlotTransform", kSlotTransform},
+    {"kSlotNormal", kSlotNormal},
+    {"kSlotInverse", kSlotInverse},
+    {"kSlotMaterial", kSlotMaterial},
+    {"kSlotSvdf", kSlotSvdf},
+    {"kSlotVertices", kSlotVertices},
+    {"kSlotOvdfCenter", kSlotOvdfCenter},
+    {"kSlotOvdfBases", kSlotOvdfBases},
+    {"kSlotOvdfShells", kSlotOvdfShells},
+    {"kSlotOvdfGrid", kSlotOvdfGrid},
+    {"kSlotBoxLow", kSlotBoxLow},
+    {"kSlotBoxHigh", kSlotBoxHigh},
+    {"kSlotOvdfRecords", kSlotOvdfRecords},
+    {"kLightTexels", kLightTexels},
+    {"kSurfacesPerTexel", kSurfacesPerTexel},
+};
+
+// GLSL declarations of kShaderIntConstants and of kPi and kSqrt2 (the
+// shading core's, printed so that they read back as the same floats), one
+// `const` per line, for the host to prepend to the shading pass.
+std::string shader_layout_constants();
 
 // Texels of a reconstruction row or coefficient row for k basis vectors.
 inline int cpca_stride(int vectors) { return (vectors + 1 + 3) / 4; }

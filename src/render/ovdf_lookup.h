@@ -67,8 +67,7 @@ public:
     // square lies beyond the bound |p| − cone that distance() applies (|p|² =
     // 1 − cos in the pole frame). Branch-free, for vectorized loops.
     static bool unshadowed(float cos_to_center, float cone, float half_edge) {
-        const float limit = half_edge + cone;
-        return cos_to_center <= 1.0f - limit * limit;
+        return shading::ovdf_unshadowed(cos_to_center, cone, half_edge);  // the GPU's test too
     }
 
     // Blended signed distance (plane units) for a unit light direction; equals
@@ -103,7 +102,7 @@ private:
             const float zoom = q.zoom[k].zoom;
             const BilinearTaps taps = bilinear_taps(n, zoom * p);
             const size_t below = size_t(n) * stride;
-            const float* const weights = taps.weight;
+            const float* const weights = &taps.weight[0];
             float value = 0;  // × shell weight, table units
             for (const OvdfTerm* end = term + q.term_count[k]; term != end; ++term) {
                 // bilinear_taps' four texels: (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1).
@@ -111,10 +110,9 @@ private:
                 const float* const rows[4] = {r00, r00 + stride, r00 + below, r00 + below + stride};
                 value += blend_rows_dot<V>(rows, weights, term->mean_weight, term->coefficients, vectors);
             }
-            // ovdf_plane_distance, scaled by the (positive) shell weight.
-            distance += std::max(value / zoom, q.shell_weight[k] * (radial - q.zoom[k].cone));
+            distance += shading::ovdf_weighted_plane_distance(value, q.shell_weight[k], q.zoom[k], radial);
         }
-        return std::max(distance, radial - q.cone);  // the receiver's own cone (Ovdf::distance)
+        return shading::ovdf_receiver_distance(distance, radial, q.cone);  // the receiver's own cone (Ovdf::distance)
     }
 
     const Ovdf* field_;

@@ -123,9 +123,9 @@ void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool cul
         s.points.resize(scene_.parts.size() * kBlock);
         s.terms.resize(scene_.parts.size() * kBlock * OvdfPoint::kMaxTerms);
     }
-    // In the occluder's frame, written out so that the loop vectorizes: the
-    // box sides (the slab rule), and as OvdfLookup::prepare the pole and the
-    // cone (ratios d/R are the same in the world).
+    // In the occluder's frame, structure of arrays so that the loop
+    // vectorizes: the box sides (the slab rule), and as OvdfLookup::prepare
+    // the pole and the cone (ratios d/R are the same in the world).
     const Bounds& box = local_boxes_[o];
     const bool cones = fast && culling;
     const Vec3 center = fast ? fast->field().center : Vec3(0);
@@ -136,15 +136,15 @@ void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool cul
         const float x = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0];
         const float y = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1];
         const float z = m[0][2] * s.px[k] + m[1][2] * s.py[k] + m[2][2] * s.pz[k] + m[3][2];
-        s.side_x[o][k] = x > box.hi.x ? 1.0f : x < box.lo.x ? -1.0f : 0.0f;  // box_sides
-        s.side_y[o][k] = y > box.hi.y ? 1.0f : y < box.lo.y ? -1.0f : 0.0f;
-        s.side_z[o][k] = z > box.hi.z ? 1.0f : z < box.lo.z ? -1.0f : 0.0f;
+        s.side_x[o][k] = box_side(x, box.lo.x, box.hi.x);
+        s.side_y[o][k] = box_side(y, box.lo.y, box.hi.y);
+        s.side_z[o][k] = box_side(z, box.lo.z, box.hi.z);
         const float vx = x - center.x, vy = y - center.y, vz = z - center.z;
         const float d = std::sqrt(vx * vx + vy * vy + vz * vz);
         const bool inside = d < outer;
         const float inv = inside && d > 0.0f ? -1.0f / d : 0.0f;  // the pole points towards the center
         s.pole_x[o][k] = vx * inv, s.pole_y[o][k] = vy * inv, s.pole_z[o][k] = vz * inv;
-        const float cone = d > radius ? ovdf_cone_radius(d, radius) : kOvdfNoCone;  // as ovdf_zoom
+        const float cone = ovdf_zoom(d, radius).cone;
         // No cone (no culling, or not an OVDF): every light is looked up.
         s.cone[o][k] = !cones ? kOvdfNoCone : inside ? cone : -1.0f;
     }
@@ -209,7 +209,7 @@ void Renderer::occluder_factors(BlockScratch& s, int part_index, int l, int o, i
             const Vec3 sides = per_occluder ? Vec3(s.side_x[o][k], s.side_y[o][k], s.side_z[o][k])
                                             : box_sides(local_boxes_[o], Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f)));
             const Vec3 light = occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]);
-            if (clears_box_face(sides, light, occluder.face_scale, square_cone_sine(s.qh[i]))) continue;
+            if (clears_box_face_scaled(sides, light, occluder.face_scale, square_cone_sine(s.qh[i]))) continue;
         }
         ++counts.occluder_lookups;
         if (fast) {
@@ -260,10 +260,8 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         s.zx[k] = f.z.x, s.zy[k] = f.z.y, s.zz[k] = f.z.z;
         const Vec3 wo = f.to_local(glm::normalize(camera_ - p));
         s.vx[k] = wo.x, s.vy[k] = wo.y, s.vz[k] = wo.z;
-        const float len2 = wo.x * wo.x + wo.y * wo.y;
-        const float inv = len2 > 1e-16f ? 1.0f / std::sqrt(len2) : 0.0f;
-        s.view_cos[k] = len2 > 1e-16f ? wo.y * inv : 1.0f;
-        s.view_sin[k] = wo.x * inv;
+        const Vec2 alignment = shading::view_alignment(wo);
+        s.view_cos[k] = alignment.x, s.view_sin[k] = alignment.y;
         s.r[k] = s.g[k] = s.b[k] = 0.0f;
     }
     // The block's bounding sphere (box center, farthest vertex) for block-level culling.
@@ -315,8 +313,8 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             const float lx = s.dx[k] * s.xx[k] + s.dy[k] * s.xy[k] + s.dz[k] * s.xz[k];
             const float ly = s.dx[k] * s.yx[k] + s.dy[k] * s.yy[k] + s.dz[k] * s.yz[k];
             const float z = s.dx[k] * s.zx[k] + s.dy[k] * s.zy[k] + s.dz[k] * s.zz[k];
-            const float scale = 1.0f / std::sqrt(std::max(1.0f + z, 1e-12f));
-            s.lpx[k] = lx * scale, s.lpy[k] = ly * scale, s.lz[k] = z;
+            const Vec2 p = hemisphere_to_plane(Vec3(lx, ly, z));
+            s.lpx[k] = p.x, s.lpy[k] = p.y, s.lz[k] = z;
         }
         // Compaction: the view must be above the horizon (ρ = 0 otherwise, as
         // the truth) and the square must reach the upper hemisphere.
@@ -326,8 +324,8 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             s.index[m] = k;
             s.qx[m] = s.lpx[k], s.qy[m] = s.lpy[k], s.qh[m] = s.half[k];
             if (isotropic) {  // view-aligned frame: rotate about the normal (to_view_aligned)
-                s.tx[m] = s.lpx[k] * s.view_cos[k] - s.lpy[k] * s.view_sin[k];
-                s.ty[m] = s.lpx[k] * s.view_sin[k] + s.lpy[k] * s.view_cos[k];
+                const Vec2 t = shading::to_view_aligned(Vec2(s.lpx[k], s.lpy[k]), Vec2(s.view_cos[k], s.view_sin[k]));
+                s.tx[m] = t.x, s.ty[m] = t.y;
             } else {
                 s.tx[m] = s.lpx[k], s.ty[m] = s.lpy[k];
                 s.qvx[m] = s.vx[k], s.qvy[m] = s.vy[k];

@@ -1,0 +1,417 @@
+// The one shading core of the CPU and GPU renderers: every pure
+// per-vertex × per-light function of the rendering sum (docs/RENDERER.md,
+// docs/GPU.md), written once in the common subset of C++ (glm) and GLSL 330.
+//
+// C++ includes this header (namespace rsl::shading; the older names stay
+// visible in rsl through using-declarations in hemisphere.h, vdt.h, ovdf.h,
+// square_lights.h). The GPU gets the text between the two GLSL markers below:
+// src/gl/embed_shaders_script.cmake embeds it as "shading_core.glsl", and
+// gl_objects.cpp prepends it, after the layout constants generated from
+// src/gl/gpu_layout.h (kPi, kSqrt2 among them), to the shading pass. So a
+// formula changed here changes both renderers; tests/gl/shading_core_test.cpp
+// runs every function below on both and compares.
+//
+// What stays per side is data access (pointers and SoA loops on the CPU,
+// texelFetch on the GPU) and the CPU's vectorized batch kernels.
+//
+// Rules of the shared part, so that it compiles as both languages:
+//  * glm type names (vec2, vec3, vec4, ivec4), functions of both libraries
+//    (min, max, clamp, abs, sqrt, log, sin, dot, length, normalize, cross), no
+//    swizzles;
+//  * results are small structs filled member by member (GLSL has no
+//    aggregate initializers; C++ has no `out` parameters): no references,
+//    pointers, templates, overloads on constness or member initializers;
+//  * float literals carry `f` (GLSL ≥ 1.30 accepts it), locals are not
+//    `const` (GLSL 330 wants constant initializers there);
+//  * RSL_SHARED before every function (C++: inline), RSL_CONST before
+//    constants (C++: inline constexpr; GLSL: const).
+#pragma once
+#include <cmath>
+#include <numbers>
+
+#include <glm/glm.hpp>
+
+#define RSL_SHARED inline
+#define RSL_CONST inline constexpr
+
+namespace rsl::shading {
+
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+using glm::clamp;
+using glm::cross;
+using glm::dot;
+using glm::length;
+using glm::max;
+using glm::min;
+using glm::normalize;
+using std::abs;
+using std::log;
+using std::sin;
+using std::sqrt;
+
+// π and √2 come from std::numbers; the GPU gets these values as generated
+// constants (gpu_layout.h shader_constants_glsl), not as literals.
+inline constexpr float kPi = std::numbers::pi_v<float>;
+inline constexpr float kSqrt2 = std::numbers::sqrt2_v<float>;
+
+// RSL_GLSL_BEGIN (the GPU's copy starts here)
+
+// Value of a visibility distance table whose map has no boundary (all
+// visible or all blocked), plane units: more than any square's half-edge.
+RSL_CONST float kVdtNoBoundaryDistance = 4.0f;
+// Where an OVDF's bounding cone edge lies in a zoomed table ([-1, 1]²).
+RSL_CONST float kOvdfZoomEdge = 0.75f;
+// The cone radius used where there is no cone (inside the bounding sphere).
+RSL_CONST float kOvdfNoCone = 1e6f;
+RSL_CONST int kCubeFaces = 6;
+
+// ---- frames and the equal-area map (src/core/hemisphere.h) ----
+
+// Any unit vector orthogonal to n (Duff et al. 2017, branchless ONB).
+RSL_SHARED vec3 any_orthonormal(vec3 n) {
+    float s = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n.z);
+    float b = n.x * n.y * a;
+    return vec3(1.0f + s * n.x * n.x * a, s * b, -s * n.x);
+}
+
+// Local frame: z = the normal, x = the tangent orthogonalized (Gram–Schmidt),
+// any orthonormal x when the tangent is missing or parallel, y = z × x.
+struct LocalFrame {
+    vec3 x;
+    vec3 y;
+    vec3 z;
+};
+RSL_SHARED LocalFrame frame_from_normal_tangent(vec3 n, vec3 t) {
+    LocalFrame f;
+    f.z = normalize(n);
+    vec3 x = t - f.z * dot(f.z, t);
+    float len2 = dot(x, x);
+    f.x = len2 > 1e-12f ? x / sqrt(len2) : any_orthonormal(f.z);
+    f.y = cross(f.z, f.x);
+    return f;
+}
+RSL_SHARED vec3 frame_to_local(LocalFrame f, vec3 v) { return vec3(dot(v, f.x), dot(v, f.y), dot(v, f.z)); }
+
+// Local direction (unit, anywhere but the exact antipode) → plane point
+// p = (x, y) / √(1 + z), Lambert's azimuthal equal-area map.
+RSL_SHARED vec2 hemisphere_to_plane(vec3 w) {
+    float s = 1.0f / sqrt(max(1.0f + w.z, 1e-12f));
+    return vec2(w.x * s, w.y * s);
+}
+// Plane point with |p| ≤ √2 → unit local direction (|p| < 1: above the horizon).
+RSL_SHARED vec3 plane_to_hemisphere(vec2 p) {
+    float rho2 = min(dot(p, p), 2.0f);
+    float s = sqrt(max(2.0f - rho2, 0.0f));  // √(1 + cosθ)
+    return vec3(p.x * s, p.y * s, 1.0f - rho2);
+}
+// hemisphere_to_plane for table lookups: at (and numerically near) the
+// antipode, whose image is the whole circle |p| = √2, the table's far corner.
+RSL_SHARED vec2 lookup_plane_point(vec3 local) {
+    if (local.z < -0.9999f) return vec2(1.5f, 1.5f);
+    return hemisphere_to_plane(local);
+}
+
+// ---- lights as squares (src/render/square_lights.h) ----
+
+// An RSL of half-diagonal r (solid angle 2r²) is the plane square of area r²:
+// half-edge r / 2 (measure preserving; DESIGN.md).
+RSL_SHARED float square_half_edge_for_rsl(float half_diagonal) { return 0.5f * half_diagonal; }
+// A square of solid angle Ω has plane area Ω / 2.
+RSL_SHARED float half_edge_for_solid_angle(float solid_angle) { return 0.5f * sqrt(0.5f * solid_angle); }
+// The cap a sphere of radius a subtends at distance d > a: 2π(1 − cos α),
+// written 2π sin²α / (1 + cos α) against cancellation.
+RSL_SHARED float sphere_cap_solid_angle(float radius, float distance) {
+    float sin2 = min(1.0f, (radius / distance) * (radius / distance));
+    return 2.0f * kPi * sin2 / (1.0f + sqrt(1.0f - sin2));
+}
+// Whether a square of half-edge h centred on local direction w can overlap
+// the upper hemisphere: |p(w)| = √(1 − w.z) < 1 + √2·h.
+RSL_SHARED bool square_reaches_hemisphere(float local_z, float half_edge) {
+    float reach = 1.0f + kSqrt2 * half_edge;
+    return local_z > 1.0f - reach * reach;
+}
+
+// Isotropic tables are view-aligned: the local frame turned about the normal
+// so that the view lies in the y–z plane. (cos φ_o, sin φ_o) of the local
+// view wo; (1, 0) for a view along the normal.
+RSL_SHARED vec2 view_alignment(vec3 wo) {
+    float len2 = wo.x * wo.x + wo.y * wo.y;
+    float inv = len2 > 1e-16f ? 1.0f / sqrt(len2) : 0.0f;
+    return vec2(len2 > 1e-16f ? wo.y * inv : 1.0f, wo.x * inv);
+}
+// A plane point in the view-aligned frame, for alignment (cos φ_o, sin φ_o).
+RSL_SHARED vec2 to_view_aligned(vec2 p, vec2 alignment) {
+    return vec2(p.x * alignment.x - p.y * alignment.y, p.x * alignment.y + p.y * alignment.x);
+}
+
+// ---- visibility distance tables (fields/vdt.h) ----
+
+// The VDT rule: visible fraction of a square of half-edge h whose centre has
+// interpolated signed distance d.
+RSL_SHARED float visible_fraction_from_distance(float d, float half_edge) {
+    return clamp(0.5f + d / (2.0f * half_edge), 0.0f, 1.0f);
+}
+
+// Bilinear taps between texel centres of an n×n table over [-1, 1]²; the
+// edge value is held outside the outermost centres. Texels (i, j), (i+1, j),
+// (i, j+1), (i+1, j+1), stored at j·n + i.
+struct BilinearTaps {
+    ivec4 index;
+    vec4 weight;
+};
+RSL_SHARED BilinearTaps bilinear_taps(int n, vec2 p) {
+    float hi = float(n - 1);
+    float u = clamp((p.x + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
+    float v = clamp((p.y + 1.0f) * (0.5f * float(n)) - 0.5f, 0.0f, hi);
+    int i0 = min(int(u), n - 2);
+    int j0 = min(int(v), n - 2);
+    float fx = u - float(i0);
+    float fy = v - float(j0);
+    int base = j0 * n + i0;
+    BilinearTaps taps;
+    taps.index = ivec4(base, base + 1, base + n, base + n + 1);
+    taps.weight = vec4((1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy);
+    return taps;
+}
+
+// ---- BRDF summed-area tables (src/brdf/brdf_table_lookup.cpp) ----
+
+// The SAT corner pair bracketing coordinate x ∈ [0, n], and the upper one's weight.
+struct CornerBracket {
+    int lower;
+    float upper_weight;
+};
+RSL_SHARED CornerBracket corner_bracket(float x, int n) {
+    CornerBracket b;
+    b.lower = min(int(x), n - 1);
+    b.upper_weight = x - float(b.lower);
+    return b;
+}
+
+// The 4×4 SAT corner taps of a square (centre c, half-edge h, plane units)
+// on an n×n table: along x the corners bracketing the right edge (weights
+// 1 − f, f) and the left edge (f − 1, −f); the same along y. The integral is
+// Σ wx[m]·wy[l]·S(ax[m], by[l]) plus the mean offset × the clipped area.
+struct SquareTaps {
+    ivec4 ax;
+    ivec4 by;
+    vec4 wx;
+    vec4 wy;
+    float clipped_area;   // texel units: the square's area inside [0, n]²
+    float inv_full_area;  // 1 / (the whole square's area in texel units)
+};
+RSL_SHARED SquareTaps square_taps(vec2 c, float half_edge, int n) {
+    float scale = 0.5f * float(n);  // plane → texel units
+    float h = max(half_edge, 1e-6f);
+    float x0 = clamp((c.x - h + 1.0f) * scale, 0.0f, float(n));
+    float x1 = clamp((c.x + h + 1.0f) * scale, 0.0f, float(n));
+    float y0 = clamp((c.y - h + 1.0f) * scale, 0.0f, float(n));
+    float y1 = clamp((c.y + h + 1.0f) * scale, 0.0f, float(n));
+    CornerBracket a0 = corner_bracket(x0, n);
+    CornerBracket a1 = corner_bracket(x1, n);
+    CornerBracket b0 = corner_bracket(y0, n);
+    CornerBracket b1 = corner_bracket(y1, n);
+    SquareTaps t;
+    t.ax = ivec4(a1.lower, a1.lower + 1, a0.lower, a0.lower + 1);
+    t.wx = vec4(1.0f - a1.upper_weight, a1.upper_weight, a0.upper_weight - 1.0f, -a0.upper_weight);
+    t.by = ivec4(b1.lower, b1.lower + 1, b0.lower, b0.lower + 1);
+    t.wy = vec4(1.0f - b1.upper_weight, b1.upper_weight, b0.upper_weight - 1.0f, -b0.upper_weight);
+    t.clipped_area = (x1 - x0) * (y1 - y0);
+    float edge = 2.0f * h * scale;
+    t.inv_full_area = 1.0f / (edge * edge);
+    return t;
+}
+
+// Linear interpolation between v view samples at (k + ½)/v: t = u·v − ½,
+// clamped to the first and last sample; the lower sample and the upper weight.
+struct SampleLerp {
+    int lower;
+    float upper_weight;
+};
+RSL_SHARED SampleLerp sample_lerp(float t, int v) {
+    float x = clamp(t, 0.0f, float(v - 1));
+    SampleLerp s;
+    s.lower = min(int(x), v - 2);
+    s.upper_weight = x - float(s.lower);
+    return s;
+}
+// Isotropic tables: the view's slice coordinate, linear in its plane radius √(1 − cos θ_o).
+RSL_SHARED float isotropic_view_coordinate(float view_z, int v) {
+    return sqrt(clamp(1.0f - view_z, 0.0f, 1.0f)) * float(v) - 0.5f;
+}
+// Anisotropic tables: a plane coordinate x ∈ [-1, 1] on the grid of v view
+// samples (sample_lerp's t; samples at texel centres).
+RSL_SHARED float view_grid_coordinate(float x, int v) { return (x + 1.0f) * 0.5f * float(v) - 0.5f; }
+// Anisotropic tables: the view's plane point, clamped to the horizon (unit disk).
+RSL_SHARED vec2 anisotropic_view_point(vec3 view) {
+    vec2 p = hemisphere_to_plane(vec3(view.x, view.y, max(view.z, -0.999f)));
+    float len2 = dot(p, p);
+    if (len2 > 1.0f) p = p / sqrt(len2);
+    return p;
+}
+
+// ---- the occluder field (fields/ovdf.h) ----
+
+// Continuous shell index of distance ratio d / R between the inner and the
+// outer shell radii (× R): spacing 0 geometric, 1 linear, 2 inverse radius.
+RSL_SHARED float ovdf_shell_coordinate(int spacing, int shells, float inner, float outer, float ratio) {
+    float last = float(shells - 1);
+    if (spacing == 0) return last * log(max(ratio, 1e-6f) / inner) / log(outer / inner);
+    if (spacing == 1) return last * (ratio - inner) / (outer - inner);
+    return last * (1.0f / max(ratio, 1e-6f) - 1.0f / inner) / (1.0f / outer - 1.0f / inner);
+}
+// The two shells around a shell coordinate (clamped inside): the lower one
+// and the upper one's weight.
+struct ShellPair {
+    int lower;
+    float upper_weight;
+};
+RSL_SHARED ShellPair ovdf_shell_pair(float coordinate, int shells) {
+    float u = clamp(coordinate, 0.0f, float(shells - 1));
+    ShellPair s;
+    s.lower = min(int(u), shells - 2);
+    s.upper_weight = u - float(s.lower);
+    return s;
+}
+
+// The cube face whose normal is nearest to the unit direction (the first on
+// ties), and the cosine to it.
+struct CubeFace {
+    int face;
+    float cosine;
+};
+RSL_SHARED CubeFace cube_face(vec3 dir, const vec3 normals[6]) {
+    CubeFace c;
+    c.face = 0;
+    c.cosine = -2.0f;
+    for (int f = 0; f < kCubeFaces; ++f) {
+        float d = dot(dir, normals[f]);
+        if (d > c.cosine) {
+            c.face = f;
+            c.cosine = d;
+        }
+    }
+    return c;
+}
+// The four sample taps (i, j) of an n×n face around unit direction dir and
+// their bilinear weights: (i, j), (i+1, j), (i, j+1), (i+1, j+1). s, t: the
+// face's axes; cosine: dir's cosine to the face normal.
+struct SampleTaps {
+    ivec4 i;
+    ivec4 j;
+    vec4 weight;
+};
+RSL_SHARED SampleTaps ovdf_sample_taps(vec3 dir, float cosine, vec3 s, vec3 t, int n) {
+    float hi = float(n - 1);
+    float x = clamp((dot(dir, s) / cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
+    float y = clamp((dot(dir, t) / cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
+    int i0 = min(int(x), n - 2);
+    int j0 = min(int(y), n - 2);
+    float fx = x - float(i0);
+    float fy = y - float(j0);
+    SampleTaps taps;
+    taps.i = ivec4(i0, i0 + 1, i0, i0 + 1);
+    taps.j = ivec4(j0, j0, j0 + 1, j0 + 1);
+    taps.weight = vec4((1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy);
+    return taps;
+}
+// Sample (shell, face, i, j) of faces of n×n samples, and its PCA segment
+// (each face split m×m).
+RSL_SHARED int ovdf_sample_index(int shell, int face, int i, int j, int n) {
+    return ((shell * kCubeFaces + face) * n + j) * n + i;
+}
+RSL_SHARED int ovdf_segment_of(int shell, int face, int i, int j, int n, int m) {
+    return ((shell * kCubeFaces + face) * m + j * m / n) * m + i * m / n;
+}
+
+// Plane radius of the bounding cone of a part of bounding radius R seen from
+// distance d > R: √2·sin(½·asin x) = x / √(1 + √(1 − x²)), x = R/d — square
+// roots only, which GLSL evaluates as C++ does (its asin is approximate).
+RSL_SHARED float ovdf_cone_radius(float distance, float radius) {
+    float x = min(radius / max(distance, 1e-30f), 1.0f);
+    return x / sqrt(1.0f + sqrt(1.0f - x * x));
+}
+// A shell's zoomed table: table point = zoom × plane point, so that the
+// bounding cone's edge maps to kOvdfZoomEdge (fields/ovdf.h); no cone and no
+// zoom inside the bounding sphere.
+struct OvdfZoom {
+    float zoom;
+    float cone;  // plane radius of the bounding cone's edge
+};
+RSL_SHARED OvdfZoom ovdf_zoom(float distance, float radius) {
+    OvdfZoom z;
+    z.zoom = 1.0f;
+    z.cone = kOvdfNoCone;
+    if (distance <= radius) return z;
+    z.cone = ovdf_cone_radius(distance, radius);
+    z.zoom = max(1.0f, kOvdfZoomEdge / z.cone);
+    return z;
+}
+// A shell's distance in plane units from its table value (table units) at a
+// plane point of radius `radial`: the part lies in the cone, D ≥ |p| − e.
+RSL_SHARED float ovdf_plane_distance(float table_distance, OvdfZoom z, float radial) {
+    return max(table_distance / z.zoom, radial - z.cone);
+}
+// The same with the table value already scaled by the shell's weight w > 0
+// (w·D′), giving w × the shell's distance: the renderers' form.
+RSL_SHARED float ovdf_weighted_plane_distance(float weighted_table_distance, float weight, OvdfZoom z, float radial) {
+    return max(weighted_table_distance / z.zoom, weight * (radial - z.cone));
+}
+// The same bound with the cone seen from the receiver itself, after the
+// shells' blend (exact, tighter than the nearer shell's).
+RSL_SHARED float ovdf_receiver_distance(float blended, float radial, float cone) {
+    return max(blended, radial - cone);
+}
+// The receiver's own bounding cone test: whether the lookup certainly gives 1
+// for a light at cosine cos_to_center from the pole (|p|² = 1 − cos) and a
+// square of half-edge h: the square lies beyond |p| − cone ≥ h. Branch-free,
+// for the CPU's vectorized loops; the GPU runs it before each lookup.
+RSL_SHARED bool ovdf_unshadowed(float cos_to_center, float cone, float half_edge) {
+    float limit = half_edge + cone;
+    return cos_to_center <= 1.0f - limit * limit;
+}
+
+// ---- the slab rule (src/render/square_lights.h) ----
+
+// Half-angle of a cone around the light's direction holding the part of its
+// square above any vertex's horizon, whatever the frame: the square's points
+// lie within √2·h of its centre, along segments within plane radius ρ_max =
+// min(√2, 1 + √2·h), and the inverse map stretches lengths by at most
+// √2 / cos(θ_max / 2) (ρ = √2·sin(θ/2)).
+RSL_SHARED float square_cone_half_angle(float half_edge) {
+    float rho_max = min(kSqrt2, 1.0f + kSqrt2 * half_edge);
+    float sin_half = rho_max / kSqrt2;
+    float cos_half = sqrt(max(0.0f, 1.0f - sin_half * sin_half));
+    if (cos_half < 1e-3f) return kPi;
+    return min(kPi, 2.0f * half_edge / cos_half);
+}
+// sin β for the slab rule; 2 (never clears) once β reaches π/2.
+RSL_SHARED float square_cone_sine(float half_edge) {
+    float beta = square_cone_half_angle(half_edge);
+    return beta >= 0.5f * kPi ? 2.0f : sin(beta);
+}
+// Which side of the slab [lo, hi] x lies on: 1 above, −1 below, 0 within.
+RSL_SHARED float box_side(float x, float lo, float hi) { return x > hi ? 1.0f : (x < lo ? -1.0f : 0.0f); }
+RSL_SHARED vec3 box_sides(vec3 lo, vec3 hi, vec3 p) {
+    return vec3(box_side(p.x, lo.x, hi.x), box_side(p.y, lo.y, hi.y), box_side(p.z, lo.z, hi.z));
+}
+// The slab rule: a receiver beyond a face of the occluder's bounding box
+// (sides, in the part's frame) is unshadowed by it from a square whose
+// directions all leave that face's plane outwards: some s_a·L_a ≥ sin β(h).
+RSL_SHARED bool clears_box_face(vec3 sides, vec3 light, float sin_beta) {
+    return max(sides.x * light.x, max(sides.y * light.y, sides.z * light.z)) >= sin_beta;
+}
+// The world form: light = inverse_linear·(world direction), not normalized,
+// and face_scale = the lengths of inverse_linear's rows (the faces' world
+// normals), so that the test holds for scaled parts too.
+RSL_SHARED bool clears_box_face_scaled(vec3 sides, vec3 inverse_linear_light, vec3 face_scale, float sin_beta) {
+    return clears_box_face(sides, inverse_linear_light / face_scale, sin_beta);
+}
+
+// RSL_GLSL_END (the GPU's copy ends here)
+
+}  // namespace rsl::shading

@@ -1,0 +1,112 @@
+// The cases of tests/gl/shading_core_test.cpp, in the shading core's common
+// subset of C++ and GLSL (src/shading/shading_core.h), so that both sides
+// map the same random inputs to the same arguments: C++ includes this file,
+// and the test reads the text between the markers into its fragment shader.
+// Each mode calls a group of shared functions and packs their results
+// (integers as floats, exact here) into two vec4.
+#pragma once
+#include "src/shading/shading_core.h"
+
+namespace rsl::shading {
+
+// RSL_GLSL_BEGIN
+
+RSL_CONST int kShadingCoreModes = 11;
+
+struct CaseOutput {
+    vec4 first;
+    vec4 second;
+};
+
+// a, b: uniform in [-1, 1]⁴; normals, s, t: the OVDF cube faces' axes.
+RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 normals[6], const vec3 s[6],
+                                        const vec3 t[6]) {
+    CaseOutput o;
+    o.first = vec4(0.0f);
+    o.second = vec4(0.0f);
+    vec3 w = normalize(vec3(a.x, a.y, a.z) + vec3(0.0f, 0.0f, 1e-3f));
+    float ha = 0.002f + 0.6f * abs(a.w);  // a half-edge
+    int n = 2 + int(30.0f * abs(b.z));     // a table resolution
+    if (mode == 0) {  // the equal-area map
+        vec2 p = hemisphere_to_plane(w);
+        vec3 near_antipode = normalize(vec3(0.005f * a.x, 0.005f * a.y, -1.0f));  // z < -0.9999
+        vec2 q = lookup_plane_point(b.w > 0.0f ? w : near_antipode);
+        vec3 back = plane_to_hemisphere(vec2(1.45f * b.x, 1.45f * b.y));
+        o.first = vec4(p.x, p.y, q.x, q.y);
+        o.second = vec4(back.x, back.y, back.z, square_half_edge_for_rsl(abs(b.z)));
+    } else if (mode == 1) {  // frames (a missing tangent half of the time: any_orthonormal)
+        vec3 tangent = b.w > 0.5f ? vec3(0.0f) : vec3(b.x, b.y, b.z);
+        LocalFrame f = frame_from_normal_tangent(w, tangent);
+        vec3 local = frame_to_local(f, vec3(a.w, b.w, 0.5f));
+        o.first = vec4(f.x.x, f.x.y, f.x.z, f.y.x);
+        o.second = vec4(f.y.y, f.y.z, local.x, local.y);
+    } else if (mode == 2) {  // lights as squares, the VDT rule, view alignment
+        float radius = 0.01f + abs(a.x);
+        float solid_angle = sphere_cap_solid_angle(radius, radius * (1.0001f + 10.0f * abs(a.y)));
+        vec2 alignment = view_alignment(w);
+        o.first = vec4(solid_angle, half_edge_for_solid_angle(solid_angle),
+                       square_reaches_hemisphere(a.z, ha) ? 1.0f : 0.0f, visible_fraction_from_distance(b.x, ha));
+        o.second = vec4(square_cone_half_angle(abs(b.y)), square_cone_sine(abs(b.y)), alignment.x, alignment.y);
+    } else if (mode == 3) {  // bilinear taps
+        BilinearTaps taps = bilinear_taps(n, vec2(1.6f * a.x, 1.6f * a.y));
+        o.first = vec4(taps.index);
+        o.second = taps.weight;
+    } else if (mode == 4 || mode == 5) {  // BRDF SAT square taps
+        SquareTaps taps = square_taps(vec2(1.5f * a.x, 1.5f * a.y), ha, n);
+        if (mode == 4) {
+            o.first = vec4(taps.ax) + 1000.0f * vec4(taps.by);
+            o.second = taps.wx;
+        } else {
+            o.first = taps.wy;
+            o.second = vec4(taps.clipped_area, taps.inv_full_area, 0.0f, 0.0f);
+        }
+    } else if (mode == 6) {  // view samples
+        int v = 2 + int(8.0f * abs(b.z));
+        SampleLerp lerp = sample_lerp(10.0f * a.x, v);
+        vec2 view = anisotropic_view_point(normalize(vec3(b.x, b.y, b.w)));
+        vec2 aligned = to_view_aligned(vec2(a.y, a.z), view_alignment(w));
+        o.first = vec4(float(lerp.lower), lerp.upper_weight, isotropic_view_coordinate(a.y, v), view_grid_coordinate(a.z, v));
+        o.second = vec4(view.x, view.y, aligned.x, aligned.y);
+    } else if (mode == 7) {  // shells, zoom and cone
+        int spacing = min(2, int(3.0f * abs(b.w)));
+        int shells = 2 + int(20.0f * abs(b.z));
+        float coordinate = ovdf_shell_coordinate(spacing, shells, 0.3f + 0.2f * abs(b.x), 4.0f + 20.0f * abs(b.y),
+                                                 0.1f + 30.0f * abs(a.x));
+        ShellPair pair = ovdf_shell_pair(coordinate, shells);
+        float radius = 0.1f + abs(a.y);
+        float distance = radius * (0.5f + 10.0f * abs(a.z));
+        OvdfZoom zoom = ovdf_zoom(distance, radius);
+        float radial = 1.4f * abs(b.x);
+        o.first = vec4(coordinate, float(pair.lower), pair.upper_weight, ovdf_cone_radius(distance, radius));
+        o.second = vec4(zoom.zoom, zoom.cone < kOvdfNoCone ? zoom.cone : -1.0f, ovdf_plane_distance(a.w, zoom, radial),
+                        ovdf_weighted_plane_distance(a.w, 0.1f + abs(b.y), zoom, radial));
+    } else if (mode == 8 || mode == 9) {  // cube faces and sample taps
+        CubeFace face = cube_face(w, normals);
+        int m = 1 + int(2.0f * abs(b.x));
+        SampleTaps taps = ovdf_sample_taps(w, face.cosine, s[face.face], t[face.face], n * m);
+        if (mode == 8) {
+            o.first = vec4(float(face.face), face.cosine,
+                           float(ovdf_sample_index(int(5.0f * abs(b.y)), face.face, taps.i[0], taps.j[3], n * m)),
+                           float(ovdf_segment_of(int(5.0f * abs(b.y)), face.face, taps.i[3], taps.j[0], n * m, m)));
+            o.second = taps.weight;
+        } else {
+            o.first = vec4(taps.i);
+            o.second = vec4(taps.j);
+        }
+    } else {  // the receiver's cone and the slab rule
+        vec3 lo = vec3(-0.5f, -0.3f, -0.2f);
+        vec3 hi = vec3(0.4f, 0.6f, 0.1f);
+        vec3 sides = box_sides(lo, hi, vec3(a.x, a.y, a.z));
+        vec3 scale = vec3(0.5f + abs(b.x), 0.5f + abs(b.y), 0.5f + abs(b.z));
+        float sine = square_cone_sine(0.5f * ha);
+        o.first = vec4(ovdf_unshadowed(a.w, abs(b.x), ha) ? 1.0f : 0.0f, ovdf_receiver_distance(a.w, abs(b.y), abs(b.z)),
+                       box_side(a.x, lo.x, hi.x), sides.x + 10.0f * sides.y + 100.0f * sides.z);
+        o.second = vec4(clears_box_face(sides, w, sine) ? 1.0f : 0.0f,
+                        clears_box_face_scaled(sides, w * scale, scale, sine) ? 1.0f : 0.0f, sine, 0.0f);
+    }
+    return o;
+}
+
+// RSL_GLSL_END
+
+}  // namespace rsl::shading
