@@ -1,5 +1,5 @@
 #pragma once
-// Rotatable square lights (RSL paper §4.1; DESIGN.md "Rotatable square lights").
+// Rotatable square lights (RSL paper §4.1; docs/METHOD.md "Rotatable square lights").
 //
 // An RSL ⟨c, r, I⟩ is a square of uniform radiance I centred on the unit
 // direction c with half-diagonal r. "Square" means: in the fitting chart at c

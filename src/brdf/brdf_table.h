@@ -1,5 +1,5 @@
 #pragma once
-// BRDF summed-area tables (RSL paper §4.2; frames and measure of DESIGN.md).
+// BRDF summed-area tables (RSL paper §4.2; frames and measure of docs/METHOD.md).
 //
 // A table holds, for each tabulated view direction (a "slice"), the texel
 // averages of ρ·cosθ_i on the equal-area N×N grid of light directions

@@ -1,5 +1,5 @@
 #pragma once
-// Errors of a result A against a reference B (DESIGN.md "Ground truth and
+// Errors of a result A against a reference B (docs/METHOD.md "Ground truth and
 // error"): relative L2 over vertices (RGB) or over covered pixels, maximum
 // error, per-part breakdown, and for images an H1-type error on gradients.
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
 // Lights as the runtime sees them: squares in a vertex's local hemisphere
-// (DESIGN.md "Rotatable square lights", "Local lights").
+// (docs/METHOD.md "Rotatable square lights", "Local lights").
 //
 // An environment RSL ⟨c, r, I⟩ is the same for every vertex: solid angle 2r²,
 // light integral 2r²·I, and in the local equal-area plane an axis-aligned

@@ -118,7 +118,7 @@ RSL_SHARED vec2 lookup_plane_point(vec3 local) {
 // ---- lights as squares (src/render/square_lights.h) ----
 
 // An RSL of half-diagonal r (solid angle 2r²) is the plane square of area r²:
-// half-edge r / 2 (measure preserving; DESIGN.md).
+// half-edge r / 2 (measure preserving; docs/METHOD.md "Rotatable square lights").
 RSL_SHARED float square_half_edge_for_rsl(float half_diagonal) { return 0.5f * half_diagonal; }
 // A square of solid angle Ω has plane area Ω / 2.
 RSL_SHARED float half_edge_for_solid_angle(float solid_angle) { return 0.5f * sqrt(0.5f * solid_angle); }
