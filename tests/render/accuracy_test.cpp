@@ -2,6 +2,7 @@
 // small scene (a sphere over a plane under a sky with a bright sun-like block).
 #include <catch2/catch.hpp>
 
+#include "src/frame/error_metrics.h"
 #include "src/render/renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
@@ -10,14 +11,7 @@ namespace rsl {
 namespace {
 
 double relative_l2(const VertexColors& a, const VertexColors& reference) {
-    double error2 = 0, norm2 = 0;
-    for (size_t p = 0; p < a.parts.size(); ++p)
-        for (size_t v = 0; v < a.parts[p].size(); ++v) {
-            const DVec3 d = DVec3(a.parts[p][v]) - DVec3(reference.parts[p][v]);
-            error2 += glm::dot(d, d);
-            norm2 += glm::dot(DVec3(reference.parts[p][v]), DVec3(reference.parts[p][v]));
-        }
-    return std::sqrt(error2 / norm2);
+    return compare_vertex_colors(a, reference).total.relative_l2();
 }
 
 // Dim blue sky above, dark ground below, a bright warm block high on +Z.

@@ -4,6 +4,7 @@
 // bound that the swapped weights fail) and against the linearity it rests on.
 #include <catch2/catch.hpp>
 
+#include "src/frame/error_metrics.h"
 #include "src/render/renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
@@ -12,14 +13,7 @@ namespace rsl {
 namespace {
 
 double relative_l2(const VertexColors& a, const VertexColors& reference) {
-    double error2 = 0, norm2 = 0;
-    for (size_t p = 0; p < a.parts.size(); ++p)
-        for (size_t v = 0; v < a.parts[p].size(); ++v) {
-            const DVec3 d = DVec3(a.parts[p][v]) - DVec3(reference.parts[p][v]);
-            error2 += glm::dot(d, d);
-            norm2 += glm::dot(DVec3(reference.parts[p][v]), DVec3(reference.parts[p][v]));
-        }
-    return std::sqrt(error2 / norm2);
+    return compare_vertex_colors(a, reference).total.relative_l2();
 }
 
 // Two maps lit from very different sides, so that the weights matter: a warm
