@@ -77,7 +77,12 @@ std::string with_defines(const std::string& source, const std::string& defines) 
 }
 
 GLuint compile(GLenum type, const std::string& name, const std::string& defines) {
-    const std::string source = with_defines(shader_text(name), defines);
+    return compile_shader(type, with_defines(shader_text(name), defines), "shaders/" + name);
+}
+
+}  // namespace
+
+GLuint compile_shader(GLenum type, const std::string& source, const std::string& label) {
     const GLuint shader = glCreateShader(type);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
@@ -90,12 +95,10 @@ GLuint compile(GLenum type, const std::string& name, const std::string& defines)
         std::string log(size_t(std::max(length, 1)), '\0');
         glGetShaderInfoLog(shader, length, nullptr, log.data());
         glDeleteShader(shader);
-        throw Error(fmt::format("shaders/{}: compilation failed:\n{}", name, log));
+        throw Error(fmt::format("{}: compilation failed:\n{}", label, log));
     }
     return shader;
 }
-
-}  // namespace
 
 std::string shading_prelude() {
     // Source string 1 for the core, so that an error in it names its line.

@@ -62,6 +62,10 @@ Framebuffer make_framebuffer();
 Renderbuffer make_renderbuffer();
 Query make_query();
 
+// Compiles one shader from `source`; throws rsl::Error with the driver's log,
+// naming `label` (the shader file, or what the source is).
+GLuint compile_shader(GLenum type, const std::string& source, const std::string& label);
+
 // Compiles and links the embedded shaders/<vertex> and shaders/<fragment>;
 // `defines` (e.g. "#define MAX_PARTS 32\n") go right after the #version line.
 // Throws rsl::Error with the driver's log, naming the shader file.

@@ -35,23 +35,6 @@ std::string cases_glsl() {
     return s.substr(begin, end - begin);
 }
 
-GLuint compile(GLenum type, const std::string& source) {
-    const GLuint shader = glCreateShader(type);
-    const char* text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        glGetShaderInfoLog(shader, length, nullptr, log.data());
-        FAIL("shader compilation failed:\n" << log);
-    }
-    return shader;
-}
-
 // The fragment shader: the renderer's prelude (layout constants and the
 // shading core, exactly as the shading pass gets them), the cases, and a
 // main that evaluates one case per fragment into two float targets.
@@ -99,8 +82,8 @@ bool close(float gpu, float cpu) {
 
 TEST_CASE("every shading-core function gives the same results in GLSL as in C++", "[gl-core]") {
     test::gl_context();
-    const GLuint vs = compile(GL_VERTEX_SHADER, gl::embedded_shader("fullscreen.vert.glsl"));
-    const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_source());
+    const GLuint vs = gl::compile_shader(GL_VERTEX_SHADER, gl::embedded_shader("fullscreen.vert.glsl"), "fullscreen.vert.glsl");
+    const GLuint fs = gl::compile_shader(GL_FRAGMENT_SHADER, fragment_source(), "the shading-core test shader");
     gl::Program program(glCreateProgram());
     glAttachShader(program.id(), vs);
     glAttachShader(program.id(), fs);
