@@ -33,9 +33,12 @@
 
 namespace rsl::gl {
 
-// GPU time of each pass of the last frame whose timer queries are done (ms).
+// GPU time of each pass (ms): of the last frame whose timer queries are
+// done, or, where timer queries measure nothing (software rasterizers, see
+// gl_renderer.cpp), of the last frame by the CPU clock around glFinish.
 struct PassTimings {
     double shade_ms = 0, pack_ms = 0, display_ms = 0;
+    bool clock = false;  // measured by the CPU clock around glFinish
 };
 
 // How the BRDF texture was last brought up to date (counted since construction).
@@ -110,6 +113,9 @@ private:
     void sync_materials();
     void upload_all_tables();
     void collect_timings();
+    // Time pass 0 (shading), 1 (pack) or 2 (display): a timer query, or the clock.
+    void begin_pass(int pass);
+    void end_pass(int pass);
 
     const Scene& scene_;
     RenderOptions options_;
@@ -154,6 +160,8 @@ private:
     bool drew_[2] = {false, false};  // whether the display query ran
     int frame_parity_ = 0;
     PassTimings timings_;
+    bool clock_timing_ = false;  // timer queries of this driver measure nothing
+    double pass_start_ms_ = 0;
 };
 
 }  // namespace rsl::gl

@@ -16,6 +16,7 @@
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/gl/gl.h"
+#include "src/gl/skybox.h"
 #include "src/gl/viewer_state.h"
 #include "src/render/render_setup.h"
 
@@ -160,6 +161,11 @@ void run_viewer(const ViewerOptions& options) {
     ImGuiSession imgui(window.window);
     GlRenderer renderer(*scene, setup.environment_lights, setup.fields, options.render);
     std::fprintf(stderr, "%s\n", context_description().c_str());
+    std::unique_ptr<Skybox> skybox;
+    if (setup.environment.resolution() > 0)
+        skybox = std::make_unique<Skybox>(setup.environment, setup.second_environment.resolution() > 0
+                                                                  ? &setup.second_environment
+                                                                  : nullptr);
 
     ViewerState state;
     state.scene = scene.get();
@@ -222,6 +228,14 @@ void run_viewer(const ViewerOptions& options) {
         const Mat4 projection = glm::perspective(glm::radians(state.camera.fov_y_degrees), aspect,
                                                  0.01f * state.camera.distance, 100.0f * state.camera.distance);
         const Mat4 view = glm::lookAt(eye, state.camera.target, Vec3(0, 1, 0));
+        if (skybox) {
+            // The environment as the renderer turns its lights (FrameSetup):
+            // the viewer's turn after the scene's rotation at t.
+            const EnvironmentDesc& environment = scene->environment;
+            const float weight = environment.second_file.empty() ? 0.0f : environment.blend_weight_at(state.time);
+            skybox->draw(projection * view, eye, turn * environment.rotation_at(state.time), weight,
+                         std::exp2(state.exposure));
+        }
         renderer.draw(projection * view, std::exp2(state.exposure));
         glDisable(GL_DEPTH_TEST);
         ImGui::Render();

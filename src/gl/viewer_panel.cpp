@@ -66,7 +66,8 @@ void viewer_panel(ViewerState& state) {
     ImGui::Begin("rsl view");
     const PassTimings t = state.renderer->timings();
     ImGui::Text("%.1f fps, %.2f ms/frame", state.fps, state.frame_ms);
-    ImGui::Text("GPU: shading %.2f ms, pack %.2f ms, display %.2f ms", t.shade_ms, t.pack_ms, t.display_ms);
+    ImGui::Text("GPU%s: shading %.2f ms, pack %.2f ms, display %.2f ms", t.clock ? " (clock, software GL)" : "",
+                t.shade_ms, t.pack_ms, t.display_ms);
     ImGui::Text("%d vertices, %d lights, occluder pairs %zu (%zu culled)", state.renderer->vertex_count(),
                 state.renderer->frame().light_count(), state.renderer->frame().occluder_pairs(),
                 state.renderer->frame().occluder_pairs_culled());

@@ -1,7 +1,7 @@
 // The viewer end to end (under xvfb-run, llvmpipe): a screenshot of a sphere
 // over a ground plane under an overcast sky is not blank and shows the
 // sphere's shadow — ground pixels next to the sphere's foot are darker than
-// open ground.
+// open ground. (viewer_sky_test.cpp checks the sky behind them.)
 #include <catch2/catch.hpp>
 
 #include <stb_image.h>
@@ -15,33 +15,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "src/gl/viewer.h"
+#include "tests/gl/viewer_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
 
 namespace rsl {
 namespace {
 
 namespace fs = std::filesystem;
-
-void write_obj(const fs::path& path, const TriangleMesh& mesh) {
-    std::ofstream out(path);
-    for (const Vec3& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-    for (const Vec3& n : mesh.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
-    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-        out << 'f';
-        for (int k = 0; k < 3; ++k) out << ' ' << mesh.indices[3 * t + k] + 1 << "//" << mesh.indices[3 * t + k] + 1;
-        out << '\n';
-    }
-}
-
-// Pixel (x, y), row 0 at the top, of a world point seen by the viewer's
-// initial camera (the scene camera; viewer.cpp's projection).
-Vec2 project(const Vec3& point, const Vec3& eye, const Vec3& target, float fov_degrees, int width, int height) {
-    const Mat4 m = glm::perspective(glm::radians(fov_degrees), float(width) / float(height), 0.01f, 100.0f) *
-                   glm::lookAt(eye, target, Vec3(0, 1, 0));
-    const Vec4 clip = m * Vec4(point, 1.0f);
-    const Vec2 ndc = Vec2(clip) / clip.w;
-    return Vec2((ndc.x * 0.5f + 0.5f) * width, (0.5f - ndc.y * 0.5f) * height);
-}
 
 TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "[gl-viewer]") {
     const fs::path overcast = fs::path(RSL_SOURCE_DIR) / "assets/generated/overcast.exr";
@@ -51,8 +31,8 @@ TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "
     }
     const fs::path dir = fs::temp_directory_path() / fmt::format("rsl_viewer_test_{}", ::getpid());
     fs::create_directories(dir);
-    write_obj(dir / "ground.obj", test::make_plane(4.0f, 24, "ground"));
-    write_obj(dir / "ball.obj", test::make_icosphere(0.4f, 3, "ball"));
+    test::write_obj(dir / "ground.obj", test::make_plane(4.0f, 24, "ground"));
+    test::write_obj(dir / "ball.obj", test::make_icosphere(0.4f, 3, "ball"));
     const Vec3 eye(0.0f, 2.2f, 3.0f), target(0.0f, 0.3f, 0.0f);
     std::ofstream(dir / "scene.json") << fmt::format(R"({{
   "name": "viewer-test",
@@ -87,23 +67,18 @@ TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "
         const int x = std::clamp(int(p.x), 0, width - 1), y = std::clamp(int(p.y), 0, height - 1);
         const unsigned char* c = pixels + (size_t(y) * width + x) * 3;
         // Linear luminance (undo the display pass's sRGB curve), 0..255.
-        auto linear = [](unsigned char v) {
-            const float x = v / 255.0f;
-            return 255.0f * (x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f));
-        };
-        return 0.2126f * linear(c[0]) + 0.7152f * linear(c[1]) + 0.0722f * linear(c[2]);
+        return 0.2126f * test::linear_255(c[0]) + 0.7152f * test::linear_255(c[1]) + 0.0722f * test::linear_255(c[2]);
     };
-    // Not blank: the ball and the ground differ from the background and from each other.
-    const float background = luma(Vec2(width / 2.0f, 2.0f));
-    const float ball = luma(project(Vec3(0, 0.85f, 0.0f), eye, target, 40, width, height));
-    const float open_ground = luma(project(Vec3(1.3f, 0, 0.6f), eye, target, 40, width, height));
+    // Not blank: the ball and the ground are lit, far above the old clear
+    // colour (0.05 linear, 12.75 here); the background is the sky now.
+    const float ball = luma(test::project(Vec3(0, 0.85f, 0.0f), eye, target, 40, width, height));
+    const float open_ground = luma(test::project(Vec3(1.3f, 0, 0.6f), eye, target, 40, width, height));
     // Beside the ball's foot (in front of it, as the camera sees it): the
     // ball hides much of the overcast sky there.
-    const float shadowed_ground = luma(project(Vec3(0.0f, 0, 0.3f), eye, target, 40, width, height));
-    INFO("background " << background << ", ball " << ball << ", open ground " << open_ground
-                       << ", ground beside the ball " << shadowed_ground);
-    CHECK(open_ground > background + 50.0f);
-    CHECK(ball > background + 50.0f);
+    const float shadowed_ground = luma(test::project(Vec3(0.0f, 0, 0.3f), eye, target, 40, width, height));
+    INFO("ball " << ball << ", open ground " << open_ground << ", ground beside the ball " << shadowed_ground);
+    CHECK(open_ground > 12.75f + 50.0f);
+    CHECK(ball > 12.75f + 50.0f);
     CHECK(shadowed_ground < 0.7f * open_ground);
     stbi_image_free(pixels);
     if (!getenv("RSL_KEEP_TEST_FILES")) fs::remove_all(dir);
