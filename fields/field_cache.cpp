@@ -37,16 +37,18 @@ fs::path field_path(const FieldCacheOptions& options, const Scene& scene, int pa
 // or parameters selects a different file name.
 template <typename Field, typename Params, typename Stats>
 Field load_or_bake(const fs::path& path, const FieldExpectation& expect, const std::string& label,
-                   const TriangleMesh& mesh, const Params& params, bool verbose, bool& reused,
+                   const TriangleMesh& mesh, const Params& params, const FieldCacheOptions& options, bool& reused,
                    Field (*read)(const fs::path&, const FieldExpectation&),
                    Field (*bake)(const TriangleMesh&, const Params&, Stats*, const std::function<void(double)>&),
                    void (*write)(const fs::path&, const Field&, uint64_t)) {
     reused = false;
+    const bool verbose = options.verbose;
     if (fs::exists(path)) {
         try {
             Field field = read(path, expect);
             reused = true;
             if (verbose) std::fprintf(stderr, "%s: cached %s\n", label.c_str(), path.string().c_str());
+            if (options.progress) options.progress(label, 1.0);
             return field;
         } catch (const Error& e) {
             warn("refusing a cached field file, baking it again: {}", e.what());
@@ -54,8 +56,12 @@ Field load_or_bake(const fs::path& path, const FieldExpectation& expect, const s
     }
     ProgressReport progress(label, verbose);
     Stats stats;
-    Field field = bake(mesh, params, &stats, [&](double x) { progress.update(x); });
+    Field field = bake(mesh, params, &stats, [&](double x) {
+        progress.update(x);
+        if (options.progress) options.progress(label, x);
+    });
     write(path, field, *expect.mesh_hash);
+    if (options.progress) options.progress(label, 1.0);
     progress.finish(fmt::format("1:{:.1f} compression, rms {:.4f}", stats.compression.compression_ratio(),
                                 stats.compression.rms_error));
     return field;
@@ -112,11 +118,11 @@ std::vector<PartFields> bake_or_load_fields(const Scene& scene, const FieldCache
                                               scene.parts[i].name, mesh.vertex_count());
 
         f.svdf_file = field_path(options, scene, int(i), "svdf", hash, svdf_params);
-        f.svdf = load_or_bake(f.svdf_file, {hash, svdf_params}, "SVDF " + label, mesh, options.svdf, options.verbose,
+        f.svdf = load_or_bake(f.svdf_file, {hash, svdf_params}, "SVDF " + label, mesh, options.svdf, options,
                               f.svdf_reused, read_svdf, bake_svdf, write_svdf);
         if (options.svdf_only) continue;
         f.ovdf_file = field_path(options, scene, int(i), "ovdf", hash, ovdf_params);
-        f.ovdf = load_or_bake(f.ovdf_file, {hash, ovdf_params}, "OVDF " + label, mesh, options.ovdf, options.verbose,
+        f.ovdf = load_or_bake(f.ovdf_file, {hash, ovdf_params}, "OVDF " + label, mesh, options.ovdf, options,
                               f.ovdf_reused, read_ovdf, bake_ovdf, write_ovdf);
     }
     return fields;

@@ -7,7 +7,9 @@
 // changing the mesh or a parameter selects a new file, and a file that does
 // not read back valid (stale, corrupt, foreign) is baked again and replaced.
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "fields/ovdf.h"
@@ -27,6 +29,10 @@ struct FieldCacheOptions {
     std::filesystem::path directory;  // empty: default_cache_directory(scene source)
     bool svdf_only = false;
     bool verbose = true;  // progress and time left on stderr
+    // Also called with (what is baked, fraction of that bake), from the
+    // baking threads (thread-safe callbacks only); a field read from the
+    // cache reports 1 once.
+    std::function<void(const std::string& what, double fraction)> progress;
     SvdfParams svdf;
     OvdfParams ovdf;
 };

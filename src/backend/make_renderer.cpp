@@ -3,6 +3,7 @@
 #include "src/core/error.h"
 #include "src/render/renderer.h"
 #ifdef RSL_HAVE_GL
+#include "src/gl/gl.h"
 #include "src/gl/headless_renderer.h"
 #endif
 
@@ -11,14 +12,22 @@ namespace rsl {
 Backend parse_backend(const std::string& name) {
     if (name == "cpu") return Backend::Cpu;
     if (name == "gl") return Backend::Gl;
-    throw_error("unknown renderer backend '{}' (known: cpu, gl)", name);
+    if (name == "gl-current") return Backend::GlCurrentContext;
+    throw_error("unknown renderer backend '{}' (known: cpu, gl, gl-current)", name);
 }
 
-std::string backend_name(Backend backend) { return backend == Backend::Gl ? "gl" : "cpu"; }
+std::string backend_name(Backend backend) {
+    switch (backend) {
+    case Backend::Cpu: return "cpu";
+    case Backend::Gl: return "gl";
+    case Backend::GlCurrentContext: return "gl-current";
+    }
+    return "unknown";
+}
 
 std::vector<std::string> available_backends() {
 #ifdef RSL_HAVE_GL
-    return {"cpu", "gl"};
+    return {"cpu", "gl", "gl-current"};
 #else
     return {"cpu"};
 #endif
@@ -36,6 +45,15 @@ std::unique_ptr<VertexRenderer> make_renderer(Backend backend, const Scene& scen
                                                         options);
 #else
         throw_error("the gl backend: this rsl was built without OpenGL (RSL_BUILD_GL=OFF)");
+#endif
+    case Backend::GlCurrentContext:
+#ifdef RSL_HAVE_GL
+        if (!gl::has_current_context())
+            throw_error("the gl-current backend: no OpenGL context is current on this thread (make the "
+                        "engine's OpenGL >= 3.3 core context current first, or use the gl backend)");
+        return std::make_unique<gl::GlRenderer>(scene, std::move(environment_lights), std::move(fields), options);
+#else
+        throw_error("the gl-current backend: this rsl was built without OpenGL (RSL_BUILD_GL=OFF)");
 #endif
     }
     throw_error("unknown renderer backend {}", int(backend));

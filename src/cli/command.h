@@ -20,6 +20,9 @@ struct Command {
 
 std::vector<Command>& command_registry();
 
+// What `rsl --version` and `rsl version` print (cmd_version.cpp).
+std::string version_text();
+
 struct RegisterCommand {
     explicit RegisterCommand(Command command) { command_registry().push_back(std::move(command)); }
 };

@@ -21,6 +21,12 @@ int main(int argc, char** argv) {
         "truth (Embree ground truth), compare (error), bench (machine-readable numbers)."};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Print help for every subcommand");
+    // The text ends in a newline; CLI11 adds one more.
+    app.set_version_flag("--version", [] {
+        std::string text = version_text();
+        if (!text.empty() && text.back() == '\n') text.pop_back();
+        return text;
+    }, "Print the version, commit, build type and library versions, and exit");
     auto& commands = command_registry();
     std::stable_sort(commands.begin(), commands.end(),
                      [](const Command& a, const Command& b) { return a.order < b.order; });

@@ -8,12 +8,10 @@
 #include <fmt/format.h>
 #include <fmt/std.h>
 
-namespace rsl {
+// rsl::Error and rsl::InternalError themselves are public (the API throws them).
+#include "rsl/error.h"
 
-class Error : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
+namespace rsl {
 
 // "path: message" — the one shape of every input error.
 template <typename... Args>
@@ -48,14 +46,9 @@ void warn_file(const std::filesystem::path& path, fmt::format_string<Args...> fo
     emit_warning(fmt::format("{}: {}", path.string(), fmt::format(format, std::forward<Args>(args)...)));
 }
 
-// A broken invariant: a bug in rsl, never the user's input. `rsl` prints it
-// as "internal error" and exits with status 2, apart from bad input
-// (rsl::Error, status 1), so a test can tell the two apart.
-class InternalError : public std::logic_error {
-public:
-    using std::logic_error::logic_error;
-};
-
+// A broken invariant (rsl::InternalError): a bug in rsl, never the user's
+// input. `rsl` prints it as "internal error" and exits with status 2, apart
+// from bad input (rsl::Error, status 1), so a test can tell the two apart.
 template <typename... Args>
 [[noreturn]] void throw_internal_error(fmt::format_string<Args...> format, Args&&... args) {
     throw InternalError(fmt::format(format, std::forward<Args>(args)...));

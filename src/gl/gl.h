@@ -17,5 +17,8 @@ void check_gl(const char* what);
 
 // "OpenGL 4.5 (Core Profile) Mesa 22.3.6 on llvmpipe (...)" of the current context.
 std::string context_description();
+// Whether a context (EGL or GLX) is current on this thread: libglvnd's
+// dispatch answers glGetString with null when none is.
+bool has_current_context();
 
 }  // namespace rsl::gl

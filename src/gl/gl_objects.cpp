@@ -20,6 +20,8 @@ std::string context_description() {
     return "OpenGL " + text(GL_VERSION) + " on " + text(GL_RENDERER);
 }
 
+bool has_current_context() { return glGetString(GL_VERSION) != nullptr; }
+
 void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
 void delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
 void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }

@@ -7,7 +7,10 @@
 // declares an rsl::PartFields of its own, which would clash with the
 // renderer's PartFields alias (src/render/part_fields.h) in one translation
 // unit. Only field_cache_loader.cpp sees it.
+#include <filesystem>
+#include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "fields/ovdf.h"
@@ -27,9 +30,12 @@ struct CachedFields {
 SvdfParams cache_svdf_params(const PrecomputeSettings& settings);
 OvdfParams cache_ovdf_params(const PrecomputeSettings& settings);
 
-// Fields of every part of `scene` (which must have a source file: the cache
-// lives beside it, in <scene folder>/.rsl-cache). OVDFs only when `occluders`
-// and the scene has more than one part.
-CachedFields load_or_bake_fields(const Scene& scene, bool occluders, bool progress);
+// Fields of every part of `scene`, in `cache_directory`, or when that is
+// empty beside the scene's source file (<scene folder>/.rsl-cache). OVDFs
+// only when `occluders` and the scene has more than one part. `callback`, when
+// given, hears every bake's progress (FieldCacheOptions::progress).
+CachedFields load_or_bake_fields(const Scene& scene, bool occluders, bool progress,
+                                 const std::filesystem::path& cache_directory = {},
+                                 const std::function<void(const std::string&, double)>& callback = {});
 
 }  // namespace rsl

@@ -33,8 +33,9 @@ PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options)
 
 PartFields load_part_fields(const Scene& scene, const FieldBakeOptions& options, bool progress,
                             FieldLoadReport* report) {
-    if (scene.source.empty()) return bake_part_fields(scene, options);
-    CachedFields cached = load_or_bake_fields(scene, options.occluders, progress);
+    if (scene.source.empty() && options.cache_directory.empty()) return bake_part_fields(scene, options);
+    CachedFields cached =
+        load_or_bake_fields(scene, options.occluders, progress, options.cache_directory, options.progress);
     PartFields fields;
     fields.self.resize(scene.parts.size());
     fields.occluder.resize(scene.parts.size());

@@ -51,18 +51,21 @@ SvdfParams svdf_params(const PrecomputeSettings& settings);
 struct FieldBakeOptions {
     bool self_visibility = true;
     bool occluders = true;
-    // Called with (what, fraction of that bake) from the baking thread.
+    // Called with (what, fraction of that bake) from the baking threads.
     std::function<void(const std::string& what, double fraction)> progress;
+    // The field cache folder for load_part_fields; empty: beside the scene's file.
+    std::filesystem::path cache_directory;
 };
 
 // Bakes the fields of every part of `scene` with its precompute settings, in
 // memory (no cache; for tests and scenes without a file).
 PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options);
 
-// The fields from the scene's field cache (<scene folder>/.rsl-cache, the files
-// `rsl bake` writes), baking and writing only the missing or stale ones, with
-// progress on stderr when `progress`. A scene without a source file is baked
-// in memory. Counts what was reused and baked.
+// The fields from the scene's field cache (options.cache_directory, by default
+// <scene folder>/.rsl-cache: the files `rsl bake` writes), baking and writing
+// only the missing or stale ones, with progress on stderr when `progress` and
+// to options.progress. A scene with neither a source file nor a cache folder
+// is baked in memory. Counts what was reused and baked.
 struct FieldLoadReport {
     int loaded = 0, baked = 0;
 };

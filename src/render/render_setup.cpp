@@ -34,6 +34,13 @@ RenderSetup prepare_render(const std::filesystem::path& scene_path, const Render
 }
 
 RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, bool progress) {
+    SetupOptions setup_options;
+    setup_options.print_progress = progress;
+    return prepare_render(std::move(scene), options, setup_options);
+}
+
+RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, const SetupOptions& how) {
+    const bool progress = how.print_progress;
     RenderSetup setup;
     setup.scene = std::move(scene);
     const Scene& s = *setup.scene;
@@ -48,6 +55,7 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
                 fit_environment_lights(setup.second_environment, options.environment_lights, options.cross_face_lights);
         }
         setup.fit_seconds = seconds_since(start);
+        if (how.progress) how.progress("fit", 1.0);
         if (progress)
             std::fprintf(stderr, "%s: %zu RSLs fitted in %.2f s%s\n", s.environment.file.string().c_str(),
                          setup.environment_lights.first.lights.size(), setup.fit_seconds,
@@ -56,8 +64,10 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
     FieldBakeOptions bake;
     bake.self_visibility = options.self_visibility;
     bake.occluders = options.occluders;
+    bake.cache_directory = how.field_cache;
+    bake.progress = how.progress;
     const auto start = std::chrono::steady_clock::now();
-    if (!s.source.empty()) {
+    if (!s.source.empty() || !how.field_cache.empty()) {
         // The scene's field cache: reuse what `rsl bake` (or an earlier run)
         // wrote, bake only what is missing.
         FieldLoadReport report;
@@ -68,6 +78,7 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
         std::string current;
         if (progress)
             bake.progress = [&](const std::string& what, double fraction) {
+                if (how.progress) how.progress(what, fraction);
                 if (what != current) {
                     if (report) report->finish("");
                     current = what;

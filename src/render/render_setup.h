@@ -6,6 +6,7 @@
 // .rsl-cache, baking only what is missing, with progress on stderr).
 // Shared by `rsl render`, `rsl bench render` and the error tables.
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -33,10 +34,22 @@ struct RenderSetup {
 // "PART=MATERIAL" strings → overrides; throws rsl::Error on a malformed entry.
 std::map<std::string, std::string> parse_material_overrides(const std::vector<std::string>& entries);
 
+// How prepare_render reports and where it keeps the fields.
+struct SetupOptions {
+    bool print_progress = false;  // progress lines on stderr (the CLI)
+    // Hears (what, fraction) of the fit ("fit", once done) and of every field
+    // bake, from worker threads (FieldBakeOptions::progress).
+    std::function<void(const std::string& what, double fraction)> progress;
+    // Field cache folder; empty: beside the scene file (a scene in memory
+    // without one is baked in memory).
+    std::filesystem::path field_cache;
+};
+
 // Loads the scene and its environment, fits options.environment_lights RSLs,
 // bakes the fields the options switch on.
 RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options, bool progress);
 // The same for a scene already in memory (its environment file is still read).
 RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, bool progress);
+RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, const SetupOptions& setup);
 
 }  // namespace rsl

@@ -1,0 +1,23 @@
+#pragma once
+// The module's classes, one file each (module.cpp calls them in order).
+#include <vector>
+
+#include <pybind11/pybind11.h>
+
+#include "rsl/rsl.h"
+
+namespace rsl::python {
+
+namespace py = pybind11;
+
+void bind_scene(py::module_& m);     // rsl.Scene (scene_bindings.cpp)
+void bind_renderer(py::module_& m);  // rsl.Renderer (renderer_bindings.cpp)
+
+// A pose from translation (3), rotation quaternion (w, x, y, z) and scale (3).
+api::Pose pose_from(const std::vector<float>& translation, const std::vector<float>& rotation,
+                    const std::vector<float>& scale);
+
+// compare()'s numbers as a dict, per part under "parts".
+py::dict error_dict(const api::VertexError& error);
+
+}  // namespace rsl::python

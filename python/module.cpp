@@ -1,0 +1,119 @@
+// The Python module `rsl` (docs/PYTHON.md): the public C++ API
+// (include/rsl/rsl.h) with numpy arrays. Long calls (Renderer(), shade,
+// render_image, truth, fit_environment) release the GIL; progress goes to a
+// Python callable. rsl.Error carries the message the `rsl` program prints.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "python/bindings.h"
+#include "python/numpy_convert.h"
+
+namespace rsl::python {
+namespace {
+
+py::dict build_info_dict() {
+    const api::BuildInfo info = api::build_info();
+    py::dict d;
+    d["version"] = info.version, d["commit"] = info.commit, d["build_type"] = info.build_type;
+    d["embree"] = info.embree, d["openexr"] = info.openexr, d["backends"] = info.backends;
+    return d;
+}
+
+py::dict fit_dict(api::EnvironmentFit&& fit) {
+    std::vector<float> centers, half_diagonals, radiance;
+    for (const api::SquareLight& l : fit.lights) {
+        centers.insert(centers.end(), l.center.begin(), l.center.end());
+        half_diagonals.push_back(l.half_diagonal);
+        radiance.insert(radiance.end(), l.radiance.begin(), l.radiance.end());
+    }
+    const auto k = py::ssize_t(fit.lights.size());
+    py::dict d;
+    d["centers"] = to_numpy(std::move(centers), {k, 3});
+    d["half_diagonals"] = to_numpy(std::move(half_diagonals), {k});
+    d["radiance"] = to_numpy(std::move(radiance), {k, 3});
+    d["resolution"] = fit.resolution;
+    d["relative_l2"] = fit.relative_l2;
+    d["map_energy"] = fit.map_energy;
+    d["light_energy"] = fit.light_energy;
+    return d;
+}
+
+void bind_files(py::module_& m) {
+    m.def("build_info", &build_info_dict, "What this module is: version, commit, build type, Embree, OpenEXR, backends");
+    m.def(
+        "fit_environment",
+        [](const std::string& file, int lights, int resolution, bool cross_face) {
+            api::EnvironmentFit fit;
+            {
+                py::gil_scoped_release release;
+                fit = api::fit_environment(file, lights, resolution, cross_face);
+            }
+            return fit_dict(std::move(fit));
+        },
+        py::arg("file"), py::arg("lights"), py::arg("resolution") = 32, py::arg("cross_face") = true,
+        "`rsl fit`: K rotatable square lights of an environment map, as arrays (centers (K, 3), half_diagonals (K,), "
+        "radiance (K, 3)) with the map's relative L2 rebuilt from them");
+    m.def(
+        "compare",
+        [](const FloatArray& result, const FloatArray& reference) {
+            const api::VertexError e = api::compare(colors_from_numpy(result, "result", {}, {}),
+                                                    colors_from_numpy(reference, "reference", {}, {}));
+            return error_dict(e);
+        },
+        py::arg("result"), py::arg("reference"),
+        "`rsl compare` of per-vertex colours ((N, 3) arrays): relative_l2, max_error, relative_max, count");
+    m.def(
+        "compare_images",
+        [](const FloatArray& result, const FloatArray& reference) {
+            const api::ImageError e =
+                api::compare(image_from_numpy(result, "result"), image_from_numpy(reference, "reference"));
+            py::dict d;
+            d["relative_l2"] = e.relative_l2, d["relative_h1"] = e.relative_h1, d["max_error"] = e.max_error;
+            d["covered"] = e.covered, d["total"] = e.total;
+            return d;
+        },
+        py::arg("result"), py::arg("reference"),
+        "`rsl compare` of two RGBA images ((H, W, 4)): over the pixels the reference covers");
+    m.def("read_image", [](const std::string& path) { return image_to_numpy(api::read_image(path)); },
+          py::arg("path"), "An .exr as an (H, W, 4) float32 array (row 0 at the top)");
+    m.def("write_image", [](const std::string& path, const FloatArray& image, float exposure) {
+              api::write_image(path, image_from_numpy(image, "image"), exposure);
+          },
+          py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
+          "Writes an (H, W, 4) image as .exr and a tone-mapped .png beside it (exposure in stops, 0: automatic)");
+    m.def(
+        "read_vertex_colors",
+        [](const std::string& path) {
+            api::VertexColors colors = api::read_vertex_colors(path);
+            py::dict info;
+            info["part_names"] = colors.part_names, info["part_offsets"] = colors.part_offsets;
+            info["time"] = colors.time, info["scene_name"] = colors.scene_name, info["producer"] = colors.producer;
+            return py::make_tuple(colors_to_numpy(std::move(colors)), info);
+        },
+        py::arg("path"), "An .rslv file (rsl render --vertex-out, rsl truth) as ((N, 3) colours, info dict)");
+}
+
+}  // namespace
+
+py::dict error_dict(const api::VertexError& e) {
+    py::dict d;
+    d["relative_l2"] = e.relative_l2, d["max_error"] = e.max_error, d["relative_max"] = e.relative_max;
+    d["count"] = e.count;
+    py::dict parts;
+    for (size_t p = 0; p < e.part_names.size(); ++p) parts[py::str(e.part_names[p])] = e.part_relative_l2[p];
+    d["parts"] = parts;
+    return d;
+}
+
+}  // namespace rsl::python
+
+PYBIND11_MODULE(rsl, m) {
+    using namespace rsl::python;
+    m.doc() = "rsl: all-frequency environment lighting of dynamic scenes with rotatable square lights (docs/PYTHON.md)";
+    py::register_exception<rsl::Error>(m, "Error", PyExc_RuntimeError);
+    py::register_exception<rsl::InternalError>(m, "InternalError", PyExc_RuntimeError);
+    m.attr("__version__") = RSL_VERSION_STRING;
+    bind_files(m);
+    bind_scene(m);
+    bind_renderer(m);
+}

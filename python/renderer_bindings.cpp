@@ -1,0 +1,246 @@
+// rsl.Renderer: a frame of a scene to numpy arrays, its ground truth, and the
+// per-frame changes. The GIL is released while it shades, forms images,
+// traces the truth and while it is made (fit and field bakes).
+#include <pybind11/stl.h>
+
+#include <fmt/format.h>
+
+#include "python/bindings.h"
+#include "python/numpy_convert.h"
+
+namespace rsl::python {
+namespace {
+
+int part_index(const api::Renderer& r, const py::object& part) {
+    if (py::isinstance<py::int_>(part)) return part.cast<int>();
+    const std::string name = part.cast<std::string>();
+    const std::vector<std::string> names = r.part_names();
+    for (size_t p = 0; p < names.size(); ++p)
+        if (names[p] == name) return int(p);
+    throw Error(fmt::format("no part '{}' (parts: {})", name, fmt::join(names, ", ")));
+}
+
+std::vector<size_t> part_offsets(const api::Scene& scene) {
+    std::vector<size_t> offsets{0};
+    for (size_t n : scene.part_vertex_counts()) offsets.push_back(offsets.back() + n);
+    return offsets;
+}
+
+// The Renderer with what Python needs besides: the vertex layout of its scene.
+struct PyRenderer {
+    api::Renderer renderer;
+    std::string scene_name;
+    std::vector<std::string> part_names;
+    std::vector<size_t> part_offsets;
+
+    api::VertexColors colors(const FloatArray& array, const std::string& what) const {
+        return colors_from_numpy(array, what, part_names, part_offsets);
+    }
+};
+
+std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, const std::string& backend,
+                                          const py::object& field_cache, bool cross_face, bool self_visibility,
+                                          bool occluders, const std::map<std::string, std::string>& part_materials,
+                                          const py::object& progress) {
+    api::RenderSettings settings;
+    settings.lights = lights;
+    settings.backend = backend;
+    if (!field_cache.is_none()) settings.field_cache = py::str(field_cache);
+    settings.cross_face_lights = cross_face;
+    settings.self_visibility = self_visibility;
+    settings.occluders = occluders;
+    settings.part_materials = part_materials;
+    settings.progress = progress_callback(progress);
+    py::gil_scoped_release release;
+    api::Renderer renderer(scene, settings);
+    return std::make_unique<PyRenderer>(
+        PyRenderer{std::move(renderer), scene.name(), scene.part_names(), part_offsets(scene)});
+}
+
+py::dict lights_dict(const std::vector<api::SquareLight>& lights) {
+    std::vector<float> centers, half_diagonals, radiance;
+    for (const api::SquareLight& l : lights) {
+        centers.insert(centers.end(), l.center.begin(), l.center.end());
+        half_diagonals.push_back(l.half_diagonal);
+        radiance.insert(radiance.end(), l.radiance.begin(), l.radiance.end());
+    }
+    const auto k = py::ssize_t(lights.size());
+    py::dict d;
+    d["centers"] = to_numpy(std::move(centers), {k, 3});
+    d["half_diagonals"] = to_numpy(std::move(half_diagonals), {k});
+    d["radiance"] = to_numpy(std::move(radiance), {k, 3});
+    return d;
+}
+
+std::vector<api::SquareLight> lights_from(const FloatArray& centers, const FloatArray& half_diagonals,
+                                          const FloatArray& radiance) {
+    const std::vector<api::Float3> c = read_float3s(centers, "centers");
+    const std::vector<float> r = read_rows(half_diagonals, "half_diagonals", 0, py::ssize_t(c.size()));
+    const std::vector<float> i = read_rows(radiance, "radiance", 3, py::ssize_t(c.size()));
+    std::vector<api::SquareLight> lights(c.size());
+    for (size_t k = 0; k < c.size(); ++k) lights[k] = {c[k], r[k], {i[3 * k], i[3 * k + 1], i[3 * k + 2]}};
+    return lights;
+}
+
+api::ImageSettings image_settings(int width, int height, int samples) { return {width, height, samples}; }
+
+}  // namespace
+
+void bind_renderer(py::module_& m) {
+    py::class_<PyRenderer>(m, "Renderer", "The RSL renderer of one scene (its own copy), as `rsl render` runs it")
+        .def(py::init(&make_renderer), py::arg("scene"), py::arg("lights") = 30, py::arg("backend") = "cpu",
+             py::arg("field_cache") = py::none(), py::arg("cross_face_lights") = true,
+             py::arg("self_visibility") = true, py::arg("occluders") = true,
+             py::arg("part_materials") = std::map<std::string, std::string>{}, py::arg("progress") = py::none(),
+             "Fits `lights` square lights to the environment and loads or bakes the fields (field_cache: a "
+             "folder; None: beside the scene file). progress(what, fraction) hears the fit and the bakes.")
+        .def_property_readonly("backend", [](const PyRenderer& r) { return r.renderer.backend(); })
+        .def_property_readonly("device", [](const PyRenderer& r) { return r.renderer.device(); })
+        .def_property_readonly("part_names", [](const PyRenderer& r) { return r.part_names; })
+        .def_property_readonly("part_offsets", [](const PyRenderer& r) { return r.part_offsets; },
+                               "Part p is rows part_offsets[p]:part_offsets[p + 1] of the colour arrays")
+        .def_property_readonly("setup",
+                               [](const PyRenderer& r) {
+                                   const api::SetupReport s = r.renderer.setup();
+                                   py::dict d;
+                                   d["lights"] = s.lights, d["fields_loaded"] = s.fields_loaded;
+                                   d["fields_baked"] = s.fields_baked, d["fit_seconds"] = s.fit_seconds;
+                                   d["bake_seconds"] = s.bake_seconds;
+                                   return d;
+                               })
+        .def_property("time", [](const PyRenderer& r) { return r.renderer.time(); },
+                      [](PyRenderer& r, float t) { r.renderer.set_time(t); })
+        .def("set_time", [](PyRenderer& r, float t) { r.renderer.set_time(t); }, py::arg("t"))
+        .def("set_part_pose",
+             [](PyRenderer& r, const py::object& part, const std::vector<float>& translation,
+                const std::vector<float>& rotation, const std::vector<float>& scale, const py::object& matrix) {
+                 api::Pose pose = pose_from(translation, rotation, scale);
+                 if (!matrix.is_none()) {
+                     const std::vector<float> rows = read_rows(matrix.cast<FloatArray>(), "matrix", 4, 4);
+                     std::array<float, 16> column_major;
+                     for (int c = 0; c < 4; ++c)
+                         for (int row = 0; row < 4; ++row) column_major[4 * c + row] = rows[4 * row + c];
+                     pose = api::Pose::from_matrix(column_major);
+                 }
+                 r.renderer.set_part_pose(part_index(r.renderer, part), pose);
+             },
+             py::arg("part"), py::arg("translation") = std::vector<float>{0, 0, 0},
+             py::arg("rotation") = std::vector<float>{1, 0, 0, 0}, py::arg("scale") = std::vector<float>{1, 1, 1},
+             py::arg("matrix") = py::none(),
+             "Puts a part (index or name) at a world pose from now on: translation, rotation (w, x, y, z), scale, "
+             "or a 4×4 matrix (numpy row-major, M @ [x, y, z, 1])")
+        .def("part_transform",
+             [](const PyRenderer& r, const py::object& part) {
+                 const std::array<float, 16> c = r.renderer.part_transform(part_index(r.renderer, part));
+                 std::vector<float> rows(16);
+                 for (int col = 0; col < 4; ++col)
+                     for (int row = 0; row < 4; ++row) rows[4 * row + col] = c[4 * col + row];
+                 return to_numpy(std::move(rows), {4, 4});
+             },
+             py::arg("part"), "The part's world matrix at the current frame (4×4, row-major)")
+        .def("set_environment_rotation",
+             [](PyRenderer& r, const std::vector<float>& axis, float degrees) {
+                 r.renderer.set_environment_rotation(to_float3(axis, "axis"), degrees);
+             },
+             py::arg("axis"), py::arg("degrees"))
+        .def("set_camera",
+             [](PyRenderer& r, const std::vector<float>& position, const std::vector<float>& target,
+                const std::vector<float>& up, float fov, int width, int height) {
+                 r.renderer.set_camera({to_float3(position, "camera position"), to_float3(target, "camera target"),
+                                        to_float3(up, "camera up"), fov, width, height});
+             },
+             py::arg("position"), py::arg("target"), py::arg("up") = std::vector<float>{0, 1, 0},
+             py::arg("fov_y_degrees") = 40.0f, py::arg("width") = 640, py::arg("height") = 480)
+        .def("set_sphere_lights",
+             [](PyRenderer& r, const FloatArray& positions, const FloatArray& radii, const FloatArray& powers) {
+                 const std::vector<api::Float3> p = read_float3s(positions, "positions");
+                 const std::vector<float> a = read_rows(radii, "radii", 0, py::ssize_t(p.size()));
+                 const std::vector<float> w = read_rows(powers, "powers", 3, py::ssize_t(p.size()));
+                 std::vector<api::SphereLight> lights(p.size());
+                 for (size_t i = 0; i < p.size(); ++i) lights[i] = {p[i], a[i], {w[3 * i], w[3 * i + 1], w[3 * i + 2]}};
+                 r.renderer.set_sphere_lights(lights);
+             },
+             py::arg("positions"), py::arg("radii"), py::arg("powers"))
+        .def_property_readonly("environment_lights",
+                               [](const PyRenderer& r) { return lights_dict(r.renderer.environment_lights()); })
+        .def("set_environment_lights",
+             [](PyRenderer& r, const FloatArray& centers, const FloatArray& half_diagonals, const FloatArray& radiance) {
+                 r.renderer.set_environment_lights(lights_from(centers, half_diagonals, radiance));
+             },
+             py::arg("centers"), py::arg("half_diagonals"), py::arg("radiance"),
+             "The environment's square lights, e.g. fit_environment(...)'s arrays")
+        .def("set_part_material",
+             [](PyRenderer& r, const std::string& part, const std::string& material) {
+                 r.renderer.set_part_material(part, material);
+             },
+             py::arg("part"), py::arg("material"))
+        .def("set_material_parameter",
+             [](PyRenderer& r, const std::string& material, const std::string& key, const py::object& value) {
+                 const std::vector<float> values = py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)
+                                                       ? std::vector<float>{value.cast<float>()}
+                                                       : value.cast<std::vector<float>>();
+                 r.renderer.set_material_parameter(material, key, values);
+             },
+             py::arg("material"), py::arg("key"), py::arg("value"))
+        .def("shade",
+             [](PyRenderer& r) {
+                 api::VertexColors colors;
+                 {
+                     py::gil_scoped_release release;
+                     colors = r.renderer.shade();
+                 }
+                 return colors_to_numpy(std::move(colors));
+             },
+             "Per-vertex colours of the current frame, (N, 3) float32, parts in order (part_offsets)")
+        .def("form_image",
+             [](const PyRenderer& r, const FloatArray& colors, int width, int height, int samples) {
+                 const api::VertexColors c = r.colors(colors, "colors");
+                 api::Image image;
+                 {
+                     py::gil_scoped_release release;
+                     image = r.renderer.form_image(c, image_settings(width, height, samples));
+                 }
+                 return image_to_numpy(std::move(image));
+             },
+             py::arg("colors"), py::arg("width") = 0, py::arg("height") = 0, py::arg("samples") = 1,
+             "The (H, W, 4) image of (N, 3) vertex colours, as rsl render forms it (0: the camera's size)")
+        .def("render_image",
+             [](PyRenderer& r, int width, int height, int samples) {
+                 api::Image image;
+                 {
+                     py::gil_scoped_release release;
+                     image = r.renderer.render_image(image_settings(width, height, samples));
+                 }
+                 return image_to_numpy(std::move(image));
+             },
+             py::arg("width") = 0, py::arg("height") = 0, py::arg("samples") = 1, "shade() then form_image()")
+        .def("truth",
+             [](const PyRenderer& r, int subdivision, bool local_lights, const py::object& progress) {
+                 api::TruthSettings settings{subdivision, local_lights, progress_callback(progress)};
+                 api::VertexColors colors;
+                 {
+                     py::gil_scoped_release release;
+                     colors = r.renderer.truth(settings);
+                 }
+                 return colors_to_numpy(std::move(colors));
+             },
+             py::arg("subdivision") = 1, py::arg("local_lights") = true, py::arg("progress") = py::none(),
+             "The Embree ground truth of the current frame (rsl truth), (N, 3)")
+        .def("compare",
+             [](const PyRenderer& r, const FloatArray& result, const FloatArray& reference) {
+                 return error_dict(api::compare(r.colors(result, "result"), r.colors(reference, "reference")));
+             },
+             py::arg("result"), py::arg("reference"), "rsl compare of (N, 3) colours, with the error of each part")
+        .def("write_vertex_colors",
+             [](const PyRenderer& r, const std::string& path, const FloatArray& colors, const std::string& producer) {
+                 api::VertexColors c = r.colors(colors, "colors");
+                 c.producer = producer;
+                 c.scene_name = r.scene_name;
+                 c.time = r.renderer.time();
+                 api::write_vertex_colors(path, c);
+             },
+             py::arg("path"), py::arg("colors"), py::arg("producer") = "python",
+             "Writes (N, 3) colours of this scene as an .rslv file (for rsl compare)");
+}
+
+}  // namespace rsl::python

@@ -1,0 +1,267 @@
+"""ctest `python-module`: the module `rsl` driven from Debian's python3.
+
+It must give the `rsl` program's answers for the same scene file: the same
+vertex colours, image and ground truth (bit for bit), the same error numbers
+and light fit; poses set from Python must equal a scene file saying the same;
+long calls must release the GIL; progress must reach a Python callable; bad
+input must raise rsl.Error with the message the program prints.
+
+Environment: PYTHONPATH (the built module), RSL_EXECUTABLE, RSL_SOURCE_DIR.
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import threading
+import time
+import unittest
+
+import numpy as np
+
+import rsl
+
+RSL = os.environ["RSL_EXECUTABLE"]
+GENERATED = os.path.join(os.environ["RSL_SOURCE_DIR"], "assets", "generated")
+SUNSKY = os.path.join(GENERATED, "sunsky.exr")
+
+
+def floor_obj(n, half):
+    lines = [f"v {-half + 2 * half * i / n} 0 {-half + 2 * half * j / n}" for j in range(n + 1) for i in range(n + 1)]
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i + 1
+            b, c = a + 1, a + n + 1
+            lines += [f"f {a} {c} {b}", f"f {b} {c} {c + 1}"]
+    return "\n".join(lines) + "\n"
+
+
+def write_scene(folder, name, orb_transform=None, rotation=None):
+    """The orb on a floor under the turning sun and sky, light precomputation (as tests/api/api_test_scene.h)."""
+    if not os.path.exists(os.path.join(folder, "floor.obj")):
+        with open(os.path.join(folder, "floor.obj"), "w") as f:
+            f.write(floor_obj(32, 0.8))
+    scene = {
+        "name": "python-test",
+        "parts": [{"name": "orb", "obj": os.path.join(GENERATED, "orb.obj"), "material": "steel",
+                   "transform": orb_transform or {}},
+                  {"name": "floor", "obj": "floor.obj", "material": "floor"}],
+        "materials": {"steel": {"model": "phong", "kd": [0.3, 0.3, 0.32], "ks": [0.4, 0.4, 0.4], "exponent": 30},
+                      "floor": {"model": "lambert", "albedo": [0.55, 0.53, 0.5]}},
+        "environment": {"file": SUNSKY, "resolution": 12,
+                        "rotation": rotation or {"axis": [0, 1, 0], "degrees": 30, "degrees_per_second": 40}},
+        "camera": {"position": [0.9, 0.75, 1.3], "target": [0, 0.2, 0], "up": [0, 1, 0], "fov_degrees": 36,
+                   "width": 96, "height": 72},
+        "animation": {"start": 0, "end": 1, "fps": 24},
+        "precompute": {"svdf": {"resolution": 8, "clusters": 16, "vectors": 4, "supersampling": 1},
+                       "ovdf": {"shells": 4, "inner_radius": 0.4, "outer_radius": 6.0, "cube_resolution": 6,
+                                "vdt_resolution": 8, "vectors": 4}},
+    }
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        json.dump(scene, f, indent=1)
+    return path
+
+
+def run_rsl(*args):
+    done = subprocess.run([RSL, *args], capture_output=True, text=True)
+    return done.returncode, done.stdout + done.stderr
+
+
+def number_after(text, label):
+    return float(re.search(re.escape(label) + r"\s*([0-9.eE+-]+)", text).group(1))
+
+
+class ModuleTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.folder = tempfile.mkdtemp(prefix="rsl-python-test.")
+        cls.scene_file = write_scene(cls.folder, "scene.json")
+        out = cls.folder
+        status, text = run_rsl("render", cls.scene_file, "--time", "0.25", "--lights", "12", "-q",
+                               "-o", f"{out}/cli.exr", "--vertex-out", f"{out}/cli.rslv")
+        assert status == 0, text
+        status, text = run_rsl("truth", cls.scene_file, "--time", "0.25", "-q",
+                               "-o", f"{out}/truth.exr", "--vertex-out", f"{out}/truth.rslv")
+        assert status == 0, text
+        cls.renderer = rsl.Renderer(rsl.Scene.load(cls.scene_file), lights=12)
+        cls.renderer.set_time(0.25)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.folder)
+
+    def test_frame_and_image_are_rsl_renders(self):
+        colors = self.renderer.shade()
+        cli, info = rsl.read_vertex_colors(f"{self.folder}/cli.rslv")
+        self.assertEqual(colors.dtype, np.float32)
+        self.assertEqual(colors.shape, cli.shape)
+        self.assertEqual(info["part_names"], self.renderer.part_names)
+        self.assertEqual(info["part_offsets"], self.renderer.part_offsets)
+        self.assertGreater(colors.max(), 0.01)  # a lit frame, not two black ones
+        np.testing.assert_array_equal(colors, cli)
+        image = self.renderer.form_image(colors)
+        self.assertEqual(image.shape, (72, 96, 4))
+        np.testing.assert_array_equal(image, rsl.read_image(f"{self.folder}/cli.exr"))
+        np.testing.assert_array_equal(self.renderer.render_image(), image)
+
+    def test_truth_and_errors_are_rsl_truths_and_compares(self):
+        colors, truth = self.renderer.shade(), self.renderer.truth()
+        cli_truth, info = rsl.read_vertex_colors(f"{self.folder}/truth.rslv")
+        self.assertEqual(info["producer"], "truth")
+        np.testing.assert_array_equal(truth, cli_truth)
+        status, text = run_rsl("compare", f"{self.folder}/cli.rslv", f"{self.folder}/truth.rslv")
+        self.assertEqual(status, 0, text)
+        error = rsl.compare(colors, truth)
+        self.assertAlmostEqual(error["relative_l2"] / number_after(text, "relative L2:"), 1.0, places=5)
+        # The definition, by numpy: ‖A − B‖₂ / ‖B‖₂ over every RGB value.
+        by_numpy = np.linalg.norm((colors - truth).astype(np.float64)) / np.linalg.norm(truth.astype(np.float64))
+        self.assertAlmostEqual(error["relative_l2"] / by_numpy, 1.0, places=5)
+        self.assertTrue(0.001 < error["relative_l2"] < 0.25, error)
+        parts = self.renderer.compare(colors, truth)["parts"]
+        self.assertEqual(sorted(parts), ["floor", "orb"])
+        self.assertAlmostEqual(parts["orb"] / number_after(text, "part orb: relative L2"), 1.0, places=5)
+        status, text = run_rsl("compare", f"{self.folder}/cli.exr", f"{self.folder}/truth.exr")
+        image_error = rsl.compare_images(self.renderer.form_image(colors), self.renderer.form_image(truth))
+        self.assertAlmostEqual(image_error["relative_l2"] / number_after(text, "relative L2:"), 1.0, places=5)
+        self.assertAlmostEqual(image_error["relative_h1"] / number_after(text, "relative H1:"), 1.0, places=5)
+
+    def test_fit_is_rsl_fits_and_drives_the_renderer(self):
+        status, text = run_rsl("fit", SUNSKY, "--lights", "10", "--resolution", "12", "-o", f"{self.folder}/fit.json")
+        self.assertEqual(status, 0, text)
+        with open(f"{self.folder}/fit.json") as f:
+            lights = json.load(f)["lights"]
+        fit = rsl.fit_environment(SUNSKY, 10, resolution=12)
+        self.assertEqual(fit["centers"].shape, (10, 3))
+        np.testing.assert_array_equal(fit["centers"], np.array([l["center"] for l in lights], dtype=np.float32))
+        np.testing.assert_array_equal(fit["half_diagonals"], np.array([l["half_diagonal"] for l in lights], dtype=np.float32))
+        np.testing.assert_array_equal(fit["radiance"], np.array([l["radiance"] for l in lights], dtype=np.float32))
+        self.assertAlmostEqual(fit["relative_l2"], number_after(text, "reconstructed map:"), places=4)
+        # Its lights in a renderer fitted with 12 shade as a renderer fitted with 10.
+        ten = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=10)
+        twelve = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        self.assertEqual(twelve.environment_lights["centers"].shape, (12, 3))
+        twelve.set_environment_lights(fit["centers"], fit["half_diagonals"], fit["radiance"])
+        for r in (ten, twelve):
+            r.set_time(0.25)
+        np.testing.assert_array_equal(twelve.shade(), ten.shade())
+        np.testing.assert_array_equal(twelve.environment_lights["centers"], fit["centers"])
+
+    def test_poses_from_python_equal_a_scene_file(self):
+        moved = write_scene(self.folder, "moved.json",
+                            orb_transform={"translation": [0.25, 0.05, -0.1], "rotation_axis_angle": [0, 1, 0, 90]},
+                            rotation={"axis": [0, 1, 0], "degrees": 75, "degrees_per_second": 0})
+        expected = rsl.Renderer(rsl.Scene.load(moved), lights=12)
+        expected.set_time(0.5)
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        r.set_time(0.5)
+        before = r.shade()
+        half = np.sqrt(0.5, dtype=np.float32)
+        r.set_part_pose("orb", translation=(0.25, 0.05, -0.1), rotation=(half, 0, half, 0))
+        r.set_environment_rotation((0, 1, 0), 75)
+        after = r.shade()
+        self.assertGreater(rsl.compare(before, after)["relative_l2"], 0.05)
+        np.testing.assert_allclose(after, expected.shade(), rtol=1e-5, atol=1e-6)
+        np.testing.assert_allclose(r.truth(), expected.truth(), rtol=1e-5, atol=1e-6)
+        # The same pose as a 4×4 matrix (numpy's row-major M @ [x, y, z, 1]).
+        matrix = np.array([[0, 0, 1, 0.25], [0, 1, 0, 0.05], [-1, 0, 0, -0.1], [0, 0, 0, 1]], dtype=np.float32)
+        r.set_part_pose(0, matrix=matrix)
+        np.testing.assert_allclose(r.part_transform("orb"), matrix, atol=1e-6)
+        np.testing.assert_allclose(r.shade(), after, rtol=1e-5, atol=1e-6)
+
+    def test_long_calls_release_the_gil(self):
+        # The main thread counts while a worker runs the truth (T seconds).
+        # Holding the GIL, the call would let it count for a thread switch
+        # (5 ms) at most; released, for all of T, if at a third of its speed
+        # (the truth's threads take the cores).
+        r = self.renderer
+        start = time.perf_counter()
+        r.truth(subdivision=4)
+        seconds = time.perf_counter() - start
+        idle = threading.Event()
+        waiting = threading.Thread(target=idle.wait)
+        waiting.start()
+        start = time.perf_counter()
+        for _ in range(200000):
+            waiting.is_alive()
+        rate = 200000 / (time.perf_counter() - start)  # loop turns per second
+        idle.set()
+        result, count = {}, 0
+        worker = threading.Thread(target=lambda: result.setdefault("truth", r.truth(subdivision=4)))
+        worker.start()
+        while worker.is_alive():
+            count += 1
+        worker.join()
+        self.assertEqual(result["truth"].shape, (r.part_offsets[-1], 3))
+        self.assertGreater(seconds, 0.1)
+        self.assertGreater(count, 0.05 * rate * seconds, f"{count} turns in a {seconds:.2f} s call at {rate:.0f}/s")
+
+    def test_progress_reaches_a_callable(self):
+        heard = {}
+
+        def progress(what, fraction):
+            heard.setdefault(what, []).append(fraction)
+
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12, field_cache=f"{self.folder}/cache",
+                         progress=progress)
+        self.assertEqual(r.setup["fields_baked"], 4)
+        self.assertIn("fit", heard)
+        bakes = [what for what in heard if what.startswith(("SVDF ", "OVDF "))]
+        self.assertEqual(len(bakes), 4, heard.keys())
+        r.truth(progress=progress)
+        for what, fractions in heard.items():
+            self.assertTrue(all(0.0 <= f <= 1.0 for f in fractions), what)
+            self.assertEqual(fractions[-1], 1.0, what)
+        self.assertIn("truth", heard)
+
+        def failing(what, fraction):
+            raise ValueError("stop: " + what)
+
+        with self.assertRaisesRegex(ValueError, "stop: "):
+            rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12, field_cache=f"{self.folder}/cache2",
+                         progress=failing)
+
+    def test_errors_carry_the_programs_message(self):
+        missing = f"{self.folder}/missing.json"
+        status, text = run_rsl("truth", missing, "-q", "-o", f"{self.folder}/x.exr")
+        self.assertEqual(status, 1)
+        with self.assertRaises(rsl.Error) as caught:
+            rsl.Scene.load(missing)
+        self.assertEqual("rsl: error: " + str(caught.exception) + "\n", text)
+        self.assertTrue(issubclass(rsl.Error, RuntimeError))
+        with self.assertRaisesRegex(rsl.Error, "no part 'ball'"):
+            self.renderer.set_part_pose("ball")
+        with self.assertRaisesRegex(rsl.Error, r"expected an array of shape \(N, 3\)"):
+            rsl.compare(np.zeros((4, 2)), np.zeros((4, 2)))
+        with self.assertRaisesRegex(rsl.Error, "unknown renderer backend 'vulkan'"):
+            rsl.Renderer(rsl.Scene.load(self.scene_file), backend="vulkan")
+
+    def test_scene_built_from_arrays(self):
+        scene = rsl.Scene("quad")
+        scene.add_material("grey", "lambert", albedo=(0.5, 0.5, 0.5))
+        positions = np.array([[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]], dtype=np.float32)
+        scene.add_part("quad", positions, np.array([[0, 2, 1], [0, 3, 2]]), "grey")
+        scene.add_sphere_light((0, 1, 0), radius=0.1, power=(10, 10, 10))
+        scene.set_camera((0, 2, 2), (0, 0, 0), width=32, height=24)
+        scene.set_precompute(svdf_resolution=8, svdf_clusters=4, svdf_vectors=2, svdf_supersampling=1)
+        self.assertEqual(scene.part_vertex_counts, [4])
+        r = rsl.Renderer(scene)
+        colors = r.shade()
+        self.assertTrue((colors > 0).all())
+        # Corners the mirror x → −x swaps alike, all within 1% (tests/api/api_scene_test.cpp says why).
+        np.testing.assert_allclose(colors[[1, 0, 3, 2]], colors, rtol=1e-5)
+        np.testing.assert_allclose(colors, np.broadcast_to(colors[0], colors.shape), rtol=0.01)
+        self.assertLess(rsl.compare(colors, r.truth())["relative_l2"], 0.02)
+        self.assertEqual(r.render_image().shape, (24, 32, 4))
+
+    def test_build_info(self):
+        info = rsl.build_info()
+        self.assertEqual(info["version"], rsl.__version__)
+        status, text = run_rsl("--version")
+        self.assertEqual(status, 0)
+        self.assertTrue(text.startswith(f"rsl {info['version']}\ncommit: {info['commit']}\n"), text)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

@@ -1,0 +1,76 @@
+// The free functions of the public API (include/rsl/rsl.h): what `rsl fit`,
+// `rsl compare` and `rsl --version` run, and the program's files.
+#include <fmt/format.h>
+
+#include "lightfit/reconstruct.h"
+#include "src/api/api_convert.h"
+#include "src/backend/make_renderer.h"
+#include "src/core/envmap.h"
+#include "src/frame/error_metrics.h"
+#include "src/render/renderer.h"
+#include "src/version/build_info.h"
+
+namespace rsl::api {
+
+EnvironmentFit fit_environment(const std::string& file, int lights, int resolution, bool cross_face) {
+    // The checks and defaults of `rsl fit`.
+    if (resolution < 1 || resolution > 512)
+        throw_error("resolution {}: expected 1..512 texels per cube-face edge", resolution);
+    if (lights < 1) throw_error("lights {}: expected at least 1", lights);
+    if (!cross_face && lights < 6)
+        throw_error("lights {} without cross_face: regions never cross a cube face, so at least 6", lights);
+    const CubeMap map = load_environment(file, resolution);
+    const RslSet set = fit_environment_lights(map, lights, cross_face);
+    EnvironmentFit fit;
+    for (const RotatableSquareLight& l : set.lights)
+        fit.lights.push_back({to_float3(l.center), l.half_diagonal, to_float3(l.radiance)});
+    fit.resolution = map.resolution();
+    fit.relative_l2 = lightfit::relative_l2_error(map, lightfit::reconstruct(set, map.resolution()));
+    fit.map_energy = to_float3(Vec3(map.energy()));
+    fit.light_energy = to_float3(Vec3(set.total_energy()));
+    return fit;
+}
+
+VertexError compare(const VertexColors& result, const VertexColors& reference) {
+    const ::rsl::VertexColors a = to_internal(result, "compare result"), b = to_internal(reference, "compare reference");
+    check_same_vertices(a, "result", b, "reference");
+    const VertexErrorReport report = compare_vertex_colors(a, b);
+    VertexError error;
+    error.relative_l2 = report.total.relative_l2();
+    error.max_error = report.total.max_error;
+    error.relative_max = report.total.relative_max();
+    error.count = report.total.count;
+    error.part_names = report.part_names;
+    for (const ErrorStats& part : report.parts) error.part_relative_l2.push_back(part.relative_l2());
+    return error;
+}
+
+ImageError compare(const Image& result, const Image& reference) {
+    const ::rsl::Image a = to_internal(result, "compare result"), b = to_internal(reference, "compare reference");
+    if (a.width != b.width || a.height != b.height)
+        throw_error("result and reference are not comparable: {}×{} vs {}×{} pixels", a.width, a.height, b.width,
+                    b.height);
+    const ImageErrorReport report = compare_images(a, b);
+    return {report.pixels.relative_l2(), report.relative_h1(), report.pixels.max_error, report.covered, report.total};
+}
+
+void write_image(const std::string& exr_path, const Image& image, float exposure) {
+    if (std::filesystem::path(exr_path).extension() != ".exr")
+        throw_error("{}: expected an .exr path (a .png preview is written beside it)", exr_path);
+    write_exr_and_png(exr_path, to_internal(image, exr_path), ToneMap{exposure, exposure == 0.0f});
+}
+
+Image read_image(const std::string& exr_path) { return to_api(read_exr(exr_path)); }
+
+void write_vertex_colors(const std::string& rslv_path, const VertexColors& colors) {
+    ::rsl::write_vertex_colors(rslv_path, to_internal(colors, rslv_path));
+}
+
+VertexColors read_vertex_colors(const std::string& rslv_path) { return to_api(::rsl::read_vertex_colors(rslv_path)); }
+
+BuildInfo build_info() {
+    const ::rsl::BuildInfo info = ::rsl::build_info();
+    return {info.version, info.commit, info.build_type, info.embree, info.openexr, available_backends()};
+}
+
+}  // namespace rsl::api

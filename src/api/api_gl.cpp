@@ -1,0 +1,39 @@
+// The "gl-current" backend's output (include/rsl/rsl.h): the GPU renderer
+// in the caller's context fills its vertex-colour buffer, which the caller
+// draws with its own pipeline; nothing is read back.
+#include "src/api/renderer_state.h"
+#include "src/core/error.h"
+#ifdef RSL_HAVE_GL
+#include "src/gl/gl_renderer.h"
+#endif
+
+namespace rsl::api {
+
+#ifdef RSL_HAVE_GL
+namespace {
+gl::GlRenderer& caller_context_renderer(Backend backend, VertexRenderer& renderer) {
+    if (backend != Backend::GlCurrentContext)
+        throw_error("the GL colour buffer belongs to the gl-current backend (this renderer is {})",
+                    backend_name(backend));
+    // make_renderer's gl-current case makes exactly this class.
+    return static_cast<gl::GlRenderer&>(renderer);
+}
+}  // namespace
+
+void Renderer::shade_gl() {
+    gl::GlRenderer& renderer = caller_context_renderer(state_->backend, *state_->renderer);
+    state_->update_frame();
+    renderer.shade();
+}
+
+unsigned Renderer::gl_color_buffer() const {
+    return caller_context_renderer(state_->backend, *state_->renderer).color_buffer();
+}
+#else
+void Renderer::shade_gl() { throw_error("the gl-current backend: this rsl was built without OpenGL"); }
+unsigned Renderer::gl_color_buffer() const {
+    throw_error("the gl-current backend: this rsl was built without OpenGL");
+}
+#endif
+
+}  // namespace rsl::api

@@ -1,0 +1,40 @@
+#pragma once
+// What an rsl::api::Renderer holds (api_renderer.cpp, api_gl.cpp): the
+// renderer's own copy of the scene, which the per-frame setters edit (a posed
+// part gets a root node of its own; the environment rotation, camera, lights
+// and materials are written into the scene too), so that the renderer, image
+// formation and the ground truth all read one scene.
+#include <memory>
+#include <vector>
+
+#include "rsl/rsl.h"
+#include "src/backend/make_renderer.h"
+#include "src/rays/posed_scene.h"
+#include "src/render/render_setup.h"
+
+namespace rsl::api {
+
+struct Renderer::State {
+    RenderSetup setup;  // setup.scene: the copy every setter edits
+    RenderOptions options;
+    Backend backend = Backend::Cpu;
+    std::unique_ptr<VertexRenderer> renderer;
+    float time = 0;
+    bool frame_stale = true;          // the renderer is not posed at `time` with the latest edits
+    std::vector<int> posed_node;      // per part: its node from set_part_pose, or −1
+    ::rsl::VertexColors output;       // reused between frames
+    mutable std::unique_ptr<PosedScene> posed;  // image formation, made at the first image
+
+    rsl::Scene& scene() { return *setup.scene; }
+    const rsl::Scene& scene() const { return *setup.scene; }
+    // Poses the renderer at `time` when an edit or set_time made it stale.
+    void update_frame() {
+        if (!frame_stale) return;
+        renderer->set_time(time);
+        frame_stale = false;
+    }
+    int part_index(const std::string& part) const;  // throws naming the parts
+    void check_part(int part) const;
+};
+
+}  // namespace rsl::api

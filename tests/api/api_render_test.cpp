@@ -1,0 +1,160 @@
+// The public API (include/rsl/rsl.h) renders what the `rsl` program renders:
+// the same vertex colours, image and ground truth, bit for bit, for the same
+// scene file; and a frame posed through the API equals the frame of a scene
+// file that says the same pose.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <regex>
+
+#include "rsl/rsl.h"
+#include "src/core/math.h"
+#include "tests/api/api_test_scene.h"
+
+namespace rsl {
+namespace {
+
+using api::Renderer;
+using api::Scene;
+
+// The number after `label` in `text` (e.g. "relative L2: 0.0123 …").
+double number_after(const std::string& text, const std::string& label) {
+    const size_t at = text.find(label);
+    REQUIRE(at != std::string::npos);
+    return std::strtod(text.c_str() + at + label.size(), nullptr);
+}
+
+void require_same_colors(const api::VertexColors& a, const api::VertexColors& b) {
+    REQUIRE(a.part_names == b.part_names);
+    REQUIRE(a.part_offsets == b.part_offsets);
+    REQUIRE(a.rgb.size() == b.rgb.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < a.rgb.size(); ++i) differing += a.rgb[i] != b.rgb[i];
+    REQUIRE(differing == 0);
+}
+
+double max_value(const api::VertexColors& c) {
+    double m = 0;
+    for (float x : c.rgb) m = std::max(m, double(x));
+    return m;
+}
+
+TEST_CASE("the API's frame, image and truth are rsl render's and rsl truth's, bit for bit", "[api]") {
+    const auto folder = test::scratch_dir("api-cli");
+    const auto scene_file = test::write_api_scene(folder, "scene.json");
+    const std::string out = folder.string();
+    const auto [render_status, render_text] = test::run_rsl(fmt::format(
+        "render {} --time 0.25 --lights 12 -q -o {}/cli.exr --vertex-out {}/cli.rslv", scene_file.string(), out, out));
+    REQUIRE(render_status == 0);
+    const auto [truth_status, truth_text] = test::run_rsl(
+        fmt::format("truth {} --time 0.25 -q -o {}/truth.exr --vertex-out {}/truth.rslv", scene_file.string(), out, out));
+    REQUIRE(truth_status == 0);
+
+    api::RenderSettings settings;
+    settings.lights = 12;
+    Renderer renderer(Scene::load(scene_file.string()), settings);
+    CHECK(renderer.setup().fields_baked == 0);  // rsl render baked them into the scene's cache
+    CHECK(renderer.setup().fields_loaded == 4);
+    renderer.set_time(0.25f);
+    const api::VertexColors colors = renderer.shade();
+    CHECK(colors.producer == "rsl-cpu");
+    require_same_colors(colors, api::read_vertex_colors(out + "/cli.rslv"));
+    REQUIRE(max_value(colors) > 0.01);  // lit: the comparison is not of two black frames
+    const api::Image image = renderer.form_image(colors);
+    const api::Image cli_image = api::read_image(out + "/cli.exr");
+    REQUIRE(image.width == 96);
+    REQUIRE(image.height == 72);
+    REQUIRE(image.rgba == cli_image.rgba);
+
+    const api::VertexColors truth = renderer.truth();
+    require_same_colors(truth, api::read_vertex_colors(out + "/truth.rslv"));
+    // `rsl compare` prints six significant digits of the same number.
+    const auto [compare_status, compare_text] = test::run_rsl(fmt::format("compare {0}/cli.rslv {0}/truth.rslv", out));
+    REQUIRE(compare_status == 0);
+    const api::VertexError error = api::compare(colors, truth);
+    CHECK(error.relative_l2 == Approx(number_after(compare_text, "relative L2: ")).epsilon(1e-5));
+    CHECK(error.relative_l2 > 0.001);  // an RSL frame is not the truth…
+    CHECK(error.relative_l2 < 0.25);   // …but close to it
+    const auto [image_status, image_text] = test::run_rsl(fmt::format("compare {0}/cli.exr {0}/truth.exr", out));
+    REQUIRE(image_status == 0);
+    const api::ImageError image_error = api::compare(image, api::read_image(out + "/truth.exr"));
+    CHECK(image_error.relative_l2 == Approx(number_after(image_text, "relative L2: ")).epsilon(1e-5));
+    CHECK(image_error.relative_h1 == Approx(number_after(image_text, "relative H1: ")).epsilon(1e-5));
+}
+
+TEST_CASE("poses, environment rotation, camera and materials set in code equal a scene file saying the same", "[api]") {
+    const auto folder = test::scratch_dir("api-pose");
+    const auto rest_file = test::write_api_scene(folder, "rest.json");
+    test::ApiSceneOptions moved;
+    moved.orb_transform = R"({ "translation": [0.25, 0.05, -0.1], "rotation_axis_angle": [0.3, 1, 0.2, 35], "scale": [1.2, 0.9, 1.1] })";
+    moved.environment_rotation = R"({ "axis": [0.2, 1, 0], "degrees": 75, "degrees_per_second": 0 })";
+    moved.floor_albedo = "[0.2, 0.6, 0.3]";
+    moved.camera = R"("position": [-0.7, 0.9, 1.2], "target": [0.1, 0.15, 0])";
+    const auto moved_file = test::write_api_scene(folder, "moved.json", moved);
+
+    Renderer expected(Scene::load(moved_file.string()));
+    expected.set_time(0.4f);
+    const api::VertexColors expected_colors = expected.shade();
+
+    Renderer renderer(Scene::load(rest_file.string()));
+    renderer.set_time(0.4f);
+    const api::VertexColors rest_colors = renderer.shade();
+    const glm::quat q = glm::angleAxis(glm::radians(35.0f), glm::normalize(glm::vec3(0.3f, 1, 0.2f)));
+    renderer.set_part_pose("orb", api::Pose{{0.25f, 0.05f, -0.1f}, {q.w, q.x, q.y, q.z}, {1.2f, 0.9f, 1.1f}});
+    renderer.set_environment_rotation({0.2f, 1, 0}, 75);
+    renderer.set_camera({{-0.7f, 0.9f, 1.2f}, {0.1f, 0.15f, 0}, {0, 1, 0}, 36, 96, 72});
+    renderer.set_material_parameter("floor", "albedo", {0.2f, 0.6f, 0.3f});
+    const api::VertexColors colors = renderer.shade();
+    CHECK(api::compare(rest_colors, expected_colors).relative_l2 > 0.05);  // the edits change the frame a lot…
+    require_same_colors(colors, expected_colors);                        // …into the file's frame exactly
+    REQUIRE(renderer.form_image(colors).rgba == expected.form_image(expected_colors).rgba);
+    // The ground truth sees the same edits.
+    require_same_colors(renderer.truth(), expected.truth());
+
+    // The part stays where it was put while time moves on; a swapped
+    // material shades as the file's assignment would.
+    renderer.set_time(0.9f);
+    expected.set_time(0.9f);
+    renderer.set_part_material("floor", "clay");
+    expected.set_part_material("floor", "clay");
+    require_same_colors(renderer.shade(), expected.shade());
+    const auto m = renderer.part_transform(0);
+    CHECK(m[12] == Approx(0.25f));
+    CHECK(m[13] == Approx(0.05f));
+    CHECK(m[14] == Approx(-0.1f));
+}
+
+TEST_CASE("the API's errors carry the message rsl prints", "[api]") {
+    const auto folder = test::scratch_dir("api-errors");
+    const std::string missing = (folder / "missing.json").string();
+    const auto [status, text] = test::run_rsl(fmt::format("truth {} -q -o {}/x.exr", missing, folder.string()));
+    REQUIRE(status == 1);
+    const std::string message = test::error_of([&] { Scene::load(missing); });
+    REQUIRE(!message.empty());
+    CHECK(text == "rsl: error: " + message + "\n");
+
+    // A scene whose environment file is not there: the message of rsl render.
+    test::write_api_scene(folder, "scene.json");
+    std::string json = test::read_bytes(folder / "scene.json");
+    json.replace(json.find("sunsky.exr"), 10, "nowhere.exr");
+    test::write_text(folder / "broken.json", json);
+    const auto [render_status, render_text] =
+        test::run_rsl(fmt::format("render {}/broken.json -q -o {}/x.exr", folder.string(), folder.string()));
+    REQUIRE(render_status == 1);
+    const std::string render_message =
+        test::error_of([&] { Renderer(Scene::load((folder / "broken.json").string())); });
+    CHECK(render_message.find("nowhere.exr") != std::string::npos);
+    CHECK(render_text == "rsl: error: " + render_message + "\n");
+
+    Renderer renderer(Scene::load((folder / "scene.json").string()));
+    CHECK(test::error_of([&] { renderer.set_part_pose("ball", {}); }) ==
+          "no part 'ball' in scene 'api-test' (parts: orb, floor)");
+    CHECK(test::error_of([&] { renderer.set_part_material("floor", "gold"); }).find("no material named 'gold'") !=
+          std::string::npos);
+    CHECK(test::error_of([&] { renderer.gl_color_buffer(); }).find("gl-current") != std::string::npos);
+    CHECK(test::error_of([&] { renderer.set_part_pose(0, api::Pose{{0, 0, 0}, {1, 0, 0, 0}, {1, -1, 1}}); })
+              .find("must be positive") != std::string::npos);
+}
+
+}  // namespace
+}  // namespace rsl

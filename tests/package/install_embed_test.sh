@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# ctest `package-install-embed`: cmake --install into a temporary prefix, then
+# examples/embed configured and built as a separate project against that
+# prefix only (find_package(rsl)), run, and its image checked with the
+# installed `rsl compare`; the installed Python module imports.
+#   install_embed_test.sh BUILD_DIR SOURCE_DIR PYTHON
+set -euo pipefail
+build=$1 source=$2 python=$3
+work=$(mktemp -d "${TMPDIR:-/tmp}/rsl-install-test.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+prefix=$work/prefix
+fail() { echo "FAIL: $*" >&2; exit 1; }
+number_after() { sed -n "s/^$1 \([0-9.eE+-]*\).*/\1/p" | head -1; }
+less_than() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a < b) }'; }
+
+start=$(date +%s.%N)
+cmake --install "$build" --prefix "$prefix" >"$work/install.log"
+echo "== installed tree"
+(cd "$prefix" && find . -type f | sort)
+for f in bin/rsl include/rsl/rsl.h include/rsl/error.h include/rsl/version.h lib/cmake/rsl/rslConfig.cmake \
+         lib/cmake/rsl/rslConfigVersion.cmake lib/cmake/rsl/rslTargets.cmake lib/librsl_api.a; do
+  [ -e "$prefix/$f" ] || fail "not installed: $f"
+done
+# Only the public headers: the stage headers stay in the source tree.
+[ "$(find "$prefix/include" -type f | wc -l)" -eq 3 ] || fail "headers other than <rsl/rsl.h>, <rsl/error.h>, <rsl/version.h> installed"
+"$prefix/bin/rsl" --version | tee "$work/version.txt"
+grep -q "^rsl [0-9]" "$work/version.txt" || fail "rsl --version"
+
+echo "== examples/embed against $prefix"
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S "$source/examples/embed" -B "$work/embed" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF "${launcher[@]}" >"$work/embed-configure.log"
+# It must have found the installed package, not the build tree.
+grep -q "^rsl_DIR:PATH=$prefix/lib/cmake/rsl$" "$work/embed/CMakeCache.txt" || fail "embed found rsl elsewhere: $(grep rsl_DIR "$work/embed/CMakeCache.txt")"
+cmake --build "$work/embed" >"$work/embed-build.log" || { cat "$work/embed-build.log"; fail "embed does not build"; }
+"$work/embed/embed" "$source/assets/generated/sunsky.exr" "$work/out" | tee "$work/embed.txt"
+for f in first last last_truth; do [ -s "$work/out/$f.exr" ] && [ -s "$work/out/$f.png" ] || fail "embed wrote no $f.exr/.png"; done
+
+echo "== its images, by the installed rsl compare"
+"$prefix/bin/rsl" compare "$work/out/last.exr" "$work/out/last_truth.exr" | tee "$work/truth.txt"
+"$prefix/bin/rsl" compare "$work/out/last.exr" "$work/out/first.exr" | tee "$work/moved.txt"
+error=$(number_after "relative L2:" <"$work/truth.txt")
+moved=$(number_after "relative L2:" <"$work/moved.txt")
+covered=$(sed -n 's/.*over \([0-9]*\) covered pixels.*/\1/p' "$work/truth.txt")
+# The last frame is the truth's up to the RSL approximation (30 lights, light
+# fields); the ball has rolled 1 m and the sky turned 105°, so the first frame is not.
+[ "${covered:-0}" -gt 5000 ] || fail "the image covers ${covered:-0} of 19200 pixels"
+less_than "$error" 0.15 || fail "last frame against its truth: relative L2 $error ≥ 0.15"
+less_than 0.10 "$moved" || fail "first and last frames differ by only $moved: nothing moved"
+
+echo "== the installed Python module"
+if [ -n "$python" ]; then
+  PYTHONPATH="$prefix/lib/python3/dist-packages" "$python" -c "import rsl, sys; print('import rsl:', rsl.__file__, rsl.__version__); sys.exit(not rsl.__file__.startswith('$prefix'))"
+else
+  echo "(this build has no Python module: RSL_BUILD_PYTHON=OFF)"
+fi
+
+end=$(date +%s.%N)
+awk -v a="$start" -v b="$end" 'BEGIN { printf "install + embed build + run: %.1f s\n", b - a }'
