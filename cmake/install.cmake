@@ -63,6 +63,9 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 
 set(CPACK_DEBIAN_PROGRAM_PACKAGE_NAME rsl)
+# Mesa's drivers (llvmpipe too) for the gl backend and the viewer; the CPU
+# renderer needs none. NVIDIA's driver provides its own.
+set(CPACK_DEBIAN_PROGRAM_PACKAGE_RECOMMENDS libgl1-mesa-dri)
 set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-rsl)
 set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
 set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS "python3 (>= 3.11), python3 (<< 3.12), python3-numpy")

@@ -123,6 +123,7 @@ void bind_scene(py::module_& m) {
         .def_property_readonly("part_vertex_counts", &api::Scene::part_vertex_counts)
         .def_property_readonly("vertex_count", &api::Scene::vertex_count)
         .def_property_readonly("environment_file", &api::Scene::environment_file)
+        .def_property_readonly("environment_resolution", &api::Scene::environment_resolution)
         .def("part_mesh",
              [](const api::Scene& s, int part) {
                  api::Mesh mesh = s.part_mesh(part);

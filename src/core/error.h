@@ -13,11 +13,14 @@
 
 namespace rsl {
 
-// "path: message" — the one shape of every input error.
+// "path: message" — the one shape of every input error. An empty path (a
+// scene built in code, rsl::api) leaves just the message.
 template <typename... Args>
 [[noreturn]] void throw_file_error(const std::filesystem::path& path, fmt::format_string<Args...> format,
                                    Args&&... args) {
-    throw Error(fmt::format("{}: {}", path.string(), fmt::format(format, std::forward<Args>(args)...)));
+    std::string message = fmt::format(format, std::forward<Args>(args)...);
+    if (path.empty()) throw Error(std::move(message));
+    throw Error(fmt::format("{}: {}", path.string(), message));
 }
 
 template <typename... Args>

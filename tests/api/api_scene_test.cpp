@@ -78,6 +78,10 @@ TEST_CASE("a scene built in code without a cache folder bakes in memory and shad
     CHECK(api::compare(colors, truth).relative_l2 < 0.02);
     CHECK(test::error_of([&] { scene.add_part("bad", {{{0, 0, 0}}, {0, 0, 1}, {}}, "grey"); }).find("part 'bad'") == 0);
     CHECK(test::error_of([&] { scene.add_part("x", quad, "gold"); }) == "part 'x': no material 'gold' (add_material first)");
+    // Errors of a scene without a file name no file.
+    api::RenderSettings overridden;
+    overridden.part_materials = {{"nope", "grey"}};
+    CHECK(test::error_of([&] { Renderer(scene, overridden); }) == "material override: no part named 'nope'");
 }
 
 TEST_CASE("poses from matrices: translation · rotation · scale round-trips, shear and projections are refused", "[api]") {

@@ -34,7 +34,8 @@ for package in "${packages[@]}"; do
   depends=$(dpkg-deb -f "$deb" Depends)
   [ -n "$depends" ] || fail "$package declares no Depends"
   # "libc6 (>= 2.34), libembree3-3 (>= 3.13), python3 (<< 3.12)": the names.
-  for name in $(echo "$depends" | tr ',|' '\n\n' | sed 's/(.*)//; s/ //g' | sort -u); do
+  relations="$depends, $(dpkg-deb -f "$deb" Recommends)"
+  for name in $(echo "$relations" | tr ',|' '\n\n' | sed 's/(.*)//; s/ //g' | sort -u); do
     dpkg-query -W -f='${Status}\n' "$name" 2>/dev/null | grep -q "install ok installed" ||
       apt-cache show "$name" >/dev/null 2>&1 || fail "$package depends on '$name', no Debian package here"
   done
