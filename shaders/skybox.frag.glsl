@@ -2,8 +2,8 @@
 // The environment seen through each pixel: the view ray's direction d in the
 // world, the map's radiance L(Rᵀ d) (its content at d has turned by R, as the
 // renderer's lights have; docs/CONVENTIONS.md), the nearest texel of each map
-// blended as the renderer blends their lights; exposure and the sRGB curve as
-// the display pass (display.frag.glsl).
+// blended as the renderer blends their lights; exposure and the sRGB curve
+// (srgb.glsl) as the display pass.
 in vec2 v_ndc;
 uniform mat4 u_inverse_view_projection;
 uniform vec3 u_eye;
@@ -12,10 +12,6 @@ uniform samplerCube u_first, u_second;
 uniform float u_second_weight;
 uniform float u_exposure;
 layout(location = 0) out vec4 o_color;
-vec3 srgb(vec3 c) {
-    c = clamp(c, 0.0, 1.0);
-    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
 void main() {
     vec4 far = u_inverse_view_projection * vec4(v_ndc, 1.0, 1.0);
     vec3 direction = u_rotation_transpose * normalize(far.xyz / far.w - u_eye);

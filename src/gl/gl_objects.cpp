@@ -108,6 +108,8 @@ std::string shading_prelude() {
            shader_text("shading_core.glsl") + "#line 2 0\n";
 }
 
+std::string srgb_prelude() { return "#line 1 1\n" + shader_text("srgb.glsl") + "#line 2 0\n"; }
+
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines) {
     const GLuint vs = compile(GL_VERTEX_SHADER, vertex, defines);
     GLuint fs = 0;

@@ -76,6 +76,9 @@ Program build_program(const std::string& vertex, const std::string& fragment, co
 // (src/shading/shading_core.h, embedded as "shading_core.glsl"); then a
 // #line so that the driver's messages give the shader's own line numbers.
 std::string shading_prelude();
+// What the viewer's display passes get before their text: the sRGB curve
+// (shaders/srgb.glsl), then a #line for the shader's own line numbers.
+std::string srgb_prelude();
 
 // A flat array of vec4 (or half4) stored row-major in a 2D texture of fixed
 // width: element i is texel (i % width, i / width). Shaders read it with

@@ -68,7 +68,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     const PackedGeometry geometry = pack_geometry(scene, fields_);
     const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride) + shading_prelude();
     shade_program_ = build_program("fullscreen.vert.glsl", "shade_vertices.frag.glsl", defines);
-    display_program_ = build_program("display.vert.glsl", "display.frag.glsl");
+    display_program_ = build_program("display.vert.glsl", "display.frag.glsl", srgb_prelude());
     glUseProgram(shade_program_.id());
     const char* samplers[kUnitCount] = {"u_positions",       "u_normals",           "u_tangents",
                                         "u_parts",           "u_lights",            "u_occluders",

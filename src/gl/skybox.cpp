@@ -28,7 +28,7 @@ GLint uniform(const Program& program, const char* name) { return glGetUniformLoc
 }  // namespace
 
 Skybox::Skybox(const CubeMap& first, const CubeMap* second)
-    : program_(build_program("skybox.vert.glsl", "skybox.frag.glsl")),
+    : program_(build_program("skybox.vert.glsl", "skybox.frag.glsl", srgb_prelude())),
       first_(upload_cube(first)),
       second_(upload_cube(second ? *second : first)),
       vao_(make_vertex_array()) {

@@ -12,7 +12,6 @@
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
-#include <stb_image.h>
 
 #include "demos/demo.h"
 #include "demos/demo_runners.h"
@@ -20,6 +19,7 @@
 #include "src/brdf/brdf.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "tests/png_test_support.h"
 
 using namespace rsl;
 using namespace rsl::demos;
@@ -38,22 +38,8 @@ fs::path scratch_dir() {
     return scratch.dir;
 }
 
-struct Png {
-    int width = 0, height = 0;
-    std::vector<unsigned char> rgb;
-};
-
-Png read_png(const fs::path& path) {
-    INFO(path.string());
-    REQUIRE(fs::is_regular_file(path));
-    Png png;
-    int channels = 0;
-    unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 3);
-    REQUIRE(data != nullptr);
-    png.rgb.assign(data, data + size_t(png.width) * png.height * 3);
-    stbi_image_free(data);
-    return png;
-}
+using test::Png;
+using test::read_png;
 
 // Standard deviation of the 8-bit luma over the image: 0 for a flat image.
 double luma_deviation(const Png& png) {

@@ -23,9 +23,13 @@ VertexColors as_internal(const api::VertexColors& c) {
     return out;
 }
 
+// The API tests' scene (tests/api/api_test_scene.h) in a folder of its own.
+api::Scene api_scene(const std::string& folder) {
+    return api::Scene::load(test::write_api_scene(test::scratch_dir(folder), "scene.json").string());
+}
+
 TEST_CASE("the API's gl-current backend fills a GL colour buffer of the caller's context with the CPU's colours", "[gl-api]") {
-    const auto file = test::write_api_scene(test::scratch_dir("api-gl"), "scene.json");
-    const api::Scene scene = api::Scene::load(file.string());
+    const api::Scene scene = api_scene("api-gl");
     api::RenderSettings settings;
     settings.lights = 12;
     api::Renderer cpu(scene, settings);
@@ -63,8 +67,7 @@ TEST_CASE("the API's gl-current backend fills a GL colour buffer of the caller's
 }
 
 TEST_CASE("the API's gl backend renders the CPU's image; gl-current without a context is refused", "[gl-api]") {
-    const auto file = test::write_api_scene(test::scratch_dir("api-gl-own"), "scene.json");
-    const api::Scene scene = api::Scene::load(file.string());
+    const api::Scene scene = api_scene("api-gl-own");
     api::RenderSettings settings;
     settings.lights = 8;
     api::Renderer cpu(scene, settings);

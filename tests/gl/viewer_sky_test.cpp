@@ -4,17 +4,16 @@
 // two screenshots a quarter turn apart show the map turned.
 #include <catch2/catch.hpp>
 
-#include <stb_image.h>
-
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include <fmt/format.h>
 
 #include "src/core/envmap.h"
 #include "src/gl/viewer.h"
 #include "tests/gl/viewer_test_support.h"
+#include "tests/png_test_support.h"
+#include "tests/test_support.h"
 #include "tests/trace/trace_test_scenes.h"
 
 namespace rsl {
@@ -22,12 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Screenshot {
-    int width = 0, height = 0;
-    std::vector<unsigned char> rgb;
-};
-
-Screenshot screenshot(const fs::path& scene, float time, float exposure, const fs::path& png) {
+test::Png screenshot(const fs::path& scene, float time, float exposure, const fs::path& png) {
     gl::ViewerOptions options;
     options.scene = scene;
     options.quick_fields = true;
@@ -40,13 +34,7 @@ Screenshot screenshot(const fs::path& scene, float time, float exposure, const f
     options.auto_exposure = false;
     options.screenshot = png;
     gl::run_viewer(options);
-    Screenshot shot;
-    int channels = 0;
-    unsigned char* pixels = stbi_load(png.c_str(), &shot.width, &shot.height, &channels, 3);
-    REQUIRE(pixels != nullptr);
-    shot.rgb.assign(pixels, pixels + size_t(shot.width) * shot.height * 3);
-    stbi_image_free(pixels);
-    return shot;
+    return test::read_png(png);
 }
 
 TEST_CASE("the viewer draws the environment behind the scene, turning with it", "[gl-viewer]") {
@@ -55,8 +43,7 @@ TEST_CASE("the viewer draws the environment behind the scene, turning with it", 
         WARN("SKIPPED: assets/generated/sunsky.exr is missing (build the generated_assets target)");
         return;
     }
-    const fs::path dir = fs::temp_directory_path() / fmt::format("rsl_viewer_sky_test_{}", ::getpid());
-    fs::create_directories(dir);
+    const fs::path dir = test::scratch_dir("viewer-sky");
     test::write_obj(dir / "ground.obj", test::make_plane(1.0f, 4, "ground"));
     const Vec3 eye(0.0f, 1.0f, 3.0f), target(0.0f, 0.9f, 0.0f);
     const int resolution = 8;  // big texels
@@ -92,16 +79,16 @@ TEST_CASE("the viewer draws the environment behind the scene, turning with it", 
     };
     // A pixel matches when it is the expected colour at its center or half a
     // pixel away (its ray may fall on either side of a texel border).
-    auto matches = [&](const Screenshot& shot, int x, int y, float t) {
-        const unsigned char* c = &shot.rgb[(size_t(y) * width + x) * 3];
+    auto matches = [&](const test::Png& shot, int x, int y, float t) {
+        const unsigned char* c = shot.at(x, y);
         for (const Vec2 offset : {Vec2(0.5f), Vec2(0.0f), Vec2(1.0f), Vec2(0.0f, 1.0f), Vec2(1.0f, 0.0f)}) {
             const Vec3 e = expected(float(x) + offset.x, float(y) + offset.y, t);
             if (std::abs(c[0] - e.r) <= 3 && std::abs(c[1] - e.g) <= 3 && std::abs(c[2] - e.b) <= 3) return true;
         }
         return false;
     };
-    const Screenshot at_0 = screenshot(dir / "scene.json", 0.0f, exposure, dir / "t0.png");
-    const Screenshot at_1 = screenshot(dir / "scene.json", 1.0f, exposure, dir / "t1.png");
+    const test::Png at_0 = screenshot(dir / "scene.json", 0.0f, exposure, dir / "t0.png");
+    const test::Png at_1 = screenshot(dir / "scene.json", 1.0f, exposure, dir / "t1.png");
     REQUIRE(at_0.width == width);
     REQUIRE(at_0.height == height);
     // The upper third looks above the ground plane (1 m square, below the eye): sky only.
@@ -121,7 +108,6 @@ TEST_CASE("the viewer draws the environment behind the scene, turning with it", 
     CHECK(match_0 >= samples * 95 / 100);
     CHECK(match_1 >= samples * 95 / 100);
     CHECK(turned_0 < samples * 70 / 100);    // a quarter turn later the sky has moved
-    if (!getenv("RSL_KEEP_TEST_FILES")) fs::remove_all(dir);
 }
 
 }  // namespace

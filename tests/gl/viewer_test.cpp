@@ -4,8 +4,6 @@
 // open ground. (viewer_sky_test.cpp checks the sky behind them.)
 #include <catch2/catch.hpp>
 
-#include <stb_image.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +14,7 @@
 
 #include "src/gl/viewer.h"
 #include "tests/gl/viewer_test_support.h"
+#include "tests/png_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
 
 namespace rsl {
@@ -58,14 +57,12 @@ TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "
     options.screenshot = dir / "shot.png";
     gl::run_viewer(options);
 
-    int width = 0, height = 0, channels = 0;
-    unsigned char* pixels = stbi_load(options.screenshot.c_str(), &width, &height, &channels, 3);
-    REQUIRE(pixels != nullptr);
+    const test::Png shot = test::read_png(options.screenshot);
+    const int width = shot.width, height = shot.height;
     REQUIRE(width == 320);
     REQUIRE(height == 240);
     auto luma = [&](const Vec2& p) {
-        const int x = std::clamp(int(p.x), 0, width - 1), y = std::clamp(int(p.y), 0, height - 1);
-        const unsigned char* c = pixels + (size_t(y) * width + x) * 3;
+        const unsigned char* c = shot.at(std::clamp(int(p.x), 0, width - 1), std::clamp(int(p.y), 0, height - 1));
         // Linear luminance (undo the display pass's sRGB curve), 0..255.
         return 0.2126f * test::linear_255(c[0]) + 0.7152f * test::linear_255(c[1]) + 0.0722f * test::linear_255(c[2]);
     };
@@ -80,7 +77,6 @@ TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "
     CHECK(open_ground > 12.75f + 50.0f);
     CHECK(ball > 12.75f + 50.0f);
     CHECK(shadowed_ground < 0.7f * open_ground);
-    stbi_image_free(pixels);
     if (!getenv("RSL_KEEP_TEST_FILES")) fs::remove_all(dir);
 }
 

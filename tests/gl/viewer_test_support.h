@@ -38,7 +38,7 @@ inline Vec2 project(const Vec3& point, const Vec3& eye, const Vec3& target, floa
     return Vec2((ndc.x * 0.5f + 0.5f) * width, (0.5f - ndc.y * 0.5f) * height);
 }
 
-// The display's sRGB curve (shaders/display.frag.glsl) and its inverse, 0..255.
+// The display's sRGB curve (shaders/srgb.glsl) and its inverse, 0..255.
 inline float srgb_255(float linear) {
     const float c = std::clamp(linear, 0.0f, 1.0f);
     return 255.0f * (c < 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f);
