@@ -54,6 +54,24 @@ void bind_files(py::module_& m) {
         "`rsl fit`: K rotatable square lights of an environment map, as arrays (centers (K, 3), half_diagonals (K,), "
         "radiance (K, 3)) with the map's relative L2 rebuilt from them");
     m.def(
+        "bake_fields",
+        [](const api::Scene& scene, const py::object& field_cache, const py::object& progress) {
+            const std::string folder = field_cache.is_none() ? "" : std::string(py::str(field_cache));
+            const api::Progress callback = progress_callback(progress);
+            api::SetupReport report;
+            {
+                py::gil_scoped_release release;
+                report = api::bake_fields(scene, folder, callback);
+            }
+            py::dict d;
+            d["fields_loaded"] = report.fields_loaded, d["fields_baked"] = report.fields_baked;
+            d["bake_seconds"] = report.bake_seconds;
+            return d;
+        },
+        py::arg("scene"), py::arg("field_cache") = py::none(), py::arg("progress") = py::none(),
+        "`rsl bake`: every part's fields into field_cache (None: beside the scene file), baking only what is "
+        "missing; returns how many were reused and baked");
+    m.def(
         "compare",
         [](const FloatArray& result, const FloatArray& reference) {
             const api::VertexError e = api::compare(colors_from_numpy(result, "result", {}, {}),

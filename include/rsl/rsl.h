@@ -270,6 +270,11 @@ private:
     std::unique_ptr<State> state_;
 };
 
+// `rsl bake`: every part's fields into `field_cache` (empty: beside the
+// scene's file), baking only what is missing, as a Renderer's construction
+// would. Returns how many field files were reused and baked (lights 0).
+SetupReport bake_fields(const Scene& scene, const std::string& field_cache = "", const Progress& progress = {});
+
 // `rsl fit`: the environment's K square lights and how well they rebuild it.
 struct EnvironmentFit {
     std::vector<SquareLight> lights;

@@ -203,9 +203,11 @@ class ModuleTest(unittest.TestCase):
         def progress(what, fraction):
             heard.setdefault(what, []).append(fraction)
 
+        baked = rsl.bake_fields(rsl.Scene.load(self.scene_file), f"{self.folder}/cache", progress=progress)
+        self.assertEqual((baked["fields_baked"], baked["fields_loaded"]), (4, 0))
         r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12, field_cache=f"{self.folder}/cache",
                          progress=progress)
-        self.assertEqual(r.setup["fields_baked"], 4)
+        self.assertEqual((r.setup["fields_baked"], r.setup["fields_loaded"]), (0, 4))
         self.assertIn("fit", heard)
         bakes = [what for what in heard if what.startswith(("SVDF ", "OVDF "))]
         self.assertEqual(len(bakes), 4, heard.keys())

@@ -1,5 +1,7 @@
 // The free functions of the public API (include/rsl/rsl.h): what `rsl fit`,
 // `rsl compare` and `rsl --version` run, and the program's files.
+#include <chrono>
+
 #include <fmt/format.h>
 
 #include "lightfit/reconstruct.h"
@@ -7,10 +9,27 @@
 #include "src/backend/make_renderer.h"
 #include "src/core/envmap.h"
 #include "src/frame/error_metrics.h"
+#include "src/render/part_fields.h"
 #include "src/render/renderer.h"
 #include "src/version/build_info.h"
 
 namespace rsl::api {
+
+SetupReport bake_fields(const Scene& scene, const std::string& field_cache, const Progress& progress) {
+    const rsl::Scene& s = scene.internal();
+    if (s.source.empty() && field_cache.empty())
+        throw_error("bake_fields: scene '{}' has no file to keep its fields beside: give a field_cache folder", s.name);
+    FieldBakeOptions options;
+    options.cache_directory = field_cache;
+    options.progress = throttled(progress);
+    const auto start = std::chrono::steady_clock::now();
+    FieldLoadReport report;
+    load_part_fields(s, options, false, &report);
+    SetupReport setup;
+    setup.fields_loaded = report.loaded, setup.fields_baked = report.baked;
+    setup.bake_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return setup;
+}
 
 EnvironmentFit fit_environment(const std::string& file, int lights, int resolution, bool cross_face) {
     // The checks and defaults of `rsl fit`.

@@ -138,6 +138,18 @@ TEST_CASE("progress reaches the callback: the fit, every bake, the truth, each e
     renderer.truth(truth);
     REQUIRE(heard.count("truth") == 1);
     CHECK(heard["truth"].back() == 1.0);
+
+    // `rsl bake` ahead of time: the renderer then only loads.
+    const Scene scene = Scene::load(file.string());
+    const api::SetupReport baked = api::bake_fields(scene, (folder / "ahead").string());
+    CHECK(baked.fields_baked == 4);
+    CHECK(baked.fields_loaded == 0);
+    CHECK(api::bake_fields(scene, (folder / "ahead").string()).fields_loaded == 4);
+    settings.field_cache = (folder / "ahead").string();
+    settings.progress = {};
+    CHECK(Renderer(scene, settings).setup().fields_baked == 0);
+    CHECK(test::error_of([] { api::bake_fields(Scene("nameless")); }).find("give a field_cache folder") !=
+          std::string::npos);
 }
 
 TEST_CASE("build information names the version, commit and libraries", "[api]") {
