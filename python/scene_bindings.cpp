@@ -70,7 +70,7 @@ api::Pose pose_from(const std::vector<float>& translation, const std::vector<flo
 void bind_scene(py::module_& m) {
     py::class_<api::Scene>(m, "Scene", "A scene: rigid parts, materials, an environment map, sphere lights, a camera")
         .def(py::init<const std::string&>(), py::arg("name") = "scene", "An empty scene to build in code")
-        .def_static("load", &api::Scene::load, py::arg("path"),
+        .def_static("load", &api::Scene::load, py::arg("path"), py::call_guard<py::gil_scoped_release>(),
                     "A JSON scene file, .gltf/.glb or .obj (docs/SCENE_FORMAT.md)")
         .def("add_material",
              [](api::Scene& s, const std::string& name, const std::string& model, const std::string& file,

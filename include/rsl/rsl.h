@@ -159,7 +159,8 @@ struct RenderSettings {
     bool occluders = true;           // the other parts' shadows (OVDF)
     // "cpu"; "gl": the GPU renderer in an offscreen context of its own;
     // "gl-current": the GPU renderer in the OpenGL ≥ 3.3 core context current
-    // on the calling thread (the engine's), see gl_color_buffer().
+    // on the calling thread (the engine's), see gl_color_buffer(); that
+    // context must be current whenever the Renderer is used or destroyed.
     std::string backend = "cpu";
     // Folder of the field files (made if missing; reused across runs and with
     // `rsl bake -o`). Empty: <scene folder>/.rsl-cache for a loaded scene; a
