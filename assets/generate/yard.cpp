@@ -110,7 +110,7 @@ GeneratedModel make_yard(int instances) {
     return yard;
 }
 
-std::filesystem::path write_yard(const std::filesystem::path& dir, int instances) {
+std::filesystem::path write_yard(const std::filesystem::path& dir, int instances, const std::string& environment) {
     const GeneratedModel yard = make_yard(instances);
     const std::string stem = fmt::format("yard-{}", instances);
     write_glb(dir / (stem + ".glb"), yard);
@@ -124,7 +124,7 @@ std::filesystem::path write_yard(const std::filesystem::path& dir, int instances
         {"paint", {{"model", "blinn_phong"}, {"kd", {0.7, 0.32, 0.08}}, {"ks", {0.2, 0.2, 0.2}}, {"exponent", 25}}},
         {"floor", {{"model", "lambert"}, {"albedo", {0.55, 0.53, 0.5}}}}};
     scene["part_materials"] = {{"ground", "floor"}, {"*", "paint"}};
-    scene["environment"] = {{"file", "sunsky.exr"},
+    scene["environment"] = {{"file", environment},
                             {"resolution", 32},
                             {"rotation", {{"axis", {0, 1, 0}}, {"degrees", 0}, {"degrees_per_second", 0}}}};
     scene["camera"] = {{"position", {0.55 * distance, 0.6 * distance, distance}},
@@ -134,11 +134,11 @@ std::filesystem::path write_yard(const std::filesystem::path& dir, int instances
                        {"width", 640},
                        {"height", 480}};
     scene["animation"] = {{"start", 0}, {"end", kYardLoopSeconds}, {"fps", 24}};
-    // The bench field settings (bench/render_bench_cases.cpp bench_precompute).
+    // The bench field settings (bench/render_bench_cases.cpp bench_precompute), but the yard's reach.
     scene["precompute"] = {
         {"svdf", {{"resolution", 16}, {"clusters", 64}, {"vectors", 6}, {"supersampling", 2}}},
         {"ovdf",
-         {{"shells", 13}, {"inner_radius", 0.4}, {"outer_radius", 20.0}, {"cube_resolution", 16}, {"vdt_resolution", 16},
+         {{"shells", 13}, {"inner_radius", 0.4}, {"outer_radius", kYardOvdfReach}, {"cube_resolution", 16}, {"vdt_resolution", 16},
           {"vectors", 6}}}};
     const std::filesystem::path path = dir / (stem + ".json");
     write_file_atomically(path, scene.dump(2) + "\n");
