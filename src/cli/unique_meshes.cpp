@@ -7,7 +7,9 @@
 namespace rsl::cli {
 namespace {
 
-std::string megabytes(size_t bytes) { return fmt::format("{:.2f} MB", double(bytes) / 1e6); }
+std::string megabytes(size_t bytes) {
+    return bytes < 100000 ? fmt::format("{:.1f} kB", double(bytes) / 1e3) : fmt::format("{:.2f} MB", double(bytes) / 1e6);
+}
 
 std::string outcome_text(const FieldOutcome& o) {
     const std::string name = o.file.filename().string();
