@@ -72,18 +72,6 @@ Transform posed(const Vec3& at, float degrees, const Vec3& axis, float scale) {
     return t;
 }
 
-// Dim blue sky above, dark ground below, a bright warm block high on +Z (as
-// the accuracy test's).
-CubeMap sky(int n) {
-    CubeMap map(n);
-    for (int k = 0; k < map.texel_count(); ++k) {
-        const Vec3 d = map.texel_direction(k);
-        map.radiance(k) = d.y > 0 ? Color(0.3f, 0.45f, 0.8f) * (0.5f + d.y) : Color(0.05f);
-        if (d.y > 0.5f && d.z > 0.45f && std::abs(d.x) < 0.3f) map.radiance(k) = Color(8.0f, 7.0f, 5.0f);
-    }
-    return map;
-}
-
 // Every part's own bake: what a per-part cache held, one pointer per part.
 PartFields fields_per_part(const Scene& scene) {
     PartFields fields;
@@ -197,7 +185,7 @@ TEST_CASE("A rotated, scaled instance shades as a separately baked copy of its p
     const PartFields separate = bake_part_fields(copy, FieldBakeOptions{});
     REQUIRE(separate.self[1].get() != separate.self[size_t(moved)].get());
 
-    const CubeMap environment = sky(16);
+    const CubeMap environment = test::sky_with_sun(16);
     const VertexColors truth = GroundTruth(instanced, environment, 0.0f).shade_vertices();
     const RslSet lights = fit_environment_lights(environment, 30);
     const VertexColors from_instance = Renderer(instanced, lights, shared, RenderOptions{}).shade();
