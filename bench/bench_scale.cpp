@@ -37,8 +37,13 @@ size_t folder_bytes(const fs::path& dir) {
     return bytes;
 }
 
-// In-memory bytes of the distinct field objects (instances share one).
-size_t field_ram_bytes(const PartFields& fields, size_t& unique) {
+// In-memory bytes of the distinct field objects (instances share one);
+// `unique` counts the objects, `meshes` the distinct (SVDF, OVDF) pairs.
+size_t field_ram_bytes(const PartFields& fields, size_t& unique, size_t& meshes) {
+    std::set<std::pair<const void*, const void*>> pairs;
+    for (size_t p = 0; p < fields.self.size(); ++p)
+        pairs.insert({fields.self[p].get(), p < fields.occluder.size() ? fields.occluder[p].get() : nullptr});
+    meshes = pairs.size();
     std::set<const void*> seen;
     size_t bytes = 0;
     for (const auto& svdf : fields.self)
@@ -89,8 +94,8 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
     RenderOptions render_options;
     render_options.environment_lights = 30;
     const RenderSetup setup = prepare_render(scene, render_options, true);
-    size_t unique_fields = 0;
-    const size_t ram = field_ram_bytes(setup.fields, unique_fields);
+    size_t unique_fields = 0, unique_meshes = 0;
+    const size_t ram = field_ram_bytes(setup.fields, unique_fields, unique_meshes);
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render_options);
     VertexColors colors = renderer->make_output();
@@ -118,6 +123,7 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
                        {"case", fmt::format("yard-{}", instances)},
                        {"instances", instances},
                        {"parts", scene->parts.size()},
+                       {"unique_meshes", unique_meshes},
                        {"unique_fields", unique_fields},
                        {"vertices", stats.vertices},
                        {"lights", stats.lights},
