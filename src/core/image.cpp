@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -55,6 +56,45 @@ std::string channel_names(const Imf::ChannelList& channels) {
     return names.empty() ? std::string("none") : names;
 }
 
+// OpenEXR allocates what a header attribute says it holds before reading
+// it: a flipped size byte makes a 500-byte file ask for gigabytes. Every
+// attribute of every header must fit in the file (the layout of
+// openexr.com's "OpenEXR File Layout": magic, version, then per header the
+// attributes, name\0 type\0 int32 size and value, ended by an empty name; a
+// multi-part file has several headers, then an empty one).
+void check_exr_header_sizes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    const uintmax_t file_bytes = fs::file_size(path);
+    const auto fail = [&](const std::string& what) {
+        throw_file_error(path, "not a readable OpenEXR image: {} (corrupt header?)", what);
+    };
+    char start[8];
+    if (!in.read(start, 8)) fail("the file ends inside the magic number and version");
+    const bool multipart = (uint8_t(start[5]) & 0x10) != 0;  // version flag bit 12
+    const auto string = [&](const char* what) {
+        std::string s;
+        for (char c; in.get(c) && c != '\0';) {
+            if (s.size() == 255) fail(fmt::format("an attribute {} longer than 255 bytes", what));
+            s += c;
+        }
+        if (!in) fail(fmt::format("the file ends inside an attribute {}", what));
+        return s;
+    };
+    for (bool first = true;; first = false) {
+        if (!first && (!multipart || in.peek() == '\0' || in.peek() == EOF)) return;
+        for (std::string name = string("name"); !name.empty(); name = string("name")) {
+            const std::string type = string("type");
+            int32_t size = 0;
+            if (!in.read(reinterpret_cast<char*>(&size), 4)) fail("the file ends inside an attribute size");
+            const uintmax_t at = uintmax_t(in.tellg());
+            if (size < 0 || uintmax_t(size) > file_bytes - at)
+                fail(fmt::format("attribute '{}' ({}) claims {} bytes, the file has {} left", name, type, size,
+                                 file_bytes - at));
+            in.seekg(size, std::ios::cur);
+        }
+    }
+}
+
 }  // namespace
 
 void check_radiance(const fs::path& path, const Image& image) {
@@ -75,6 +115,7 @@ void check_radiance(const fs::path& path, const Image& image) {
 
 Image read_exr(const fs::path& path) {
     if (!fs::is_regular_file(path)) throw_file_error(path, "cannot open for reading (missing or not a file)");
+    check_exr_header_sizes(path);
     Image image;
     try {
         Imf::InputFile file(path.c_str());
@@ -124,6 +165,7 @@ Image read_exr(const fs::path& path) {
 }
 
 EnvmapKind read_exr_envmap_kind(const fs::path& path) {
+    check_exr_header_sizes(path);
     try {
         Imf::InputFile file(path.c_str());
         if (!Imf::hasEnvmap(file.header())) return EnvmapKind::None;

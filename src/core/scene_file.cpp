@@ -148,7 +148,8 @@ private:
     Json parse_file() const { return read_json_file(path_); }
 
     void check_keys(const Json& object, const std::string& where, std::initializer_list<const char*> allowed) const {
-        for (const auto& [key, value] : object.items()) {
+        for (const auto& item : object.items()) {
+            const std::string& key = item.key();  // not a structured binding: clang 14 cannot capture one
             const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; });
             if (!known) {
                 std::string list;
@@ -270,7 +271,8 @@ private:
     }
 
     void check_part_material_names(const Json& part_materials) const {
-        for (const auto& [name, value] : part_materials.items()) {
+        for (const auto& item : part_materials.items()) {
+            const std::string& name = item.key();  // not a structured binding: clang 14 cannot capture one
             if (name == "*") continue;
             const bool found = std::any_of(scene_.parts.begin(), scene_.parts.end(),
                                            [&](const Part& p) { return p.name == name; });
