@@ -68,16 +68,32 @@ inline std::string wide_plain_exr(const std::filesystem::path& dir) {
     return bytes;
 }
 
-// An attribute of an unknown type claiming 2 GB, first in the header
-// (fuzzing found a renamed attribute type with a flipped size): OpenEXR
-// allocated the 2 GB before reading found the file 500 bytes long.
-inline std::string exr_huge_attribute(const std::filesystem::path& dir) {
+// A 64×32 EXR with one more attribute first in its header: `size` is what
+// the attribute declares, `value` what follows it.
+inline std::string exr_with_attribute(const std::filesystem::path& dir, const std::string& name,
+                                      const std::string& type, int32_t size, const std::string& value = "") {
     std::string bytes = exr_bytes(dir, EnvmapKind::None);
-    std::string attribute = std::string("zz") + '\0' + "opaque" + '\0';
-    const int32_t size = 0x7fff0000;
+    std::string attribute = name + '\0' + type + '\0';
     attribute.append(reinterpret_cast<const char*>(&size), 4);
-    bytes.insert(8, attribute);  // after the magic number and version
+    bytes.insert(8, attribute + value);  // after the magic number and version
     return bytes;
+}
+
+// An attribute of an unknown type claiming 2 GB (fuzz_exr found a renamed
+// attribute type with a flipped size): OpenEXR allocated the 2 GB before
+// reading found the file 500 bytes long.
+inline std::string exr_huge_attribute(const std::filesystem::path& dir) {
+    return exr_with_attribute(dir, "zz", "opaque", 0x7fff0000);
+}
+
+// A float attribute declaring 8 bytes: OpenEXR reads 4 and takes the next 4
+// for the following attribute's name, so that the rest of the header is
+// read out of step (how fuzz_exr's second finding reached a 1.6 GB
+// allocation past a check of the declared sizes alone).
+inline std::string exr_misaligned_attribute(const std::filesystem::path& dir) {
+    // 1.0f, then what OpenEXR takes for an attribute "z" whose type runs into
+    // the next attribute's name and whose size is "chli" (1.7 GB).
+    return exr_with_attribute(dir, "ratio", "float", 8, std::string("\0\0\x80\x3f" "z\0\xff\xff", 8));
 }
 
 // ---- meshes and scenes
