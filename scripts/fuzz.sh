@@ -33,8 +33,8 @@ cmake --build "$build" --parallel "$(nproc)" --target fuzzers
 run_one() {
   local reader=$1 dir="$work/$1"
   mkdir -p "$dir/corpus"
-  local dict=()
-  [ -f "fuzz/dict/$reader.dict" ] && dict=(-dict="fuzz/dict/$reader.dict")
+  local dict=() words="fuzz/dict/${1/glb/gltf}.dict"  # glb's JSON chunk is glTF's
+  [ -f "$words" ] && dict=(-dict="$words")
   local status=0
   "$build/fuzz/fuzz_$reader" "$dir/corpus" "fuzz/corpus/$reader" "${dict[@]}" -max_total_time="$seconds" \
     -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
