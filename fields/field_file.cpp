@@ -151,6 +151,11 @@ void check_expectation(const fs::path& path, const FieldHeader& h, FieldKind kin
                          h.params, *e.params);
 }
 
+void check_all_finite(const fs::path& path, const std::vector<float>& values, const char* what) {
+    for (size_t k = 0; k < values.size(); ++k)
+        if (!std::isfinite(values[k])) throw_file_error(path, "non-finite {} {} at index {}", what, values[k], k);
+}
+
 CpcaModel get_model(const fs::path& path, BinaryReader& r, FieldHeader& h) {
     CpcaModel m;
     m.dims = h.dims = r.get<int32_t>();
@@ -190,6 +195,10 @@ CpcaModel get_model(const fs::path& path, BinaryReader& r, FieldHeader& h) {
         if (c < 0 || c >= m.clusters) throw_file_error(path, "cluster index {} out of range", c);
     m.coefficients.resize(size_t(h.samples) * m.vectors);
     r.get_bytes(m.coefficients.data(), m.coefficients.size() * sizeof(float));
+    // A checksum proves the bytes are the ones written, not that a writer
+    // wrote numbers: NaN or infinity would shade every vertex that uses them.
+    check_all_finite(path, m.tables, "table value");
+    check_all_finite(path, m.coefficients, "PCA coefficient");
     return m;
 }
 
@@ -274,8 +283,7 @@ Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
         throw_file_error(path, "model sizes do not match the OVDF parameters");
     ovdf.surface_distance.resize(ovdf.params.sample_count());
     r.get_bytes(ovdf.surface_distance.data(), ovdf.surface_distance.size() * sizeof(float), "surface distances");
-    for (const float s : ovdf.surface_distance)
-        if (!std::isfinite(s)) throw_file_error(path, "non-finite surface distance in the OVDF");
+    check_all_finite(path, ovdf.surface_distance, "surface distance");
     check_fully_read(path, r);
     ovdf.prepare();
     return ovdf;

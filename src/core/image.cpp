@@ -29,20 +29,12 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/exr_header.h"
 
 namespace rsl {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Larger images than this are certainly a corrupt header, not a real map.
-constexpr long long kMaxPixels = 1LL << 28;
-
-void check_dimensions(const fs::path& path, long long width, long long height) {
-    if (width <= 0 || height <= 0) throw_file_error(path, "image is empty ({}×{} pixels)", width, height);
-    if (width * height > kMaxPixels)
-        throw_file_error(path, "image size {}×{} is implausibly large (corrupt header?)", width, height);
-}
 
 // ---------------------------------------------------------------- OpenEXR
 
@@ -56,6 +48,12 @@ std::string channel_names(const Imf::ChannelList& channels) {
 }
 
 }  // namespace
+
+void check_image_dimensions(const fs::path& path, long long width, long long height) {
+    if (width <= 0 || height <= 0) throw_file_error(path, "image is empty ({}×{} pixels)", width, height);
+    if (width > kMaxImagePixels || height > kMaxImagePixels || width * height > kMaxImagePixels)
+        throw_file_error(path, "image size {}×{} is implausibly large (corrupt header?)", width, height);
+}
 
 void check_radiance(const fs::path& path, const Image& image) {
     const size_t count = image.pixels.size();
@@ -75,6 +73,7 @@ void check_radiance(const fs::path& path, const Image& image) {
 
 Image read_exr(const fs::path& path) {
     if (!fs::is_regular_file(path)) throw_file_error(path, "cannot open for reading (missing or not a file)");
+    const ExrWindowSize checked = check_exr_header(path);  // before OpenEXR allocates what the header claims
     Image image;
     try {
         Imf::InputFile file(path.c_str());
@@ -88,21 +87,7 @@ Image read_exr(const fs::path& path) {
         const Imath::Box2i window = header.dataWindow();
         const long long width = (long long)window.max.x - window.min.x + 1;
         const long long height = (long long)window.max.y - window.min.y + 1;
-        check_dimensions(path, width, height);
-        // A corrupt data window is refused before the pixels are allocated:
-        // a file that declares a layout must have its shape, and no
-        // compression packs more than about 1,032 samples of 2 bytes (deflate's
-        // limit) into one byte of the file.
-        if (Imf::hasEnvmap(header)) {
-            const bool latlong = Imf::envmap(header) == Imf::ENVMAP_LATLONG;
-            if (latlong ? width != 2 * height : height != 6 * width)
-                throw_file_error(path, "declares a {} map, but its data window is {}×{} (corrupt header?)",
-                                 latlong ? "latitude-longitude (2:1)" : "cube (1:6 strip)", width, height);
-        }
-        const uintmax_t samples = uintmax_t(width) * height * (alpha ? 4 : 3);
-        if (samples * 2 / 1032 > fs::file_size(path))
-            throw_file_error(path, "its data window {}×{} needs more data than the file's {} bytes can hold (corrupt "
-                             "header?)", width, height, fs::file_size(path));
+        RSL_CHECK(width == checked.width && height == checked.height);  // the check read the header OpenEXR read
         image = Image(int(width), int(height), alpha ? 4 : 3);
 
         Imf::FrameBuffer frame;
@@ -124,6 +109,7 @@ Image read_exr(const fs::path& path) {
 }
 
 EnvmapKind read_exr_envmap_kind(const fs::path& path) {
+    check_exr_header(path);  // before OpenEXR allocates what the header claims
     try {
         Imf::InputFile file(path.c_str());
         if (!Imf::hasEnvmap(file.header())) return EnvmapKind::None;
@@ -142,7 +128,7 @@ EnvmapKind read_exr_envmap_kind(const fs::path& path) {
 void write_exr(const fs::path& path, const Image& image, const ExrWriteOptions& options) {
     if (image.channels != 3 && image.channels != 4)
         throw_file_error(path, "cannot write an image with {} channels (need RGB or RGBA)", image.channels);
-    check_dimensions(path, image.width, image.height);
+    check_image_dimensions(path, image.width, image.height);
     if (image.pixels.size() != size_t(image.width) * image.height * image.channels)
         throw_file_error(path, "pixel buffer holds {} values, expected {}×{}×{}", image.pixels.size(),
                          image.width, image.height, image.channels);
@@ -286,7 +272,7 @@ RadianceHeader read_radiance_header(const fs::path& path, ByteReader& in) {
         size_t(consumed) != resolution.size() || yaxis != 'Y' || xaxis != 'X' || ysign != '-' || xsign != '+')
         throw_file_error(path, "unsupported resolution line '{}' (only the standard orientation '-Y H +X W')",
                          resolution);
-    check_dimensions(path, w, h);
+    check_image_dimensions(path, w, h);
     header.width = int(w);
     header.height = int(h);
     return header;
@@ -400,7 +386,7 @@ float auto_exposure_scale(const Image& image) {
 void write_png(const fs::path& path, const Image& image, const ToneMap& tone) {
     if (image.channels != 3 && image.channels != 4)
         throw_file_error(path, "cannot write an image with {} channels as PNG", image.channels);
-    check_dimensions(path, image.width, image.height);
+    check_image_dimensions(path, image.width, image.height);
     float scale = std::exp2(tone.exposure);
     if (tone.auto_exposure) scale *= auto_exposure_scale(image);
     const int c = image.channels;

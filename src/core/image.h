@@ -43,6 +43,13 @@ void write_exr(const std::filesystem::path& path, const Image& image, const ExrW
 // The `envmap` attribute of an EXR file's header (None when absent).
 EnvmapKind read_exr_envmap_kind(const std::filesystem::path& path);
 
+// The most pixels an image file may hold: larger ones are certainly a
+// corrupt header, not a real map (a 32768 × 8192 probe has 2^28).
+inline constexpr long long kMaxImagePixels = 1LL << 28;
+// Throws rsl::Error naming `path` unless 1 ≤ width, height and
+// width × height ≤ kMaxImagePixels.
+void check_image_dimensions(const std::filesystem::path& path, long long width, long long height);
+
 // The largest radiance an input image may hold. Real probes with an
 // unclipped sun stay below 1e10 (photometric units included); a value far
 // beyond is a corrupt file (flipped exponent bits), and squares and sums of

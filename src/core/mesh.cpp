@@ -14,16 +14,21 @@ bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) 
 
 // A usable unit vector: finite and of length ≈ 1 (files sometimes store
 // unnormalized normals; those are renormalized, zero ones recomputed).
+// Lengths are taken in double: a float vector's squared length overflows
+// beyond about 1e19 (and normalizing it in float would give zero).
 bool is_usable_direction(const Vec3& v) {
     if (!is_finite(v)) return false;
-    return glm::dot(v, v) > 1e-12f;
+    const DVec3 d(v);
+    return glm::dot(d, d) > 1e-12;
 }
 
 // Normalized, but a vector that is already unit to float precision is kept
 // bit for bit, so that files written from loaded meshes round-trip exactly.
 Vec3 unit(const Vec3& v) {
     const float length2 = glm::dot(v, v);
-    return std::abs(length2 - 1.0f) < 1e-6f ? v : v / std::sqrt(length2);
+    if (std::abs(length2 - 1.0f) < 1e-6f) return v;
+    const DVec3 d(v);
+    return Vec3(d / std::sqrt(glm::dot(d, d)));
 }
 
 // Twice the triangle's area vector (its direction is the face normal).
@@ -121,7 +126,7 @@ size_t TriangleMesh::count_degenerate_triangles(float area_epsilon) const {
 
 void compute_normals(TriangleMesh& mesh) {
     std::vector<Vec3> sum = accumulated_face_normals(mesh);
-    for (Vec3& n : sum) n = is_usable_direction(n) ? glm::normalize(n) : Vec3(0, 1, 0);
+    for (Vec3& n : sum) n = is_usable_direction(n) ? unit(n) : Vec3(0, 1, 0);
     mesh.normals = std::move(sum);
 }
 
@@ -179,7 +184,7 @@ size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& so
             if (computed.empty()) {
                 computed = accumulated_face_normals(mesh);
             }
-            n = is_usable_direction(computed[v]) ? glm::normalize(computed[v]) : Vec3(0, 1, 0);
+            n = is_usable_direction(computed[v]) ? unit(computed[v]) : Vec3(0, 1, 0);
         }
     }
 

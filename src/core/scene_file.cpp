@@ -148,7 +148,8 @@ private:
     Json parse_file() const { return read_json_file(path_); }
 
     void check_keys(const Json& object, const std::string& where, std::initializer_list<const char*> allowed) const {
-        for (const auto& [key, value] : object.items()) {
+        for (const auto& item : object.items()) {
+            const std::string& key = item.key();  // not a structured binding: clang 14 cannot capture one
             const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; });
             if (!known) {
                 std::string list;
@@ -181,11 +182,14 @@ private:
         if (!(v > 0)) fail(join(where, name), fmt::format("must be positive, got {}", v));
         return v;
     }
-    int positive_int_at(const Json& object, const char* name, const std::string& where) const {
+    // 1 ≤ value ≤ most: the limits of docs/SCENE_FORMAT.md, beyond which a
+    // value is a typo or a corrupt file and the buffers it sizes would not fit.
+    int positive_int_at(const Json& object, const char* name, const std::string& where, int most) const {
         const Json& j = object.at(name);
         if (!j.is_number_integer()) fail(join(where, name), fmt::format("expected an integer, got {}", j.dump()));
-        const long long v = j.get<long long>();
-        if (v <= 0 || v > (1 << 24)) fail(join(where, name), fmt::format("must be a positive integer, got {}", v));
+        const long long v = j.is_number_unsigned() && j.get<unsigned long long>() > (1ull << 62) ? -1 : j.get<long long>();
+        if (v <= 0 || v > most)
+            fail(join(where, name), fmt::format("must be an integer from 1 to {}, got {}", most, j.dump()));
         return int(v);
     }
     std::string string_at(const Json& object, const char* name, const std::string& key) const {
@@ -270,7 +274,8 @@ private:
     }
 
     void check_part_material_names(const Json& part_materials) const {
-        for (const auto& [name, value] : part_materials.items()) {
+        for (const auto& item : part_materials.items()) {
+            const std::string& name = item.key();  // not a structured binding: clang 14 cannot capture one
             if (name == "*") continue;
             const bool found = std::any_of(scene_.parts.begin(), scene_.parts.end(),
                                            [&](const Part& p) { return p.name == name; });
@@ -350,7 +355,7 @@ private:
         EnvironmentDesc& env = scene_.environment;
         if (!j.contains("file")) fail(where, "`file` is required");
         env.file = existing_file(j["file"], "environment.file");
-        if (j.contains("resolution")) env.resolution = positive_int_at(j, "resolution", where);
+        if (j.contains("resolution")) env.resolution = positive_int_at(j, "resolution", where, 4096);
         if (j.contains("rotation")) {
             const Json& r = expect_object(j["rotation"], "environment.rotation");
             check_keys(r, "environment.rotation", {"axis", "degrees", "degrees_per_second"});
@@ -374,8 +379,9 @@ private:
                         const std::string& where) const {
         Vec3Track track;
         track.times = times;
-        const Json& values = path.at(values_key);
         const std::string key = join(where, values_key);
+        if (!path.contains(values_key)) fail(key, "required with `times`");
+        const Json& values = path[values_key];
         if (!values.is_array() || values.size() != times.size())
             fail(key, fmt::format("expected an array of {} points (one per time)", times.size()));
         for (size_t k = 0; k < values.size(); ++k) track.values.push_back(vec3(values[k], fmt::format("{}[{}]", key, k)));
@@ -425,8 +431,8 @@ private:
             c.fov_y_degrees = positive_number_at(j, "fov_degrees", where);
             if (c.fov_y_degrees >= 180) fail("camera.fov_degrees", "must be below 180");
         }
-        if (j.contains("width")) c.width = positive_int_at(j, "width", where);
-        if (j.contains("height")) c.height = positive_int_at(j, "height", where);
+        if (j.contains("width")) c.width = positive_int_at(j, "width", where, 16384);
+        if (j.contains("height")) c.height = positive_int_at(j, "height", where, 16384);
         if (j.contains("path")) {
             const Json& path = expect_object(j["path"], "camera.path");
             check_keys(path, "camera.path", {"times", "positions", "targets"});
@@ -455,21 +461,21 @@ private:
             const Json& s = expect_object(j["svdf"], "precompute.svdf");
             const std::string w = "precompute.svdf";
             check_keys(s, w, {"resolution", "clusters", "vectors", "supersampling"});
-            if (s.contains("resolution")) p.svdf_resolution = positive_int_at(s, "resolution", w);
-            if (s.contains("clusters")) p.svdf_clusters = positive_int_at(s, "clusters", w);
-            if (s.contains("vectors")) p.svdf_vectors = positive_int_at(s, "vectors", w);
-            if (s.contains("supersampling")) p.svdf_supersampling = positive_int_at(s, "supersampling", w);
+            if (s.contains("resolution")) p.svdf_resolution = positive_int_at(s, "resolution", w, 256);
+            if (s.contains("clusters")) p.svdf_clusters = positive_int_at(s, "clusters", w, 65536);
+            if (s.contains("vectors")) p.svdf_vectors = positive_int_at(s, "vectors", w, 256);
+            if (s.contains("supersampling")) p.svdf_supersampling = positive_int_at(s, "supersampling", w, 32);
         }
         if (j.contains("ovdf")) {
             const Json& o = expect_object(j["ovdf"], "precompute.ovdf");
             const std::string w = "precompute.ovdf";
             check_keys(o, w, {"shells", "inner_radius", "outer_radius", "cube_resolution", "vdt_resolution", "vectors"});
-            if (o.contains("shells")) p.ovdf_shells = positive_int_at(o, "shells", w);
+            if (o.contains("shells")) p.ovdf_shells = positive_int_at(o, "shells", w, 256);
             if (o.contains("inner_radius")) p.ovdf_inner_radius = positive_number_at(o, "inner_radius", w);
             if (o.contains("outer_radius")) p.ovdf_outer_radius = positive_number_at(o, "outer_radius", w);
-            if (o.contains("cube_resolution")) p.ovdf_cube_resolution = positive_int_at(o, "cube_resolution", w);
-            if (o.contains("vdt_resolution")) p.ovdf_vdt_resolution = positive_int_at(o, "vdt_resolution", w);
-            if (o.contains("vectors")) p.ovdf_vectors = positive_int_at(o, "vectors", w);
+            if (o.contains("cube_resolution")) p.ovdf_cube_resolution = positive_int_at(o, "cube_resolution", w, 256);
+            if (o.contains("vdt_resolution")) p.ovdf_vdt_resolution = positive_int_at(o, "vdt_resolution", w, 256);
+            if (o.contains("vectors")) p.ovdf_vectors = positive_int_at(o, "vectors", w, 256);
             if (p.ovdf_outer_radius <= p.ovdf_inner_radius)
                 fail("precompute.ovdf.outer_radius", "must be larger than inner_radius");
         }

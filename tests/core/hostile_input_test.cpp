@@ -4,8 +4,9 @@
 // problem, quickly and before large allocations.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
-#include <cstring>
+#include <cmath>
 #include <string>
 
 #include "lightfit/decompose.h"
@@ -13,41 +14,19 @@
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
+#include "src/core/mesh.h"
 #include "src/core/scene.h"
+#include "tests/hostile_inputs.h"
 #include "tests/test_support.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
 
-namespace {
-
-// A flat (not run-length encoded) Radiance file: every pixel mantissa 100,
-// exponent 128 (about 0.39), so no scanline starts with the RLE marker 2, 2.
-std::string flat_radiance(int width, int height) {
-    std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " +
-                        std::to_string(width) + "\n";
-    for (int k = 0; k < width * height; ++k) bytes += std::string{char(100), char(100), char(100), char(128)};
-    return bytes;
-}
-
-// Patches one int32 of an EXR header's box2i attribute `name` (index 0..3:
-// xMin, yMin, xMax, yMax), as a bit flip in the header would.
-void patch_box(std::string& exr, const std::string& name, int index, int32_t value) {
-    const std::string key = name + std::string(1, '\0') + "box2i" + std::string(1, '\0');
-    const size_t at = exr.find(key);
-    REQUIRE(at != std::string::npos);
-    std::memcpy(exr.data() + at + key.size() + 4 + 4 * index, &value, 4);  // after the u32 attribute size
-}
-
-}  // namespace
+using namespace rsl::test::hostile;
 
 TEST_CASE("A flipped exponent (huge but finite radiance) is refused by the reader and the fit", "[bad-input][fuzz]") {
     const fs::path dir = test::scratch_dir("hostile_radiance");
-    std::string bytes = flat_radiance(64, 32);
-    const size_t pixel = size_t(3) * 64 + 7;  // (x=7, y=3)
-    const size_t exponent = bytes.size() - size_t(64 * 32 - pixel) * 4 + 3;
-    bytes[exponent] = char(uint8_t(bytes[exponent]) ^ 0x78);  // 128 → 248: about 5e35
-    write_file_atomically(dir / "flipped.hdr", bytes);
+    write_file_atomically(dir / "flipped.hdr", flipped_exponent_hdr());
     CHECK_THROWS_WITH(read_hdr_image(dir / "flipped.hdr"), Catch::Contains("flipped.hdr") &&
                                                                Catch::Contains("implausibly large") &&
                                                                Catch::Contains("x=7, y=3"));
@@ -67,9 +46,7 @@ TEST_CASE("A flipped exponent (huge but finite radiance) is refused by the reade
 TEST_CASE("A Radiance header claiming more pixels than the file holds is refused before allocating",
           "[bad-input][fuzz]") {
     const fs::path dir = test::scratch_dir("hostile_hdr_size");
-    std::string bytes = flat_radiance(64, 32);
-    bytes.replace(bytes.find("-Y 32 +X 64"), 11, "-Y 16000 +X 16000");  // 3 GB of floats, if believed
-    write_file_atomically(dir / "huge.hdr", bytes);
+    write_file_atomically(dir / "huge.hdr", oversized_hdr());
     CHECK_THROWS_WITH(read_hdr_image(dir / "huge.hdr"),
                       Catch::Contains("huge.hdr") && Catch::Contains("truncated or corrupt") &&
                           Catch::Contains("16000×16000"));
@@ -78,14 +55,7 @@ TEST_CASE("A Radiance header claiming more pixels than the file holds is refused
 
 TEST_CASE("An EXR whose data window was corrupted is refused before reading pixels", "[bad-input][fuzz]") {
     const fs::path dir = test::scratch_dir("hostile_exr_window");
-    Image image(64, 32, 3);
-    for (size_t k = 0; k < image.pixels.size(); ++k) image.pixels[k] = 0.01f * float(k % 97);
-    write_exr(dir / "latlong.exr", image, {.envmap = EnvmapKind::LatLong});
-    write_exr(dir / "plain.exr", image, {});
-    // Declared lat-long, data window 100001 wide: the fuzzer's 28 s and 3.4 GB.
-    std::string latlong = read_file(dir / "latlong.exr");
-    patch_box(latlong, "dataWindow", 2, 100000);
-    write_file_atomically(dir / "wide.exr", latlong);
+    write_file_atomically(dir / "wide.exr", wide_latlong_exr(dir));
     const auto start = std::chrono::steady_clock::now();
     CHECK_THROWS_WITH(read_hdr_image(dir / "wide.exr"), Catch::Contains("wide.exr") &&
                                                             Catch::Contains("latitude-longitude") &&
@@ -93,9 +63,7 @@ TEST_CASE("An EXR whose data window was corrupted is refused before reading pixe
     CHECK_THROWS_WITH(load_environment(dir / "wide.exr", 32), Catch::Contains("wide.exr"));
     CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 2.0);
     // No layout declared: the window needs more data than any compression fits in the file.
-    std::string plain = read_file(dir / "plain.exr");
-    patch_box(plain, "dataWindow", 2, 1000000);  // 1 M wide: 384 MB of floats, if believed
-    write_file_atomically(dir / "wide_plain.exr", plain);
+    write_file_atomically(dir / "wide_plain.exr", wide_plain_exr(dir));
     CHECK_THROWS_WITH(read_hdr_image(dir / "wide_plain.exr"),
                       Catch::Contains("wide_plain.exr") && Catch::Contains("needs more data than the file"));
     fs::remove_all(dir);
@@ -103,10 +71,10 @@ TEST_CASE("An EXR whose data window was corrupted is refused before reading pixe
 
 TEST_CASE("An out-of-range JSON number names the file, line, column and key, and is bad input", "[bad-input][fuzz]") {
     const fs::path dir = test::scratch_dir("hostile_json");
-    test::write_text(dir / "tet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
-    test::write_text(dir / "good.json", R"({ "parts": [{ "obj": "tet.obj" }] })");
-    test::write_text(dir / "overflow.json", "{ \"parts\": [{ \"obj\": \"tet.obj\" }],\n  \"camera\": { \"fov_degrees\": 1e309 } }");
-    test::write_text(dir / "array.json", "{ \"parts\": [{ \"obj\": \"tet.obj\" }],\n  \"lights\": [{ \"position\": [1, 2, -1e999] }] }");
+    test::write_text(dir / "part.obj", kTetrahedronObj);
+    test::write_text(dir / "good.json", R"({ "parts": [{ "obj": "part.obj" }] })");
+    test::write_text(dir / "overflow.json", overflow_scene());
+    test::write_text(dir / "array.json", overflow_array_scene());
     CHECK_THROWS_WITH(load_scene(dir / "overflow.json"),
                       Catch::Contains("overflow.json: line 2, column") &&
                           Catch::Contains("key camera.fov_degrees") && Catch::Contains("1e309"));
@@ -121,4 +89,79 @@ TEST_CASE("An out-of-range JSON number names the file, line, column and key, and
     CHECK(text.find("key camera.fov_degrees") != std::string::npos);
     CHECK(text.find("good.json: scene") != std::string::npos);
     fs::remove_all(dir);
+}
+
+// ---- found by the fuzzers of fuzz/ (docs/FUZZING.md)
+
+TEST_CASE("EXR headers that make OpenEXR allocate more than the file holds are refused first", "[bad-input][fuzz]") {
+    const fs::path dir = test::scratch_dir("hostile_exr_header");
+    const auto refusal = [&](const std::string& name, const std::string& bytes) {
+        write_file_atomically(dir / name, bytes);
+        const std::string message = test::error_of([&] { read_hdr_image(dir / name); });
+        INFO(message);
+        CHECK(message.find(name + ": not a readable OpenEXR image: ") != std::string::npos);
+        CHECK(test::error_of([&] { read_exr_envmap_kind(dir / name); }) == message);
+        return message;
+    };
+    // OpenEXR's own messages ("Early end of file: read 530 out of 2147418112
+    // requested bytes") came after it had allocated the gigabytes.
+    CHECK_THAT(refusal("attribute.exr", exr_huge_attribute(dir)),
+               Catch::Contains("attribute 'zz' (opaque) claims 2147418112 bytes, the file has"));
+    CHECK_THAT(refusal("misaligned.exr", exr_misaligned_attribute(dir)),
+               Catch::Contains("attribute 'ratio' (float) has 8 bytes, the type has 4"));
+    CHECK_THAT(refusal("string.exr", exr_with_attribute(dir, "note", "stringvector", 8, std::string("\xff\xff\xff\x7f" "abcd", 8))),
+               Catch::Contains("attribute 'note' holds a string of 2147483647 bytes"));
+    CHECK_THAT(refusal("preview.exr", exr_with_attribute(dir, "preview", "preview", 8, std::string("\0\x10\0\0\0\x10\0\0", 8))),
+               Catch::Contains("a 4096×4096 preview in an attribute of 8 bytes"));
+    // A one-pixel-wide window of 100000 lines needs an offset table of
+    // 6250 chunks (ZIP: 16 lines each), 50 KB, in a file of about 1 KB.
+    std::string tall = exr_bytes(dir, EnvmapKind::None);
+    patch_box(tall, "dataWindow", 2, 0);
+    patch_box(tall, "dataWindow", 3, 99999);
+    CHECK_THAT(refusal("tall.exr", tall), Catch::Contains("offset table of 6250 chunks does not fit"));
+    // Every header byte cut off: the check names where the file ended.
+    const std::string good = exr_bytes(dir, EnvmapKind::LatLong);
+    CHECK_THAT(refusal("cut.exr", good.substr(0, good.find("dataWindow") + 14)),
+               Catch::Contains("the file ends inside an attribute type"));
+    // Good files pass, every compression and layout of the fuzz seeds included.
+    write_file_atomically(dir / "good.exr", good);
+    CHECK(read_hdr_image(dir / "good.exr").width == 64);
+    int seeds = 0;
+    for (const auto& entry : fs::directory_iterator(fs::path(RSL_SOURCE_DIR) / "fuzz" / "corpus" / "exr")) {
+        INFO(entry.path());
+        CHECK_NOTHROW(read_hdr_image(entry.path()));
+        ++seeds;
+    }
+    CHECK(seeds >= 8);
+}
+
+namespace {
+bool unit_and_finite(const Vec3& v) { return std::isfinite(glm::dot(v, v)) && std::abs(glm::length(v) - 1.0f) < 1e-5f; }
+}  // namespace
+
+TEST_CASE("Normals and tangents too large to square in float are normalized, not zeroed", "[bad-input][fuzz]") {
+    const fs::path dir = test::scratch_dir("hostile_normals");
+    test::write_text(dir / "huge.obj", huge_normals_obj());
+    const TriangleMesh mesh = load_obj(dir / "huge.obj");
+    REQUIRE(mesh.vertex_count() > 0);
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        INFO("vertex " << v << " normal " << mesh.normals[v].x << " " << mesh.normals[v].y << " " << mesh.normals[v].z);
+        CHECK(unit_and_finite(mesh.normals[v]));
+        CHECK(unit_and_finite(Vec3(mesh.tangents[v])));
+    }
+    // The direction survives: (1e30, 0, 0) is +X, (3e38, −3e38, 0) is (1, −1, 0)/√2.
+    const Vec3 expected[] = {Vec3(1, 0, 0), glm::normalize(Vec3(1, -1, 0))};
+    for (const Vec3& e : expected)
+        CHECK(std::any_of(mesh.normals.begin(), mesh.normals.end(),
+                          [&](const Vec3& n) { return glm::length(n - e) < 1e-6f; }));
+    // Given tangents (glTF TANGENT) of the same size are kept, not replaced by zero.
+    TriangleMesh tri;
+    tri.positions = {Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    tri.indices = {0, 1, 2};
+    tri.normals.assign(3, Vec3(0, 0, 1));
+    tri.tangents = {Vec4(1e30f, 0, 0, 1), Vec4(0, 3e38f, 0, -1), Vec4(2e19f, 2e19f, 0, 1)};
+    validate_and_complete(tri, "tri");
+    CHECK(tri.tangents[0] == Vec4(1, 0, 0, 1));
+    CHECK(tri.tangents[1] == Vec4(0, 1, 0, -1));
+    CHECK(glm::length(Vec3(tri.tangents[2]) - glm::normalize(Vec3(1, 1, 0))) < 1e-6f);
 }

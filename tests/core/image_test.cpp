@@ -27,6 +27,7 @@
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
+#include "tests/radiance_encoder.h"
 #include "tests/test_support.h"
 
 using namespace rsl;
@@ -48,62 +49,12 @@ int count_files(const fs::path& dir) {
     return n;
 }
 
-// ---- a tiny independent Radiance writer: the reader must decode what it writes
-
-struct Rgbe {
-    unsigned char r, g, b, e;
-};
+using test::encode_radiance;
+using test::radiance_header;
+using test::Rgbe;
 
 // Radiance's decoding rule, written out: (m + 0.5) · 2^(e − 136), 0 when e = 0.
 float rgbe_value(unsigned char m, unsigned char e) { return e == 0 ? 0.0f : (m + 0.5f) * std::ldexp(1.0f, e - 136); }
-
-std::string radiance_header(int w, int h) {
-    return "#?RADIANCE\n# test file\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(h) + " +X " + std::to_string(w) +
-           "\n";
-}
-
-// One plane of a new-style RLE scanline: runs of ≥ 3 equal bytes become runs.
-void encode_plane(std::string& out, const std::vector<unsigned char>& plane) {
-    size_t x = 0;
-    while (x < plane.size()) {
-        size_t run = 1;
-        while (x + run < plane.size() && plane[x + run] == plane[x] && run < 127) ++run;
-        if (run >= 3) {
-            out += char(128 + run);
-            out += char(plane[x]);
-            x += run;
-            continue;
-        }
-        size_t start = x, literal = 0;
-        while (x < plane.size() && literal < 128) {
-            size_t ahead = 1;
-            while (x + ahead < plane.size() && plane[x + ahead] == plane[x] && ahead < 3) ++ahead;
-            if (ahead >= 3) break;
-            ++x;
-            ++literal;
-        }
-        out += char(literal);
-        for (size_t k = start; k < start + literal; ++k) out += char(plane[k]);
-    }
-}
-
-std::string encode_radiance(int w, int h, const std::vector<Rgbe>& pixels, bool rle) {
-    std::string out = radiance_header(w, h);
-    for (int y = 0; y < h; ++y) {
-        const Rgbe* row = &pixels[size_t(y) * w];
-        if (!rle) {
-            for (int x = 0; x < w; ++x) out += std::string{char(row[x].r), char(row[x].g), char(row[x].b), char(row[x].e)};
-            continue;
-        }
-        out += std::string{2, 2, char(w >> 8), char(w & 255)};
-        for (int c = 0; c < 4; ++c) {
-            std::vector<unsigned char> plane(w);
-            for (int x = 0; x < w; ++x) plane[x] = c == 0 ? row[x].r : c == 1 ? row[x].g : c == 2 ? row[x].b : row[x].e;
-            encode_plane(out, plane);
-        }
-    }
-    return out;
-}
 
 std::vector<Rgbe> random_rgbe(int w, int h, unsigned seed) {
     std::mt19937 rng(seed);

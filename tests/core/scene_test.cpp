@@ -178,7 +178,16 @@ TEST_CASE("Scene files: OBJ parts, transforms, defaults and every kind of error"
     require_error(R"({"parts": [{ "obj": "missing.obj" }]})", "parts[0].obj: file");
     require_error(R"({"parts": [{ "obj": "tet.obj", "material": "gold" }]})", "no material named 'gold'");
     require_error("{" + part + R"(, "part_materials": { "tett": "default" }})", "part_materials.tett: no part has this name");
-    require_error("{" + part + R"(, "precompute": { "svdf": { "clusters": 0 } }})", "precompute.svdf.clusters: must be a positive integer");
+    require_error("{" + part + R"(, "precompute": { "svdf": { "clusters": 0 } }})",
+                  "precompute.svdf.clusters: must be an integer from 1 to 65536, got 0");
+    // Sizes of what rsl allocates are bounded (docs/SCENE_FORMAT.md): a camera of 16777216² pixels was accepted.
+    require_error("{" + part + R"(, "camera": { "width": 16777216 }})", "camera.width: must be an integer from 1 to 16384");
+    require_error("{" + part + R"(, "precompute": { "ovdf": { "shells": 18446744073709551615 } }})",
+                  "precompute.ovdf.shells: must be an integer from 1 to 256, got 18446744073709551615");
+    require_error("{" + part + R"(, "environment": { "file": "tet.obj", "resolution": 8192 }})",
+                  "environment.resolution: must be an integer from 1 to 4096");
+    // A light path without positions was an internal error (nlohmann's out_of_range, status 2).
+    require_error("{" + part + R"(, "lights": [{ "path": { "times": [0] } }]})", "lights[0].path.positions: required with `times`");
     require_error("{" + part + R"(, "animation": { "start": 2, "end": 1 }})", "animation.end");
     require_error("{}", "no parts");
     require_error("[1, 2]", "top level must be a JSON object");

@@ -1,3 +1,5 @@
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -7,6 +9,7 @@
 #include "fields/field_file.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "tests/hostile_inputs.h"
 #include "tests/test_support.h"
 
 using namespace rsl;
@@ -90,4 +93,32 @@ TEST_CASE("corrupt, truncated, foreign and stale field files are refused by name
     const uint64_t sum = fnv1a64(future.data(), future.size());
     future.append(reinterpret_cast<const char*>(&sum), 8);
     CHECK(refused(future).find("format version") != std::string::npos);
+}
+
+TEST_CASE("A field file with a right checksum but NaN or infinite numbers is refused", "[field_file][bad-input][fuzz]") {
+    // Found by fuzz_rslf (docs/FUZZING.md): the reader checked the bytes, not
+    // the numbers, and NaN tables made every lookup NaN.
+    const fs::path dir = test::scratch_dir("field_file_nan");
+    for (size_t at : {size_t(0), size_t(5)}) {
+        write_file_atomically(dir / "nan.rslf", test::hostile::svdf_with_nan(dir, at));
+        const std::string message = error_of([&] { read_svdf(dir / "nan.rslf"); });
+        INFO(message);
+        CHECK(message.find("nan.rslf") != std::string::npos);
+        CHECK(message.find(fmt::format("non-finite table value nan at index {}", at)) != std::string::npos);
+        CHECK(error_of([&] { read_field_header(dir / "nan.rslf"); }) == message);
+    }
+    // Coefficients: one made infinite, the checksum made right again.
+    std::string bytes = test::hostile::svdf_with_nan(dir, 0);
+    const float one = 0.25f, nan = std::nanf(""), inf = INFINITY;
+    bytes.replace(bytes.find(std::string(reinterpret_cast<const char*>(&nan), 4)), 4,
+                  std::string(reinterpret_cast<const char*>(&one), 4));  // the tables are finite again
+    const float last = 1.0f;  // the last coefficient, just before the checksum
+    const size_t at = bytes.size() - 8 - 4;
+    REQUIRE(std::memcmp(bytes.data() + at, &last, 4) == 0);
+    std::memcpy(bytes.data() + at, &inf, 4);
+    const uint64_t sum = fnv1a64(bytes.data(), bytes.size() - 8);
+    std::memcpy(bytes.data() + bytes.size() - 8, &sum, 8);
+    write_file_atomically(dir / "inf.rslf", bytes);
+    CHECK(error_of([&] { read_svdf(dir / "inf.rslf"); }).find("non-finite PCA coefficient inf at index 2") !=
+          std::string::npos);
 }
