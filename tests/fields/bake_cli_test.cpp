@@ -269,7 +269,7 @@ TEST_CASE("rsl bake and rsl info: fields per unique mesh, however many parts use
     }
 }
 
-TEST_CASE("rsl bake --shard: disjoint shares whose union is the full bake; rendering then bakes nothing",
+TEST_CASE("rsl bake --shard: disjoint shares whose union is the full bake, and rendering then bakes nothing",
           "[fields][cli][shard]") {
     const fs::path full = scratch_dir("shard_full"), shared = scratch_dir("shard_shared");
     write_instanced_scene(full);
