@@ -12,7 +12,8 @@ build=${RSL_BUILD_DIR:-build}
 packages=(build-essential cmake ninja-build pkg-config ccache
   libembree-dev libglfw3-dev libglm-dev libopenexr-dev libeigen3-dev libtinygltf-dev catch2
   libtbb-dev libstb-dev nlohmann-json3-dev libcli11-dev libimgui-dev libfmt-dev
-  libgl-dev libegl-dev libopengl-dev libgl1-mesa-dri xvfb xauth)
+  libgl-dev libegl-dev libopengl-dev libgl1-mesa-dri xvfb xauth
+  clang-14 libclang-rt-14-dev)  # the sanitizer build and the fuzzers (scripts/sanitize.sh, scripts/fuzz.sh)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
