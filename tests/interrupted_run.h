@@ -3,6 +3,7 @@
 // the command is killed (SIGKILL) at several moments; whatever stands under
 // a final name must then be whole, and a rerun must complete and leave no
 // temporary (".NAME.tmp-PID-N.EXT", src/core/atomic_file.h) behind.
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <string>
@@ -13,6 +14,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "src/core/image.h"
 #include "tests/test_support.h"
 
 namespace rsl::test {
@@ -72,6 +74,25 @@ inline KilledRuns run_killed(const std::string& command, const std::vector<doubl
             }
     }
     return runs;
+}
+
+// The scene the truth and render kill tests run: an (n + 1)²-vertex ground
+// and a unit box under a white sky, seen by a 1600×1200 camera so that the
+// EXR write takes a good part of a run; `precompute` is the scene file's
+// precompute section (JSON, or empty for the defaults).
+inline void write_killable_scene(const std::filesystem::path& dir, int n, const std::string& precompute = "") {
+    write_text(dir / "ground.obj", grid_obj(n, 2.0));
+    write_text(dir / "box.obj", kUnitBoxObj);
+    Image white(64, 32, 3);
+    std::fill(white.pixels.begin(), white.pixels.end(), 1.0f);
+    write_exr(dir / "white.exr", white);
+    write_text(dir / "scene.json", R"({
+  "name": "killed",
+  "parts": [ { "name": "ground", "obj": "ground.obj" }, { "name": "box", "obj": "box.obj" } ],
+  "environment": { "file": "white.exr", "resolution": 16 },
+  "camera": { "position": [0, 3, 4], "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 50,
+              "width": 1600, "height": 1200 })" + (precompute.empty() ? "" : ",\n  \"precompute\": " + precompute) +
+                                         "\n}\n");
 }
 
 // Whether `bytes` is a whole PNG: the signature, and the IEND chunk last.

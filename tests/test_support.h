@@ -45,6 +45,12 @@ inline std::string read_bytes(const std::filesystem::path& path) {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// A unit box standing on y = 0 (quads, fan-triangulated by the reader).
+inline constexpr const char* kUnitBoxObj =
+    "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\n"
+    "v -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
+    "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n";
+
 // An OBJ sheet at y = 0 of (n + 1)² vertices over [−half, half]², 2n²
 // triangles facing +Y: a mesh with many vertices in a few lines.
 inline std::string grid_obj(int n, double half) {

@@ -23,10 +23,7 @@ void write_tiny_scene(const fs::path& dir) {
     write_text(dir / "ground.obj",
                "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nv 0 0 0\n"
                "f 1 5 2\nf 2 5 3\nf 3 5 4\nf 4 5 1\n");
-    write_text(dir / "box.obj",
-               "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\n"
-               "v -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
-               "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n");
+    write_text(dir / "box.obj", kUnitBoxObj);
     write_text(dir / "tiny.json", R"({
   "name": "tiny",
   "parts": [ { "name": "ground", "obj": "ground.obj" }, { "name": "box", "obj": "box.obj" } ],

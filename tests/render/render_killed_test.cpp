@@ -8,7 +8,6 @@
 #include <catch2/catch.hpp>
 
 #include "fields/field_file.h"
-#include "src/core/image.h"
 #include "src/frame/vertex_colors.h"
 #include "tests/interrupted_run.h"
 #include "tests/test_support.h"
@@ -18,29 +17,6 @@ using namespace rsl::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-// A 31×31-vertex ground and a box under a white sky with light
-// precomputation (a bake of a few tenths of a second), seen by a large
-// camera so that the image and its files take a noticeable part of a run.
-void write_render_scene(const fs::path& dir) {
-    write_text(dir / "ground.obj", grid_obj(30, 2.0));
-    write_text(dir / "box.obj",
-               "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\n"
-               "v -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
-               "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n");
-    Image white(64, 32, 3);
-    std::fill(white.pixels.begin(), white.pixels.end(), 1.0f);
-    write_exr(dir / "white.exr", white);
-    write_text(dir / "scene.json", R"({
-  "name": "killed",
-  "parts": [ { "name": "ground", "obj": "ground.obj" }, { "name": "box", "obj": "box.obj" } ],
-  "environment": { "file": "white.exr", "resolution": 16 },
-  "camera": { "position": [0, 3, 4], "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 50,
-              "width": 1600, "height": 1200 },
-  "precompute": { "svdf": { "resolution": 16, "clusters": 4, "vectors": 2, "supersampling": 2 },
-                  "ovdf": { "shells": 6, "cube_resolution": 12, "vdt_resolution": 16, "vectors": 4 } }
-})");
-}
 
 std::map<fs::path, std::string> field_files(const fs::path& cache) {
     std::map<fs::path, std::string> files;
@@ -56,7 +32,9 @@ std::map<fs::path, std::string> field_files(const fs::path& cache) {
 TEST_CASE("rsl render killed at any moment: no partial output or field, and the rerun reuses and sweeps",
           "[render][cli][fault]") {
     const fs::path dir = scratch_dir("render_killed");
-    write_render_scene(dir);
+    // Light precomputation: a bake of a few tenths of a second.
+    write_killable_scene(dir, 30, R"({ "svdf": { "resolution": 16, "clusters": 4, "vectors": 2, "supersampling": 2 },
+                  "ovdf": { "shells": 6, "cube_resolution": 12, "vdt_resolution": 16, "vectors": 4 } })");
     const fs::path cache = dir / ".rsl-cache";
     const fs::path exr = dir / "out.exr", png = dir / "out.png", rslv = dir / "out.rslv";
     const std::string command = fmt::format("{} render {} -q --lights 8 -o {} --vertex-out {}", RSL_RSL_EXECUTABLE,

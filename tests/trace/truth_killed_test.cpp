@@ -3,7 +3,6 @@
 // name; the rerun completes and sweeps every temporary a dead run left.
 #include <catch2/catch.hpp>
 
-#include "src/core/image.h"
 #include "src/frame/vertex_colors.h"
 #include "tests/interrupted_run.h"
 #include "tests/test_support.h"
@@ -12,35 +11,9 @@ using namespace rsl;
 using namespace rsl::test;
 namespace fs = std::filesystem;
 
-namespace {
-
-// A (n + 1)²-vertex floor with a box on it under a white sky, seen by a
-// large camera: the shading, the image and its files each take a noticeable
-// part of a run (about 1 s on the 2-core machine), so that kills land in
-// every stage, the writes included.
-void write_truth_scene(const fs::path& dir) {
-    write_text(dir / "floor.obj", grid_obj(40, 2.0));
-    write_text(dir / "box.obj",
-               "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\n"
-               "v -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
-               "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n");
-    Image white(64, 32, 3);
-    std::fill(white.pixels.begin(), white.pixels.end(), 1.0f);
-    write_exr(dir / "white.exr", white);
-    write_text(dir / "scene.json", R"({
-  "name": "killed",
-  "parts": [ { "name": "floor", "obj": "floor.obj" }, { "name": "box", "obj": "box.obj" } ],
-  "environment": { "file": "white.exr", "resolution": 16 },
-  "camera": { "position": [0, 3, 4], "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 50,
-              "width": 1600, "height": 1200 }
-})");
-}
-
-}  // namespace
-
 TEST_CASE("rsl truth killed at any moment: no partial output, and the rerun completes and sweeps", "[trace][cli][fault]") {
     const fs::path dir = scratch_dir("truth_killed");
-    write_truth_scene(dir);
+    write_killable_scene(dir, 40);  // shading, image and files each a noticeable part of a run (about 1 s)
     const fs::path exr = dir / "out.exr", png = dir / "out.png", rslv = dir / "out.rslv";
     const std::string command = fmt::format("{} truth {} -q -o {}", RSL_RSL_EXECUTABLE, (dir / "scene.json").string(),
                                             exr.string());
