@@ -23,6 +23,9 @@ struct BenchOptions {
     std::filesystem::path shared_assets;   // ../shared/assets (real probes/meshes), may be absent
     std::filesystem::path generated_assets;  // assets/generated
     std::filesystem::path scenes;          // assets/scenes
+    std::filesystem::path output = "bench-out";  // plots and generated scenes (`--out`)
+    std::vector<int> scale_parts;          // `bench scale` instance counts (empty: its defaults)
+    std::vector<float> scale_reaches;      // `bench scale` OVDF outer radii (empty: the scene's)
 };
 
 // Emit one result line (also collected for --json-out).

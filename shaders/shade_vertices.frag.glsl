@@ -20,7 +20,7 @@ uniform sampler2D u_normals;       // normal, SVDF cluster
 uniform sampler2D u_tangents;      // tangent
 uniform sampler2D u_parts;         // part records (kPartStride texels each)
 uniform sampler2D u_lights;        // kLightTexels per light
-uniform usampler2D u_occluders;    // (light, part) → bit mask of occluder parts
+uniform usampler2D u_occluder_lists;  // FrameState::occluder_list_texels: offsets, then part indices
 uniform sampler3D u_brdf;          // SAT corners, slices stacked
 uniform sampler2D u_brdf_offsets;  // per slice mean offset
 uniform sampler2D u_svdf_tables;
@@ -30,7 +30,6 @@ uniform sampler2D u_ovdf_coefficients;
 uniform sampler2D u_ovdf_frames;
 
 uniform int u_vertex_count;
-uniform int u_part_count;
 uniform int u_environment_lights;  // lights [0, E) are environment squares, [E, L) local sphere lights
 uniform int u_light_count;
 uniform bool u_environment_enabled;  // RenderOptions::environment
@@ -46,6 +45,7 @@ layout(location = 0) out vec4 o_color;
 
 vec4 fetch(sampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0); }
 vec4 part_texel(int part, int slot) { return fetch(u_parts, part * kPartStride + slot); }
+uint list_texel(int i) { return texelFetch(u_occluder_lists, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0).r; }
 
 // Frame::from_normal_tangent as a matrix: local = transpose(frame) * world.
 mat3 frame_rows(vec3 n, vec3 t) {
@@ -274,11 +274,11 @@ void main() {
                 brdf = brdf_average(material, lp, h, wo);
             }
             float visibility = self ? visible_fraction_from_distance(svdf_distance(svdf, cluster, lp), h) : 1.0;
-            uint mask = texelFetch(u_occluders, ivec2(l, part), 0).r;
-            for (int o = 0; o < u_part_count && mask != 0u; ++o) {
-                if ((mask & (1u << uint(o))) == 0u) continue;
-                mask &= ~(1u << uint(o));
+            int slot = part * u_light_count + l;
+            int list_end = int(list_texel(slot + 1));
+            for (int e = int(list_texel(slot)); e < list_end; ++e) {
                 if (!(visibility > 0.0)) break;
+                int o = int(list_texel(e));
                 mat4 inverse = mat4(part_texel(o, kSlotInverse), part_texel(o, kSlotInverse + 1),
                                     part_texel(o, kSlotInverse + 2), part_texel(o, kSlotInverse + 3));
                 vec3 point = (inverse * vec4(p, 1.0)).xyz;

@@ -1,5 +1,6 @@
 #include "assets/generate/model.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -184,10 +185,22 @@ void write_glb(const std::filesystem::path& path, const GeneratedModel& generate
         if (source.parent >= 0) model.nodes[source.parent].children.push_back(int(n));
         else root.nodes.push_back(int(n));
     }
+    // Parts with identical meshes (instances) share one glTF mesh, as an
+    // exporter writes a mesh used by several nodes.
+    std::vector<const Part*> written;
     for (const Part& part : scene.parts) {
         RSL_CHECK(part.node >= 0 && part.node < int(scene.nodes.size()));
+        const auto same = std::find_if(written.begin(), written.end(), [&](const Part* other) {
+            return other->mesh.indices == part.mesh.indices && other->mesh.positions == part.mesh.positions &&
+                   other->mesh.normals == part.mesh.normals && other->mesh.tangents == part.mesh.tangents;
+        });
+        if (same != written.end()) {
+            model.nodes[part.node].mesh = int(same - written.begin());
+            continue;
+        }
         model.nodes[part.node].mesh = int(model.meshes.size());
         add_mesh(builder, model, part);
+        written.push_back(&part);
     }
     model.scenes.push_back(root);
     model.defaultScene = 0;

@@ -1,22 +1,27 @@
-// `rsl bake SCENE|MESH`: bake (or reuse) the SVDF and OVDF of every part.
+// `rsl bake SCENE|MESH`: bake (or reuse) the SVDF and OVDF of every unique
+// mesh, or of one shard of them (--shard I/N).
 #include <fmt/core.h>
 
 #include "fields/field_cache.h"
 #include "src/cli/command.h"
+#include "src/cli/unique_meshes.h"
 #include "src/core/scene.h"
 
 namespace rsl::cli {
 namespace {
 
 struct BakeArgs {
-    std::string input, output;
+    std::string input, output, shard;
     bool svdf_only = false, quiet = false;
     int clusters = 0, vectors = 0, supersampling = 0, ovdf_vectors = 0, cube_resolution = 0, shells = 0;
 };
 
 void run_bake(const BakeArgs& args) {
+    FieldShard shard;
+    if (!args.shard.empty()) shard = parse_field_shard(args.shard);  // before the (slow) scene load
     const Scene scene = load_scene(args.input);
     FieldCacheOptions options = default_field_options(scene);
+    options.shard = shard;
     if (!args.output.empty()) options.directory = args.output;
     options.svdf_only = args.svdf_only;
     options.verbose = !args.quiet;
@@ -26,17 +31,21 @@ void run_bake(const BakeArgs& args) {
     if (args.ovdf_vectors > 0) options.ovdf.vectors = args.ovdf_vectors;
     if (args.cube_resolution > 0) options.ovdf.cube_resolution = args.cube_resolution;
     if (args.shells > 0) options.ovdf.shells = args.shells;
-    const auto fields = bake_or_load_fields(scene, options);
-    size_t reused = 0, baked = 0;
-    for (const PartFields& f : fields) {
-        fmt::print("{}\n", f.svdf_file.string());
-        (f.svdf_reused ? reused : baked)++;
-        if (f.ovdf) {
-            fmt::print("{}\n", f.ovdf_file.string());
-            (f.ovdf_reused ? reused : baked)++;
+    const SceneFields fields = bake_or_load_fields(scene, options);
+    int files = 0;  // of the whole scene, every shard's
+    for (const UniqueFields& u : fields.unique)
+        for (const FieldOutcome* o : {&u.svdf_outcome, &u.ovdf_outcome}) {
+            files += !o->file.empty();
+            if (o->state != FieldState::Skipped) fmt::print("{}\n", o->file.string());
         }
-    }
-    if (!args.quiet) fmt::print(stderr, "rsl bake: {} field files baked, {} reused from the cache\n", baked, reused);
+    if (args.quiet) return;
+    const int baked = fields.count(FieldState::Baked), reused = fields.count(FieldState::Reused);
+    fmt::print(stderr, "rsl bake: {} parts, {} unique mesh{}{}\n", scene.parts.size(), fields.unique.size(),
+               fields.unique.size() == 1 ? "" : "es",
+               shard.all() ? "" : fmt::format("; shard {}/{}: {} of {} field files", shard.index, shard.count,
+                                              baked + reused, files));
+    print_unique_meshes(stderr, scene, fields);
+    fmt::print(stderr, "rsl bake: {} field files baked, {} reused from the cache\n", baked, reused);
 }
 
 RegisterCommand bake_command({"bake",
@@ -53,11 +62,16 @@ RegisterCommand bake_command({"bake",
         app.add_option("--ovdf-vectors", args->ovdf_vectors, "OVDF PCA vectors per segment (default: scene setting, 8)");
         app.add_option("--cube-resolution", args->cube_resolution, "OVDF sample points per cube-face side (default: scene setting, 32)");
         app.add_option("--shells", args->shells, "OVDF shells around the part (default: scene setting, 16)");
+        app.add_option("--shard", args->shard,
+                       "I/N: bake only shard I (0 <= I < N) of the unique fields, for N processes or machines "
+                       "sharing the cache folder (docs/FIELDS.md)");
         app.add_flag("-q,--quiet", args->quiet, "No progress output (warnings still go to stderr)");
         app.footer(
-            "Cache: one .rslf file per part and field kind, named "
-            "<scene>.<part index>-<part name>.<svdf|ovdf>.<key>.rslf, where the key hashes the format version, "
-            "the part's mesh and the parameters; a change of any of them selects a new file. A run reuses every "
+            "Cache: one .rslf file per unique mesh and field kind, named <svdf|ovdf>-<key>.rslf, where the key "
+            "hashes the format version, the mesh's content and the parameters: parts that share a mesh (glTF "
+            "nodes of one mesh, one OBJ named by several parts) share one file, baked once, and any scene using "
+            "that mesh with those parameters finds it; a change of mesh or parameters selects a new file. With "
+            "--shard I/N a run bakes only the files whose rank, sorted by name, is I mod N. A run reuses every "
             "cached file that reads back valid (version, mesh, parameters, checksum) and says so; a corrupt or "
             "foreign file is refused with a warning, baked again and replaced. Files are written atomically. "
             "Defaults of the options above come from the scene's \"precompute\" section (docs/SCENE_FORMAT.md). "

@@ -29,6 +29,9 @@ struct BenchArgs {
     std::string shared = std::string(RSL_SOURCE_DIR) + "/../shared/assets";
     std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
     std::string scenes = std::string(RSL_SOURCE_DIR) + "/assets/scenes";
+    std::string output = "bench-out";
+    std::vector<int> parts;
+    std::vector<float> reaches;
 };
 
 RegisterCommand bench_command({"bench",
@@ -42,6 +45,14 @@ RegisterCommand bench_command({"bench",
         app.add_option("--shared-assets", args->shared, "Folder of real probes/meshes (optional)")->capture_default_str();
         app.add_option("--generated-assets", args->generated, "The project's generated assets")->capture_default_str();
         app.add_option("--scenes", args->scenes, "The project's scene files")->capture_default_str();
+        app.add_option("--out", args->output, "Folder for plots and generated scenes")->capture_default_str();
+        app.add_option("--parts", args->parts, "scale: yard instance counts (default 8,32,64,128,256,1024)")
+            ->delimiter(',')
+            ->check(CLI::Range(1, 4096));
+        app.add_option("--reaches", args->reaches,
+                       "scale: OVDF outer radii in bounding radii to compare (default: the yard's 20)")
+            ->delimiter(',')
+            ->check(CLI::Range(1.5, 100.0));
         app.callback([args] {
             auto& registry = benchmark_registry();
             std::sort(registry.begin(), registry.end(),
@@ -53,7 +64,8 @@ RegisterCommand bench_command({"bench",
             for (auto& name : args->names)
                 if (std::none_of(registry.begin(), registry.end(), [&](auto& b) { return b.name == name; }))
                     throw_error("unknown benchmark '{}' (see rsl bench --list)", name);
-            BenchOptions options{args->quick, args->shared, args->generated, args->scenes};
+            BenchOptions options{args->quick, args->shared, args->generated, args->scenes, args->output, args->parts,
+                                 args->reaches};
             bench_emit({{"bench", "machine"},
                         {"hardware_threads", std::thread::hardware_concurrency()},
                         {"quick", args->quick}});

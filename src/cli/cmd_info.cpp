@@ -8,6 +8,7 @@
 #include "src/brdf/brdf.h"
 #include "src/cli/command.h"
 #include "src/cli/info.h"
+#include "src/cli/unique_meshes.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
@@ -107,6 +108,12 @@ void print_parts(const Scene& scene) {
                    is_animated(scene, part.node) ? "  animated" : "", vec3_text(origin));
         print_mesh_bounds(part.mesh, "      ");
     }
+    // Fields are per unique mesh: what `rsl bake` would bake, and what the
+    // default cache (beside the file) already holds.
+    const SceneFields plan = plan_fields(scene, default_field_options(scene));
+    fmt::print("  unique meshes:     {} (fields are baked, stored and held once per unique mesh)\n",
+               plan.unique.size());
+    print_unique_meshes(stdout, scene, plan);
 }
 
 void print_scene_body(const Scene& scene) {

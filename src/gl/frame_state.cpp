@@ -1,36 +1,30 @@
 #include "src/gl/frame_state.h"
 
+#include <fmt/format.h>
+
 #include "src/core/error.h"
 
 namespace rsl::gl {
 
-namespace {
-const Scene& checked(const Scene& scene) {
-    if (scene.parts.size() > size_t(kMaxParts))
-        throw_file_error(scene.source, "the GL renderer handles at most {} parts; the scene has {}", kMaxParts,
-                         scene.parts.size());
-    return scene;
-}
-}  // namespace
-
-FrameState::FrameState(const Scene& scene, const PartFields& fields) : setup_(checked(scene), fields) {}
+FrameState::FrameState(const Scene& scene, const PartFields& fields) : setup_(scene, fields) {}
 
 void FrameState::update(const Scene& scene, const EnvironmentLights& environment, std::span<const LocalLight> lights,
                         const RenderOptions& options, float t, const Mat3& extra_rotation,
                         const std::optional<Vec3>& camera) {
     setup_.update(scene, environment, lights, options, t, extra_rotation, camera);
-    update_masks();
+    update_list_texels();
 }
 
-// The CPU renderer's occluder lists (the same FrameSetup) as bit masks.
-void FrameState::update_masks() {
+// The CPU renderer's occluder lists (the same FrameSetup), offsets first.
+void FrameState::update_list_texels() {
     const OccluderLists& lists = setup_.occluder_lists();
-    const auto& poses = setup_.poses();
-    const size_t parts = poses.size();
     light_count_ = int(setup_.environment_squares().size() + setup_.light_positions().size());
-    masks_.assign(parts * size_t(light_count_), 0u);
-    for (size_t slot = 0; slot < masks_.size(); ++slot)
-        for (size_t e = lists.offsets[slot]; e < lists.offsets[slot + 1]; ++e) masks_[slot] |= 1u << lists.occluders[e];
+    const size_t slots = lists.offsets.size();  // P·L + 1
+    if (slots + lists.occluders.size() > size_t(UINT32_MAX))
+        throw Error(fmt::format("{} occluder list entries are more than the GPU lists can index", lists.occluders.size()));
+    list_texels_.resize(slots + lists.occluders.size());
+    for (size_t s = 0; s < slots; ++s) list_texels_[s] = uint32_t(slots + lists.offsets[s]);
+    for (size_t e = 0; e < lists.occluders.size(); ++e) list_texels_[slots + e] = uint32_t(lists.occluders[e]);
 }
 
 }  // namespace rsl::gl

@@ -135,15 +135,21 @@ Program build_program(const std::string& vertex, const std::string& fragment, co
 
 namespace {
 
-void upload_array(ArrayTexture& array, const std::vector<Vec4>& data, GLenum internal_format) {
-    array.size = data.size();
+// Sizes `array` for `texels` elements; throws when the driver's largest
+// texture cannot hold them.
+void size_array(ArrayTexture& array, size_t texels) {
+    array.size = texels;
     array.width = kArrayTextureWidth;
-    array.height = int(std::max<size_t>(1, (data.size() + kArrayTextureWidth - 1) / kArrayTextureWidth));
+    array.height = int(std::max<size_t>(1, (texels + kArrayTextureWidth - 1) / kArrayTextureWidth));
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     if (array.height > max_size)
-        throw Error(fmt::format("GPU data of {} texels needs a {}×{} texture; this driver allows {}", data.size(),
+        throw Error(fmt::format("GPU data of {} texels needs a {}×{} texture; this driver allows {}", texels,
                                 array.width, array.height, max_size));
+}
+
+void upload_array(ArrayTexture& array, const std::vector<Vec4>& data, GLenum internal_format) {
+    size_array(array, data.size());
     // Pad the last row so that the upload reads only owned memory.
     std::vector<Vec4> padded;
     const Vec4* pixels = data.data();
@@ -188,6 +194,29 @@ void update_array_texture(ArrayTexture& array, const std::vector<Vec4>& data) {
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, full_rows, rest, 1, GL_RGBA, GL_FLOAT,
                         data.data() + size_t(full_rows) * kArrayTextureWidth);
     check_gl("updating an array texture");
+}
+
+void upload_uint_array(ArrayTexture& array, const std::vector<uint32_t>& data) {
+    if (!array.texture.id()) array.texture = make_texture();
+    const int height = array.height;
+    size_array(array, data.size());
+    glBindTexture(GL_TEXTURE_2D, array.texture.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    if (height != array.height || !array.defined) {  // storage only; the rows follow
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, array.width, array.height, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+        array.defined = true;
+    }
+    const int full_rows = int(data.size() / size_t(array.width));
+    if (full_rows > 0)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, array.width, full_rows, GL_RED_INTEGER, GL_UNSIGNED_INT, data.data());
+    const int rest = int(data.size() % size_t(array.width));
+    if (rest > 0)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, full_rows, rest, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                        data.data() + size_t(full_rows) * size_t(array.width));
+    check_gl("uploading a uint array texture");
 }
 
 }  // namespace rsl::gl

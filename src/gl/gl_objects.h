@@ -84,11 +84,15 @@ struct ArrayTexture {
     Texture texture;
     int width = 1, height = 1;
     size_t size = 0;
+    bool defined = false;  // upload_uint_array: storage allocated at this height
 };
 // Width used for every array texture: kArrayTextureWidth (gpu_layout.h).
 // `internal_format`: GL_RGBA32F, or GL_RGBA16F for data that is exactly
 // representable in half precision (the driver converts from float).
 ArrayTexture make_array_texture(const std::vector<Vec4>& data, GLenum internal_format = GL_RGBA32F);
 void update_array_texture(ArrayTexture& array, const std::vector<Vec4>& data);
+// The same layout for uint data (GL_R32UI, read with a usampler2D), created
+// on first use and re-allocated only when its row count changes.
+void upload_uint_array(ArrayTexture& array, const std::vector<uint32_t>& data);
 
 }  // namespace rsl::gl

@@ -54,7 +54,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     display_program_ = build_program("display.vert.glsl", "display.frag.glsl");
     glUseProgram(shade_program_.id());
     const char* samplers[kUnitCount] = {"u_positions",       "u_normals",           "u_tangents",
-                                        "u_parts",           "u_lights",            "u_occluders",
+                                        "u_parts",           "u_lights",            "u_occluder_lists",
                                         "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
                                         "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
                                         "u_ovdf_frames"};
@@ -97,10 +97,6 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
                   texel_bytes(ovdf_frames_, 16);
     parts_ = make_array_texture(part_records_);
     lights_ = make_array_texture({Vec4(0.0f)});
-    occluders_ = make_texture();
-    glBindTexture(GL_TEXTURE_2D, occluders_.id());
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 
     // The render target and the buffer that carries it to the display pass.
     target_ = make_texture();
@@ -288,7 +284,7 @@ void GlRenderer::update_frame() {
     stats_.vertices = size_t(vertex_count_);
 }
 
-// Poses into the part records; lights (2 texels each); occluder masks.
+// Poses into the part records; lights (2 texels each); occluder lists.
 void GlRenderer::upload_frame() {
     const auto& poses = frame_.poses();
     for (size_t p = 0; p < poses.size(); ++p)
@@ -308,13 +304,7 @@ void GlRenderer::upload_frame() {
     if (light_texels_.empty()) light_texels_.push_back(Vec4(0.0f));
     update_array_texture(lights_, light_texels_);
 
-    glBindTexture(GL_TEXTURE_2D, occluders_.id());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    const int lights = std::max(1, frame_.light_count());
-    std::vector<uint32_t> empty(size_t(lights) * scene_.parts.size(), 0u);
-    const uint32_t* masks = frame_.light_count() > 0 ? frame_.masks().data() : empty.data();
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, lights, GLsizei(scene_.parts.size()), 0, GL_RED_INTEGER,
-                 GL_UNSIGNED_INT, masks);
+    upload_uint_array(occluder_lists_, frame_.occluder_list_texels());
 }
 
 void GlRenderer::shade() {
@@ -333,7 +323,7 @@ void GlRenderer::shade() {
     bind_texture(kUnitTangents, GL_TEXTURE_2D, tangents_.id());
     bind_texture(kUnitParts, GL_TEXTURE_2D, parts_.texture.id());
     bind_texture(kUnitLights, GL_TEXTURE_2D, lights_.texture.id());
-    bind_texture(kUnitOccluders, GL_TEXTURE_2D, occluders_.id());
+    bind_texture(kUnitOccluders, GL_TEXTURE_2D, occluder_lists_.texture.id());
     bind_texture(kUnitBrdf, GL_TEXTURE_3D, brdf_.id());
     bind_texture(kUnitBrdfOffsets, GL_TEXTURE_2D, brdf_offsets_.texture.id());
     bind_texture(kUnitSvdfTables, GL_TEXTURE_2D, svdf_tables_.texture.id());
@@ -342,7 +332,6 @@ void GlRenderer::shade() {
     bind_texture(kUnitOvdfCoefficients, GL_TEXTURE_2D, ovdf_coefficients_.texture.id());
     bind_texture(kUnitOvdfFrames, GL_TEXTURE_2D, ovdf_frames_.texture.id());
     glUniform1i(uniform(shade_program_, "u_vertex_count"), vertex_count_);
-    glUniform1i(uniform(shade_program_, "u_part_count"), int(scene_.parts.size()));
     glUniform1i(uniform(shade_program_, "u_environment_lights"), int(frame_.environment_squares().size()));
     glUniform1i(uniform(shade_program_, "u_light_count"), frame_.light_count());
     glUniform1i(uniform(shade_program_, "u_environment_enabled"), options_.environment ? 1 : 0);

@@ -10,7 +10,7 @@
 //  3. Display pass: the parts drawn with those colours (shaders/display.*).
 //
 // Everything static (meshes, SVDF, OVDF, BRDF tables) is uploaded once
-// (gpu_layout.h); every frame uploads part poses, lights and occluder masks
+// (gpu_layout.h); every frame uploads part poses, lights and occluder lists
 // (a few KB). Needs a current OpenGL ≥ 3.3 core context for its lifetime.
 //
 // It is a VertexRenderer (src/render/vertex_renderer.h): the frame of time t
@@ -141,8 +141,9 @@ private:
     Program shade_program_, display_program_;
     Texture positions_, normals_, tangents_;
     ArrayTexture parts_, lights_, brdf_offsets_;
+    ArrayTexture occluder_lists_;  // FrameState::occluder_list_texels
     ArrayTexture svdf_tables_, svdf_coefficients_, ovdf_tables_, ovdf_coefficients_, ovdf_frames_;
-    Texture occluders_, brdf_;
+    Texture brdf_;
     Texture target_;
     Framebuffer target_fbo_;
     Buffer colors_;  // GL_PIXEL_PACK_BUFFER when written, GL_ARRAY_BUFFER when drawn

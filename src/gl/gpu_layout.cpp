@@ -1,5 +1,6 @@
 #include "src/gl/gpu_layout.h"
 
+#include <array>
 #include <map>
 
 #include "src/core/envmap.h"
@@ -78,6 +79,10 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
         g.face_s[f] = root2 * CubeMap::face_direction(f, 1, 0) - g.face_normal[f];
         g.face_t[f] = root2 * CubeMap::face_direction(f, 0, 1) - g.face_normal[f];
     }
+    // Instances share a field object (fields/field_cache.h): its tables go
+    // up once, and every part that uses it points at the same records.
+    std::map<const Svdf*, Vec4> svdf_records;
+    std::map<const Ovdf*, std::array<Vec4, 5>> ovdf_records;
     for (size_t p = 0; p < parts; ++p) {
         const TriangleMesh& mesh = scene.parts[p].mesh;
         Vec4* record = &g.part_static[p * kPartStride];
@@ -89,13 +94,16 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
         record[kSlotBoxHigh] = Vec4(box.hi, 0.0f);
 
         const Svdf* svdf = p < fields.self.size() ? fields.self[p].get() : nullptr;
-        if (svdf) {
+        if (svdf && svdf_records.count(svdf)) {
+            record[kSlotSvdf] = svdf_records[svdf];
+        } else if (svdf) {
             const CpcaModel& m = svdf->model;
             const int stride = cpca_stride(m.vectors);
             g.max_stride = std::max(g.max_stride, stride);
             const int tables = append_tables(m, g.svdf_tables, g.svdf_tables_half);
             const int coefficients = append_coefficients(m, g.svdf_coefficients);
             record[kSlotSvdf] = Vec4(float(tables), float(coefficients), float(svdf->resolution()), float(stride));
+            svdf_records[svdf] = record[kSlotSvdf];
         }
         for (size_t v = 0; v < mesh.vertex_count(); ++v) {
             g.positions.push_back(Vec4(mesh.positions[v], float(p)));
@@ -111,6 +119,11 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
             throw_file_error(scene.source, "GL renderer: part '{}' has an occluder field that is not an OVDF",
                              scene.parts[p].name);
         const Ovdf& o = occluder->field();
+        const int kOvdfSlots[5] = {kSlotOvdfCenter, kSlotOvdfBases, kSlotOvdfShells, kSlotOvdfGrid, kSlotOvdfRecords};
+        if (const auto it = ovdf_records.find(&o); it != ovdf_records.end()) {
+            for (int k = 0; k < 5; ++k) record[kOvdfSlots[k]] = it->second[size_t(k)];
+            continue;
+        }
         const OvdfParams& op = o.params;
         const int n = op.cube_resolution;
         // The shader computes a sample's cluster as its segment (as the bake assigns it).
@@ -150,6 +163,7 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
         record[kSlotOvdfShells] = Vec4(float(op.shells), float(int(op.spacing)), op.inner_radius, op.outer_radius);
         record[kSlotOvdfGrid] = Vec4(float(n), float(op.vdt_resolution), float(stride), float(op.segments_per_side));
         record[kSlotOvdfRecords] = Vec4(float(zoom_records), float(surfaces), 0.0f, 0.0f);
+        for (int k = 0; k < 5; ++k) ovdf_records[&o][size_t(k)] = record[kOvdfSlots[k]];
     }
     g.first_vertex.push_back(int(g.positions.size()));
     check_index(scene, g.positions.size(), "the vertices");

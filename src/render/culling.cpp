@@ -22,33 +22,59 @@ void update_occluder_lists(std::span<const CullingPart> parts, const CullingLigh
     const size_t environment = lights.environment.size();
     const size_t light_count = environment + lights.light_positions.size();
     out.occluders.clear();
+    out.growth.clear();
     out.offsets.resize(count * light_count + 1);
-    out.growth.assign(count * count, 0.0f);
-    out.pairs = out.culled = 0;
-    for (size_t receiver = 0; receiver < count; ++receiver)
-        for (size_t o = 0; o < count; ++o)
-            if (o != receiver && parts[o].field)
-                out.growth[receiver * count + o] =
-                    footprint_growth(parts[receiver].world_bounds, parts[o],
-                                     transform_sphere(parts[o].transform, parts[o].local_reach));
+    out.pairs = out.culled = out.candidates = 0;
+    out.reaches.clear();
+    out.field_parts.clear();
+    for (size_t o = 0; o < count; ++o) {
+        if (!parts[o].field) continue;
+        out.field_parts.push_back(int(o));
+        out.reaches.push_back(transform_sphere(parts[o].transform, parts[o].local_reach));
+    }
+    const bool culling = options.occluder_culling;
+    if (culling) out.reach_tree.build(out.reaches);
+    size_t lit = 0;
+    for (size_t l = 0; l < light_count; ++l) lit += (l < environment ? options.environment : options.local_lights) ? 1 : 0;
+    if (!options.occluders) lit = 0;
+
     size_t slot = 0;
     for (size_t receiver = 0; receiver < count; ++receiver) {
         const BoundingSphere& r = parts[receiver].world_bounds;
+        // The candidates: every other part with a field, or with culling those
+        // whose reach the receiver lies in (the tree's superset, then the exact test).
+        out.candidate_parts.clear();
+        out.candidate_growth.clear();
+        const size_t others = out.field_parts.size() - (parts[receiver].field ? 1 : 0);
+        out.pairs += others * lit;
+        if (lit > 0 && culling) {
+            out.reach_tree.overlapping(r, out.candidate_parts);
+            size_t kept = 0;
+            for (const int index : out.candidate_parts) {
+                const int o = out.field_parts[size_t(index)];
+                if (size_t(o) == receiver || beyond_reach(r, out.reaches[size_t(index)])) continue;
+                out.candidate_parts[kept++] = o;
+                out.candidate_growth.push_back(footprint_growth(r, parts[size_t(o)], out.reaches[size_t(index)]));
+            }
+            out.candidate_parts.resize(kept);
+        } else if (lit > 0) {
+            for (const int o : out.field_parts)
+                if (size_t(o) != receiver) out.candidate_parts.push_back(o);
+            out.candidate_growth.assign(out.candidate_parts.size(), 0.0f);
+        }
+        out.candidates += out.candidate_parts.size();
         for (size_t l = 0; l < light_count; ++l) {
             out.offsets[slot++] = out.occluders.size();
-            const bool lit = l < environment ? options.environment : options.local_lights;
-            if (!options.occluders || !lit) continue;
-            for (size_t o = 0; o < count; ++o) {
-                if (o == receiver || !parts[o].field) continue;
-                ++out.pairs;
+            const bool light_on = l < environment ? options.environment : options.local_lights;
+            if (!options.occluders || !light_on) continue;
+            for (size_t c = 0; c < out.candidate_parts.size(); ++c) {
+                const int o = out.candidate_parts[c];
+                const float growth = out.candidate_growth[c];
                 bool keep = true;
-                if (options.occluder_culling) {
-                    const BoundingSphere& occluder = parts[o].world_bounds;
-                    const BoundingSphere reach = transform_sphere(parts[o].transform, parts[o].local_reach);
-                    const BoundingSphere grown{r.center, r.radius + out.growth[receiver * count + o]};
-                    if (beyond_reach(r, reach)) {
-                        keep = false;
-                    } else if (l < environment) {
+                if (culling) {
+                    const BoundingSphere& occluder = parts[size_t(o)].world_bounds;
+                    const BoundingSphere grown{r.center, r.radius + growth};
+                    if (l < environment) {
                         const SquareLight& square = lights.environment[l];
                         keep = may_shadow_direction(grown, occluder, square.direction,
                                                     square_cone_half_angle(square.half_edge));
@@ -58,14 +84,15 @@ void update_occluder_lists(std::span<const CullingPart> parts, const CullingLigh
                                                        lights.lights[i].radius);
                     }
                 }
-                if (keep)
-                    out.occluders.push_back(int(o));
-                else
-                    ++out.culled;
+                if (keep) {
+                    out.occluders.push_back(o);
+                    out.growth.push_back(growth);
+                }
             }
         }
     }
     out.offsets[slot] = out.occluders.size();
+    out.culled = out.pairs - out.occluders.size();
 }
 
 }  // namespace rsl

@@ -13,6 +13,7 @@
 #include "src/core/scene.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
+#include "src/render/sphere_tree.h"
 #include "src/render/square_lights.h"
 
 namespace rsl {
@@ -85,16 +86,30 @@ struct CullingLights {
 // The per-frame occluder lists, shared by the CPU renderer and the GL frame
 // state so that both run exactly the same lookups.
 //   occluders[offsets[p·L + l] .. offsets[p·L + l + 1]): the occluder parts
-//   whose lookups run for receiver part p and light l (L lights in all);
-//   growth[p·P + o]: how much occluder o's field footprint grows receiver p in
-//   culling tests (world units; 0 where o has no field or o == p).
-// Reusing one OccluderLists across frames does not allocate.
+//   whose lookups run for receiver part p and light l (L lights in all), in
+//   ascending part order;
+//   growth[e]: how much occluder occluders[e]'s field footprint grows the
+//   receiver in culling tests (world units; 0 without culling).
+// With culling, a receiver's candidates come from a sphere tree over the
+// occluders' field reaches (sphere_tree.h), so a frame costs O(P log P +
+// the pairs within reach), not O(P²). Reusing one OccluderLists across
+// frames does not allocate once its vectors have grown.
 struct OccluderLists {
     std::vector<int> occluders;
-    std::vector<size_t> offsets;
     std::vector<float> growth;
+    std::vector<size_t> offsets;
     size_t pairs = 0;   // (receiver, occluder, light) triples considered
     size_t culled = 0;  // ... of which culled
+    // Per receiver: the occluders whose reach it lies in (before the per-light
+    // tests), summed over receivers: what the search hands the light tests.
+    size_t candidates = 0;
+
+    // Scratch of update_occluder_lists.
+    SphereTree reach_tree;
+    std::vector<BoundingSphere> reaches;  // per part with a field, world space
+    std::vector<int> field_parts;         // the parts with a field, ascending
+    std::vector<int> candidate_parts;
+    std::vector<float> candidate_growth;
 };
 
 // Fills `out` for the parts and lights of one frame. Without culling every

@@ -11,21 +11,19 @@ CachedFields load_or_bake_fields(const Scene& scene, bool occluders, bool progre
     FieldCacheOptions options = default_field_options(scene);
     options.svdf_only = !occluders || scene.parts.size() < 2;  // a lone part shadows nobody
     options.verbose = progress;
-    std::vector<PartFields> parts = bake_or_load_fields(scene, options);
+    const SceneFields fields = bake_or_load_fields(scene, options);
     CachedFields result;
-    result.svdf.resize(parts.size());
-    result.ovdf.resize(parts.size());
-    for (size_t p = 0; p < parts.size(); ++p) {
-        PartFields& f = parts[p];
-        if (f.svdf) {
-            result.svdf[p] = std::make_shared<const Svdf>(std::move(*f.svdf));
-            ++(f.svdf_reused ? result.loaded : result.baked);
-        }
-        if (f.ovdf) {
-            result.ovdf[p] = std::make_shared<const Ovdf>(std::move(*f.ovdf));
-            ++(f.ovdf_reused ? result.loaded : result.baked);
-        }
+    result.svdf.resize(scene.parts.size());
+    result.ovdf.resize(scene.parts.size());
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        // Every instance holds the same pointer: one copy per unique mesh.
+        const UniqueFields& u = fields.unique[size_t(fields.unique_of_part[p])];
+        result.svdf[p] = u.svdf;
+        result.ovdf[p] = u.ovdf;
     }
+    result.loaded = fields.count(FieldState::Reused);
+    result.baked = fields.count(FieldState::Baked);
+    result.unique_meshes = int(fields.unique.size());
     return result;
 }
 

@@ -1,12 +1,9 @@
 #pragma once
 // The renderer's door to the fields stage's on-disk cache (fields/field_cache.h,
-// the files `rsl bake` writes): load every part's valid cached SVDF/OVDF and
-// bake (then write) only the missing ones, with progress on stderr.
-//
-// This header deliberately does not include fields/field_cache.h: that header
-// declares an rsl::PartFields of its own, which would clash with the
-// renderer's PartFields alias (src/render/part_fields.h) in one translation
-// unit. Only field_cache_loader.cpp sees it.
+// the files `rsl bake` writes): load every unique mesh's valid cached
+// SVDF/OVDF and bake (then write) only the missing ones, with progress on
+// stderr. Parts that share a mesh (instances) share one field: the per-part
+// pointers below are copies of one pointer.
 #include <memory>
 #include <vector>
 
@@ -20,6 +17,7 @@ struct CachedFields {
     std::vector<std::shared_ptr<const Svdf>> svdf;  // per part; null where not asked for
     std::vector<std::shared_ptr<const Ovdf>> ovdf;  // per part; null where not asked for
     int loaded = 0, baked = 0;                      // field files reused / baked and written
+    int unique_meshes = 0;                          // fields are per unique mesh, not per part
 };
 
 // The same parameters `rsl bake` derives from a scene's precompute settings,

@@ -30,8 +30,8 @@ void FrameSetup::reserve(size_t environment_lights, size_t local_lights) {
     squares_.reserve(environment_lights);
     light_positions_.reserve(local_lights);
     lists_.offsets.reserve(parts * lights + 1);
-    lists_.occluders.reserve(parts * lights * (parts > 0 ? parts - 1 : 0));
-    lists_.growth.reserve(parts * parts);
+    // The lists themselves grow to what the first frames need and keep that
+    // capacity: reserving parts² × lights would be gigabytes for a large scene.
 }
 
 namespace {

@@ -69,7 +69,8 @@ public:
 
     // Everything at time t. The viewer turns the environment further by
     // `extra_rotation` and puts the camera where it wants (`camera`; the
-    // scene's camera at t when empty). Allocation-free after reserve().
+    // scene's camera at t when empty). Allocation-free after reserve() once the
+    // occluder lists have grown to the most pairs a frame has had.
     void update(const Scene& scene, const EnvironmentLights& environment, std::span<const LocalLight> lights,
                 const RenderOptions& options, float t, const Mat3& extra_rotation = Mat3(1.0f),
                 const std::optional<Vec3>& camera = std::nullopt);

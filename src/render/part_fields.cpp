@@ -1,5 +1,8 @@
 #include "src/render/part_fields.h"
 
+#include <map>
+
+#include "fields/field_cache.h"
 #include "src/render/field_cache_loader.h"
 #include "src/render/ovdf_occluder.h"
 
@@ -12,21 +15,25 @@ PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options)
     fields.self.resize(scene.parts.size());
     fields.occluder.resize(scene.parts.size());
     const SvdfParams self_params = svdf_params(scene.precompute);
-    for (size_t p = 0; p < scene.parts.size(); ++p) {
-        const Part& part = scene.parts[p];
+    // One bake per unique mesh; its instances share the pointer.
+    for (const MeshInstances& group : group_instances(scene)) {
+        const Part& part = scene.parts[size_t(group.parts.front())];
+        std::shared_ptr<const Svdf> self;
+        std::shared_ptr<const OccluderField> occluder;
         if (options.self_visibility) {
             const std::string what = "SVDF " + part.name;
-            fields.self[p] = std::make_shared<const Svdf>(bake_svdf(part.mesh, self_params, nullptr, [&](double f) {
+            self = std::make_shared<const Svdf>(bake_svdf(part.mesh, self_params, nullptr, [&](double f) {
                 if (options.progress) options.progress(what, f);
             }));
         }
         // A scene of one part has nobody to shadow.
         if (options.occluders && scene.parts.size() > 1) {
             const std::string what = "OVDF " + part.name;
-            fields.occluder[p] = bake_ovdf_occluder(part.mesh, ovdf_params(scene.precompute), [&](double f) {
+            occluder = bake_ovdf_occluder(part.mesh, ovdf_params(scene.precompute), [&](double f) {
                 if (options.progress) options.progress(what, f);
             });
         }
+        for (int p : group.parts) fields.self[size_t(p)] = self, fields.occluder[size_t(p)] = occluder;
     }
     return fields;
 }
@@ -38,9 +45,13 @@ PartFields load_part_fields(const Scene& scene, const FieldBakeOptions& options,
     PartFields fields;
     fields.self.resize(scene.parts.size());
     fields.occluder.resize(scene.parts.size());
+    std::map<const Ovdf*, std::shared_ptr<const OccluderField>> occluder_of;  // one wrapper per unique field
     for (size_t p = 0; p < scene.parts.size(); ++p) {
         if (options.self_visibility) fields.self[p] = std::move(cached.svdf[p]);
-        if (options.occluders && cached.ovdf[p]) fields.occluder[p] = std::make_shared<const OvdfOccluder>(std::move(cached.ovdf[p]));
+        if (!options.occluders || !cached.ovdf[p]) continue;
+        std::shared_ptr<const OccluderField>& shared = occluder_of[cached.ovdf[p].get()];
+        if (!shared) shared = std::make_shared<const OvdfOccluder>(cached.ovdf[p]);
+        fields.occluder[p] = shared;
     }
     if (report) *report = FieldLoadReport{cached.loaded, cached.baked};
     return fields;

@@ -34,11 +34,10 @@ public:
     virtual float footprint(float d_min, float d_max) const { return 0.0f; }
 };
 
-// Named RenderFields (not PartFields) because fields/field_cache.h defines an
-// rsl::PartFields of its own: two classes of one name in one program break the
-// one-definition rule. The alias keeps the renderer's API; a file may include
-// this header or fields/field_cache.h, not both (src/render/field_cache_loader.h
-// bridges them).
+// Per part, but per unique mesh in memory: parts whose meshes are equal
+// (instances; fields/field_cache.h groups them) hold the same pointer, to a
+// field baked in the mesh's own frame, and each part's transform poses it.
+// PartFields is the name the renderer's API uses.
 struct RenderFields {
     std::vector<std::shared_ptr<const Svdf>> self;               // per part; null: no self-visibility
     std::vector<std::shared_ptr<const OccluderField>> occluder;  // per part; null: casts no shadow
@@ -55,14 +54,15 @@ struct FieldBakeOptions {
     std::function<void(const std::string& what, double fraction)> progress;
 };
 
-// Bakes the fields of every part of `scene` with its precompute settings, in
-// memory (no cache; for tests and scenes without a file).
+// Bakes the fields of every unique mesh of `scene` with its precompute
+// settings, in memory (no cache; for tests and scenes without a file).
 PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options);
 
 // The fields from the scene's field cache (<scene folder>/.rsl-cache, the files
 // `rsl bake` writes), baking and writing only the missing or stale ones, with
 // progress on stderr when `progress`. A scene without a source file is baked
-// in memory. Counts what was reused and baked.
+// in memory. Counts the field files reused and baked (one per unique mesh and
+// kind, however many parts use the mesh).
 struct FieldLoadReport {
     int loaded = 0, baked = 0;
 };

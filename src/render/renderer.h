@@ -36,6 +36,8 @@
 
 namespace rsl {
 
+struct OccluderVertexScratch;  // shade_block.cpp
+
 class Renderer final : public VertexRenderer {
 public:
     // `scene` must outlive the renderer. `environment_lights` is the
@@ -87,8 +89,8 @@ private:
     void sync_materials();
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
-    void prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
-    void occluder_factors(BlockScratch& s, int part_index, int light, int occluder, int n, int m, bool per_occluder,
+    OccluderVertexScratch& prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
+    void occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int light, int occluder, int n, int m,
                           RenderStats& counts) const;
 
     const Scene& scene_;
@@ -122,7 +124,7 @@ private:
     std::vector<Color> light_radiance_;
     // Occluders that can shadow receiver part p for light l (culling.h):
     // occluders_[offsets_[p·L + l] .. offsets_[p·L + l + 1]), and per
-    // (receiver, occluder) the footprint growth of the receiver.
+    // entry the footprint growth of the receiver by that occluder.
     const std::vector<int>& occluders_ = frame_.occluder_lists().occluders;
     const std::vector<size_t>& offsets_ = frame_.occluder_lists().offsets;
     const std::vector<float>& occluder_growth_ = frame_.occluder_lists().growth;

@@ -17,12 +17,36 @@ namespace rsl {
 namespace {
 
 constexpr int kBlock = 256;
-// Scenes with more parts skip the per-vertex occluder test for the rest.
-constexpr int kMaxOccluderParts = 32;
 
 }  // namespace
 
-// Per-thread scratch of one block (about 40 KB, never on the heap per frame).
+// One occluder part's per-vertex scratch for the current block: its bounding
+// cone seen from each vertex, the slab rule's box sides and the prepared
+// OVDF points. Taken from a per-thread pool when a block first needs the
+// occluder at vertex level, so the memory follows the occluders that
+// survive block culling, not the scene's part count.
+struct OccluderVertexScratch {
+    // Per vertex: the part's bounding cone seen from the vertex — the unit
+    // direction to its center (in the part's frame, where the lookup
+    // measures the light) and the cone's plane radius
+    // (OvdfLookup::unshadowed) — which alone decides most lights. Vertices
+    // beyond the field's outer shell get a zero direction and radius −1,
+    // which every square (h < 1) clears.
+    alignas(64) float pole_x[kBlock], pole_y[kBlock], pole_z[kBlock], cone[kBlock];
+    // Which side of the part's bounding box the vertex lies on along each
+    // axis of the part's frame (box_sides, the slab rule).
+    alignas(64) float side_x[kBlock], side_y[kBlock], side_z[kBlock];
+    bool prepared[kBlock];
+    // The light-independent half of the OVDF lookup, prepared on first need,
+    // and the terms the prepared points use (their own, so that a pool that
+    // grows never moves them).
+    OvdfPoint points[kBlock];
+    OvdfTerm terms[kBlock * OvdfPoint::kMaxTerms];
+    int terms_used = 0;
+};
+
+// Per-thread scratch of one block (about 40 KB plus the occluder pool, never
+// on the heap once warm).
 struct Renderer::BlockScratch {
     // World positions and shading frames (x = tangent, y = bitangent, z = normal).
     alignas(64) float px[kBlock], py[kBlock], pz[kBlock];
@@ -41,35 +65,25 @@ struct Renderer::BlockScratch {
     alignas(64) float qx[kBlock], qy[kBlock], tx[kBlock], ty[kBlock], qh[kBlock];
     alignas(64) float qvx[kBlock], qvy[kBlock], qvz[kBlock];
     alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
-    bool occluder_ready[kMaxOccluderParts];
-    bool block_outside[kMaxOccluderParts];  // the whole block lies beyond the occluder's outer shell
-    bool vertices_ready[kMaxOccluderParts];  // the per-vertex poles and cones below are computed
-    // Per occluder part: the bounding cone as the whole block sees it — the
-    // direction from the block's center to the part's, how far any vertex's
-    // pole can turn from it (radians), and the largest cone plane radius of
-    // any vertex (negative: some vertex may lie in the bounding sphere).
-    Vec3 block_pole[kMaxOccluderParts];
-    float block_spread[kMaxOccluderParts], block_cone[kMaxOccluderParts];
-    // Per occluder part and vertex: the part's bounding cone seen from the
-    // vertex — the unit direction to its center (in the part's frame, where
-    // the lookup measures the light) and the cone's plane
-    // radius (OvdfLookup::unshadowed) — which alone decides most lights.
-    // Vertices beyond the field's outer shell get a zero direction and radius
-    // −1, which every square (h < 1) clears.
-    alignas(64) float pole_x[kMaxOccluderParts][kBlock], pole_y[kMaxOccluderParts][kBlock];
-    alignas(64) float pole_z[kMaxOccluderParts][kBlock], cone[kMaxOccluderParts][kBlock];
-    alignas(64) bool prepared[kMaxOccluderParts][kBlock];
-    // Per occluder part and vertex: which side of the part's bounding box it
-    // lies on along each axis of the part's frame (box_sides, the slab rule).
-    alignas(64) float side_x[kMaxOccluderParts][kBlock], side_y[kMaxOccluderParts][kBlock];
-    alignas(64) float side_z[kMaxOccluderParts][kBlock];
     alignas(64) bool needed[kBlock];  // per vertex: the current (light, occluder) needs a lookup
-    // Per occluder part and vertex: the light-independent half of its OVDF
-    // lookup, prepared on first need, and the terms the prepared points use;
-    // both sized on first use.
-    std::vector<OvdfPoint> points;
-    std::vector<OvdfTerm> terms;
-    size_t terms_used = 0;
+
+    // Per occluder part (sized to the scene on first use): what the block
+    // knows of it, valid while `stamp` equals the block's. The bounding cone
+    // as the whole block sees it: the direction from the block's center to
+    // the part's, how far any vertex's pole can turn from it (radians), and
+    // the largest cone plane radius of any vertex (negative: some vertex may
+    // lie in the bounding sphere).
+    struct BlockOccluder {
+        uint64_t stamp = 0;
+        bool outside = false;  // the whole block lies beyond the occluder's outer shell
+        Vec3 pole{0};
+        float spread = 0, cone = -1;
+        OccluderVertexScratch* vertices = nullptr;  // null until the block needs it at vertex level
+    };
+    std::vector<BlockOccluder> occluders;
+    uint64_t stamp = 0;  // the current block's
+    std::vector<std::unique_ptr<OccluderVertexScratch>> pool;
+    size_t pool_used = 0;  // of the pool, by the current block
 };
 
 
@@ -77,16 +91,17 @@ struct Renderer::BlockScratch {
 // beyond the field's outer shell, and the part's bounding cone as the whole
 // block sees it (O(1): from the block's bounding sphere).
 void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int o, bool culling) const {
-    const PartPose& occluder = poses_[o];
-    s.occluder_ready[o] = true;
-    s.vertices_ready[o] = false;
-    s.block_outside[o] = false;
-    s.block_cone[o] = -1.0f;
+    BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
+    b.stamp = s.stamp;
+    b.outside = false;
+    b.cone = -1.0f;
+    b.vertices = nullptr;
     if (!culling) return;
+    const PartPose& occluder = poses_[o];
     const BoundingSphere reach = transform_sphere(occluder.transform, local_reach_[o]);
-    s.block_outside[o] = beyond_reach(block_sphere, reach);
+    b.outside = beyond_reach(block_sphere, reach);
     const OvdfLookup* fast = fast_lookups_[o].get();
-    if (s.block_outside[o] || !fast) return;
+    if (b.outside || !fast) return;
     // Every vertex is at distance ≥ d − r from the part's center, so its cone
     // radius is at most the cone at d − r (it grows as the distance shrinks),
     // and its pole is within asin(r / d) of the block center's.
@@ -95,9 +110,9 @@ void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sph
     const Vec3 to_part = part.center - block_sphere.center;
     const float d = glm::length(to_part);
     if (!(d - block_sphere.radius > part.radius)) return;  // a vertex may lie in the bounding sphere: no cone
-    s.block_pole[o] = to_part / d;
-    s.block_spread[o] = std::asin(std::min(1.0f, block_sphere.radius / d));
-    s.block_cone[o] = ovdf_zoom(d - block_sphere.radius, part.radius).cone;
+    b.pole = to_part / d;
+    b.spread = std::asin(std::min(1.0f, block_sphere.radius / d));
+    b.cone = ovdf_zoom(d - block_sphere.radius, part.radius).cone;
 }
 
 // Whether an environment light (unit world direction, square half-edge h)
@@ -112,92 +127,77 @@ inline bool block_unshadowed(const Vec3& pole, float spread, float cone, const V
     return angle - spread >= needed + 1e-3f;
 }
 
-// Each vertex's bounding cone of the part, before the first light that the
-// block-level test does not decide.
-void Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool culling) const {
-    const PartPose& occluder = poses_[o];
-    s.vertices_ready[o] = true;
-    for (int k = 0; k < n; ++k) s.prepared[o][k] = false;
-    const OvdfLookup* fast = fast_lookups_[o].get();
-    if (fast && s.points.size() < scene_.parts.size() * kBlock) {  // first frame only
-        s.points.resize(scene_.parts.size() * kBlock);
-        s.terms.resize(scene_.parts.size() * kBlock * OvdfPoint::kMaxTerms);
-    }
+// Each vertex's bounding cone of the part and its box sides, before the
+// first light that the block-level tests do not decide.
+OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool culling) const {
+    if (s.pool_used == s.pool.size()) s.pool.push_back(std::make_unique<OccluderVertexScratch>());  // warm-up only
+    OccluderVertexScratch& v = *s.pool[s.pool_used++];
+    s.occluders[size_t(o)].vertices = &v;
+    v.terms_used = 0;
+    for (int k = 0; k < n; ++k) v.prepared[k] = false;
     // In the occluder's frame, structure of arrays so that the loop
     // vectorizes: the box sides (the slab rule), and as OvdfLookup::prepare
     // the pole and the cone (ratios d/R are the same in the world).
+    const OvdfLookup* fast = fast_lookups_[o].get();
     const Bounds& box = local_boxes_[o];
     const bool cones = fast && culling;
     const Vec3 center = fast ? fast->field().center : Vec3(0);
     const float radius = fast ? fast->field().radius : 0.0f;
     const float outer = fast ? fast->field().shell_radius(fast->field().params.shells - 1) : 0.0f;
-    const Mat4& m = occluder.inverse;
+    const Mat4& m = poses_[o].inverse;
     for (int k = 0; k < n; ++k) {
         const float x = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0];
         const float y = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1];
         const float z = m[0][2] * s.px[k] + m[1][2] * s.py[k] + m[2][2] * s.pz[k] + m[3][2];
-        s.side_x[o][k] = box_side(x, box.lo.x, box.hi.x);
-        s.side_y[o][k] = box_side(y, box.lo.y, box.hi.y);
-        s.side_z[o][k] = box_side(z, box.lo.z, box.hi.z);
+        v.side_x[k] = box_side(x, box.lo.x, box.hi.x);
+        v.side_y[k] = box_side(y, box.lo.y, box.hi.y);
+        v.side_z[k] = box_side(z, box.lo.z, box.hi.z);
         const float vx = x - center.x, vy = y - center.y, vz = z - center.z;
         const float d = std::sqrt(vx * vx + vy * vy + vz * vz);
         const bool inside = d < outer;
         const float inv = inside && d > 0.0f ? -1.0f / d : 0.0f;  // the pole points towards the center
-        s.pole_x[o][k] = vx * inv, s.pole_y[o][k] = vy * inv, s.pole_z[o][k] = vz * inv;
+        v.pole_x[k] = vx * inv, v.pole_y[k] = vy * inv, v.pole_z[k] = vz * inv;
         const float cone = ovdf_zoom(d, radius).cone;
         // No cone (no culling, or not an OVDF): every light is looked up.
-        s.cone[o][k] = !cones ? kOvdfNoCone : inside ? cone : -1.0f;
+        v.cone[k] = !cones ? kOvdfNoCone : inside ? cone : -1.0f;
     }
+    return v;
 }
 
 // One occluder's factor for the block's queries of light l: the masks (its
 // bounding cone, the slab rule) and then the OVDF lookups, multiplied into
 // s.vis. Out of line so that the lookups inline into its loop.
-void Renderer::occluder_factors(BlockScratch& s, int part_index, int l, int o, int n, int m, bool per_occluder,
+void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l, int o, int n, int m,
                                 RenderStats& counts) const {
     const PartPose& occluder = poses_[o];
     const bool is_environment = size_t(l) < environment_squares_.size();
-    const OvdfLookup* fast = per_occluder ? fast_lookups_[o].get() : nullptr;
+    const OvdfLookup* fast = fast_lookups_[o].get();
     const OccluderField& field = *fields_.occluder[o];
     // An environment light has one direction in the occluder's frame.
     const Vec3 light_local = is_environment ? glm::normalize(occluder.inverse_linear * environment_squares_[size_t(l)].direction)
                                             : Vec3(0);
     // Which vertices' squares reach into the part's bounding cone (the
     // lookup gives exactly 1 for the others).
-    if (!per_occluder) {  // no per-occluder scratch: every vertex is looked up
-        for (int k = 0; k < n; ++k) s.needed[k] = true;
-    } else {
-        const float* pole_x = s.pole_x[o];
-        const float* pole_y = s.pole_y[o];
-        const float* pole_z = s.pole_z[o];
-        const float* cone = s.cone[o];
-        if (is_environment) {
-            for (int k = 0; k < n; ++k) {
-                const float c = light_local.x * pole_x[k] + light_local.y * pole_y[k] + light_local.z * pole_z[k];
-                s.needed[k] = !OvdfLookup::unshadowed(c, cone[k], s.half[k]);
-            }
-        } else {  // each vertex's light direction, moved into the part's frame
-            const Mat3& il = occluder.inverse_linear;
-            for (int k = 0; k < n; ++k) {
-                const float x = il[0][0] * s.dx[k] + il[1][0] * s.dy[k] + il[2][0] * s.dz[k];
-                const float y = il[0][1] * s.dx[k] + il[1][1] * s.dy[k] + il[2][1] * s.dz[k];
-                const float z = il[0][2] * s.dx[k] + il[1][2] * s.dy[k] + il[2][2] * s.dz[k];
-                const float c = (x * pole_x[k] + y * pole_y[k] + z * pole_z[k]) / std::sqrt(x * x + y * y + z * z);
-                s.needed[k] = !OvdfLookup::unshadowed(c, cone[k], s.half[k]);
-            }
+    if (is_environment) {
+        for (int k = 0; k < n; ++k) {
+            const float c = light_local.x * v.pole_x[k] + light_local.y * v.pole_y[k] + light_local.z * v.pole_z[k];
+            s.needed[k] = !OvdfLookup::unshadowed(c, v.cone[k], s.half[k]);
         }
-        // The slab rule (square_lights.h): part of the factor itself, so
-        // it applies with and without culling.
-        if (is_environment) {
-            const float sin_beta = square_cone_sine(environment_squares_[size_t(l)].half_edge);
-            // clears_box_face's world form, its division hoisted out of the loop.
-            const Vec3 light = occluder.inverse_linear * environment_squares_[size_t(l)].direction / occluder.face_scale;
-            const float* side_x = s.side_x[o];
-            const float* side_y = s.side_y[o];
-            const float* side_z = s.side_z[o];
-            for (int k = 0; k < n; ++k)
-                s.needed[k] = s.needed[k] &&
-                              !clears_box_face(Vec3(side_x[k], side_y[k], side_z[k]), light, sin_beta);
+        // The slab rule (square_lights.h): part of the factor itself, so it
+        // applies with and without culling. clears_box_face's world form,
+        // its division hoisted out of the loop.
+        const float sin_beta = square_cone_sine(environment_squares_[size_t(l)].half_edge);
+        const Vec3 light = occluder.inverse_linear * environment_squares_[size_t(l)].direction / occluder.face_scale;
+        for (int k = 0; k < n; ++k)
+            s.needed[k] = s.needed[k] && !clears_box_face(Vec3(v.side_x[k], v.side_y[k], v.side_z[k]), light, sin_beta);
+    } else {  // each vertex's light direction, moved into the part's frame
+        const Mat3& il = occluder.inverse_linear;
+        for (int k = 0; k < n; ++k) {
+            const float x = il[0][0] * s.dx[k] + il[1][0] * s.dy[k] + il[2][0] * s.dz[k];
+            const float y = il[0][1] * s.dx[k] + il[1][1] * s.dy[k] + il[2][1] * s.dz[k];
+            const float z = il[0][2] * s.dx[k] + il[1][2] * s.dy[k] + il[2][2] * s.dz[k];
+            const float c = (x * v.pole_x[k] + y * v.pole_y[k] + z * v.pole_z[k]) / std::sqrt(x * x + y * y + z * z);
+            s.needed[k] = !OvdfLookup::unshadowed(c, v.cone[k], s.half[k]);
         }
     }
     for (int i = 0; i < m; ++i) {
@@ -205,21 +205,21 @@ void Renderer::occluder_factors(BlockScratch& s, int part_index, int l, int o, i
         if (!s.needed[k] || !(s.vis[i] > 0.0f)) continue;  // black already: later occluders cannot change it
         const Vec3 dir = is_environment ? light_local
                                         : glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
-        if (!is_environment || !per_occluder) {  // the slab rule, unless the mask applied it
-            const Vec3 sides = per_occluder ? Vec3(s.side_x[o][k], s.side_y[o][k], s.side_z[o][k])
-                                            : box_sides(local_boxes_[o], Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f)));
+        if (!is_environment) {  // the slab rule for a local light's own direction
             const Vec3 light = occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]);
-            if (clears_box_face_scaled(sides, light, occluder.face_scale, square_cone_sine(s.qh[i]))) continue;
+            if (clears_box_face_scaled(Vec3(v.side_x[k], v.side_y[k], v.side_z[k]), light, occluder.face_scale,
+                                       square_cone_sine(s.qh[i])))
+                continue;
         }
         ++counts.occluder_lookups;
         if (fast) {
-            OvdfPoint& q = s.points[size_t(o) * kBlock + k];
-            const bool needs_point = !s.prepared[o][k] || q.kind == OvdfPoint::Slow;
+            OvdfPoint& q = v.points[k];
+            const bool needs_point = !v.prepared[k] || q.kind == OvdfPoint::Slow;
             const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
                                            : Vec3(0);
-            if (!s.prepared[o][k]) {
-                s.terms_used += fast->prepare(point, q, s.terms.data() + s.terms_used);
-                s.prepared[o][k] = true;
+            if (!v.prepared[k]) {
+                v.terms_used += fast->prepare(point, q, v.terms + v.terms_used);
+                v.prepared[k] = true;
             }
             s.vis[i] *= visible_fraction_from_distance(fast->distance(q, point, dir), s.qh[i]);
         } else {
@@ -240,12 +240,10 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
     const int n = block.end - block.begin;
     const bool has_tangents = !mesh.tangents.empty();
-    // Per-occluder scratch (prepared OVDF points) for scenes of up to kMaxOccluderParts parts.
-    const bool per_occluder = int(scene_.parts.size()) <= kMaxOccluderParts;
-    const bool vertex_culling = options_.occluder_culling && per_occluder;
-    if (per_occluder)
-        for (size_t o = 0; o < scene_.parts.size(); ++o) s.occluder_ready[o] = false;
-    s.terms_used = 0;
+    const bool vertex_culling = options_.occluder_culling;
+    if (s.occluders.size() != scene_.parts.size()) s.occluders.assign(scene_.parts.size(), {});  // first block only
+    ++s.stamp;  // every part's BlockOccluder is stale
+    s.pool_used = 0;
 
     // World position, shading frame (as PosedScene::vertex) and local view.
     for (int k = 0; k < n; ++k) {
@@ -370,8 +368,9 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         for (size_t e = offsets_[slot_base + l]; field_occluders && e < offsets_[slot_base + l + 1]; ++e) {
             const int o = occluders_[e];
             const PartPose& occluder = poses_[o];
-            if (per_occluder && !s.occluder_ready[o]) prepare_occluder(s, block_sphere, o, vertex_culling);
-            if (vertex_culling && s.block_outside[o]) {
+            BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
+            if (b.stamp != s.stamp) prepare_occluder(s, block_sphere, o, vertex_culling);
+            if (b.outside) {
                 ++counts.block_occluders_culled;
                 continue;
             }
@@ -381,19 +380,19 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                 // test) the light's cone against the part's grown sphere.
                 const SquareLight& sq = environment_squares_[l];
                 if (occluder.uniform_scale &&
-                    block_unshadowed(s.block_pole[o], s.block_spread[o], s.block_cone[o], sq.direction, sq.half_edge)) {
+                    block_unshadowed(b.pole, b.spread, b.cone, sq.direction, sq.half_edge)) {
                     ++counts.block_occluders_culled;
                     continue;
                 }
                 const BoundingSphere grown{block_sphere.center,
-                                           block_sphere.radius + occluder_growth_[size_t(part_index) * scene_.parts.size() + o]};
+                                           block_sphere.radius + occluder_growth_[e]};
                 if (!may_shadow_direction(grown, occluder.world_bounds, sq.direction, square_cone_half_angle(sq.half_edge))) {
                     ++counts.block_occluders_culled;
                     continue;
                 }
             }
-            if (per_occluder && !s.vertices_ready[o]) prepare_occluder_vertices(s, o, n, vertex_culling);
-            occluder_factors(s, part_index, int(l), o, n, m, per_occluder, counts);
+            OccluderVertexScratch& v = b.vertices ? *b.vertices : prepare_occluder_vertices(s, o, n, vertex_culling);
+            occluder_factors(s, v, int(l), o, n, m, counts);
         }
 
         for (int i = 0; i < m; ++i) {

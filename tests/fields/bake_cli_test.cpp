@@ -1,13 +1,16 @@
 // End to end through the `rsl` program: `rsl bake` on a tiny two-part scene
 // bakes every field file, a second run reuses them untouched, a corrupted
-// file is refused by `rsl info` and baked again by the next `rsl bake`.
+// file is refused by `rsl info` and baked again by the next `rsl bake`; an
+// instanced scene bakes once per unique mesh, and in shards.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "fields/field_file.h"
+#include "tests/core/gltf_builder.h"
 #include "tests/interrupted_run.h"
 #include "tests/test_support.h"
 
@@ -49,6 +52,35 @@ std::map<fs::path, std::string> contents_of(const std::vector<fs::path>& files) 
 }
 
 bool contains(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+
+// The tiny scene's meshes, instanced: a glTF whose tetrahedron three nodes
+// use (and a triangle prism one node uses), the box OBJ named by three parts
+// with transforms of their own (one scaled), the ground once: 8 parts, 4
+// unique meshes, so 8 field files.
+void write_instanced_scene(const fs::path& dir) {
+    write_tiny_scene(dir);
+    GltfBuilder b;
+    const int tetrahedron = b.mesh({0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0}, {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3});
+    const int prism = b.mesh({0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 1, 1, 0, 0, 1, 1},
+                             {0, 2, 1, 3, 4, 5, 0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 2, 0, 3, 2, 3, 5});
+    b.node({{"name", "tet_a"}, {"mesh", tetrahedron}, {"translation", {1.0, 0.0, 1.0}}});
+    b.node({{"name", "tet_b"}, {"mesh", tetrahedron}, {"translation", {-1.0, 0.0, 1.0}}, {"scale", {2.0, 2.0, 2.0}}});
+    b.node({{"name", "tet_c"}, {"mesh", tetrahedron}, {"rotation", {0.0, 0.3826834, 0.0, 0.9238795}}});
+    b.node({{"name", "prism"}, {"mesh", prism}, {"translation", {0.0, 0.0, -1.5}}});
+    b.write_glb(dir / "pieces.glb");
+    write_text(dir / "tiny.json", R"({
+  "name": "instanced",
+  "gltf": "pieces.glb",
+  "parts": [ { "name": "ground", "obj": "ground.obj" },
+             { "name": "box1", "obj": "box.obj", "transform": { "translation": [1.5, 0, 0] } },
+             { "name": "box2", "obj": "box.obj", "transform": { "translation": [-1.5, 0, 0], "scale": 0.5 } },
+             { "name": "box3", "obj": "box.obj", "transform": { "rotation_axis_angle": [0, 1, 0, 30] } } ],
+  "precompute": { "svdf": { "resolution": 8, "clusters": 4, "vectors": 2, "supersampling": 1 },
+                  "ovdf": { "shells": 2, "cube_resolution": 4, "vdt_resolution": 8, "vectors": 2 } }
+})");
+}
+
+std::set<fs::path> as_set(const std::vector<fs::path>& files) { return {files.begin(), files.end()}; }
 
 }  // namespace
 
@@ -185,4 +217,93 @@ TEST_CASE("rsl bake killed at any moment: no partial field file, and the rerun r
     CHECK(contains(output, fmt::format("{} reused from the cache", before.size())));
     CHECK(temporaries_in(cache).empty());
     fs::remove_all(dir);
+}
+
+TEST_CASE("rsl bake and rsl info: fields per unique mesh, however many parts use it", "[fields][cli][instances]") {
+    const fs::path dir = scratch_dir("bake_instances");
+    write_instanced_scene(dir);
+    const std::string scene = (dir / "tiny.json").string();
+    const fs::path cache = dir / ".rsl-cache";
+    {
+        const auto [status, text] = run_rsl("info " + scene);
+        INFO(text);
+        REQUIRE(status == 0);
+        CHECK(contains(text, "parts:             8"));
+        CHECK(contains(text, "unique meshes:     4"));
+        CHECK(contains(text, "'tet_a': 4 vertices, 3 parts (tet_a, tet_b, tet_c)"));
+        CHECK(contains(text, "'box1': 8 vertices, 3 parts (box1, box2, box3)"));
+        CHECK(contains(text, "'ground': 5 vertices, 1 part (ground)"));
+        CHECK(contains(text, "not in the cache"));
+    }
+    const auto [status, output] = run_rsl("bake " + scene);
+    INFO(output);
+    REQUIRE(status == 0);
+    const std::vector<fs::path> files = printed_field_files(output);
+    CHECK(files.size() == 8);                // 4 unique meshes × 2 kinds, not 8 parts × 2
+    CHECK(as_set(files).size() == 8);
+    CHECK(contains(output, "rsl bake: 8 parts, 4 unique meshes"));
+    CHECK(contains(output, "8 field files baked, 0 reused from the cache"));
+    CHECK(std::count_if(fs::directory_iterator(cache), fs::directory_iterator(), [](const auto&) { return true; }) == 8);
+    CHECK(contains(output, "SVDF svdf-"));
+    CHECK(contains(output, " kB in RAM"));
+    {
+        const auto [again, text] = run_rsl("info " + scene);
+        INFO(text);
+        CHECK(again == 0);
+        CHECK(contains(text, "in the cache, "));
+        CHECK(!contains(text, "not in the cache"));
+    }
+}
+
+TEST_CASE("rsl bake --shard: disjoint shares whose union is the full bake; rendering then bakes nothing",
+          "[fields][cli][shard]") {
+    const fs::path full = scratch_dir("shard_full"), shared = scratch_dir("shard_shared");
+    write_instanced_scene(full);
+    write_instanced_scene(shared);
+    const auto [status, output] = run_rsl("bake -q " + (full / "tiny.json").string());
+    REQUIRE(status == 0);
+    const std::vector<fs::path> all = printed_field_files(output);
+    REQUIRE(all.size() == 8);
+
+    std::set<fs::path> union_files;
+    size_t sum = 0;
+    for (const char* shard : {"0/2", "1/2"}) {
+        const auto [shard_status, text] = run_rsl("bake --shard " + std::string(shard) + " " + (shared / "tiny.json").string());
+        INFO(text);
+        REQUIRE(shard_status == 0);
+        const std::vector<fs::path> mine = printed_field_files(text);
+        CHECK(mine.size() == 4);
+        CHECK(contains(text, fmt::format("shard {}: 4 of 8 field files", shard)));
+        CHECK(contains(text, "4 field files baked, 0 reused"));  // nothing of the other shard's
+        CHECK(contains(text, "left to another shard"));
+        sum += mine.size();
+        union_files.insert(mine.begin(), mine.end());
+    }
+    CHECK(union_files.size() == sum);  // disjoint
+    REQUIRE(union_files.size() == all.size());
+    for (const fs::path& f : all) {
+        INFO(f);
+        const fs::path twin = shared / ".rsl-cache" / f.filename();
+        CHECK(union_files.count(twin) == 1);
+        CHECK(read_bytes(twin) == read_bytes(f));
+    }
+    // The scene renders from the shards' cache with no bake.
+    const auto [render_status, text] = run_rsl("render " + (shared / "tiny.json").string() + " -o " +
+                                               (shared / "out.exr").string() + " --width 16 --height 12");
+    INFO(text);
+    CHECK(render_status == 0);
+    CHECK(contains(text, "fields: 8 loaded from the cache, 0 baked"));
+}
+
+TEST_CASE("rsl bake --shard refuses a bad I/N before loading anything", "[fields][cli][shard][bad-input]") {
+    const fs::path dir = scratch_dir("shard_bad");
+    write_tiny_scene(dir);
+    for (const char* bad : {"2/2", "1/0", "-1/2", "x/2", "3", "1/2/3"}) {
+        const auto [status, text] = run_rsl(fmt::format("bake --shard {} {}", bad, (dir / "tiny.json").string()));
+        INFO(text);
+        CHECK(status == 1);
+        CHECK(contains(text, fmt::format("rsl: error: --shard '{}': ", bad)));
+        CHECK(contains(text, "expected I/N"));
+        CHECK(!fs::exists(dir / ".rsl-cache"));
+    }
 }

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "src/gl/gl_renderer.h"
+#include "src/gl/gpu_layout.h"
 #include "src/render/renderer.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
@@ -88,6 +89,44 @@ TEST_CASE("GL vertex colours equal the CPU renderer's (fields, local lights, iso
     const Scene scene = moving_scene();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     check_against_cpu(scene, test::random_rsls(16, 3), fields, RenderOptions{}, {0.0f, 0.5f, 1.0f});
+}
+
+TEST_CASE("GL matches the CPU with hundreds of parts (occluder lists, no part limit)", "[gl-renderer]") {
+    // 200 small spheres on a ground, one shared field: far beyond the 32
+    // parts that bit masks once allowed, with lists of varying length.
+    Scene scene = make_scene("crowd", Color(0.6f));
+    add_part(scene, make_plane(6.0f, 24, "ground"));
+    const TriangleMesh ball = make_icosphere(0.1f, 1, "ball");
+    for (int i = 0; i < 200; ++i) {
+        Transform pose;
+        // Turned and jittered: on an exact grid, directions between ball
+        // vertices and neighbours' centres fall on cube-face edges, where the
+        // CPU and the GPU may round to different faces.
+        pose.translation = Vec3(0.3f * float(i % 20) - 2.85f + 0.013f * float(i % 7),
+                                0.12f + 0.06f * float(i % 3), 0.3f * float(i / 20) - 1.35f + 0.011f * float(i % 5));
+        pose.rotation = glm::angleAxis(0.37f * float(i), glm::normalize(Vec3(1, 2, 3)));
+        add_part(scene, ball, pose);
+    }
+    scene.camera.position = Vec3(0, 4, 5);
+    scene.precompute.ovdf_shells = 4, scene.precompute.ovdf_cube_resolution = 8;
+    scene.precompute.ovdf_vdt_resolution = 16, scene.precompute.ovdf_vectors = 4, scene.precompute.ovdf_outer_radius = 4.0f;
+    Scene two = make_scene("two", Color(0.6f));
+    add_part(two, ball);
+    add_part(two, ball);
+    two.precompute = scene.precompute;
+    FieldBakeOptions bake;
+    bake.self_visibility = false;
+    const PartFields ball_fields = bake_part_fields(two, bake);
+    PartFields fields;
+    fields.self.assign(scene.parts.size(), nullptr);
+    fields.occluder.assign(scene.parts.size(), ball_fields.occluder[0]);
+    check_against_cpu(scene, test::random_rsls(12, 5), fields, RenderOptions{}, {0.0f});
+    // The shared field goes up once: the tables of 200 instances are those of one.
+    PartFields shared_two;
+    shared_two.occluder.assign(2, ball_fields.occluder[0]);
+    const gl::PackedGeometry many = gl::pack_geometry(scene, fields), one = gl::pack_geometry(two, shared_two);
+    CHECK(many.ovdf_tables.size() == one.ovdf_tables.size());
+    CHECK(many.ovdf_frames.size() == one.ovdf_frames.size());
 }
 
 TEST_CASE("GL matches the CPU with each visibility factor switched off", "[gl-renderer]") {

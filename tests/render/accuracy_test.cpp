@@ -14,17 +14,6 @@ double relative_l2(const VertexColors& a, const VertexColors& reference) {
     return compare_vertex_colors(a, reference).total.relative_l2();
 }
 
-// Dim blue sky above, dark ground below, a bright warm block high on +Z.
-CubeMap sky(int n) {
-    CubeMap map(n);
-    for (int k = 0; k < map.texel_count(); ++k) {
-        const Vec3 d = map.texel_direction(k);
-        map.radiance(k) = d.y > 0 ? Color(0.3f, 0.45f, 0.8f) * (0.5f + d.y) : Color(0.05f);
-        if (d.y > 0.5f && d.z > 0.45f && std::abs(d.x) < 0.3f) map.radiance(k) = Color(8.0f, 7.0f, 5.0f);
-    }
-    return map;
-}
-
 TEST_CASE("RSL renderer vs ground truth on a sphere over a plane", "[render][accuracy]") {
     Scene scene = test::make_scene("accuracy", Color(0.7f));
     test::add_part(scene, test::make_plane(3.0f, 24, "ground"));
@@ -36,7 +25,7 @@ TEST_CASE("RSL renderer vs ground truth on a sphere over a plane", "[render][acc
     PrecomputeSettings& pre = scene.precompute;
     pre.svdf_resolution = 32, pre.svdf_clusters = 16, pre.svdf_vectors = 6, pre.svdf_supersampling = 2;
     pre.ovdf_shells = 8, pre.ovdf_cube_resolution = 16, pre.ovdf_vdt_resolution = 32, pre.ovdf_vectors = 6;
-    const CubeMap environment = sky(16);
+    const CubeMap environment = test::sky_with_sun(16);
 
     const VertexColors truth = GroundTruth(scene, environment, 0.0f).shade_vertices();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});

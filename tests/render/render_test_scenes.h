@@ -56,4 +56,15 @@ inline RslSet random_rsls(int count, uint32_t seed, float min_half_diagonal = 0.
     return set;
 }
 
+// Dim blue sky above, dark ground below, a bright warm block high on +Z.
+inline CubeMap sky_with_sun(int n) {
+    CubeMap map(n);
+    for (int k = 0; k < map.texel_count(); ++k) {
+        const Vec3 d = map.texel_direction(k);
+        map.radiance(k) = d.y > 0 ? Color(0.3f, 0.45f, 0.8f) * (0.5f + d.y) : Color(0.05f);
+        if (d.y > 0.5f && d.z > 0.45f && std::abs(d.x) < 0.3f) map.radiance(k) = Color(8.0f, 7.0f, 5.0f);
+    }
+    return map;
+}
+
 }  // namespace rsl::test

@@ -1,0 +1,192 @@
+// `rsl bench scale`: the yard scenes (assets/generate/yard.h, N instances of
+// four meshes) from N = 8 to 1,024 — bake time and field memory, shading time
+// per frame and per vertex, OVDF lookups, occluder candidates per receiver,
+// and for N ≤ 64 the error against the truth (all vertices, the objects, the
+// worst part) — plus a PNG of frame time against N. With `--reaches` the
+// same for several OVDF outer radii: what a shorter reach costs in error and
+// saves in time.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include <fmt/core.h>
+
+#include "assets/generate/yard.h"
+#include "baselines/raster.h"
+#include "bench/bench.h"
+#include "src/backend/make_renderer.h"
+#include "src/core/image.h"
+#include "src/frame/error_metrics.h"
+#include "src/render/ovdf_occluder.h"
+#include "src/render/render_setup.h"
+#include "src/trace/ground_truth.h"
+
+namespace rsl::bench {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr int kTruthLimit = 64;  // parts: the truth above this takes too long for a benchmark
+
+size_t folder_bytes(const fs::path& dir) {
+    size_t bytes = 0;
+    std::error_code ec;
+    if (!fs::exists(dir, ec)) return 0;
+    for (const auto& entry : fs::recursive_directory_iterator(dir, ec))
+        if (entry.is_regular_file(ec)) bytes += size_t(entry.file_size(ec));
+    return bytes;
+}
+
+// In-memory bytes of the distinct field objects (instances share one);
+// `unique` counts the objects, `meshes` the distinct (SVDF, OVDF) pairs.
+size_t field_ram_bytes(const PartFields& fields, size_t& unique, size_t& meshes) {
+    std::set<std::pair<const void*, const void*>> pairs;
+    for (size_t p = 0; p < fields.self.size(); ++p)
+        pairs.insert({fields.self[p].get(), p < fields.occluder.size() ? fields.occluder[p].get() : nullptr});
+    meshes = pairs.size();
+    std::set<const void*> seen;
+    size_t bytes = 0;
+    for (const auto& svdf : fields.self)
+        if (svdf && seen.insert(svdf.get()).second) bytes += svdf->model.stored_bytes(false);
+    for (const auto& occluder : fields.occluder) {
+        const auto* ovdf = dynamic_cast<const OvdfOccluder*>(occluder.get());
+        if (ovdf && seen.insert(&ovdf->field()).second) bytes += ovdf->field().model.stored_bytes(false);
+    }
+    unique = seen.size();
+    return bytes;
+}
+
+// The objects' error: every part but the ground (the static receiver), and the worst part.
+struct ObjectErrors {
+    double objects = 0, worst = 0;
+    std::string worst_part;
+};
+ObjectErrors object_errors(const VertexErrorReport& report) {
+    ErrorStats objects;
+    ObjectErrors result;
+    for (size_t p = 0; p < report.parts.size(); ++p) {
+        if (report.part_names[p] == "ground") continue;
+        objects.diff_squared += report.parts[p].diff_squared;
+        objects.reference_squared += report.parts[p].reference_squared;
+        if (report.parts[p].relative_l2() > result.worst) {
+            result.worst = report.parts[p].relative_l2();
+            result.worst_part = report.part_names[p];
+        }
+    }
+    result.objects = objects.relative_l2();
+    return result;
+}
+
+struct ScaleRow {
+    int parts = 0;
+    float reach = 0;
+    double shade_ms = 0;
+};
+
+ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
+    // One folder per N, so its field cache (.rsl-cache) holds exactly this scene's fields.
+    const fs::path dir = options.output / "scale" / fmt::format("yard-{}", instances);
+    fs::create_directories(dir);
+    const fs::path environment = fs::absolute(options.generated_assets / "sunsky.exr");
+    const fs::path scene_file = assets::write_yard(dir, instances, environment.string());
+    auto scene = std::make_shared<Scene>(load_scene(scene_file));
+    if (reach > 0) scene->precompute.ovdf_outer_radius = reach;
+    RenderOptions render_options;
+    render_options.environment_lights = 30;
+    const RenderSetup setup = prepare_render(scene, render_options, true);
+    size_t unique_fields = 0, unique_meshes = 0;
+    const size_t ram = field_ram_bytes(setup.fields, unique_fields, unique_meshes);
+    const std::unique_ptr<VertexRenderer> renderer =
+        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render_options);
+    VertexColors colors = renderer->make_output();
+    renderer->set_time(0.0f);
+    renderer->shade(colors);  // warm-up: per-thread scratch, list capacity
+    // Five frames of the loop, each timed for set_time (poses, culling lists) and shade.
+    std::vector<double> shade, setup_ms;
+    size_t lookups = 0, candidates = 0, entries = 0;
+    for (const float t : {0.3f, 1.1f, 1.9f, 2.7f, 3.5f}) {
+        auto start = BenchClock::now();
+        renderer->set_time(t);
+        setup_ms.push_back(1e3 * seconds_since(start));
+        start = BenchClock::now();
+        renderer->shade(colors);
+        shade.push_back(1e3 * seconds_since(start));
+        lookups += renderer->stats().occluder_lookups;
+        const auto* cpu = dynamic_cast<const Renderer*>(renderer.get());
+        if (cpu) candidates += cpu->frame().occluder_lists().candidates, entries += cpu->frame().occluder_lists().occluders.size();
+    }
+    std::sort(shade.begin(), shade.end());
+    std::sort(setup_ms.begin(), setup_ms.end());
+    const RenderStats& stats = renderer->stats();
+    const double parts = double(scene->parts.size());
+    nlohmann::json row{{"bench", "scale"},
+                       {"case", fmt::format("yard-{}", instances)},
+                       {"instances", instances},
+                       {"parts", scene->parts.size()},
+                       {"unique_meshes", unique_meshes},
+                       {"unique_fields", unique_fields},
+                       {"vertices", stats.vertices},
+                       {"lights", stats.lights},
+                       {"ovdf_outer_radius", scene->precompute.ovdf_outer_radius},
+                       {"bake_seconds", setup.bake_seconds},
+                       {"fields_baked", setup.fields_baked},
+                       {"fields_loaded", setup.fields_loaded},
+                       {"field_disk_bytes", folder_bytes(dir / ".rsl-cache")},
+                       {"field_ram_bytes", ram},
+                       {"shade_ms", shade[2]},
+                       {"set_time_ms", setup_ms[2]},
+                       {"fps_shading", 1e3 / shade[2]},
+                       {"ns_per_vertex", 1e6 * shade[2] / double(stats.vertices)},
+                       {"ovdf_lookups_per_frame", lookups / 5},
+                       {"candidates_per_receiver", double(candidates) / 5.0 / parts},
+                       {"occluders_per_receiver_light", double(entries) / 5.0 / parts / double(std::max<size_t>(1, stats.lights))}};
+    if (instances <= kTruthLimit) {
+        const float t = 1.1f;
+        renderer->set_time(t);
+        renderer->shade(colors);
+        GroundTruth truth(*scene, setup.environment_at(t), t);
+        const auto start = BenchClock::now();
+        const VertexColors reference = truth.shade_vertices();
+        const VertexErrorReport error = compare_vertex_colors(colors, reference);
+        const ObjectErrors objects = object_errors(error);
+        row["truth_seconds"] = seconds_since(start);
+        row["relative_l2_vs_truth"] = error.total.relative_l2();
+        row["objects_relative_l2"] = objects.objects;
+        row["worst_part"] = objects.worst_part;
+        row["worst_part_relative_l2"] = objects.worst;
+    }
+    bench_emit(row);
+    return ScaleRow{instances, scene->precompute.ovdf_outer_radius, shade[2]};
+}
+
+void bench_scale(const BenchOptions& options) {
+    std::vector<int> counts = options.scale_parts;
+    if (counts.empty()) counts = options.quick ? std::vector<int>{8, 32} : std::vector<int>{8, 32, 64, 128, 256, 1024};
+    std::vector<float> reaches = options.scale_reaches;
+    if (reaches.empty()) reaches = {0.0f};  // the yard's own
+    std::vector<raster::Series> series;
+    const Color colors[] = {Color(0.85f, 0.3f, 0.1f), Color(0.1f, 0.45f, 0.85f), Color(0.2f, 0.65f, 0.2f),
+                            Color(0.6f, 0.2f, 0.7f)};
+    for (size_t r = 0; r < reaches.size(); ++r) {
+        raster::Series line;
+        line.color = colors[r % 4];
+        for (const int n : counts) {
+            const ScaleRow row = bench_yard(options, n, reaches[r]);
+            line.name = fmt::format("REACH {:g}R", row.reach);
+            line.x.push_back(std::log2(double(row.parts)));  // the plot's x axis is linear
+            line.y.push_back(row.shade_ms);
+        }
+        series.push_back(line);
+    }
+    const fs::path plot = options.output / "scale" / "frame_time.png";
+    write_png(plot, raster::line_plot(series, "LOG2 PARTS (3: 8 PARTS, 10: 1,024)", "SHADING MS PER FRAME (CPU)"));
+    bench_emit({{"bench", "scale"}, {"plot", plot.string()}});
+}
+
+RegisterBenchmark scale_benchmark({"scale",
+    "Yard scenes, N = 8..1,024 parts: bake, field memory, shading ms, lookups, candidates, error (N <= 64); "
+    "a PNG plot (--parts, --reaches, --out)",
+    bench_scale});
+
+}  // namespace
+}  // namespace rsl::bench
