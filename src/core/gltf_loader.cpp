@@ -16,6 +16,7 @@
 
 #include <glm/gtx/matrix_decompose.hpp>
 
+#include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/scene.h"
 
@@ -153,8 +154,10 @@ private:
         const size_t element_size = size_t(component_size) * components;
         const size_t stride = view.byteStride ? view.byteStride : element_size;
         if (stride < element_size) throw_file_error(path_, "{}: byte stride {} < element size {}", where, stride, element_size);
-        const size_t last_byte = a.byteOffset + stride * (a.count - 1) + element_size;
-        if (a.byteOffset > view.byteLength || last_byte > view.byteLength)
+        // Without multiplying: a count near 2^64 / stride would wrap around
+        // and pass (std::vector then refused the size: an internal error).
+        if (a.byteOffset > view.byteLength || element_size > view.byteLength - a.byteOffset ||
+            a.count - 1 > (view.byteLength - a.byteOffset - element_size) / stride)
             throw_file_error(path_, "{}: {} elements from byte {} overrun buffer view {} of {} bytes", where, a.count,
                              a.byteOffset, a.bufferView, view.byteLength);
         return Range{buffer.data() + view.byteOffset + a.byteOffset, stride, size_t(component_size)};
@@ -163,6 +166,27 @@ private:
     const tinygltf::Model& model_;
     const std::filesystem::path& path_;
 };
+
+// tinygltf reads files (the glTF itself, external buffers) with an ifstream
+// and takes tellg() for their size: a directory reports 2^63 − 1 bytes and
+// the allocation fails (std::bad_alloc, which `rsl` reported as an internal
+// error). This reader reads regular files only.
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        if (err) *err += "not a regular file: " + path + "\n";
+        return false;
+    }
+    try {
+        const std::string bytes = read_file(path);
+        out->assign(bytes.begin(), bytes.end());
+    } catch (const Error& e) {
+        if (err) *err += std::string(e.what()) + "\n";
+        return false;
+    }
+    if (out->empty() && err) *err += "File is empty : " + path + "\n";
+    return !out->empty();
+}
 
 tinygltf::Model read_model(const std::filesystem::path& path) {
     char magic[4] = {};
@@ -180,6 +204,8 @@ tinygltf::Model read_model(const std::filesystem::path& path) {
 
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skip_image, nullptr);
+    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_regular_file,
+                           &tinygltf::WriteWholeFile, nullptr});
     tinygltf::Model model;
     std::string error, warning;
     const bool ok = binary_name ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
