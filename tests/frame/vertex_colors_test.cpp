@@ -81,9 +81,9 @@ TEST_CASE("Corrupt, truncated, foreign and other-version files are refused", "[t
     }
     SECTION("other version") {
         std::string bytes = good;
-        bytes[8] = 2;  // the u32 after the 8-byte magic
+        bytes[8] = 3;  // the u32 after the 8-byte magic
         write_file_atomically(bad, bytes);
-        REQUIRE_THAT(error_of([&] { read_vertex_colors(bad); }), Catch::Contains("version 2"));
+        REQUIRE_THAT(error_of([&] { read_vertex_colors(bad); }), Catch::Contains("version 3"));
     }
     SECTION("missing file") {
         REQUIRE_THROWS_AS(read_vertex_colors(temp_dir() / "absent.rslv"), Error);
