@@ -232,6 +232,29 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
     }
 }
 
+namespace {
+
+struct ColorInputs {
+    const float* r;
+    const float* g;
+    const float* b;
+};
+
+// The light's share, integral × BRDF average × visibility, of each compacted
+// query i added to its vertex index[i]'s sums.
+inline void add_light(int m, const int* index, const float* vis, const float* ir, const float* ig, const float* ib,
+                      ColorInputs brdf, ColorOutputs sum) {
+    for (int i = 0; i < m; ++i) {
+        const int k = index[i];
+        const float v = vis[i];
+        sum.r[k] += ir[k] * brdf.r[i] * v;
+        sum.g[k] += ig[k] * brdf.g[i] * v;
+        sum.b[k] += ib[k] * brdf.b[i] * v;
+    }
+}
+
+}  // namespace
+
 void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) const {
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
@@ -405,21 +428,10 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             occluder_factors(s, v, int(l), o, n, m, counts);
         }
 
-        for (int i = 0; i < m; ++i) {
-            const int k = s.index[i];
-            const float v = s.vis[i];
-            s.r[k] += s.ir[k] * s.br[i] * v;
-            s.g[k] += s.ig[k] * s.bg[i] * v;
-            s.b[k] += s.ib[k] * s.bb[i] * v;
-        }
+        add_light(m, s.index, s.vis, s.ir, s.ig, s.ib, ColorInputs{s.br, s.bg, s.bb}, ColorOutputs{s.r, s.g, s.b});
         if (specular)
-            for (int i = 0; i < m; ++i) {
-                const int k = s.index[i];
-                const float v = s.vis[i];
-                s.sr[k] += s.ir[k] * s.spr[i] * v;
-                s.sg[k] += s.ig[k] * s.spg[i] * v;
-                s.sb[k] += s.ib[k] * s.spb[i] * v;
-            }
+            add_light(m, s.index, s.vis, s.ir, s.ig, s.ib, ColorInputs{s.spr, s.spg, s.spb},
+                      ColorOutputs{s.sr, s.sg, s.sb});
     }
 
     std::vector<Color>& colors = out.parts[part_index];
