@@ -10,6 +10,7 @@
 #include "assets/generate/environments.h"
 #include "assets/generate/kitchen.h"
 #include "assets/generate/orb.h"
+#include "assets/generate/pbr_scene.h"
 #include "assets/generate/robot.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
@@ -19,7 +20,7 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> generated_file_names() {
     return {"robot.glb",   "ground.obj",  "orb.obj",      "kitchen.glb",  "sunsky.exr",  "sunsky.png",
-            "studio.exr",  "studio.png",  "overcast.exr", "overcast.png"};
+            "studio.exr",  "studio.png",  "overcast.exr", "overcast.png", "pbr.glb"};
 }
 
 namespace {
@@ -87,6 +88,9 @@ GenerateReport generate_assets(const fs::path& dir, bool force) {
             const GeneratedModel kitchen = make_kitchen();
             write_glb(dir / "kitchen.glb", kitchen);
             note(fmt::format("kitchen.glb: {}", model_summary(kitchen)));
+            const GeneratedModel pbr = make_pbr_showcase();
+            write_glb(dir / "pbr.glb", pbr);
+            note(fmt::format("pbr.glb: {}; glTF metallic-roughness materials, a 64x64 tile texture", model_summary(pbr)));
         },
         [&] {
             write_environment(dir, "sunsky", make_sunsky(), 0.0f);

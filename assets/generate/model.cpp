@@ -9,10 +9,10 @@
 // must use the same TINYGLTF_NO_* set (they change inline defaults).
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
 #include <fmt/format.h>
+#include <stb_image_write.h>  // compiled in src/core/image.cpp
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
@@ -108,6 +108,9 @@ public:
         return int(model_.accessors.size()) - 1;
     }
 
+    // Bytes with no accessor (an embedded image), as a buffer view.
+    int add_bytes(const std::vector<unsigned char>& bytes) { return add_view(bytes.data(), bytes.size(), 0); }
+
 private:
     int add_view(const void* data, size_t bytes, int target) {
         std::vector<unsigned char>& buffer = model_.buffers[0].data;
@@ -128,7 +131,64 @@ private:
 
 std::vector<double> as_doubles(const float* v, int n) { return std::vector<double>(v, v + n); }
 
-void add_mesh(GltfBuilder& builder, tinygltf::Model& model, const Part& part) {
+// A linear-RGB texture as the sRGB PNG bytes a glTF base colour image holds.
+std::vector<unsigned char> png_bytes(const Texture& texture) {
+    const Image& image = texture.image;
+    std::vector<unsigned char> pixels(size_t(image.width) * image.height * 3);
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = linear_to_srgb8(image.pixels[i]);
+    std::vector<unsigned char> png;
+    const auto append = [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<unsigned char>*>(context);
+        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+    };
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, pixels.data(), image.width * 3))
+        throw_error("texture '{}': PNG encoding failed", texture.name);
+    return png;
+}
+
+int gl_wrap(TextureWrap wrap) {
+    if (wrap == TextureWrap::ClampToEdge) return TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    if (wrap == TextureWrap::MirroredRepeat) return TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+    return TINYGLTF_TEXTURE_WRAP_REPEAT;
+}
+
+// A gltf_pbr scene material as a glTF material (its texture as an embedded
+// PNG, as Blender's .glb export writes it); −1 for other models.
+int add_material(GltfBuilder& builder, tinygltf::Model& model, const MaterialDesc& desc) {
+    if (desc.model != "gltf_pbr") return -1;
+    tinygltf::Material m;
+    m.name = desc.name;
+    const auto param = [&](const char* key, float fallback) {
+        auto it = desc.params.find(key);
+        return it == desc.params.end() ? std::vector<float>{fallback} : it->second;
+    };
+    const std::vector<float> base = param("base_color", 1.0f);
+    m.pbrMetallicRoughness.baseColorFactor = {base[0], base[base.size() == 3 ? 1 : 0], base[base.size() == 3 ? 2 : 0], 1.0};
+    m.pbrMetallicRoughness.metallicFactor = param("metallic", 1.0f)[0];
+    m.pbrMetallicRoughness.roughnessFactor = param("roughness", 1.0f)[0];
+    if (desc.base_color_texture) {
+        tinygltf::Image image;
+        image.name = desc.base_color_texture->name;
+        image.mimeType = "image/png";
+        image.bufferView = builder.add_bytes(png_bytes(*desc.base_color_texture));
+        model.images.push_back(image);
+        tinygltf::Sampler sampler;
+        sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+        sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+        sampler.wrapS = gl_wrap(desc.base_color_texture->wrap_s);
+        sampler.wrapT = gl_wrap(desc.base_color_texture->wrap_t);
+        model.samplers.push_back(sampler);
+        tinygltf::Texture texture;
+        texture.source = int(model.images.size()) - 1;
+        texture.sampler = int(model.samplers.size()) - 1;
+        model.textures.push_back(texture);
+        m.pbrMetallicRoughness.baseColorTexture.index = int(model.textures.size()) - 1;
+    }
+    model.materials.push_back(m);
+    return int(model.materials.size()) - 1;
+}
+
+void add_mesh(GltfBuilder& builder, tinygltf::Model& model, const Part& part, int material) {
     const TriangleMesh& mesh = part.mesh;
     RSL_CHECK_EQ(mesh.normals.size(), mesh.vertex_count());
     RSL_CHECK_EQ(mesh.tangents.size(), mesh.vertex_count());
@@ -140,7 +200,11 @@ void add_mesh(GltfBuilder& builder, tinygltf::Model& model, const Part& part) {
                                                         TINYGLTF_TARGET_ARRAY_BUFFER, false);
     primitive.attributes["TANGENT"] = builder.add_floats(&mesh.tangents[0].x, mesh.vertex_count(), TINYGLTF_TYPE_VEC4,
                                                          4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    if (!mesh.texcoords.empty())
+        primitive.attributes["TEXCOORD_0"] = builder.add_floats(&mesh.texcoords[0].x, mesh.vertex_count(),
+                                                                TINYGLTF_TYPE_VEC2, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
     primitive.indices = builder.add_indices(mesh.indices);
+    primitive.material = material;
     tinygltf::Mesh m;
     m.name = part.name;
     m.primitives.push_back(primitive);
@@ -188,18 +252,26 @@ void write_glb(const std::filesystem::path& path, const GeneratedModel& generate
     // Parts with identical meshes (instances) share one glTF mesh, as an
     // exporter writes a mesh used by several nodes.
     std::vector<const Part*> written;
+    std::vector<int> materials(scene.materials.size(), -2);  // scene material → glTF material (−2: not yet)
     for (const Part& part : scene.parts) {
         RSL_CHECK(part.node >= 0 && part.node < int(scene.nodes.size()));
         const auto same = std::find_if(written.begin(), written.end(), [&](const Part* other) {
             return other->mesh.indices == part.mesh.indices && other->mesh.positions == part.mesh.positions &&
-                   other->mesh.normals == part.mesh.normals && other->mesh.tangents == part.mesh.tangents;
+                   other->mesh.normals == part.mesh.normals && other->mesh.tangents == part.mesh.tangents &&
+                   other->mesh.texcoords == part.mesh.texcoords && other->material == part.material;
         });
         if (same != written.end()) {
             model.nodes[part.node].mesh = int(same - written.begin());
             continue;
         }
         model.nodes[part.node].mesh = int(model.meshes.size());
-        add_mesh(builder, model, part);
+        int material = -1;
+        if (part.material >= 0 && size_t(part.material) < scene.materials.size()) {
+            int& m = materials[size_t(part.material)];
+            if (m == -2) m = add_material(builder, model, scene.materials[size_t(part.material)]);
+            material = m;
+        }
+        add_mesh(builder, model, part, material);
         written.push_back(&part);
     }
     model.scenes.push_back(root);

@@ -31,8 +31,10 @@ QuatTrack loop_rotation_track(const std::function<Quat(float t)>& rotation, floa
 Vec3Track loop_translation_track(const std::function<Vec3(float t)>& translation, float period, int keys);
 
 // Binary glTF 2.0 (.glb): every node with its rest transform, one mesh per
-// part (POSITION with min/max, NORMAL, TANGENT, uint32 indices), and one
-// animation with the nodes' tracks. Written atomically.
+// part (POSITION with min/max, NORMAL, TANGENT, TEXCOORD_0 when the mesh has
+// texture coordinates, uint32 indices), and one animation with the nodes'
+// tracks. A part whose material is gltf_pbr gets it as a glTF material, its
+// base colour texture as an embedded sRGB PNG. Written atomically.
 void write_glb(const std::filesystem::path& path, const GeneratedModel& model);
 
 // Wavefront OBJ with positions and normals (v, vn, f v//n). Written atomically.

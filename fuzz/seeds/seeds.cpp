@@ -7,7 +7,6 @@
 // must use the same TINYGLTF_NO_* set (they change inline defaults).
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
 #include <OpenEXR/ImfChannelList.h>

@@ -58,7 +58,9 @@ LocalLight to_local_light(const SphereLight& l) {
 
 SphereLight to_sphere_light(const LocalLight& l) { return {to_float3(l.position), l.radius, to_float3(l.power)}; }
 
-VertexColors to_api(const ::rsl::VertexColors& colors) {
+VertexColors to_api(const ::rsl::VertexColors& layered) {
+    // The API's colours have no layers: textured parts at unit texture (docs/RENDERER.md).
+    const ::rsl::VertexColors colors = layered.at_unit_texture();
     VertexColors out;
     out.part_names = colors.part_names;
     out.time = colors.time;

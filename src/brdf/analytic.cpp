@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace rsl {
 namespace {
@@ -54,10 +55,16 @@ Color BlinnPhongBrdf::eval(const Vec3& wi, const Vec3& wo) const {
 }
 
 CookTorranceBrdf::CookTorranceBrdf(MicrofacetDistribution distribution, const Color& kd, const Color& f0,
-                                   float roughness)
-    : distribution_(distribution), kd_over_pi_(kd * kInvPi), f0_(f0), alpha_(roughness) {}
+                                   float roughness, BrdfLobe lobe, std::string model_name)
+    : distribution_(distribution),
+      kd_over_pi_(kd * kInvPi),
+      f0_(f0),
+      alpha_(roughness),
+      lobe_(lobe),
+      model_name_(std::move(model_name)) {}
 
 std::string CookTorranceBrdf::model() const {
+    if (!model_name_.empty()) return model_name_;
     return distribution_ == MicrofacetDistribution::Beckmann ? "cook_torrance_beckmann" : "cook_torrance_ggx";
 }
 
@@ -93,11 +100,15 @@ Color CookTorranceBrdf::fresnel(float cos_theta) const {
 
 Color CookTorranceBrdf::eval(const Vec3& wi, const Vec3& wo) const {
     if (!above_horizon(wi, wo)) return Color(0.0f);
-    const Vec3 h = half_vector(wi, wo);
-    const float g = 1.0f / (1.0f + smith_lambda(wi.z) + smith_lambda(wo.z));
-    const Color specular = fresnel(glm::dot(wi, h)) * (distribution(h.z) * g / (4.0f * wi.z * wo.z));
-    const Color diffuse = kd_over_pi_ * (Color(1.0f) - fresnel(wi.z)) * (Color(1.0f) - fresnel(wo.z));
-    return diffuse + specular;
+    Color rho(0.0f);
+    if (lobe_ != BrdfLobe::Diffuse) {
+        const Vec3 h = half_vector(wi, wo);
+        const float g = 1.0f / (1.0f + smith_lambda(wi.z) + smith_lambda(wo.z));
+        rho += fresnel(glm::dot(wi, h)) * (distribution(h.z) * g / (4.0f * wi.z * wo.z));
+    }
+    if (lobe_ != BrdfLobe::Specular)
+        rho += kd_over_pi_ * (Color(1.0f) - fresnel(wi.z)) * (Color(1.0f) - fresnel(wo.z));
+    return rho;
 }
 
 WardBrdf::WardBrdf(const Color& kd, const Color& ks, float alpha_x, float alpha_y, bool isotropic_model)

@@ -57,9 +57,16 @@ enum class MicrofacetDistribution { Beckmann, GGX };
 // distribution (erf form for Beckmann), F Schlick's Fresnel with RGB f0. The
 // diffuse term loses what Fresnel reflects on the way in and out, which keeps
 // the albedo ≤ 1 at grazing views and stays reciprocal.
+//
+// gltf_pbr (glTF 2.0 metallic-roughness) is this model with GGX, kd = base ×
+// (1 − metallic), f0 = mix(0.04, base, metallic), α = roughness²
+// (make_brdf). A textured material's two lobes are tabulated apart
+// (BrdfLobe): the texture multiplies the diffuse one per pixel.
+enum class BrdfLobe { Both, Diffuse, Specular };
 class CookTorranceBrdf final : public Brdf {
 public:
-    CookTorranceBrdf(MicrofacetDistribution distribution, const Color& kd, const Color& f0, float roughness);
+    CookTorranceBrdf(MicrofacetDistribution distribution, const Color& kd, const Color& f0, float roughness,
+                     BrdfLobe lobe = BrdfLobe::Both, std::string model_name = "");
     Color eval(const Vec3& wi, const Vec3& wo) const override;
     bool isotropic() const override { return true; }
     std::string model() const override;
@@ -72,6 +79,8 @@ private:
     MicrofacetDistribution distribution_;
     Color kd_over_pi_, f0_;
     float alpha_;
+    BrdfLobe lobe_;
+    std::string model_name_;  // "" for the Cook-Torrance names
 };
 
 // Ward in the Dür family of normalizations, anisotropic in the tangent frame.

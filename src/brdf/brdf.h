@@ -27,6 +27,13 @@ public:
 // Builds a model from a scene material; throws rsl::Error naming the material
 // and the bad parameter (unknown model, missing/out-of-range value).
 std::shared_ptr<const Brdf> make_brdf(const MaterialDesc& material);
+// A textured material's BRDF in two lobes (MaterialDesc::base_color_texture):
+// the diffuse one, which the texture multiplies per pixel, and the specular
+// one; their sum is make_brdf's. Only gltf_pbr splits (others throw).
+struct BrdfLobes {
+    std::shared_ptr<const Brdf> diffuse, specular;
+};
+BrdfLobes make_brdf_lobes(const MaterialDesc& material);
 // make_brdf for every material of a scene, in order; errors also name the
 // scene file ("scene.json: material 'm' (phong): parameter ...").
 std::vector<std::shared_ptr<const Brdf>> make_scene_brdfs(const Scene& scene);

@@ -79,9 +79,24 @@ private:
 
 constexpr float kMaxExponent = 1e5f;  // beyond this the lobe is narrower than any table texel by far
 constexpr float kMaxRoughness = 1.0f;
+// gltf_pbr: glTF allows roughness 0 (a mirror); α = roughness² stops here, a
+// lobe already far narrower than a table texel (docs/BRDF.md).
+constexpr float kMinGltfAlpha = 1e-3f;
 
-std::shared_ptr<const Brdf> build(const MaterialDesc& m, ParamReader& p) {
+std::shared_ptr<const Brdf> build(const MaterialDesc& m, ParamReader& p, BrdfLobe lobe) {
     const std::string& model = m.model;
+    if (model == "gltf_pbr") {
+        // glTF 2.0's defaults: a white, fully metallic, fully rough surface.
+        const Color base = p.rgb("base_color", Color(1), 0, 1);
+        const float metallic = p.scalar("metallic", 1.0f, 0, 1, false);
+        const float roughness = p.scalar("roughness", 1.0f, 0, kMaxRoughness, false);
+        const Color kd = base * (1.0f - metallic);
+        const Color f0 = glm::mix(Color(0.04f), base, metallic);
+        return std::make_shared<CookTorranceBrdf>(MicrofacetDistribution::GGX, kd, f0,
+                                                  std::max(roughness * roughness, kMinGltfAlpha), lobe, model);
+    }
+    if (lobe != BrdfLobe::Both)
+        throw_error("material '{}' ({}): only gltf_pbr materials take a base colour texture", m.name, model);
     if (model == "lambert") return std::make_shared<LambertBrdf>(p.rgb("albedo", std::nullopt, 0, 1));
     if (model == "phong" || model == "blinn_phong") {
         const Color kd = p.rgb("kd", Color(0), 0, 1), ks = p.rgb("ks", std::nullopt, 0, 1);
@@ -119,15 +134,24 @@ std::shared_ptr<const Brdf> build(const MaterialDesc& m, ParamReader& p) {
 
 const std::vector<std::string>& brdf_model_names() {
     static const std::vector<std::string> names = {"lambert", "phong", "blinn_phong", "cook_torrance_beckmann",
-                                                   "cook_torrance_ggx", "ward", "ward_anisotropic", "merl"};
+                                                   "cook_torrance_ggx", "ward", "ward_anisotropic", "merl",
+                                                   "gltf_pbr"};
     return names;
 }
 
 std::shared_ptr<const Brdf> make_brdf(const MaterialDesc& material) {
     ParamReader params(material);
-    auto brdf = build(material, params);
+    auto brdf = build(material, params, BrdfLobe::Both);
     params.reject_unknown();
     return brdf;
+}
+
+BrdfLobes make_brdf_lobes(const MaterialDesc& material) {
+    ParamReader diffuse_params(material), specular_params(material);
+    BrdfLobes lobes{build(material, diffuse_params, BrdfLobe::Diffuse),
+                    build(material, specular_params, BrdfLobe::Specular)};
+    diffuse_params.reject_unknown();
+    return lobes;
 }
 
 std::vector<std::shared_ptr<const Brdf>> make_scene_brdfs(const Scene& scene) {

@@ -21,7 +21,8 @@ MaterialLibrary MaterialLibrary::from_scene(const Scene& scene, BrdfTableOptions
 
 std::string MaterialLibrary::identity(const MaterialDesc& desc) {
     // Model, every parameter at full float precision, and the measured file.
-    std::string key = desc.model + "|" + desc.file.string();
+    // Textured materials have two tables; which texture does not matter.
+    std::string key = desc.model + "|" + desc.file.string() + (desc.base_color_texture ? "|textured" : "");
     for (const auto& [name, values] : desc.params) {
         key += "|" + name + "=";
         for (float v : values) key += fmt::format("{:a},", v);
@@ -36,11 +37,13 @@ std::shared_ptr<const MaterialLibrary::Shared> MaterialLibrary::obtain(const Mat
             last_build_seconds_ = 0;
             return alive;
         }
-    auto brdf = make_brdf(desc);  // validates: throws before anything changes
+    // Validates: throws before anything changes.
+    BrdfLobes lobes = desc.base_color_texture ? make_brdf_lobes(desc) : BrdfLobes{make_brdf(desc), nullptr};
     const auto start = std::chrono::steady_clock::now();
-    auto table = BrdfTable::build(*brdf, options_);
+    auto table = BrdfTable::build(*lobes.diffuse, options_);
+    auto specular = lobes.specular ? BrdfTable::build(*lobes.specular, options_) : nullptr;
     last_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    auto shared = std::make_shared<const Shared>(Shared{std::move(brdf), std::move(table)});
+    auto shared = std::make_shared<const Shared>(Shared{std::move(lobes.diffuse), std::move(table), std::move(specular)});
     by_identity_[key] = shared;
     // Forget entries whose tables no material uses any more.
     std::erase_if(by_identity_, [](const auto& entry) { return entry.second.expired(); });
@@ -101,7 +104,10 @@ int MaterialLibrary::part_material(int part) const {
 
 int MaterialLibrary::distinct_table_count() const {
     std::set<const BrdfTable*> tables;
-    for (const Material& m : materials_) tables.insert(m.shared->table.get());
+    for (const Material& m : materials_) {
+        tables.insert(m.shared->table.get());
+        if (m.shared->specular_table) tables.insert(m.shared->specular_table.get());
+    }
     return static_cast<int>(tables.size());
 }
 

@@ -37,8 +37,15 @@ public:
     int material_count() const { return static_cast<int>(materials_.size()); }
     int find(const std::string& name) const;  // −1 if absent
     const MaterialDesc& desc(int material) const { return at(material).desc; }
+    // A textured material (MaterialDesc::base_color_texture) is two lobes:
+    // brdf/table are its diffuse lobe at unit texture, specular_table (null
+    // otherwise) the specular lobe; renderers shade both (layered colours).
     const Brdf& brdf(int material) const { return *at(material).shared->brdf; }
     const std::shared_ptr<const BrdfTable>& table(int material) const { return at(material).shared->table; }
+    const std::shared_ptr<const BrdfTable>& specular_table(int material) const {
+        return at(material).shared->specular_table;
+    }
+    const std::shared_ptr<const Texture>& texture(int material) const { return at(material).desc.base_color_texture; }
     uint64_t revision(int material) const { return at(material).revision; }
 
     // Live editing: one parameter (scalars as 1-vectors, RGB as 3-vectors), or
@@ -52,6 +59,8 @@ public:
     void assign(int part, int material);
     int part_material(int part) const;
     const BrdfTable& part_table(int part) const { return *table(part_material(part)); }
+    const BrdfTable* part_specular_table(int part) const { return specular_table(part_material(part)).get(); }
+    const std::shared_ptr<const Texture>& part_texture(int part) const { return texture(part_material(part)); }
 
     // Distinct tables alive in the library (shared ones counted once).
     int distinct_table_count() const;
@@ -62,6 +71,7 @@ private:
     struct Shared {
         std::shared_ptr<const Brdf> brdf;
         std::shared_ptr<const BrdfTable> table;
+        std::shared_ptr<const BrdfTable> specular_table;  // textured materials only
     };
     struct Material {
         MaterialDesc desc;

@@ -100,9 +100,9 @@ void run_truth(const TruthArgs& args) {
     if (args.per_pixel) {
         ProgressReport progress("truth: pixels", !args.quiet);
         const PosedScene& posed = truth.posed();
-        image = trace_image(posed, camera, formation, [&](const RayHit& hit, const Vec3& dir) {
-            return truth.shade(posed.hit_point(hit, dir), -dir, truth.part_brdf(hit.instance));
-        }, std::ref(progress));
+        image = trace_image(posed, camera, formation,
+                            [&](const RayHit& hit, const Vec3& dir) { return truth.shade_hit(hit, dir); },
+                            std::ref(progress));
         progress.finish("");
     } else {
         image = form_image(truth.posed(), camera, vertices, formation);

@@ -1,14 +1,15 @@
 // glTF 2.0 (.gltf and .glb) through tinygltf: node hierarchy, one rigid part
-// per mesh node, node animation. Every index and byte range in the file is
-// checked before it is read, so corrupt files give an rsl::Error naming the file.
+// per mesh node (per material of its primitives), node animation, materials
+// (gltf_materials.cpp). Every index and byte range in the file is checked
+// before it is read, so corrupt files give an rsl::Error naming the file.
 //
-// tinygltf's implementation lives in this translation unit. Images are not
-// needed, so stb is left out; any other file that includes tiny_gltf.h must
-// define the same three TINYGLTF_NO_* macros (they change inline defaults).
+// tinygltf's implementation lives in this translation unit. Its stb image
+// loader is left out (gltf_materials.cpp decodes base colour images with
+// Debian's stb_image); any other file that includes tiny_gltf.h must define
+// the same two TINYGLTF_NO_* macros (they change inline defaults).
 #define TINYGLTF_IMPLEMENTATION
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
 #include <cmath>
@@ -18,16 +19,12 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/gltf_materials.h"
 #include "src/core/scene.h"
 
 namespace rsl {
 
 namespace {
-
-// Images (textures) are irrelevant to this renderer: accept and drop them.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-    return true;
-}
 
 int component_count(int type) {
     switch (type) {
@@ -188,7 +185,12 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
     return !out->empty();
 }
 
-tinygltf::Model read_model(const std::filesystem::path& path) {
+struct LoadedGltf {
+    tinygltf::Model model;
+    GltfImageErrors image_errors;  // images stb could not decode: an error only if a material uses one
+};
+
+LoadedGltf read_model(const std::filesystem::path& path) {
     char magic[4] = {};
     {
         std::ifstream in(path, std::ios::binary);
@@ -203,10 +205,11 @@ tinygltf::Model read_model(const std::filesystem::path& path) {
                          binary_content ? "binary" : "text (JSON)", binary_name ? "binary (.glb)" : "text (.gltf)");
 
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(&skip_image, nullptr);
     loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_regular_file,
                            &tinygltf::WriteWholeFile, nullptr});
     tinygltf::Model model;
+    GltfImageErrors image_errors;
+    loader.SetImageLoader(&decode_gltf_image, &image_errors);
     std::string error, warning;
     const bool ok = binary_name ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
                                 : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
@@ -214,7 +217,7 @@ tinygltf::Model read_model(const std::filesystem::path& path) {
         while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
         throw_file_error(path, "not a valid glTF 2.0 file: {}", error.empty() ? "unknown error" : error);
     }
-    return model;
+    return LoadedGltf{std::move(model), std::move(image_errors)};
 }
 
 Transform rest_transform(const tinygltf::Node& node, const std::filesystem::path& path) {
@@ -263,34 +266,41 @@ bool is_triangle_mode(int mode) {
 // Converts a loaded, unchecked tinygltf model into scene nodes and parts.
 class GltfImporter {
 public:
-    GltfImporter(const tinygltf::Model& model, const std::filesystem::path& path)
-        : model_(model), path_(path), reader_(model, path) {}
+    GltfImporter(const LoadedGltf& loaded, const std::filesystem::path& path)
+        : model_(loaded.model), image_errors_(loaded.image_errors), path_(path), reader_(loaded.model, path) {}
 
     void import_into(Scene& scene, int default_material) {
         const int offset = int(scene.nodes.size());
         import_nodes(scene, offset);
-        std::vector<std::optional<TriangleMesh>> converted(model_.meshes.size());
+        GltfMaterials materials(model_, image_errors_, path_);
+        std::vector<std::optional<std::vector<MaterialMesh>>> converted(model_.meshes.size());
         for (size_t n = 0; n < model_.nodes.size(); ++n) {
             const int mesh_index = model_.nodes[n].mesh;
             if (mesh_index < 0) continue;
             if (size_t(mesh_index) >= model_.meshes.size())
                 throw_file_error(path_, "node {}: mesh index {} is out of range ({} meshes)", n, mesh_index,
                                  model_.meshes.size());
-            if (!converted[mesh_index]) converted[mesh_index] = merged_mesh(mesh_index);
-            if (converted[mesh_index]->indices.empty()) continue;  // only points/lines: not a surface
-            Part part;
-            part.name = scene.nodes[offset + n].name;
-            part.mesh = *converted[mesh_index];
-            part.mesh.name = part.name;
-            part.node = offset + int(n);
-            part.material = default_material;
-            scene.parts.push_back(std::move(part));
+            if (!converted[mesh_index]) converted[mesh_index] = material_meshes(mesh_index, materials);
+            for (const MaterialMesh& piece : *converted[mesh_index]) {
+                if (piece.mesh.indices.empty()) continue;  // only points/lines: not a surface
+                Part part;
+                part.name = scene.nodes[offset + n].name;
+                // A mesh of several materials is one part per material.
+                if (converted[mesh_index]->size() > 1) part.name += "/" + materials.name(piece.material);
+                part.mesh = piece.mesh;
+                part.mesh.name = part.name;
+                part.node = offset + int(n);
+                part.material = materials.scene_material(piece.material, scene, default_material);
+                scene.parts.push_back(std::move(part));
+            }
         }
+        materials.warn_ignored();
         for (size_t a = 0; a < model_.animations.size(); ++a) import_animation(a, scene, offset);
         // One line per file, counting each glTF mesh once however many nodes use it.
         size_t dropped = 0;
-        for (const std::optional<TriangleMesh>& mesh : converted)
-            if (mesh) dropped += mesh->degenerate_dropped;
+        for (const auto& pieces : converted)
+            if (pieces)
+                for (const MaterialMesh& piece : *pieces) dropped += piece.mesh.degenerate_dropped;
         if (dropped) warn_file(path_, "{} degenerate triangle{} dropped", dropped, dropped == 1 ? "" : "s");
     }
 
@@ -321,13 +331,36 @@ private:
         }
     }
 
-    // All triangle primitives of a glTF mesh merged into one validated mesh.
-    TriangleMesh merged_mesh(int mesh_index) {
+    struct MaterialMesh {
+        int material = -1;  // glTF material index, −1 for none
+        TriangleMesh mesh;
+    };
+    // A glTF mesh's triangle primitives merged into one validated mesh per
+    // material, in the order the materials first appear.
+    std::vector<MaterialMesh> material_meshes(int mesh_index, const GltfMaterials& materials) {
+        std::vector<MaterialMesh> pieces;
+        std::vector<std::vector<size_t>> primitives;
+        const tinygltf::Mesh& source = model_.meshes[mesh_index];
+        for (size_t p = 0; p < source.primitives.size(); ++p) {
+            const int material = materials.checked_index(source.primitives[p].material);
+            size_t k = 0;
+            while (k < pieces.size() && pieces[k].material != material) ++k;
+            if (k == pieces.size()) pieces.push_back({material, {}}), primitives.emplace_back();
+            primitives[k].push_back(p);
+        }
+        for (size_t k = 0; k < pieces.size(); ++k)
+            pieces[k].mesh = merged_mesh(mesh_index, primitives[k], materials.texcoord_set(pieces[k].material));
+        return pieces;
+    }
+
+    // The given triangle primitives of a glTF mesh merged into one validated
+    // mesh, with texture coordinates TEXCOORD_<texcoord_set> when it is ≥ 0.
+    TriangleMesh merged_mesh(int mesh_index, const std::vector<size_t>& primitives, int texcoord_set) {
         const tinygltf::Mesh& source = model_.meshes[mesh_index];
         TriangleMesh mesh;
         mesh.name = source.name.empty() ? fmt::format("mesh{}", mesh_index) : source.name;
         bool any_normals = false, any_tangents = false;
-        for (size_t p = 0; p < source.primitives.size(); ++p) {
+        for (size_t p : primitives) {
             const tinygltf::Primitive& primitive = source.primitives[p];
             if (!is_triangle_mode(primitive.mode)) continue;
             const std::string what = fmt::format("mesh '{}' primitive {}", mesh.name, p);
@@ -359,6 +392,17 @@ private:
                 for (size_t v = 0; v < count; ++v)
                     mesh.tangents[base + v] = Vec4(tangents[4 * v], tangents[4 * v + 1], tangents[4 * v + 2], tangents[4 * v + 3]);
                 any_tangents = true;
+            }
+            if (texcoord_set >= 0) {
+                const std::string name = fmt::format("TEXCOORD_{}", texcoord_set);
+                const int a = attribute(name.c_str());
+                if (a < 0)
+                    throw_file_error(path_, "{}: its material has a base colour texture but the primitive has no {}",
+                                     what, name);
+                const std::vector<float> uv = reader_.floats(a, TINYGLTF_TYPE_VEC2, what + " " + name);
+                if (uv.size() / 2 != count)
+                    throw_file_error(path_, "{}: {} texture coordinates for {} positions", what, uv.size() / 2, count);
+                for (size_t v = 0; v < count; ++v) mesh.texcoords.emplace_back(uv[2 * v], uv[2 * v + 1]);
             }
 
             std::vector<uint32_t> corners;
@@ -434,6 +478,7 @@ private:
     }
 
     const tinygltf::Model& model_;
+    const GltfImageErrors& image_errors_;
     const std::filesystem::path& path_;
     AccessorReader reader_;
 };
@@ -441,8 +486,8 @@ private:
 }  // namespace
 
 void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material) {
-    const tinygltf::Model model = read_model(path);
-    GltfImporter(model, path).import_into(scene, default_material);
+    const LoadedGltf loaded = read_model(path);
+    GltfImporter(loaded, path).import_into(scene, default_material);
 }
 
 }  // namespace rsl

@@ -89,12 +89,14 @@ void drop_unreferenced_vertices(TriangleMesh& mesh) {
         mesh.positions[next] = mesh.positions[v];
         if (v < mesh.normals.size()) mesh.normals[next] = mesh.normals[v];
         if (v < mesh.tangents.size()) mesh.tangents[next] = mesh.tangents[v];
+        if (v < mesh.texcoords.size()) mesh.texcoords[next] = mesh.texcoords[v];
         ++next;
     }
     if (next == mesh.vertex_count()) return;
     mesh.positions.resize(next);
     if (mesh.normals.size() > next) mesh.normals.resize(next);
     if (mesh.tangents.size() > next) mesh.tangents.resize(next);
+    if (mesh.texcoords.size() > next) mesh.texcoords.resize(next);
     for (uint32_t& i : mesh.indices) i = new_index[i];
 }
 
@@ -146,6 +148,12 @@ size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& so
             throw_file_error(source, "mesh '{}': vertex {} has a non-finite position ({}, {}, {})", mesh.name, v, p.x,
                              p.y, p.z);
     }
+    if (!mesh.texcoords.empty() && mesh.texcoords.size() != mesh.positions.size())
+        throw_file_error(source, "mesh '{}' has {} texture coordinates for {} vertices", mesh.name,
+                         mesh.texcoords.size(), mesh.positions.size());
+    for (size_t v = 0; v < mesh.texcoords.size(); ++v)
+        if (!std::isfinite(mesh.texcoords[v].x) || !std::isfinite(mesh.texcoords[v].y))
+            throw_file_error(source, "mesh '{}': vertex {} has non-finite texture coordinates", mesh.name, v);
     for (size_t i = 0; i < mesh.indices.size(); ++i) {
         if (mesh.indices[i] >= mesh.vertex_count())
             throw_file_error(source, "mesh '{}': index {} (triangle {}) is {}, out of range for {} vertices", mesh.name,

@@ -26,6 +26,7 @@ struct TriangleMesh {
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;    // per vertex, unit
     std::vector<Vec4> tangents;   // per vertex: xyz unit tangent ⟂ normal, w = handedness ±1
+    std::vector<Vec2> texcoords;  // per vertex (glTF TEXCOORD_0: (0, 0) the image's top-left), or empty
     std::vector<uint32_t> indices;  // 3 per triangle
     size_t degenerate_dropped = 0;  // degenerate triangles validate_and_complete removed when loading
 

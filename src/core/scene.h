@@ -4,12 +4,14 @@
 // Loaded from a JSON scene file (schema in docs/SCENE_FORMAT.md) or from a single mesh.
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "src/core/math.h"
 #include "src/core/mesh.h"
+#include "src/core/texture.h"
 
 namespace rsl {
 
@@ -52,6 +54,9 @@ struct MaterialDesc {
     std::string model = "lambert";
     std::map<std::string, std::vector<float>> params;  // scalars are 1-vectors, RGB are 3-vectors
     std::filesystem::path file;  // measured BRDFs (MERL .binary)
+    // glTF baseColorTexture (gltf_pbr only): multiplies the diffuse lobe per
+    // pixel, read at the part's TEXCOORD_0 (docs/SCENE_FORMAT.md).
+    std::shared_ptr<const Texture> base_color_texture;
 };
 
 struct Part {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "src/core/error.h"
+#include "src/core/texture.h"
 
 namespace rsl {
 
@@ -47,9 +48,13 @@ VertexErrorReport compare_vertex_colors(const VertexColors& a, const VertexColor
     report.parts.resize(b.parts.size());
     for (size_t p = 0; p < b.parts.size(); ++p) {
         RSL_CHECK_EQ(a.parts[p].size(), b.parts[p].size());
+        // A textured part is compared at unit texture: diffuse + specular.
+        const bool layers = a.layered(p) && b.layered(p);
         for (size_t v = 0; v < b.parts[p].size(); ++v) {
-            report.parts[p].add(a.parts[p][v], b.parts[p][v]);
-            report.total.add(a.parts[p][v], b.parts[p][v]);
+            const Color x = layers ? a.parts[p][v] + a.specular[p][v] : a.parts[p][v];
+            const Color y = layers ? b.parts[p][v] + b.specular[p][v] : b.parts[p][v];
+            report.parts[p].add(x, y);
+            report.total.add(x, y);
         }
     }
     return report;
@@ -88,8 +93,7 @@ Color false_color(float x) {
     const float f = t - float(i);
     Color c;
     for (int k = 0; k < 3; ++k) {
-        const float srgb = stops[i][k] * (1 - f) + stops[i + 1][k] * f;
-        c[k] = srgb <= 0.04045f ? srgb / 12.92f : std::pow((srgb + 0.055f) / 1.055f, 2.4f);
+        c[k] = srgb_to_linear(stops[i][k] * (1 - f) + stops[i + 1][k] * f);
     }
     return c;
 }

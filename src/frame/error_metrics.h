@@ -29,7 +29,8 @@ struct VertexErrorReport {
     std::vector<std::string> part_names;
     std::vector<ErrorStats> parts;
 };
-// A and B must describe the same vertices (check_same_vertices).
+// A and B must describe the same vertices (check_same_vertices). Parts both
+// layered (textured) are compared at unit texture (diffuse + specular).
 VertexErrorReport compare_vertex_colors(const VertexColors& a, const VertexColors& b);
 
 // The one image error of the project (`rsl compare`, the demos, the

@@ -189,6 +189,18 @@ Image trace_tiles(const PosedScene& scene, const PinholeCamera& camera, const Im
     return (1.0f - hit.u - hit.v) * part[tri[0]] + hit.u * part[tri[1]] + hit.v * part[tri[2]];
 }
 
+// A layered (textured) part at a hit: the diffuse sum times the texture at
+// the interpolated texture coordinates, plus the specular sum.
+Color blend_layered_colors(const Scene& scene, const VertexColors& colors, const Texture& texture, const RayHit& hit) {
+    const TriangleMesh& mesh = scene.parts[hit.instance].mesh;
+    const uint32_t* tri = &mesh.indices[3 * size_t(hit.triangle)];
+    const float w0 = 1.0f - hit.u - hit.v;
+    const Color* specular = colors.specular[hit.instance].data();
+    const Vec2 uv = w0 * mesh.texcoords[tri[0]] + hit.u * mesh.texcoords[tri[1]] + hit.v * mesh.texcoords[tri[2]];
+    return blend_vertex_colors(scene, colors, hit) * texture.sample(uv) +
+           (w0 * specular[tri[0]] + hit.u * specular[tri[1]] + hit.v * specular[tri[2]]);
+}
+
 }  // namespace
 
 Image trace_image(const PosedScene& scene, const PinholeCamera& camera, const ImageFormationOptions& options,
@@ -210,8 +222,29 @@ Image form_image(const PosedScene& scene, const PinholeCamera& camera, const Ver
         if (colors.parts[p].size() != s.parts[p].mesh.vertex_count())
             throw_error("vertex colours of '{}': part '{}' has {} values for {} vertices", colors.scene_name,
                         s.parts[p].name, colors.parts[p].size(), s.parts[p].mesh.vertex_count());
+    // Layered parts: the texture comes with the colours, else from the scene's material.
+    std::vector<const Texture*> textures(s.parts.size(), nullptr);
+    bool any_layered = false;
+    for (size_t p = 0; p < s.parts.size(); ++p) {
+        if (!colors.layered(p)) continue;
+        if (colors.specular[p].size() != colors.parts[p].size())
+            throw_error("vertex colours of '{}': part '{}' has {} specular values for {} vertices", colors.scene_name,
+                        s.parts[p].name, colors.specular[p].size(), colors.parts[p].size());
+        textures[p] = p < colors.textures.size() && colors.textures[p]
+                          ? colors.textures[p].get()
+                          : s.materials[size_t(s.parts[p].material)].base_color_texture.get();
+        if (!textures[p] || s.parts[p].mesh.texcoords.size() != s.parts[p].mesh.vertex_count())
+            throw_error("vertex colours of '{}': part '{}' is textured, the scene's part has no texture or no "
+                        "texture coordinates", colors.scene_name, s.parts[p].name);
+        any_layered = true;
+    }
     // Barycentric interpolation needs no geometric normal.
+    if (!any_layered)
+        return trace_tiles<false>(scene, camera, options, [&](const RayHit& hit, const Vec3&) {
+            return blend_vertex_colors(s, colors, hit);
+        }, {});
     return trace_tiles<false>(scene, camera, options, [&](const RayHit& hit, const Vec3&) {
+        if (const Texture* texture = textures[hit.instance]) return blend_layered_colors(s, colors, *texture, hit);
         return blend_vertex_colors(s, colors, hit);
     }, {});
 }

@@ -64,7 +64,9 @@ Image trace_image_one_ray_at_a_time(const PosedScene& scene, const PinholeCamera
 Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, const RayHit& hit);
 
 // The image of per-vertex colours (the like-for-like image of a vertex result).
-// `colors` must describe `scene`'s parts (checked).
+// `colors` must describe `scene`'s parts (checked). A layered (textured) part
+// is diffuse × texture(uv) + specular at each sample, the texture sampled at
+// the interpolated texture coordinates (Texture::sample).
 Image form_image(const PosedScene& scene, const PinholeCamera& camera, const VertexColors& colors,
                  const ImageFormationOptions& options = {});
 

@@ -23,16 +23,35 @@ size_t VertexColors::vertex_count() const {
     return total;
 }
 
-void VertexColors::add_part(const std::string& name, size_t vertices) {
+void VertexColors::add_part(const std::string& name, size_t vertices, std::shared_ptr<const Texture> texture) {
     part_names.push_back(name);
     parts.emplace_back(vertices, Color(0));
+    specular.resize(parts.size());
+    textures.resize(parts.size());
+    if (texture) specular.back().assign(vertices, Color(0));
+    textures.back() = std::move(texture);
+}
+
+VertexColors VertexColors::at_unit_texture() const {
+    VertexColors folded = *this;
+    for (size_t p = 0; p < parts.size(); ++p)
+        if (layered(p))
+            for (size_t v = 0; v < parts[p].size(); ++v) folded.parts[p][v] += specular[p][v];
+    folded.specular.assign(parts.size(), {});
+    folded.textures.assign(parts.size(), nullptr);
+    return folded;
 }
 
 void write_vertex_colors(const std::filesystem::path& path, const VertexColors& colors) {
     RSL_CHECK_EQ(colors.part_names.size(), colors.parts.size());
+    bool any_layered = false;
+    for (size_t p = 0; p < colors.parts.size(); ++p) {
+        if (colors.layered(p)) RSL_CHECK_EQ(colors.specular[p].size(), colors.parts[p].size());
+        any_layered = any_layered || colors.layered(p);
+    }
     BinaryWriter w;
     w.put_bytes(kMagic, sizeof(kMagic));
-    w.put(kVertexColorsVersion);
+    w.put(any_layered ? kVertexColorsVersion : uint32_t(1));
     w.put_string(colors.scene_name);
     w.put_string(colors.producer);
     w.put(colors.time);
@@ -40,8 +59,11 @@ void write_vertex_colors(const std::filesystem::path& path, const VertexColors& 
     for (size_t p = 0; p < colors.parts.size(); ++p) {
         w.put_string(colors.part_names[p]);
         w.put(uint64_t(colors.parts[p].size()));
+        if (any_layered) w.put(uint8_t(colors.layered(p)));
     }
     for (const auto& part : colors.parts) w.put_bytes(part.data(), part.size() * sizeof(Color));
+    for (size_t p = 0; p < colors.parts.size(); ++p)
+        if (colors.layered(p)) w.put_bytes(colors.specular[p].data(), colors.specular[p].size() * sizeof(Color));
     write_file_atomically(path, w.finish_with_checksum());
 }
 
@@ -54,8 +76,8 @@ VertexColors read_vertex_colors(const std::filesystem::path& path) {
     char magic[sizeof(kMagic)];
     r.get_bytes(magic, sizeof(magic), "magic number");
     const uint32_t version = r.get<uint32_t>("version");
-    if (version != kVertexColorsVersion)
-        throw_file_error(path, "vertex-colour file version {}, this build reads version {}", version,
+    if (version != 1 && version != kVertexColorsVersion)
+        throw_file_error(path, "vertex-colour file version {}, this build reads versions 1 to {}", version,
                          kVertexColorsVersion);
     if (!has_valid_checksum(bytes))
         throw_file_error(path, "checksum mismatch: the file is corrupt or truncated");
@@ -66,24 +88,32 @@ VertexColors read_vertex_colors(const std::filesystem::path& path) {
     colors.time = r.get<float>("time");
     const uint32_t part_count = r.get<uint32_t>("part count");
     std::vector<uint64_t> counts;
+    std::vector<bool> layered;
     uint64_t total = 0;
     for (uint32_t p = 0; p < part_count; ++p) {
         colors.part_names.push_back(r.get_string("part name"));
         counts.push_back(r.get<uint64_t>("vertex count"));
-        total += counts.back();
+        const uint8_t flag = version >= 2 ? r.get<uint8_t>("layered flag") : 0;
+        if (flag > 1) throw_file_error(path, "corrupt: part '{}' has layered flag {}", colors.part_names.back(), flag);
+        layered.push_back(flag == 1);
+        total += counts.back() * (flag ? 2 : 1);
         if (total > r.remaining())  // also guards the multiplication below
             throw_file_error(path, "corrupt: {} vertices do not fit in the file", total);
     }
     if (total * sizeof(Color) != r.remaining())
         throw_file_error(path, "corrupt: header says {} vertices ({} bytes of data), file holds {} bytes", total,
                          total * sizeof(Color), r.remaining());
-    for (uint32_t p = 0; p < part_count; ++p) {
-        auto& part = colors.parts.emplace_back(counts[p]);
-        r.get_bytes(part.data(), counts[p] * sizeof(Color), "vertex data");
-        for (size_t v = 0; v < part.size(); ++v)
-            if (!std::isfinite(part[v].r) || !std::isfinite(part[v].g) || !std::isfinite(part[v].b))
-                throw_file_error(path, "non-finite colour at part '{}' vertex {}", colors.part_names[p], v);
-    }
+    const auto read_layer = [&](std::vector<Color>& values, uint32_t p, const char* what) {
+        r.get_bytes(values.data(), values.size() * sizeof(Color), what);
+        for (size_t v = 0; v < values.size(); ++v)
+            if (!std::isfinite(values[v].r) || !std::isfinite(values[v].g) || !std::isfinite(values[v].b))
+                throw_file_error(path, "non-finite {} at part '{}' vertex {}", what, colors.part_names[p], v);
+    };
+    colors.specular.resize(part_count);
+    colors.textures.resize(part_count);
+    for (uint32_t p = 0; p < part_count; ++p) read_layer(colors.parts.emplace_back(counts[p]), p, "colour");
+    for (uint32_t p = 0; p < part_count; ++p)
+        if (layered[p]) read_layer(colors.specular[p] = std::vector<Color>(counts[p]), p, "specular colour");
     return colors;
 }
 
@@ -98,6 +128,8 @@ void check_same_vertices(const VertexColors& a, const std::filesystem::path& pat
     for (size_t p = 0; p < a.parts.size(); ++p) {
         if (a.part_names[p] != b.part_names[p])
             mismatch(fmt::format("part {} is '{}' vs '{}'", p, a.part_names[p], b.part_names[p]));
+        if (a.layered(p) != b.layered(p))
+            mismatch(fmt::format("part '{}' is layered (textured) in one and not the other", a.part_names[p]));
         if (a.parts[p].size() != b.parts[p].size())
             mismatch(fmt::format("part '{}' has {} vs {} vertices", a.part_names[p], a.parts[p].size(),
                                  b.parts[p].size()));

@@ -204,6 +204,13 @@ void GlRenderer::upload_all_tables() {
 }
 
 void GlRenderer::sync_materials() {
+    // Textured materials need a second (specular) layer per vertex, which this
+    // backend does not compute yet: refuse rather than drop the texture.
+    for (int p = 0; p < library_.part_count(); ++p)
+        if (library_.part_texture(p))
+            throw_file_error(scene_.source, "GL renderer: part '{}' has a base colour texture (material '{}'); "
+                             "textured materials render with --backend cpu only", scene_.parts[size_t(p)].name,
+                             library_.desc(library_.part_material(p)).name);
     bool changed = false;
     for (int p = 0; p < library_.part_count(); ++p)
         changed = changed || library_.table(library_.part_material(p)) != part_tables_[size_t(p)];

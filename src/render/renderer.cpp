@@ -70,6 +70,7 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
         if (fast_lookups_.back() && !fast_lookups_.back()->usable()) fast_lookups_.back().reset();
     }
     part_tables_.assign(parts, nullptr);
+    part_specular_tables_.assign(parts, nullptr);
     synced_material_.assign(parts, -1);
     sync_materials();
     set_local_lights(lights_);  // checks them, sizes the frame's buffers, poses at t = 0
@@ -119,6 +120,7 @@ void Renderer::sync_materials() {
         const int m = library_.part_material(int(p));
         if (m != synced_material_[p] || library_.revision(m) != synced_revision_[size_t(m)] || !part_tables_[p]) {
             part_tables_[p] = &library_.part_table(int(p));
+            part_specular_tables_[p] = library_.part_specular_table(int(p));
             synced_material_[p] = m;
         }
     }
@@ -129,7 +131,8 @@ VertexColors Renderer::make_output() const {
     VertexColors colors;
     colors.scene_name = scene_.name;
     colors.producer = "rsl-cpu";
-    for (const Part& part : scene_.parts) colors.add_part(part.name, part.mesh.vertex_count());
+    for (size_t p = 0; p < scene_.parts.size(); ++p)
+        colors.add_part(scene_.parts[p].name, scene_.parts[p].mesh.vertex_count(), library_.part_texture(int(p)));
     return colors;
 }
 
@@ -137,6 +140,7 @@ void Renderer::shade(VertexColors& out) {
     RSL_CHECK_EQ(out.parts.size(), scene_.parts.size());
     for (size_t p = 0; p < scene_.parts.size(); ++p) RSL_CHECK_EQ(out.parts[p].size(), scene_.parts[p].mesh.vertex_count());
     sync_materials();
+    match_layers(library_, scene_, out);
     out.time = time_;
     std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {

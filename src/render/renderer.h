@@ -102,6 +102,7 @@ private:
     // Per part: the table it is shaded with, refreshed from library_ before a
     // frame when a material's revision or a part's assignment changed.
     std::vector<const BrdfTable*> part_tables_;
+    std::vector<const BrdfTable*> part_specular_tables_;  // null for untextured parts
     std::vector<int> synced_material_;
     std::vector<uint64_t> synced_revision_;
     std::vector<Block> blocks_;

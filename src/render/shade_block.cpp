@@ -8,6 +8,7 @@
 // self and occluder visibility, and scattered back into the colour sums.
 #include <cmath>
 
+#include "src/core/error.h"
 #include "src/render/exact_visibility.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/renderer.h"
@@ -55,7 +56,8 @@ struct Renderer::BlockScratch {
     alignas(64) float zx[kBlock], zy[kBlock], zz[kBlock];
     // View in the local frame, and the view-aligned rotation (cos φ_o, sin φ_o).
     alignas(64) float vx[kBlock], vy[kBlock], vz[kBlock], view_cos[kBlock], view_sin[kBlock];
-    alignas(64) float r[kBlock], g[kBlock], b[kBlock];  // colour sums
+    alignas(64) float r[kBlock], g[kBlock], b[kBlock];  // colour sums (textured parts: the diffuse layer)
+    alignas(64) float sr[kBlock], sg[kBlock], sb[kBlock];  // textured parts: the specular layer's sums
     // The current light per vertex (local lights vary per vertex).
     alignas(64) float dx[kBlock], dy[kBlock], dz[kBlock], half[kBlock], ir[kBlock], ig[kBlock], ib[kBlock];
     // Local plane point of the light's center and the light's local z.
@@ -65,6 +67,7 @@ struct Renderer::BlockScratch {
     alignas(64) float qx[kBlock], qy[kBlock], tx[kBlock], ty[kBlock], qh[kBlock];
     alignas(64) float qvx[kBlock], qvy[kBlock], qvz[kBlock];
     alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
+    alignas(64) float spr[kBlock], spg[kBlock], spb[kBlock];  // the specular table's averages
     alignas(64) bool needed[kBlock];  // per vertex: the current (light, occluder) needs a lookup
 
     // Per occluder part (sized to the scene on first use): what the block
@@ -229,6 +232,29 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
     }
 }
 
+namespace {
+
+struct ColorInputs {
+    const float* r;
+    const float* g;
+    const float* b;
+};
+
+// The light's share, integral × BRDF average × visibility, of each compacted
+// query i added to its vertex index[i]'s sums.
+inline void add_light(int m, const int* index, const float* vis, const float* ir, const float* ig, const float* ib,
+                      ColorInputs brdf, ColorOutputs sum) {
+    for (int i = 0; i < m; ++i) {
+        const int k = index[i];
+        const float v = vis[i];
+        sum.r[k] += ir[k] * brdf.r[i] * v;
+        sum.g[k] += ig[k] * brdf.g[i] * v;
+        sum.b[k] += ib[k] * brdf.b[i] * v;
+    }
+}
+
+}  // namespace
+
 void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) const {
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
@@ -236,7 +262,10 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const TriangleMesh& mesh = scene_.parts[part_index].mesh;
     const PartPose& pose = poses_[part_index];
     const BrdfTable& table = *part_tables_[part_index];
+    // A textured part's second lobe: the same squares and visibility, a second table.
+    const BrdfTable* specular = part_specular_tables_[part_index];
     const bool isotropic = table.isotropic();
+    RSL_CHECK(!specular || specular->isotropic() == isotropic);
     const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
     const int n = block.end - block.begin;
     const bool has_tangents = !mesh.tangents.empty();
@@ -261,6 +290,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         const Vec2 alignment = shading::view_alignment(wo);
         s.view_cos[k] = alignment.x, s.view_sin[k] = alignment.y;
         s.r[k] = s.g[k] = s.b[k] = 0.0f;
+        s.sr[k] = s.sg[k] = s.sb[k] = 0.0f;
     }
     // The block's bounding sphere (box center, farthest vertex) for block-level culling.
     BoundingSphere block_sphere;
@@ -342,6 +372,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         queries.view_z = s.qvz;
         queries.count = size_t(m);
         table.square_average_batch(queries, ColorOutputs{s.br, s.bg, s.bb});
+        if (specular) specular->square_average_batch(queries, ColorOutputs{s.spr, s.spg, s.spb});
 
         const ExactVisibility* exact = options_.exact_visibility.get();
         const ExactVisibilityMode exact_mode = exact ? exact->mode() : ExactVisibilityMode::All;
@@ -362,7 +393,9 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         // A square whose BRDF average is 0 (clipped away below the horizon)
         // adds nothing whatever its visibility: no occluder lookups for it.
         for (int i = 0; i < m; ++i)
-            if (s.br[i] == 0.0f && s.bg[i] == 0.0f && s.bb[i] == 0.0f) s.vis[i] = 0.0f;
+            if (s.br[i] == 0.0f && s.bg[i] == 0.0f && s.bb[i] == 0.0f &&
+                (!specular || (s.spr[i] == 0.0f && s.spg[i] == 0.0f && s.spb[i] == 0.0f)))
+                s.vis[i] = 0.0f;
 
         // Other parts' shadows: receiver point and light direction in the occluder's frame.
         for (size_t e = offsets_[slot_base + l]; field_occluders && e < offsets_[slot_base + l + 1]; ++e) {
@@ -395,17 +428,18 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             occluder_factors(s, v, int(l), o, n, m, counts);
         }
 
-        for (int i = 0; i < m; ++i) {
-            const int k = s.index[i];
-            const float v = s.vis[i];
-            s.r[k] += s.ir[k] * s.br[i] * v;
-            s.g[k] += s.ig[k] * s.bg[i] * v;
-            s.b[k] += s.ib[k] * s.bb[i] * v;
-        }
+        add_light(m, s.index, s.vis, s.ir, s.ig, s.ib, ColorInputs{s.br, s.bg, s.bb}, ColorOutputs{s.r, s.g, s.b});
+        if (specular)
+            add_light(m, s.index, s.vis, s.ir, s.ig, s.ib, ColorInputs{s.spr, s.spg, s.spb},
+                      ColorOutputs{s.sr, s.sg, s.sb});
     }
 
     std::vector<Color>& colors = out.parts[part_index];
     for (int k = 0; k < n; ++k) colors[block.begin + k] = Color(s.r[k], s.g[k], s.b[k]);
+    if (specular) {
+        std::vector<Color>& layer = out.specular[part_index];
+        for (int k = 0; k < n; ++k) layer[block.begin + k] = Color(s.sr[k], s.sg[k], s.sb[k]);
+    }
     counts.vertices += size_t(n);
 }
 

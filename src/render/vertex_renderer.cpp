@@ -14,6 +14,19 @@ int find_part(const Scene& scene, const std::string& name) {
 
 }  // namespace
 
+void match_layers(const MaterialLibrary& library, const Scene& scene, VertexColors& out) {
+    out.specular.resize(out.parts.size());
+    out.textures.resize(out.parts.size());
+    for (size_t p = 0; p < out.parts.size(); ++p) {
+        const std::shared_ptr<const Texture>& texture = library.part_texture(int(p));
+        if (texture && scene.parts[p].mesh.texcoords.size() != scene.parts[p].mesh.vertex_count())
+            throw_file_error(scene.source, "part '{}': material '{}' has a base colour texture but the part has no "
+                             "texture coordinates", scene.parts[p].name, library.desc(library.part_material(int(p))).name);
+        if (bool(texture) != out.layered(p)) out.specular[p].assign(texture ? out.parts[p].size() : 0, Color(0));
+        out.textures[p] = texture;
+    }
+}
+
 MaterialLibrary scene_material_library(const Scene& scene, const RenderOptions& options) {
     MaterialLibrary library = [&] {
         try {

@@ -79,6 +79,13 @@ protected:
     static void check_local_lights(const Scene& scene, const std::vector<LocalLight>& lights);
 };
 
+// Makes `out`'s layers follow the parts' current materials: a part whose
+// material has a base colour texture gets a specular layer and the texture
+// (VertexColors), others none. Allocates only where a part's layering
+// changes; both renderers call it in shade(). Throws when a textured
+// material is on a part without texture coordinates.
+void match_layers(const MaterialLibrary& library, const Scene& scene, VertexColors& out);
+
 // A scene's material library with the options' per-part overrides applied
 // (RenderOptions::material_override); errors name the scene file.
 MaterialLibrary scene_material_library(const Scene& scene, const RenderOptions& options);

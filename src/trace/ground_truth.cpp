@@ -94,11 +94,21 @@ GroundTruth::GroundTruth(const Scene& scene, const CubeMap& environment, float t
     RSL_CHECK_GE(options_.texel_subdivision, 1);
     RSL_CHECK_GE(options_.light_max_side, 8);
     materials_ = make_scene_brdfs(scene);
+    specular_.assign(materials_.size(), nullptr);
+    for (size_t m = 0; m < scene.materials.size(); ++m)
+        if (scene.materials[m].base_color_texture) {
+            BrdfLobes lobes = make_brdf_lobes(scene.materials[m]);
+            materials_[m] = std::move(lobes.diffuse);
+            specular_[m] = std::move(lobes.specular);
+        }
     for (size_t p = 0; p < scene.parts.size(); ++p) {
         const Part& part = scene.parts[p];
         if (part.material < 0 || part.material >= int(materials_.size()))
             throw_file_error(scene.source, "part '{}' has material index {} of {}", part.name, part.material,
                              materials_.size());
+        if (specular_[size_t(part.material)] && part.mesh.texcoords.size() != part.mesh.positions.size())
+            throw_file_error(scene.source, "part '{}': its material has a base colour texture, the part no "
+                             "texture coordinates", part.name);
         if (part.mesh.normals.size() != part.mesh.positions.size())
             throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
                              part.mesh.normals.size(), part.mesh.positions.size());
@@ -200,6 +210,18 @@ Color GroundTruth::shade_light(const SurfacePoint& x, const Vec3& origin, const 
     return Color(estimate);
 }
 
+Color GroundTruth::shade_hit(const RayHit& hit, const Vec3& ray_direction) const {
+    const SurfacePoint x = posed_.hit_point(hit, ray_direction);
+    const Brdf* specular = part_specular_brdf(hit.instance);
+    if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance));
+    const TriangleMesh& mesh = scene_.parts[size_t(hit.instance)].mesh;
+    const uint32_t* tri = &mesh.indices[3 * size_t(hit.triangle)];
+    const Vec2 uv = (1.0f - hit.u - hit.v) * mesh.texcoords[tri[0]] + hit.u * mesh.texcoords[tri[1]] +
+                    hit.v * mesh.texcoords[tri[2]];
+    return shade(x, -ray_direction, part_brdf(hit.instance)) * part_texture(hit.instance)->sample(uv) +
+           shade(x, -ray_direction, *specular);
+}
+
 VertexColors GroundTruth::shade_vertices(const ProgressCallback& progress) const {
     VertexColors colors;
     colors.scene_name = scene_.name;
@@ -207,8 +229,11 @@ VertexColors GroundTruth::shade_vertices(const ProgressCallback& progress) const
     colors.time = time();
     std::vector<size_t> first;  // flattened index of each part's first vertex
     size_t total = 0;
-    for (const Part& part : scene_.parts) {
-        colors.add_part(part.name, part.mesh.vertex_count());
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        const Part& part = scene_.parts[p];
+        colors.add_part(part.name, part.mesh.vertex_count(),
+                        specular_[size_t(part.material)] ? scene_.materials[size_t(part.material)].base_color_texture
+                                                         : nullptr);
         first.push_back(total);
         total += part.mesh.vertex_count();
     }
@@ -221,6 +246,7 @@ VertexColors GroundTruth::shade_vertices(const ProgressCallback& progress) const
             const SurfacePoint x = posed_.vertex(part, vertex);
             const Vec3 wo = glm::normalize(camera_ - x.position);
             colors.parts[part][vertex] = shade(x, wo, part_brdf(part));
+            if (const Brdf* specular = part_specular_brdf(part)) colors.specular[part][vertex] = shade(x, wo, *specular);
         }
         const size_t now = done.fetch_add(range.size()) + range.size();
         if (progress) progress(now, total);

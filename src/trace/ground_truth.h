@@ -58,14 +58,25 @@ public:
     void set_time(float t);
     float time() const { return posed_.time(); }
     const PosedScene& posed() const { return posed_; }
+    // A textured part's material is two lobes (make_brdf_lobes): part_brdf is
+    // its diffuse lobe at unit texture, part_specular_brdf (null otherwise)
+    // the specular one; each is integrated on its own (twice the rays).
     const Brdf& part_brdf(int part) const { return *materials_[scene_.parts[part].material]; }
+    const Brdf* part_specular_brdf(int part) const { return specular_[scene_.parts[part].material].get(); }
+    const Texture* part_texture(int part) const {
+        return scene_.materials[scene_.parts[part].material].base_color_texture.get();
+    }
     Vec3 camera_position() const { return camera_; }
     size_t environment_sample_count() const { return environment_.size(); }
 
     // Outgoing radiance at x towards wo_world (unit, world space).
     Color shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf& brdf) const;
-    // Every vertex of every part, towards the camera; all cores.
+    // Every vertex of every part, towards the camera; all cores. Textured
+    // parts are layered (VertexColors): diffuse at unit texture, specular.
     VertexColors shade_vertices(const ProgressCallback& progress = {}) const;
+    // The truth at a primary-ray hit, per pixel: a textured part's diffuse
+    // lobe times its texture at the hit's texture coordinates, plus specular.
+    Color shade_hit(const RayHit& hit, const Vec3& ray_direction) const;
     // Shadow rays traced so far by this object (all threads), for benchmarks.
     uint64_t rays_traced() const { return rays_traced_.load(std::memory_order_relaxed); }
 
@@ -80,6 +91,7 @@ private:
     GroundTruthOptions options_;
     PosedScene posed_;
     std::vector<std::shared_ptr<const Brdf>> materials_;
+    std::vector<std::shared_ptr<const Brdf>> specular_;  // per material: textured ones' specular lobe
     EnvironmentSamples environment_;
     std::vector<Vec3> light_positions_;
     Vec3 camera_{0};

@@ -38,6 +38,9 @@ inline std::vector<MaterialDesc> analytic_materials() {
         material("ward", {{"ks", {1.0f}}, {"alpha", {0.5f}}}),
         material("ward_anisotropic", {{"kd", {0.2f}}, {"ks", {0.8f}}, {"alpha_x", {0.08f}}, {"alpha_y", {0.3f}}}),
         material("ward_anisotropic", {{"ks", {1.0f}}, {"alpha_x", {0.6f}}, {"alpha_y", {0.2f}}}),
+        material("gltf_pbr", {{"base_color", {1.0f, 0.5f, 0.2f}}, {"metallic", {0.0f}}, {"roughness", {0.5f}}}),
+        material("gltf_pbr", {{"base_color", {0.9f, 0.6f, 0.3f}}, {"metallic", {1.0f}}, {"roughness", {0.35f}}}),
+        material("gltf_pbr", {}),  // glTF's defaults: white, metallic 1, roughness 1
     };
 }
 

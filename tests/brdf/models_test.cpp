@@ -186,3 +186,57 @@ TEST_CASE("make_scene_brdfs builds every material in order and names the scene f
     scene.source.clear();  // a scene built in code has no file to name
     CHECK_THROWS_WITH(make_scene_brdfs(scene), Catch::StartsWith("material 'shiny' (phong)"));
 }
+
+TEST_CASE("gltf_pbr is GGX Cook-Torrance with glTF's metallic-roughness mapping", "[brdf][models]") {
+    // kd = base (1 − metallic), f0 = mix(0.04, base, metallic), α = roughness².
+    std::mt19937 rng(21);
+    const Color base(0.8f, 0.4f, 0.1f);
+    for (float metallic : {0.0f, 0.3f, 1.0f})
+        for (float roughness : {0.2f, 0.6f, 1.0f}) {
+            auto pbr = make_brdf(material("gltf_pbr", {{"base_color", {base.r, base.g, base.b}},
+                                                       {"metallic", {metallic}}, {"roughness", {roughness}}}));
+            const Color kd = base * (1.0f - metallic), f0 = Color(0.04f) * (1.0f - metallic) + base * metallic;
+            auto reference = make_brdf(material("cook_torrance_ggx", {{"kd", {kd.r, kd.g, kd.b}},
+                                                                      {"f0", {f0.r, f0.g, f0.b}},
+                                                                      {"roughness", {roughness * roughness}}}));
+            CHECK(pbr->model() == "gltf_pbr");
+            CHECK(pbr->isotropic());
+            const BrdfLobes lobes = make_brdf_lobes(material("gltf_pbr", {{"base_color", {base.r, base.g, base.b}},
+                                                                          {"metallic", {metallic}},
+                                                                          {"roughness", {roughness}}}));
+            for (int k = 0; k < 500; ++k) {
+                const Vec3 wi = random_upper_direction(rng), wo = random_upper_direction(rng);
+                const Color a = pbr->eval(wi, wo), b = reference->eval(wi, wo);
+                const Color sum = lobes.diffuse->eval(wi, wo) + lobes.specular->eval(wi, wo);
+                for (int c = 0; c < 3; ++c) {
+                    REQUIRE(a[c] == Approx(b[c]).epsilon(1e-5).margin(1e-7));
+                    REQUIRE(sum[c] == Approx(a[c]).epsilon(1e-5).margin(1e-7));
+                }
+                // The diffuse lobe is the Fresnel-weighted Lambert term alone: view independent up to F(θ_o).
+                const Color d = lobes.diffuse->eval(wi, wo);
+                for (int c = 0; c < 3; ++c) REQUIRE(d[c] <= kd[c] / kPi + 1e-6f);
+            }
+        }
+    // glTF's defaults when a parameter is absent: base 1, metallic 1, roughness 1.
+    auto defaults = make_brdf(material("gltf_pbr", {}));
+    auto explicit_defaults = make_brdf(
+        material("gltf_pbr", {{"base_color", {1.0f}}, {"metallic", {1.0f}}, {"roughness", {1.0f}}}));
+    CHECK(defaults->eval(Vec3(0.3f, 0, 0.954f), Vec3(0, 0.5f, 0.866f)) ==
+          explicit_defaults->eval(Vec3(0.3f, 0, 0.954f), Vec3(0, 0.5f, 0.866f)));
+    // Roughness 0 (allowed by glTF) is a finite, very sharp lobe.
+    auto mirror = make_brdf(material("gltf_pbr", {{"metallic", {1.0f}}, {"roughness", {0.0f}}}));
+    CHECK(std::isfinite(mirror->eval(Vec3(0.6f, 0, 0.8f), Vec3(-0.6f, 0, 0.8f)).r));
+    CHECK(mirror->eval(Vec3(0.6f, 0, 0.8f), Vec3(-0.6f, 0, 0.8f)).r > 100.0f);
+}
+
+TEST_CASE("gltf_pbr parameters are validated, and only it splits into lobes", "[brdf][models]") {
+    const auto fails_with = [](const MaterialDesc& m, const std::string& needle) {
+        CHECK_THROWS_WITH(make_brdf(m), Catch::Contains(m.name) && Catch::Contains(needle));
+    };
+    fails_with(material("gltf_pbr", {{"metallic", {1.5f}}}), "metallic");
+    fails_with(material("gltf_pbr", {{"roughness", {-0.1f}}}), "roughness");
+    fails_with(material("gltf_pbr", {{"base_color", {0.5f, 0.5f}}}), "base_color");
+    fails_with(material("gltf_pbr", {{"basecolor", {0.5f}}}), "basecolor");
+    CHECK_THROWS_WITH(make_brdf_lobes(material("lambert", {{"albedo", {0.5f}}})),
+                      Catch::Contains("only gltf_pbr materials take a base colour texture"));
+}

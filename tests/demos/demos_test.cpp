@@ -10,8 +10,7 @@
 
 #include <unistd.h>
 
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
+// stb_image's implementation is in rsl_core (src/core/gltf_materials.cpp).
 
 #include "demos/demo.h"
 #include "demos/demo_runners.h"

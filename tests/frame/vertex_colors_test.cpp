@@ -81,9 +81,9 @@ TEST_CASE("Corrupt, truncated, foreign and other-version files are refused", "[t
     }
     SECTION("other version") {
         std::string bytes = good;
-        bytes[8] = 2;  // the u32 after the 8-byte magic
+        bytes[8] = 3;  // the u32 after the 8-byte magic
         write_file_atomically(bad, bytes);
-        REQUIRE_THAT(error_of([&] { read_vertex_colors(bad); }), Catch::Contains("version 2"));
+        REQUIRE_THAT(error_of([&] { read_vertex_colors(bad); }), Catch::Contains("version 3"));
     }
     SECTION("missing file") {
         REQUIRE_THROWS_AS(read_vertex_colors(temp_dir() / "absent.rslv"), Error);
@@ -111,4 +111,33 @@ TEST_CASE("Files of different geometry are not comparable", "[trace][vertex_colo
     b = a;
     b.time = 2.0f;
     expect_mismatch(b, "times");
+}
+
+TEST_CASE("layered (textured) parts round-trip as version 2; files without them stay version 1",
+          "[frame][vertex_colors]") {
+    VertexColors colors;
+    colors.scene_name = "layers";
+    colors.producer = "test";
+    colors.add_part("plain", 3);
+    colors.add_part("textured", 2, std::make_shared<Texture>());
+    colors.parts[0] = {Color(1, 2, 3), Color(4, 5, 6), Color(7, 8, 9)};
+    colors.parts[1] = {Color(0.5f), Color(0.25f)};
+    colors.specular[1] = {Color(0.1f, 0.2f, 0.3f), Color(0.4f)};
+    const auto path = temp_dir() / "layers.rslv";
+    write_vertex_colors(path, colors);
+    const std::string bytes = read_file(path);
+    CHECK(bytes[8] == 2);
+    const VertexColors back = read_vertex_colors(path);
+    CHECK(!back.layered(0));
+    REQUIRE(back.layered(1));
+    CHECK(back.parts == colors.parts);
+    CHECK(back.specular[1] == colors.specular[1]);
+    // At unit texture a layered part is diffuse + specular, and compares so.
+    const VertexColors folded = back.at_unit_texture();
+    CHECK(!folded.layered(1));
+    CHECK(folded.parts[1][0] == Color(0.6f, 0.7f, 0.8f));
+    write_vertex_colors(path, folded);
+    CHECK(read_file(path)[8] == 1);
+    // A layered file against an unlayered one of the same vertices is not comparable.
+    CHECK_THROWS_WITH(check_same_vertices(back, "a.rslv", folded, "b.rslv"), Catch::Contains("layered"));
 }

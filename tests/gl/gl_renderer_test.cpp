@@ -24,10 +24,12 @@ using test::make_scene;
 // knife edge (a VDT or shell index at a texel boundary), counted separately.
 constexpr double kTolerance = 1e-3;
 
-// Ground, a glossy sphere that moves, an anisotropic sphere, two sphere
-// lights, small real fields.
+// Ground (a glTF metallic-roughness material), a glossy sphere that moves,
+// an anisotropic sphere, two sphere lights, small real fields.
 Scene moving_scene() {
     Scene scene = make_scene("gl", Color(0.7f));
+    scene.materials[0].model = "gltf_pbr";
+    scene.materials[0].params = {{"base_color", {0.7f, 0.6f, 0.5f}}, {"metallic", {0.2f}}, {"roughness", {0.5f}}};
     MaterialDesc glossy;
     glossy.name = "glossy";
     glossy.model = "blinn_phong";
