@@ -5,12 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-// tinygltf's implementation lives in src/core/gltf_loader.cpp; every includer
-// must use the same TINYGLTF_NO_* set (they change inline defaults).
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
+#include "src/core/gltf_model.h"  // tinygltf, configured as the loader compiles it
 
 #include <fmt/format.h>
 

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "src/frame/error_metrics.h"
 #include "src/render/renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
@@ -126,6 +127,58 @@ TEST_CASE("a sphere light is a per-vertex square of the cap's solid angle", "[re
         for (int ch = 0; ch < 3; ++ch)
             CHECK(colors.parts[0][v][ch] == Approx(expected[ch]).margin(scale[ch] * cosine_tolerance));
     }
+}
+
+TEST_CASE("a spot light's cone: the renderer's per-vertex sum against the ground truth", "[render]") {
+    // A spot 1 above a ground plane, pointing down: lit inside 0.3 rad, dark
+    // beyond 0.6 rad (radii 0.31 and 0.68 on the ground), glTF's falloff between.
+    Scene scene = make_scene("spot", Color(0.5f));
+    add_part(scene, make_plane(3.0f, 48));
+    LocalLight spot;
+    spot.radius = 0.02f;
+    spot.power = Color(3.0f, 2.0f, 1.0f);
+    spot.position = Vec3(0.1f, 1.0f, -0.05f);
+    spot.axis = glm::normalize(Vec3(0.2f, -1.0f, 0.1f));
+    spot.spot = true;
+    spot.inner_cone_radians = 0.3f;
+    spot.outer_cone_radians = 0.6f;
+    scene.lights.push_back(spot);
+    PartFields fields;
+    const VertexColors rendered = Renderer(scene, RslSet{}, fields, RenderOptions{}).shade();
+    GroundTruthOptions options;
+    options.environment = false;
+    const VertexColors truth = GroundTruth(scene, CubeMap(4), 0.0f, options).shade_vertices();
+    // The same light without its cone: the cone must matter where it cuts.
+    Scene point_scene = scene;
+    point_scene.lights[0].spot = false;
+    const VertexColors point = GroundTruth(point_scene, CubeMap(4), 0.0f, options).shade_vertices();
+
+    const TriangleMesh& mesh = scene.parts[0].mesh;
+    size_t dark = 0, full = 0, edge = 0;
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        const Vec3 w = glm::normalize(mesh.positions[v] - spot.position);
+        const float angle = std::acos(glm::dot(w, spot.axis));
+        const Color t = truth.parts[0][v], r = rendered.parts[0][v];
+        INFO("vertex " << v << " at " << angle << " rad: truth " << t.g << ", rendered " << r.g << ", point " << point.parts[0][v].g);
+        if (angle > 0.6f) {
+            ++dark;
+            CHECK(t.g == 0.0f);
+            CHECK(r.g == 0.0f);
+        } else if (angle < 0.3f) {
+            ++full;
+            CHECK(t.g == Approx(point.parts[0][v].g).epsilon(2e-3));
+        } else {
+            ++edge;
+            CHECK(t.g < point.parts[0][v].g);
+        }
+        // The square of the cap against the cap's exact integral, both scaled by the same cone.
+        CHECK(r.g == Approx(t.g).epsilon(5e-3).margin(1e-6));
+    }
+    CHECK(dark > 100);
+    CHECK(full > 20);
+    CHECK(edge > 50);
+    CHECK(compare_vertex_colors(rendered, truth).total.relative_l2() < 3e-3);
+    CHECK(compare_vertex_colors(point, truth).total.relative_l2() > 0.3);
 }
 
 // A small scene with real baked fields: a ground plane, two spheres (one
