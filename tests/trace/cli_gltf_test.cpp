@@ -68,14 +68,16 @@ TEST_CASE("a glTF scene with scenes, camera, point and spot lights, skin and spa
     grid(16, 1.5f, gp, gn, gi);
     box(0.15f, bp, bn, bi);
     const int ground_mesh = b.mesh(gp, gi, gn);
-    // The box's positions: sparse, raising its top face's 4 vertices (the +y
-    // face, vertices 8–11) from y = 0.3 to y = 0.5.
+    // The box's positions: sparse, raising its 12 top vertices (the top face's
+    // and the side faces' upper corners) from y = 0.3 to y = 0.5.
     std::vector<uint16_t> top;
     std::vector<float> raised;
-    for (uint16_t v = 8; v < 12; ++v) {
+    for (uint16_t v = 0; v < bp.size() / 3; ++v) {
+        if (bp[3 * v + 1] < 0.2f) continue;
         top.push_back(v);
         raised.insert(raised.end(), {bp[3 * v], 0.5f, bp[3 * v + 2]});
     }
+    REQUIRE(top.size() == 12);
     std::vector<float> weights(bp.size() / 3 * 4, 0.0f);
     for (size_t k = 0; k < weights.size(); k += 4) weights[k] = 1;
     Json attributes = {{"POSITION", b.sparse_floats(bp, bp.size() / 3, "VEC3", top, raised)},
