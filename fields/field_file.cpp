@@ -38,34 +38,82 @@ json to_json(const OvdfParams& p) {
             {"half_precision_tables", p.half_precision_tables},
             {"seed", p.seed}};
 }
-SvdfParams svdf_params_from(const json& j) {
+// The parameter block's values, each of its type and within what the
+// lookups and prepare() rely on (resolutions of at least 2: bilinear taps;
+// 2 shells: shell pairs; segments that divide the cube faces). Limits of 256
+// are the scene file's (docs/SCENE_FORMAT.md) and keep every count an int.
+class ParamReader {
+public:
+    ParamReader(const json& j, const fs::path& path) : j_(j), path_(path) {}
+
+    int integer(const char* key, int least, int most) const {
+        const json& v = value(key);
+        if (!v.is_number_integer() || (v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(most)) ||
+            v.get<int64_t>() < least || v.get<int64_t>() > most)
+            fail(key, fmt::format("{} is not an integer from {} to {}", v.dump(), least, most));
+        return int(v.get<int64_t>());
+    }
+    float positive(const char* key) const {
+        const json& v = value(key);
+        const double x = v.is_number() ? v.get<double>() : 0.0;
+        if (!(x > 0 && x < 1e30)) fail(key, fmt::format("{} is not a positive number", v.dump()));
+        return float(x);
+    }
+    bool flag(const char* key) const {
+        const json& v = value(key);
+        if (!v.is_boolean()) fail(key, fmt::format("{} is not true or false", v.dump()));
+        return v.get<bool>();
+    }
+    uint64_t seed() const {
+        const json& v = value("seed");
+        if (!v.is_number_unsigned()) fail("seed", fmt::format("{} is not an unsigned integer", v.dump()));
+        return v.get<uint64_t>();
+    }
+    [[noreturn]] void fail(const char* key, const std::string& what) const {
+        throw_file_error(path_, "bad parameter block: {}: {}", key, what);
+    }
+
+private:
+    const json& value(const char* key) const {
+        if (!j_.is_object() || !j_.contains(key)) fail(key, "missing");
+        return j_[key];
+    }
+    const json& j_;
+    const fs::path& path_;
+};
+
+SvdfParams svdf_params_from(const json& j, const fs::path& path) {
+    const ParamReader r(j, path);
     SvdfParams p;
-    p.resolution = j.at("resolution");
-    p.supersampling = j.at("supersampling");
-    p.coarse_to_fine = j.at("coarse_to_fine");
-    p.clusters = j.at("clusters");
-    p.vectors = j.at("vectors");
-    p.refine_iterations = j.at("refine_iterations");
-    p.mode = VdtMode(j.at("mode").get<int>());
-    p.below_horizon = BelowHorizon(j.at("below_horizon").get<int>());
-    p.half_precision_tables = j.at("half_precision_tables");
-    p.seed = j.at("seed");
+    p.resolution = r.integer("resolution", 2, 256);
+    p.supersampling = r.integer("supersampling", 1, 256);
+    p.coarse_to_fine = r.flag("coarse_to_fine");
+    p.clusters = r.integer("clusters", 1, 1 << 24);
+    p.vectors = r.integer("vectors", 0, 1024);
+    p.refine_iterations = r.integer("refine_iterations", 0, 1 << 20);
+    p.mode = VdtMode(r.integer("mode", 0, 1));
+    p.below_horizon = BelowHorizon(r.integer("below_horizon", 0, 2));
+    p.half_precision_tables = r.flag("half_precision_tables");
+    p.seed = r.seed();
     return p;
 }
-OvdfParams ovdf_params_from(const json& j) {
+OvdfParams ovdf_params_from(const json& j, const fs::path& path) {
+    const ParamReader r(j, path);
     OvdfParams p;
-    p.shells = j.at("shells");
-    p.inner_radius = j.at("inner_radius");
-    p.outer_radius = j.at("outer_radius");
-    p.spacing = ShellSpacing(j.at("spacing").get<int>());
-    p.cube_resolution = j.at("cube_resolution");
-    p.vdt_resolution = j.at("vdt_resolution");
-    p.vectors = j.at("vectors");
-    p.segments_per_side = j.at("segments_per_side");
-    p.supersampling = j.at("supersampling");
-    p.mode = VdtMode(j.at("mode").get<int>());
-    p.half_precision_tables = j.at("half_precision_tables");
-    p.seed = j.at("seed");
+    p.shells = r.integer("shells", 2, 256);
+    p.inner_radius = r.positive("inner_radius");
+    p.outer_radius = r.positive("outer_radius");
+    if (!(p.outer_radius > p.inner_radius)) r.fail("outer_radius", "not above inner_radius");
+    p.spacing = ShellSpacing(r.integer("spacing", 0, 2));
+    p.cube_resolution = r.integer("cube_resolution", 2, 256);
+    p.vdt_resolution = r.integer("vdt_resolution", 2, 256);
+    p.vectors = r.integer("vectors", 0, 1024);
+    p.segments_per_side = r.integer("segments_per_side", 1, p.cube_resolution);
+    if (p.cube_resolution % p.segments_per_side != 0) r.fail("segments_per_side", "does not divide cube_resolution");
+    p.supersampling = r.integer("supersampling", 1, 256);
+    p.mode = VdtMode(r.integer("mode", 0, 1));
+    p.half_precision_tables = r.flag("half_precision_tables");
+    p.seed = r.seed();
     return p;
 }
 
@@ -209,10 +257,10 @@ size_t payload_end(const std::string& bytes) { return bytes.size() >= 8 ? bytes.
 // parameters (stale files are refused here).
 template <typename Params>
 Params expected_params(const fs::path& path, const FieldHeader& h, FieldKind kind, const FieldExpectation& expect,
-                       Params (*from_json)(const json&)) {
+                       Params (*from_json)(const json&, const fs::path&)) {
     check_expectation(path, h, kind, expect);
     try {
-        return from_json(json::parse(h.params));
+        return from_json(json::parse(h.params), path);
     } catch (const json::exception& e) {
         throw_file_error(path, "bad parameter block: {}", e.what());
     }
@@ -277,6 +325,9 @@ Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
     ovdf.params = expected_params(path, h, FieldKind::Ovdf, expect, ovdf_params_from);
     ovdf.center = r.get<Vec3>();
     ovdf.radius = r.get<float>();
+    if (!std::isfinite(ovdf.center.x + ovdf.center.y + ovdf.center.z) || !(ovdf.radius > 0 && ovdf.radius < 1e30f))
+        throw_file_error(path, "implausible OVDF bounding sphere (center {}, {}, {}, radius {})", ovdf.center.x,
+                         ovdf.center.y, ovdf.center.z, ovdf.radius);
     ovdf.model = get_model(path, r, h);
     if (h.dims != ovdf.params.vdt_resolution * ovdf.params.vdt_resolution ||
         size_t(h.samples) != ovdf.params.sample_count() || h.clusters != ovdf.params.segment_count())

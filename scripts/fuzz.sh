@@ -25,8 +25,9 @@ if [ "$which" != all ]; then
 fi
 
 echo "== configure + build the fuzzers ($build, clang-14)"
+# The same settings as scripts/sanitize.sh, so that the two can share a build.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang-14 \
-  -DCMAKE_CXX_COMPILER=clang++-14 -DRSL_FUZZ=ON -DRSL_BUILD_GL=OFF -DRSL_BUILD_TESTS=OFF >/dev/null
+  -DCMAKE_CXX_COMPILER=clang++-14 -DRSL_FUZZ=ON -DRSL_BUILD_GL=OFF >/dev/null
 cmake --build "$build" --parallel "$(nproc)" --target fuzzers
 
 # One fuzzer: its summary line on stdout, 1 when it found something.
@@ -54,15 +55,14 @@ run_one() {
 }
 
 echo "== fuzzing ${readers[*]}, $seconds s each, $jobs at a time; work folder $work"
-failed=0
-pids=()
+failed=0 running=0
 for reader in "${readers[@]}"; do
-  run_one "$reader" &
-  pids+=($!)
-  if ((${#pids[@]} >= jobs)); then
-    wait "${pids[0]}" || failed=1
-    pids=("${pids[@]:1}")
+  if ((running >= jobs)); then  # the next one starts when any ends
+    wait -n || failed=1
+    running=$((running - 1))
   fi
+  run_one "$reader" &
+  running=$((running + 1))
 done
-for pid in "${pids[@]}"; do wait "$pid" || failed=1; done
+for ((; running > 0; running--)); do wait -n || failed=1; done
 exit $failed

@@ -5,12 +5,14 @@
 // regression tests (tests/core/hostile_input_test.cpp,
 // tests/fields/field_file_test.cpp) check how each is refused; the input
 // sweep (tests/fuzz/input_sweep_test.cpp) runs every one through `rsl`.
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "fields/field_file.h"
+#include "fuzz/fixup.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
@@ -108,6 +110,27 @@ inline std::string huge_normals_obj() {
            "f 1//1 3//2 2//3\nf 1//1 2//3 4//2\nf 1//2 4//3 3//1\nf 2//1 3//2 4//3\n";
 }
 
+// A text glTF of one triangle whose buffer is `uri` (default: the
+// triangle's three positions, embedded) and whose POSITION accessor has
+// `count` elements.
+inline std::string gltf_triangle(const std::string& count = "3",
+                                 const std::string& uri = "data:application/octet-stream;base64,"
+                                                          "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA") {
+    return R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" + count + R"(, "type": "VEC3"}],
+  "bufferViews": [{"buffer": 0, "byteLength": 36, "byteStride": 12}],
+  "buffers": [{"byteLength": 36, "uri": ")" + uri + R"("}]})";
+}
+
+// 12 × (count − 1) wraps around 2^64 to less than the view's 36 bytes, so
+// the range check passed and std::vector refused the size (status 2).
+inline std::string gltf_count_overflow() { return gltf_triangle("1537228672809129302"); }
+
+// A buffer naming a directory: tinygltf took its size for 2^63 − 1 bytes
+// and std::bad_alloc ended `rsl` with status 2.
+inline std::string gltf_directory_buffer() { return gltf_triangle("3", "."); }
+
 // Scene files naming part.obj (kTetrahedronObj beside them) with numbers
 // beyond double range.
 inline std::string overflow_scene() {
@@ -134,6 +157,48 @@ inline std::string svdf_with_nan(const std::filesystem::path& dir, size_t nan_at
     m.coefficients = {0.5f, -0.5f, 1.0f};
     write_svdf(dir / "hostile_base.rslf", svdf, 7);
     return read_file(dir / "hostile_base.rslf");
+}
+
+// A small OVDF as rsl bake writes one (an octahedron's, coarse settings).
+inline std::string ovdf_bytes(const std::filesystem::path& dir) {
+    TriangleMesh mesh;
+    mesh.positions = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
+    mesh.indices = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+    validate_and_complete(mesh, "octahedron");
+    const OvdfParams params{.shells = 2, .cube_resolution = 2, .vdt_resolution = 4, .vectors = 1,
+                            .segments_per_side = 1, .supersampling = 1};
+    write_ovdf(dir / "hostile_base.rslf", bake_ovdf(mesh, params), mesh_hash(mesh));
+    return read_file(dir / "hostile_base.rslf");
+}
+
+// A field file whose parameter block has `key` set to the JSON `value`,
+// its hash and checksum made right again (as a writer with a bug would).
+inline std::string with_field_parameter(const std::string& bytes, const std::string& key, const std::string& value) {
+    uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 32, 4);
+    std::string params = bytes.substr(36, length);
+    const std::string quoted = "\"" + key + "\":";
+    const size_t at = params.find(quoted);
+    RSL_CHECK(at != std::string::npos);
+    const size_t begin = at + quoted.size(), end = params.find_first_of(",}", begin);
+    params.replace(begin, end - begin, value);
+    const uint32_t new_length = uint32_t(params.size());
+    std::string out = bytes.substr(0, 32) + std::string(reinterpret_cast<const char*>(&new_length), 4) + params +
+                      bytes.substr(36 + length);
+    fuzz::fix_field_file(out);
+    return out;
+}
+
+// An OVDF whose bounding sphere's center has a NaN x (fuzz_rslf: the lookup
+// converted a NaN shell coordinate to int, undefined behaviour).
+inline std::string ovdf_nan_center(const std::filesystem::path& dir) {
+    std::string bytes = ovdf_bytes(dir);
+    uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 32, 4);
+    const float nan = std::nanf("");
+    std::memcpy(bytes.data() + 36 + length, &nan, 4);  // the center follows the parameters
+    fuzz::fix_field_file(bytes);
+    return bytes;
 }
 
 }  // namespace rsl::test::hostile

@@ -45,6 +45,26 @@ inline std::string read_bytes(const std::filesystem::path& path) {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// A unit box standing on y = 0 (quads, fan-triangulated by the reader).
+inline constexpr const char* kUnitBoxObj =
+    "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\n"
+    "v -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
+    "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n";
+
+// An OBJ sheet at y = 0 of (n + 1)² vertices over [−half, half]², 2n²
+// triangles facing +Y: a mesh with many vertices in a few lines.
+inline std::string grid_obj(int n, double half) {
+    std::string obj;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) obj += fmt::format("v {} 0 {}\n", -half + 2 * half * i / n, -half + 2 * half * j / n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+            obj += fmt::format("f {} {} {}\nf {} {} {}\n", a, c, b, b, c, d);
+        }
+    return obj;
+}
+
 // The message of the rsl::Error that f() throws; empty when it throws none.
 template <typename F>
 std::string error_of(F&& f) {

@@ -13,6 +13,7 @@
 
 #include <glm/gtx/matrix_decompose.hpp>
 
+#include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/scene.h"
 
@@ -149,10 +150,10 @@ private:
                              buffer.size());
         const size_t stride = strided && view.byteStride ? view.byteStride : element_size;
         if (stride < element_size) throw_file_error(path_, "{}: byte stride {} < element size {}", where, stride, element_size);
-        // count ≤ view.byteLength / stride + 1 first, so that stride · (count − 1) cannot overflow.
-        const bool fits = byte_offset <= view.byteLength && count - 1 <= view.byteLength / stride &&
-                          byte_offset + stride * (count - 1) + element_size <= view.byteLength;
-        if (!fits)
+        // Without multiplying: a count near 2^64 / stride would wrap around
+        // and pass (std::vector then refused the size: an internal error).
+        if (byte_offset > view.byteLength || element_size > view.byteLength - byte_offset ||
+            count - 1 > (view.byteLength - byte_offset - element_size) / stride)
             throw_file_error(path_, "{}: {} elements from byte {} overrun buffer view {} of {} bytes", where, count,
                              byte_offset, view_index, view.byteLength);
         return {buffer.data() + view.byteOffset + byte_offset, stride};
@@ -228,6 +229,27 @@ private:
     const std::filesystem::path& path_;
 };
 
+// tinygltf reads files (the glTF itself, external buffers) with an ifstream
+// and takes tellg() for their size: a directory reports 2^63 − 1 bytes and
+// the allocation fails (std::bad_alloc, which `rsl` reported as an internal
+// error). This reader reads regular files only.
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        if (err) *err += "not a regular file: " + path + "\n";
+        return false;
+    }
+    try {
+        const std::string bytes = read_file(path);
+        out->assign(bytes.begin(), bytes.end());
+    } catch (const Error& e) {
+        if (err) *err += std::string(e.what()) + "\n";
+        return false;
+    }
+    if (out->empty() && err) *err += "File is empty : " + path + "\n";
+    return !out->empty();
+}
+
 tinygltf::Model read_model(const std::filesystem::path& path) {
     char magic[4] = {};
     {
@@ -244,6 +266,8 @@ tinygltf::Model read_model(const std::filesystem::path& path) {
 
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skip_image, nullptr);
+    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_regular_file,
+                           &tinygltf::WriteWholeFile, nullptr});
     tinygltf::Model model;
     std::string error, warning;
     const bool ok = binary_name ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())

@@ -196,9 +196,19 @@ size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& so
         for (size_t v = 0; v < mesh.vertex_count(); ++v) {
             const Vec3& n = mesh.normals[v];
             Vec4& t = mesh.tangents[v];
-            Vec3 xyz(t);
-            if (std::abs(glm::dot(n, xyz)) > 1e-6f) xyz -= n * glm::dot(n, xyz);
-            const bool usable = is_usable_direction(xyz) && glm::dot(xyz, xyz) > 1e-8f && std::isfinite(t.w);
+            const Vec3 given(t);
+            Vec3 xyz = given;
+            // In double and twice: one float pass leaves a large tangent, or
+            // one nearly along the normal, visibly out of the tangent plane.
+            if (std::abs(glm::dot(n, xyz)) > 1e-6f) {
+                DVec3 d(xyz);
+                for (int pass = 0; pass < 2; ++pass) d -= DVec3(n) * glm::dot(DVec3(n), d);
+                xyz = Vec3(d);
+            }
+            // What is left must be a direction in the plane, not rounding noise
+            // of one within about 0.01° of the normal.
+            const bool usable = is_usable_direction(xyz) && is_finite(given) && std::isfinite(t.w) &&
+                                glm::dot(DVec3(xyz), DVec3(xyz)) > 1e-8 * std::max(1.0, glm::dot(DVec3(given), DVec3(given)));
             if (usable) {
                 t = Vec4(unit(xyz), t.w < 0 ? -1.0f : 1.0f);
             } else {

@@ -198,14 +198,15 @@ private:
         if (!(v > 0)) fail(join(where, name), fmt::format("must be positive, got {}", v));
         return v;
     }
-    // 1 ≤ value ≤ most: the limits of docs/SCENE_FORMAT.md, beyond which a
-    // value is a typo or a corrupt file and the buffers it sizes would not fit.
-    int positive_int_at(const Json& object, const char* name, const std::string& where, int most) const {
+    // least ≤ value ≤ most: the limits of docs/SCENE_FORMAT.md, beyond which
+    // a value is a typo or a corrupt file and the buffers it sizes would not
+    // fit (or, below, the fields' lookups would have no second tap).
+    int int_at(const Json& object, const char* name, const std::string& where, int least, int most) const {
         const Json& j = object.at(name);
         if (!j.is_number_integer()) fail(join(where, name), fmt::format("expected an integer, got {}", j.dump()));
         const long long v = j.is_number_unsigned() && j.get<unsigned long long>() > (1ull << 62) ? -1 : j.get<long long>();
-        if (v <= 0 || v > most)
-            fail(join(where, name), fmt::format("must be an integer from 1 to {}, got {}", most, j.dump()));
+        if (v < least || v > most)
+            fail(join(where, name), fmt::format("must be an integer from {} to {}, got {}", least, most, j.dump()));
         return int(v);
     }
     std::string string_at(const Json& object, const char* name, const std::string& key) const {
@@ -371,7 +372,7 @@ private:
         EnvironmentDesc& env = scene_.environment;
         if (!j.contains("file")) fail(where, "`file` is required");
         env.file = existing_file(j["file"], "environment.file");
-        if (j.contains("resolution")) env.resolution = positive_int_at(j, "resolution", where, 4096);
+        if (j.contains("resolution")) env.resolution = int_at(j, "resolution", where, 1, 4096);
         if (j.contains("rotation")) {
             const Json& r = expect_object(j["rotation"], "environment.rotation");
             check_keys(r, "environment.rotation", {"axis", "degrees", "degrees_per_second"});
@@ -464,8 +465,8 @@ private:
             c.fov_y_degrees = positive_number_at(j, "fov_degrees", where);
             if (c.fov_y_degrees >= 180) fail("camera.fov_degrees", "must be below 180");
         }
-        if (j.contains("width")) c.width = positive_int_at(j, "width", where, 16384);
-        if (j.contains("height")) c.height = positive_int_at(j, "height", where, 16384);
+        if (j.contains("width")) c.width = int_at(j, "width", where, 1, 16384);
+        if (j.contains("height")) c.height = int_at(j, "height", where, 1, 16384);
         if (j.contains("path")) {
             const Json& path = expect_object(j["path"], "camera.path");
             check_keys(path, "camera.path", {"times", "positions", "targets"});
@@ -494,21 +495,23 @@ private:
             const Json& s = expect_object(j["svdf"], "precompute.svdf");
             const std::string w = "precompute.svdf";
             check_keys(s, w, {"resolution", "clusters", "vectors", "supersampling"});
-            if (s.contains("resolution")) p.svdf_resolution = positive_int_at(s, "resolution", w, 256);
-            if (s.contains("clusters")) p.svdf_clusters = positive_int_at(s, "clusters", w, 65536);
-            if (s.contains("vectors")) p.svdf_vectors = positive_int_at(s, "vectors", w, 256);
-            if (s.contains("supersampling")) p.svdf_supersampling = positive_int_at(s, "supersampling", w, 32);
+            if (s.contains("resolution")) p.svdf_resolution = int_at(s, "resolution", w, 2, 256);
+            if (s.contains("clusters")) p.svdf_clusters = int_at(s, "clusters", w, 1, 65536);
+            if (s.contains("vectors")) p.svdf_vectors = int_at(s, "vectors", w, 1, 256);
+            if (s.contains("supersampling")) p.svdf_supersampling = int_at(s, "supersampling", w, 1, 32);
         }
         if (j.contains("ovdf")) {
             const Json& o = expect_object(j["ovdf"], "precompute.ovdf");
             const std::string w = "precompute.ovdf";
             check_keys(o, w, {"shells", "inner_radius", "outer_radius", "cube_resolution", "vdt_resolution", "vectors"});
-            if (o.contains("shells")) p.ovdf_shells = positive_int_at(o, "shells", w, 256);
+            if (o.contains("shells")) p.ovdf_shells = int_at(o, "shells", w, 2, 256);
             if (o.contains("inner_radius")) p.ovdf_inner_radius = positive_number_at(o, "inner_radius", w);
             if (o.contains("outer_radius")) p.ovdf_outer_radius = positive_number_at(o, "outer_radius", w);
-            if (o.contains("cube_resolution")) p.ovdf_cube_resolution = positive_int_at(o, "cube_resolution", w, 256);
-            if (o.contains("vdt_resolution")) p.ovdf_vdt_resolution = positive_int_at(o, "vdt_resolution", w, 256);
-            if (o.contains("vectors")) p.ovdf_vectors = positive_int_at(o, "vectors", w, 256);
+            if (o.contains("cube_resolution")) p.ovdf_cube_resolution = int_at(o, "cube_resolution", w, 2, 256);
+            if (o.contains("vdt_resolution")) p.ovdf_vdt_resolution = int_at(o, "vdt_resolution", w, 2, 256);
+            if (o.contains("vectors")) p.ovdf_vectors = int_at(o, "vectors", w, 1, 256);
+            // Each face is split into 2 × 2 segments (OvdfParams::segments_per_side).
+            if (p.ovdf_cube_resolution % 2 != 0) fail("precompute.ovdf.cube_resolution", "must be even");
             if (p.ovdf_outer_radius <= p.ovdf_inner_radius)
                 fail("precompute.ovdf.outer_radius", "must be larger than inner_radius");
         }

@@ -164,4 +164,34 @@ TEST_CASE("Normals and tangents too large to square in float are normalized, not
     CHECK(tri.tangents[0] == Vec4(1, 0, 0, 1));
     CHECK(tri.tangents[1] == Vec4(0, 1, 0, -1));
     CHECK(glm::length(Vec3(tri.tangents[2]) - glm::normalize(Vec3(1, 1, 0))) < 1e-6f);
+    // Large tangents mostly along the normal (fuzz_glb): one float pass of
+    // Gram-Schmidt left (6e5, 8e5, 16) 0.2° out of the tangent plane, its
+    // direction rounding noise; within 0.01° of the normal a tangent is no
+    // direction at all and gets the mesh-wide rule.
+    tri.normals.assign(3, Vec3(0.6f, 0.8f, 0));
+    tri.tangents = {Vec4(6e5f, 8e5f, 1e3f, 1), Vec4(6e5f, 8e5f, 16, 1), Vec4(0, 0, 1, 1)};
+    validate_and_complete(tri, "tri");
+    for (const Vec4& t : tri.tangents) {
+        INFO(t.x << " " << t.y << " " << t.z);
+        CHECK(std::abs(glm::dot(Vec3(t), Vec3(0.6f, 0.8f, 0))) < 1e-6f);
+        CHECK(unit_and_finite(Vec3(t)));
+    }
+    CHECK(glm::length(Vec3(tri.tangents[0]) - Vec3(0, 0, 1)) < 1e-4f);
+    CHECK(glm::length(Vec3(tri.tangents[1]) - Vec3(0, 0, 1)) > 0.5f);  // the rule, not the noise
+    CHECK(tri.tangents[2] == Vec4(0, 0, 1, 1));
+}
+
+TEST_CASE("glTF accessors and buffers that made the loader allocate without bound are refused", "[bad-input][fuzz]") {
+    const fs::path dir = test::scratch_dir("hostile_gltf");
+    test::write_text(dir / "good.gltf", gltf_triangle());
+    CHECK(load_scene(dir / "good.gltf").parts.at(0).mesh.vertex_count() == 3);
+    test::write_text(dir / "count.gltf", gltf_count_overflow());
+    CHECK_THROWS_WITH(load_scene(dir / "count.gltf"),
+                      Catch::Contains("count.gltf") && Catch::Contains("1537228672809129302 elements from byte 0 overrun"));
+    test::write_text(dir / "directory.gltf", gltf_directory_buffer());
+    CHECK_THROWS_WITH(load_scene(dir / "directory.gltf"),
+                      Catch::Contains("directory.gltf: not a valid glTF 2.0 file") && Catch::Contains("not a regular file"));
+    // The glTF itself a directory (named .gltf): the same reader refuses it.
+    fs::create_directories(dir / "folder.gltf");
+    CHECK_THROWS_WITH(load_scene(dir / "folder.gltf"), Catch::Contains("folder.gltf") && Catch::Contains("not a regular file"));
 }

@@ -183,9 +183,18 @@ TEST_CASE("Scene files: OBJ parts, transforms, defaults and every kind of error"
     // Sizes of what rsl allocates are bounded (docs/SCENE_FORMAT.md): a camera of 16777216² pixels was accepted.
     require_error("{" + part + R"(, "camera": { "width": 16777216 }})", "camera.width: must be an integer from 1 to 16384");
     require_error("{" + part + R"(, "precompute": { "ovdf": { "shells": 18446744073709551615 } }})",
-                  "precompute.ovdf.shells: must be an integer from 1 to 256, got 18446744073709551615");
+                  "precompute.ovdf.shells: must be an integer from 2 to 256, got 18446744073709551615");
     require_error("{" + part + R"(, "environment": { "file": "tet.obj", "resolution": 8192 }})",
                   "environment.resolution: must be an integer from 1 to 4096");
+    // Settings that `rsl bake` took to an internal error (a check in the fields' code).
+    require_error("{" + part + R"(, "precompute": { "ovdf": { "shells": 1 } }})",
+                  "precompute.ovdf.shells: must be an integer from 2 to 256, got 1");
+    require_error("{" + part + R"(, "precompute": { "ovdf": { "cube_resolution": 5 } }})",
+                  "precompute.ovdf.cube_resolution: must be even");
+    require_error("{" + part + R"(, "precompute": { "ovdf": { "vdt_resolution": 1 } }})",
+                  "precompute.ovdf.vdt_resolution: must be an integer from 2 to 256");
+    require_error("{" + part + R"(, "precompute": { "svdf": { "resolution": 1 } }})",
+                  "precompute.svdf.resolution: must be an integer from 2 to 256");
     // A light path without positions was an internal error (nlohmann's out_of_range, status 2).
     require_error("{" + part + R"(, "lights": [{ "path": { "times": [0] } }]})", "lights[0].path.positions: required with `times`");
     require_error("{" + part + R"(, "animation": { "start": 2, "end": 1 }})", "animation.end");

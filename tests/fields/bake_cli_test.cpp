@@ -11,6 +11,7 @@
 
 #include "fields/field_file.h"
 #include "tests/core/gltf_builder.h"
+#include "tests/interrupted_run.h"
 #include "tests/test_support.h"
 
 using namespace rsl;
@@ -25,10 +26,7 @@ void write_tiny_scene(const fs::path& dir) {
     write_text(dir / "ground.obj",
                "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nv 0 0 0\n"
                "f 1 5 2\nf 2 5 3\nf 3 5 4\nf 4 5 1\n");
-    write_text(dir / "box.obj",
-               "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\n"
-               "v -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
-               "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n");
+    write_text(dir / "box.obj", kUnitBoxObj);
     write_text(dir / "tiny.json", R"({
   "name": "tiny",
   "parts": [ { "name": "ground", "obj": "ground.obj" }, { "name": "box", "obj": "box.obj" } ],
@@ -186,16 +184,7 @@ TEST_CASE("rsl bake killed at any moment: no partial field file, and the rerun r
     write_tiny_scene(dir);
     // A 61×61-vertex ground and heavier settings than the tiny scene's, so
     // that a bake lasts long enough (about 0.35 s on a quiet machine) to be cut.
-    std::string grid;
-    const int n = 60;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) grid += fmt::format("v {} 0 {}\n", -2.0 + 4.0 * i / n, -2.0 + 4.0 * j / n);
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            const int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
-            grid += fmt::format("f {} {} {}\nf {} {} {}\n", a, c, b, b, c, d);
-        }
-    write_text(dir / "ground.obj", grid);
+    write_text(dir / "ground.obj", grid_obj(60, 2.0));
     write_text(dir / "tiny.json", R"({
   "name": "tiny",
   "parts": [ { "name": "ground", "obj": "ground.obj" }, { "name": "box", "obj": "box.obj" } ],
@@ -213,11 +202,8 @@ TEST_CASE("rsl bake killed at any moment: no partial field file, and the rerun r
     };
     // Kill (SIGKILL) at growing delays; whatever stands under a final name must be whole.
     int killed = 0;
-    for (const char* delay : {"0.02", "0.05", "0.1", "0.15", "0.2", "0.3"}) {
-        const auto [status, output] = run_command("timeout -s KILL " + std::string(delay) + " " +
-                                                  RSL_RSL_EXECUTABLE + " bake -q " + scene);
-        INFO("killed after " << delay << " s, status " << status << "\n" << output);
-        if (status == 128 + 9) ++killed;  // timeout's status for a child it killed
+    for (const double delay : {0.02, 0.05, 0.1, 0.15, 0.2, 0.3}) {
+        killed += run_killed(std::string(RSL_RSL_EXECUTABLE) + " bake -q " + scene, {delay}, {}, {}, cache).killed;
         for (const fs::path& f : final_files()) CHECK_NOTHROW(read_field_header(f));  // magic, size, checksum
     }
     CHECK(killed > 0);  // else nothing was cut, and the test proved nothing
@@ -229,7 +215,7 @@ TEST_CASE("rsl bake killed at any moment: no partial field file, and the rerun r
     // What the killed runs finished is reused byte for byte; their temporaries are gone.
     for (const auto& [path, bytes] : before) CHECK(read_bytes(path) == bytes);
     CHECK(contains(output, fmt::format("{} reused from the cache", before.size())));
-    for (const auto& e : fs::directory_iterator(cache)) CHECK(e.path().filename().string()[0] != '.');
+    CHECK(temporaries_in(cache).empty());
     fs::remove_all(dir);
 }
 

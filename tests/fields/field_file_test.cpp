@@ -122,3 +122,33 @@ TEST_CASE("A field file with a right checksum but NaN or infinite numbers is ref
     CHECK(error_of([&] { read_svdf(dir / "inf.rslf"); }).find("non-finite PCA coefficient inf at index 2") !=
           std::string::npos);
 }
+
+TEST_CASE("Field files with parameters or a bounding sphere the lookups cannot use are refused", "[field_file][bad-input][fuzz]") {
+    // fuzz_rslf found a NaN center (a NaN shell coordinate converted to int
+    // in the lookup); the parameters below reached prepare()'s checks
+    // (status 2), a division by zero, or lookups one tap outside a table.
+    using namespace test::hostile;
+    const fs::path dir = test::scratch_dir("field_file_params");
+    const std::string good = ovdf_bytes(dir);
+    write_file_atomically(dir / "good.rslf", good);
+    const Ovdf ovdf = read_ovdf(dir / "good.rslf");
+    CHECK(std::isfinite(ovdf.visible_fraction(ovdf.center + Vec3(2 * ovdf.radius, 0, 0), Vec3(-1, 0, 0), 0.1f)));
+    const auto refused = [&](const std::string& bytes, const std::string& message) {
+        write_file_atomically(dir / "bad.rslf", bytes);
+        const std::string error = error_of([&] { read_ovdf(dir / "bad.rslf"); });
+        INFO(error);
+        CHECK(error.find("bad.rslf: ") != std::string::npos);
+        CHECK(error.find(message) != std::string::npos);
+    };
+    refused(ovdf_nan_center(dir), "implausible OVDF bounding sphere (center nan");
+    refused(with_field_parameter(good, "shells", "1"), "bad parameter block: shells: 1 is not an integer from 2 to 256");
+    refused(with_field_parameter(good, "segments_per_side", "0"), "segments_per_side: 0 is not an integer from 1 to 2");
+    refused(with_field_parameter(good, "cube_resolution", "1"), "cube_resolution: 1 is not an integer from 2 to 256");
+    refused(with_field_parameter(good, "vdt_resolution", "4e20"), "vdt_resolution: 4e+20 is not an integer");
+    refused(with_field_parameter(good, "inner_radius", "-0.5"), "inner_radius: -0.5 is not a positive number");
+    refused(with_field_parameter(good, "outer_radius", "0.1"), "outer_radius: not above inner_radius");
+    refused(with_field_parameter(good, "spacing", "7"), "spacing: 7 is not an integer from 0 to 2");
+    refused(with_field_parameter(good, "half_precision_tables", "3"), "half_precision_tables: 3 is not true or false");
+    refused(with_field_parameter(good, "seed", "-1"), "seed: -1 is not an unsigned integer");
+    refused(with_field_parameter(good, "cube_resolution", "4"), "model sizes do not match the OVDF parameters");
+}

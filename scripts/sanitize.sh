@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The sanitizer pass of CI (docs/FUZZING.md): one clang-14 build with
+# AddressSanitizer and UBSan (RSL_FUZZ=ON, so the same build holds the
+# fuzzers), the test suite run in it, then every fuzzer for a short time.
+# Any sanitizer report fails its test or fuzzer (UBSan does not recover).
+#   scripts/sanitize.sh [FUZZ_SECONDS]     (default 30 per fuzzer; 0: none)
+# The GL renderer and viewer are left out of this build (RSL_BUILD_GL=OFF):
+# Mesa's llvmpipe is not built with the sanitizers, and their tests stay on
+# the plain build. Environment: RSL_SANITIZE_BUILD_DIR (default build-sanitize).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-30}
+build=${RSL_SANITIZE_BUILD_DIR:-build-sanitize}
+start=$(date +%s)
+
+echo "== configure + build ($build: clang-14, ASan + UBSan, no GL)"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang-14 \
+  -DCMAKE_CXX_COMPILER=clang++-14 -DRSL_FUZZ=ON -DRSL_BUILD_GL=OFF >/dev/null
+cmake --build "$build" --parallel "$(nproc)"
+built=$(date +%s)
+
+echo "== the test suite under ASan + UBSan"
+# Leaks are reported too (LeakSanitizer); a report ends the program with status 1.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+(cd "$build" && ctest --output-on-failure --parallel "$(nproc)" --timeout 1800)
+tested=$(date +%s)
+
+if [ "$seconds" -gt 0 ]; then
+  RSL_FUZZ_BUILD_DIR="$build" RSL_FUZZ_WORK_DIR="$build/fuzz-ci" scripts/fuzz.sh all "$seconds" "$(nproc)"
+fi
+echo "== sanitizers: build $((built - start)) s, tests $((tested - built)) s, fuzzers $(($(date +%s) - tested)) s"

@@ -1,0 +1,114 @@
+#pragma once
+// Fault tests of the `rsl` commands that write files (bake, truth, render):
+// the command is killed (SIGKILL) at several moments; whatever stands under
+// a final name must then be whole, and a rerun must complete and leave no
+// temporary (".NAME.tmp-PID-N.EXT", src/core/atomic_file.h) behind.
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+
+#include "src/core/image.h"
+#include "tests/test_support.h"
+
+namespace rsl::test {
+
+// The temporaries write_atomically leaves in `dir` (names ".STEM.tmp-...").
+inline std::vector<std::filesystem::path> temporaries_in(const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> found;
+    if (!std::filesystem::exists(dir)) return found;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        if (name[0] == '.' && name.find(".tmp-") != std::string::npos) found.push_back(entry.path());
+    }
+    return found;
+}
+
+// A temporary of `target` as a writer that died mid-write would leave it
+// (its process id is one that has exited), so that a rerun's sweep is tested
+// even when no kill happened to land inside a write.
+inline std::filesystem::path plant_stale_temporary(const std::filesystem::path& target) {
+    const pid_t child = ::fork();
+    if (child == 0) std::_Exit(0);
+    ::waitpid(child, nullptr, 0);
+    const std::filesystem::path tmp = target.parent_path() / fmt::format(".{}.tmp-{}-0{}", target.stem().string(), child,
+                                                                         target.extension().string());
+    write_text(tmp, "half written");
+    return tmp;
+}
+
+struct KilledRuns {
+    int killed = 0;      // runs that were killed (not ended first)
+    int cut_writes = 0;  // killed runs that left a temporary: killed inside a write
+};
+
+// Runs `command` once per delay, killed (SIGKILL) after that many seconds
+// unless it ends first, with `outputs` removed before each run; after each,
+// check_whole(path) is called for every output that exists (it must fail
+// the test when the file is partial), and `watched` (where the command
+// writes) is looked at for temporaries.
+inline KilledRuns run_killed(const std::string& command, const std::vector<double>& delays,
+                             const std::vector<std::filesystem::path>& outputs,
+                             const std::function<void(const std::filesystem::path&)>& check_whole,
+                             const std::filesystem::path& watched) {
+    KilledRuns runs;
+    for (const double delay : delays) {
+        for (const auto& output : outputs) std::filesystem::remove(output);
+        const size_t temporaries = temporaries_in(watched).size();
+        const auto [status, text] = run_command(fmt::format("timeout -s KILL {:.3f} {}", delay, command));
+        INFO("killed after " << delay << " s, status " << status << "\n" << text);
+        if (status == 128 + 9) ++runs.killed;  // timeout's status for a child it killed
+        // A run that writes sweeps dead runs' temporaries first, so one more
+        // temporary than before means this run died inside a write.
+        if (status == 128 + 9 && temporaries_in(watched).size() > temporaries) ++runs.cut_writes;
+        for (const auto& output : outputs)
+            if (std::filesystem::exists(output)) {
+                INFO("under its final name: " << output);
+                check_whole(output);
+            }
+    }
+    return runs;
+}
+
+// The scene the truth and render kill tests run: an (n + 1)²-vertex ground
+// and a unit box under a white sky, seen by a 1600×1200 camera so that the
+// EXR write takes a good part of a run; `precompute` is the scene file's
+// precompute section (JSON, or empty for the defaults).
+inline void write_killable_scene(const std::filesystem::path& dir, int n, const std::string& precompute = "") {
+    write_text(dir / "ground.obj", grid_obj(n, 2.0));
+    write_text(dir / "box.obj", kUnitBoxObj);
+    Image white(64, 32, 3);
+    std::fill(white.pixels.begin(), white.pixels.end(), 1.0f);
+    write_exr(dir / "white.exr", white);
+    write_text(dir / "scene.json", R"({
+  "name": "killed",
+  "parts": [ { "name": "ground", "obj": "ground.obj" }, { "name": "box", "obj": "box.obj" } ],
+  "environment": { "file": "white.exr", "resolution": 16 },
+  "camera": { "position": [0, 3, 4], "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 50,
+              "width": 1600, "height": 1200 })" + (precompute.empty() ? "" : ",\n  \"precompute\": " + precompute) +
+                                         "\n}\n");
+}
+
+// Whether `bytes` is a whole PNG: the signature, and the IEND chunk last.
+inline bool is_whole_png(const std::string& bytes) {
+    const std::string signature = "\x89PNG\r\n\x1a\n", end = std::string("IEND\xae\x42\x60\x82", 8);
+    return bytes.size() > signature.size() + end.size() && bytes.compare(0, signature.size(), signature) == 0 &&
+           bytes.compare(bytes.size() - end.size(), end.size(), end) == 0;
+}
+
+// The wall time of one uninterrupted run of `command` (status 0 required).
+inline double timed_run(const std::string& command) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto [status, text] = run_command(command);
+    INFO(text);
+    REQUIRE(status == 0);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace rsl::test
