@@ -255,14 +255,15 @@ void main() {
                 direction = a.xyz;
                 h = a.w;
                 integral = b.rgb;
-            } else {  // sphere light: center a.xyz, radius a.w, radiance b.rgb
+            } else {  // sphere light: center a.xyz, radius a.w, radiance b.rgb; spot axis c.xyz, cone (b.w, c.w)
                 vec3 to_center = a.xyz - p;
                 float distance = length(to_center);
                 if (!(distance > a.w)) continue;
                 direction = to_center / distance;
                 float solid_angle = sphere_cap_solid_angle(a.w, distance);
                 h = half_edge_for_solid_angle(solid_angle);
-                integral = b.rgb * solid_angle;
+                vec4 c = fetch(u_lights, kLightTexels * l + 2);
+                integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -direction, b.w, c.w));
             }
             vec3 local = to_local(frame, direction);
             vec2 lp = hemisphere_to_plane(local);

@@ -5,11 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-// tinygltf's implementation lives in src/core/gltf_loader.cpp; every includer
-// must use the same TINYGLTF_NO_* set (they change inline defaults).
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#include <tiny_gltf.h>
+#include "src/core/gltf_model.h"  // tinygltf, configured as the loader compiles it
 
 #include <fmt/format.h>
 #include <stb_image_write.h>  // compiled in src/core/image.cpp

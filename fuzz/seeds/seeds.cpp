@@ -3,11 +3,7 @@
 
 #include <sstream>
 
-// tinygltf's implementation lives in src/core/gltf_loader.cpp; every includer
-// must use the same TINYGLTF_NO_* set (they change inline defaults).
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#include <tiny_gltf.h>
+#include "src/core/gltf_model.h"  // tinygltf, configured as the loader compiles it
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfEnvmapAttribute.h>

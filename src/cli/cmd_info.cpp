@@ -88,6 +88,16 @@ bool is_animated(const Scene& scene, int node) {
     return false;
 }
 
+void print_camera(const Scene& scene) {
+    const Camera& c = scene.camera;
+    const bool from_gltf = scene.gltf_camera && scene.gltf_camera->used;
+    fmt::print("  camera:            {} → {}, fov {:.4g}°, {} x {}{}{}\n", vec3_text(c.position), vec3_text(c.target),
+               c.fov_y_degrees, c.width, c.height, c.position_path || c.target_path ? ", keyed path" : "",
+               from_gltf ? fmt::format(", glTF camera node '{}'", scene.gltf_camera->name)
+               : scene.gltf_camera ? fmt::format(" (the scene file's; glTF camera node '{}' unused)", scene.gltf_camera->name)
+                                   : "");
+}
+
 void print_parts(const Scene& scene) {
     size_t triangles = 0, dropped = 0;
     for (const Part& p : scene.parts) {
@@ -116,6 +126,34 @@ void print_parts(const Scene& scene) {
     print_unique_meshes(stdout, scene, plan);
 }
 
+// Each glTF file's extensions (extensionsUsed), and what rsl does with each.
+void print_gltf_extensions(const Scene& scene) {
+    for (const GltfFileNotes& file : scene.gltf_files) {
+        if (file.extensions_used.empty()) continue;
+        fmt::print("  glTF extensions:   {}\n", file.file.filename().string());
+        for (const std::string& name : file.extensions_used) {
+            const bool required = std::find(file.extensions_required.begin(), file.extensions_required.end(), name) !=
+                                  file.extensions_required.end();
+            fmt::print("    {:<32} {}{}\n", name, gltf_extension_support(name), required ? " (required)" : "");
+        }
+    }
+}
+
+void print_lights(const Scene& scene) {
+    fmt::print("  lights:            {}\n", scene.lights.size());
+    for (const LocalLight& l : scene.lights) {
+        std::string kind = l.name.empty() ? "" : fmt::format("glTF node '{}', ", l.name);
+        if (l.spot)
+            kind += fmt::format("spot {:.4g}°..{:.4g}° along {}, ", glm::degrees(l.inner_cone_radians),
+                                glm::degrees(l.outer_cone_radians), vec3_text(l.axis));
+        fmt::print("    {}radius {:.4g}, power {} W, position {}{}\n", kind, l.radius, vec3_text(l.power),
+                   vec3_text(l.position),
+                   l.path                           ? fmt::format(", path of {} keys", l.path->times.size())
+                   : l.node >= 0 && is_animated(scene, l.node) ? ", animated"
+                                                                : "");
+    }
+}
+
 void print_scene_body(const Scene& scene) {
     print_parts(scene);
     fmt::print("  materials:         {}\n", scene.materials.size());
@@ -133,13 +171,9 @@ void print_scene_body(const Scene& scene) {
         if (!env.second_file.empty())
             fmt::print("                     blends to {} over {} s\n", env.second_file.string(), env.blend_period_seconds);
     }
-    fmt::print("  lights:            {}\n", scene.lights.size());
-    for (const LocalLight& l : scene.lights)
-        fmt::print("    radius {:.4g}, power {} W, position {}{}\n", l.radius, vec3_text(l.power), vec3_text(l.position),
-                   l.path ? fmt::format(", path of {} keys", l.path->times.size()) : "");
-    const Camera& c = scene.camera;
-    fmt::print("  camera:            {} → {}, fov {}°, {} x {}{}\n", vec3_text(c.position), vec3_text(c.target),
-               c.fov_y_degrees, c.width, c.height, c.position_path || c.target_path ? ", keyed path" : "");
+    print_lights(scene);
+    print_camera(scene);
+    print_gltf_extensions(scene);
     fmt::print("  animation:         {} .. {} s at {} fps\n", scene.animation.start, scene.animation.end,
                scene.animation.fps);
 }
@@ -147,10 +181,13 @@ void print_scene_body(const Scene& scene) {
 void print_mesh_file(const std::filesystem::path& path) {
     fmt::print("{}: mesh\n", path.string());
     const Scene scene = load_scene(path);  // .obj: one part; glTF: one part per mesh node
-    fmt::print("  nodes:             {}\n", scene.nodes.size());
+    fmt::print("  nodes:             {}{}\n", scene.nodes.size(), scene.gltf_files.empty() ? "" : " (the default scene's)");
     print_parts(scene);
     if (scene.animation.end > scene.animation.start)
         fmt::print("  animation:         {} .. {} s\n", scene.animation.start, scene.animation.end);
+    if (!scene.lights.empty()) print_lights(scene);
+    if (scene.gltf_camera) print_camera(scene);
+    print_gltf_extensions(scene);
 }
 
 void print_scene_file(const std::filesystem::path& path) {

@@ -117,6 +117,20 @@ float EnvironmentDesc::blend_weight_at(float t) const {
     return 0.5f - 0.5f * std::cos(2.0f * kPi * t / blend_period_seconds);
 }
 
+Vec3 LocalLight::position_at(const Scene& scene, float t) const {
+    if (node >= 0) return Vec3(scene.node_world_at(node, t)[3]);
+    return path ? path->sample(t) : position;
+}
+
+// glTF points spot lights (and cameras) along the node's −Z axis, transformed
+// by the node's world matrix and normalized.
+Vec3 LocalLight::axis_at(const Scene& scene, float t) const {
+    if (node < 0) return axis;
+    const Vec3 d = Mat3(scene.node_world_at(node, t)) * Vec3(0, 0, -1);
+    const float len = glm::length(d);
+    return len > 0 ? d / len : Vec3(0, 0, -1);
+}
+
 Mat4 Scene::node_world_at(int node, float t) const {
     if (node < 0) return Mat4(1.0f);
     RSL_CHECK_LT(size_t(node), nodes.size());

@@ -1,17 +1,16 @@
-// glTF 2.0 (.gltf and .glb) through tinygltf: node hierarchy, one rigid part
-// per mesh node (per material of its primitives), node animation, materials
-// (gltf_materials.cpp). Every index and byte range in the file is checked
-// before it is read, so corrupt files give an rsl::Error naming the file.
+// glTF 2.0 (.gltf and .glb) through tinygltf: the default scene's node
+// hierarchy, one rigid part per mesh node (per material of its primitives),
+// node animation, materials (gltf_materials.cpp), lights, camera and
+// extensions (gltf_extras.cpp). Every index and byte range in the file is
+// checked before it is read, so corrupt files give an rsl::Error naming the file.
 //
-// tinygltf's implementation lives in this translation unit. Its stb image
-// loader is left out (gltf_materials.cpp decodes base colour images with
-// Debian's stb_image); any other file that includes tiny_gltf.h must define
-// the same two TINYGLTF_NO_* macros (they change inline defaults).
+// tinygltf's implementation lives in this translation unit (configured by
+// gltf_model.h; gltf_materials.cpp decodes base colour images with Debian's
+// stb_image).
 #define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#include <tiny_gltf.h>
+#include "src/core/gltf_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -86,7 +85,12 @@ private:
     struct Range {
         const unsigned char* data = nullptr;  // first element
         size_t stride = 0, component_size = 0;
+        std::vector<unsigned char> dense;  // a sparse accessor's elements, when `data` points here
     };
+
+    // Zero-filled elements (a sparse accessor without a buffer view) beyond
+    // this are a corrupt count, not a mesh: refused before allocating.
+    static constexpr size_t kMaxDenseBytes = size_t(1) << 30;
 
     template <typename T>
     static T load(const unsigned char* p) {
@@ -125,39 +129,99 @@ private:
                              model_.accessors.size());
     }
 
-    // The accessor's bytes, after checking that accessor, buffer view and
-    // buffer exist and that every element lies inside them.
-    Range checked_range(int accessor_index, const std::string& what) const {
-        check_accessor_index(accessor_index, what);
-        const tinygltf::Accessor& a = model_.accessors[accessor_index];
-        const std::string where = fmt::format("{}: accessor {}", what, accessor_index);
-        if (a.sparse.isSparse) throw_file_error(path_, "{} is sparse, which is not supported", where);
-        const int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
-        const int components = component_count(a.type);
-        if (component_size <= 0 || components == 0)
-            throw_file_error(path_, "{} has an unsupported component type {} or type {}", where, a.componentType, a.type);
-        if (a.count == 0) throw_file_error(path_, "{} is empty", where);
-        if (a.bufferView < 0 || size_t(a.bufferView) >= model_.bufferViews.size())
-            throw_file_error(path_, "{}: buffer view {} is out of range ({} views)", where, a.bufferView,
+    // The bytes of `count` elements of `element_size` from `byte_offset` in
+    // buffer view `view_index` (tightly packed unless the view has a stride,
+    // when `strided`), after checking that the view and its buffer exist and
+    // that every element lies inside them. Returns the first element and the stride.
+    std::pair<const unsigned char*, size_t> checked_view(int view_index, size_t byte_offset, size_t count,
+                                                         size_t element_size, bool strided,
+                                                         const std::string& where) const {
+        if (view_index < 0 || size_t(view_index) >= model_.bufferViews.size())
+            throw_file_error(path_, "{}: buffer view {} is out of range ({} views)", where, view_index,
                              model_.bufferViews.size());
-        const tinygltf::BufferView& view = model_.bufferViews[a.bufferView];
+        const tinygltf::BufferView& view = model_.bufferViews[view_index];
         if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
             throw_file_error(path_, "{}: buffer {} is out of range ({} buffers)", where, view.buffer, model_.buffers.size());
         const std::vector<unsigned char>& buffer = model_.buffers[view.buffer].data;
         if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
             throw_file_error(path_, "{}: buffer view {} (bytes {}..{}) overruns buffer {} of {} bytes", where,
-                             a.bufferView, view.byteOffset, view.byteOffset + view.byteLength, view.buffer,
+                             view_index, view.byteOffset, view.byteOffset + view.byteLength, view.buffer,
                              buffer.size());
-        const size_t element_size = size_t(component_size) * components;
-        const size_t stride = view.byteStride ? view.byteStride : element_size;
+        const size_t stride = strided && view.byteStride ? view.byteStride : element_size;
         if (stride < element_size) throw_file_error(path_, "{}: byte stride {} < element size {}", where, stride, element_size);
         // Without multiplying: a count near 2^64 / stride would wrap around
         // and pass (std::vector then refused the size: an internal error).
-        if (a.byteOffset > view.byteLength || element_size > view.byteLength - a.byteOffset ||
-            a.count - 1 > (view.byteLength - a.byteOffset - element_size) / stride)
-            throw_file_error(path_, "{}: {} elements from byte {} overrun buffer view {} of {} bytes", where, a.count,
-                             a.byteOffset, a.bufferView, view.byteLength);
-        return Range{buffer.data() + view.byteOffset + a.byteOffset, stride, size_t(component_size)};
+        if (byte_offset > view.byteLength || element_size > view.byteLength - byte_offset ||
+            count - 1 > (view.byteLength - byte_offset - element_size) / stride)
+            throw_file_error(path_, "{}: {} elements from byte {} overrun buffer view {} of {} bytes", where, count,
+                             byte_offset, view_index, view.byteLength);
+        return {buffer.data() + view.byteOffset + byte_offset, stride};
+    }
+
+    // The accessor's bytes, after checking that accessor, buffer view and
+    // buffer exist and that every element lies inside them. A sparse
+    // accessor's elements are its base (zeros without a buffer view) with
+    // the sparse values written at the sparse indices.
+    Range checked_range(int accessor_index, const std::string& what) const {
+        check_accessor_index(accessor_index, what);
+        const tinygltf::Accessor& a = model_.accessors[accessor_index];
+        const std::string where = fmt::format("{}: accessor {}", what, accessor_index);
+        const int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
+        const int components = component_count(a.type);
+        if (component_size <= 0 || components == 0)
+            throw_file_error(path_, "{} has an unsupported component type {} or type {}", where, a.componentType, a.type);
+        if (a.count == 0) throw_file_error(path_, "{} is empty", where);
+        const size_t element_size = size_t(component_size) * components;
+        if (!a.sparse.isSparse) {
+            const auto [data, stride] = checked_view(a.bufferView, a.byteOffset, a.count, element_size, true, where);
+            return Range{data, stride, size_t(component_size), {}};
+        }
+        Range r{nullptr, element_size, size_t(component_size), {}};
+        if (a.bufferView >= 0) {
+            const auto [data, stride] = checked_view(a.bufferView, a.byteOffset, a.count, element_size, true, where);
+            r.dense.resize(a.count * element_size);
+            for (size_t e = 0; e < a.count; ++e) std::memcpy(&r.dense[e * element_size], data + e * stride, element_size);
+        } else {
+            if (a.count > kMaxDenseBytes / element_size)
+                throw_file_error(path_, "{}: {} zero-filled elements of {} bytes are more than rsl reads ({} bytes)",
+                                 where, a.count, element_size, kMaxDenseBytes);
+            r.dense.assign(a.count * element_size, 0);
+        }
+        apply_sparse(a, where, element_size, r.dense);
+        r.data = r.dense.data();
+        return r;
+    }
+
+    // Writes a sparse accessor's values at its indices (glTF 2.0 §3.6.2.3).
+    void apply_sparse(const tinygltf::Accessor& a, const std::string& where, size_t element_size,
+                      std::vector<unsigned char>& dense) const {
+        const std::string sparse_where = where + " (sparse)";
+        if (a.sparse.count <= 0 || size_t(a.sparse.count) > a.count)
+            throw_file_error(path_, "{}: {} sparse elements for an accessor of {}", sparse_where, a.sparse.count, a.count);
+        const size_t count = size_t(a.sparse.count);
+        const int index_size = tinygltf::GetComponentSizeInBytes(uint32_t(a.sparse.indices.componentType));
+        const int index_type = a.sparse.indices.componentType;
+        if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            throw_file_error(path_, "{}: index component type {} is not an unsigned integer", sparse_where, index_type);
+        if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
+            throw_file_error(path_, "{}: negative byte offset", sparse_where);
+        const unsigned char* indices =
+            checked_view(a.sparse.indices.bufferView, size_t(a.sparse.indices.byteOffset), count, size_t(index_size),
+                         false, sparse_where + " indices")
+                .first;
+        const unsigned char* values = checked_view(a.sparse.values.bufferView, size_t(a.sparse.values.byteOffset),
+                                                   count, element_size, false, sparse_where + " values")
+                                          .first;
+        for (size_t k = 0; k < count; ++k) {
+            const unsigned char* p = indices + k * size_t(index_size);
+            const size_t target = index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? *p
+                                  : index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? load<uint16_t>(p)
+                                                                                         : load<uint32_t>(p);
+            if (target >= a.count)
+                throw_file_error(path_, "{}: index {} is {}, out of range for {} elements", sparse_where, k, target, a.count);
+            std::memcpy(&dense[target * element_size], values + k * element_size, element_size);
+        }
     }
 
     const tinygltf::Model& model_;
@@ -270,13 +334,16 @@ public:
         : model_(loaded.model), image_errors_(loaded.image_errors), path_(path), reader_(loaded.model, path) {}
 
     void import_into(Scene& scene, int default_material) {
-        const int offset = int(scene.nodes.size());
-        import_nodes(scene, offset);
+        // Before any mesh is read: a compressed mesh's accessors have no data.
+        gltf::check_required_extensions(model_, path_);
+        const std::vector<int> parents = checked_parents();
+        nodes_ = default_scene_nodes(parents);
+        import_nodes(scene, parents);
         GltfMaterials materials(model_, image_errors_, path_);
         std::vector<std::optional<std::vector<MaterialMesh>>> converted(model_.meshes.size());
         for (size_t n = 0; n < model_.nodes.size(); ++n) {
             const int mesh_index = model_.nodes[n].mesh;
-            if (mesh_index < 0) continue;
+            if (mesh_index < 0 || nodes_.scene_node[n] < 0) continue;
             if (size_t(mesh_index) >= model_.meshes.size())
                 throw_file_error(path_, "node {}: mesh index {} is out of range ({} meshes)", n, mesh_index,
                                  model_.meshes.size());
@@ -284,51 +351,133 @@ public:
             for (const MaterialMesh& piece : *converted[mesh_index]) {
                 if (piece.mesh.indices.empty()) continue;  // only points/lines: not a surface
                 Part part;
-                part.name = scene.nodes[offset + n].name;
+                part.name = scene.nodes[nodes_.scene_node[n]].name;
                 // A mesh of several materials is one part per material.
                 if (converted[mesh_index]->size() > 1) part.name += "/" + materials.name(piece.material);
                 part.mesh = piece.mesh;
                 part.mesh.name = part.name;
-                part.node = offset + int(n);
+                part.node = nodes_.scene_node[n];
                 part.material = materials.scene_material(piece.material, scene, default_material);
                 scene.parts.push_back(std::move(part));
             }
         }
         materials.warn_ignored();
-        for (size_t a = 0; a < model_.animations.size(); ++a) import_animation(a, scene, offset);
+        for (size_t a = 0; a < model_.animations.size(); ++a) import_animation(a, scene);
+        gltf::import_lights(model_, path_, nodes_, scene);
+        gltf::import_camera(model_, path_, nodes_, scene);
+        std::vector<bool> used(model_.meshes.size());
+        for (size_t m = 0; m < used.size(); ++m) used[m] = bool(converted[m]);
+        warn_bind_pose(used);
         // One line per file, counting each glTF mesh once however many nodes use it.
         size_t dropped = 0;
         for (const auto& pieces : converted)
             if (pieces)
                 for (const MaterialMesh& piece : *pieces) dropped += piece.mesh.degenerate_dropped;
         if (dropped) warn_file(path_, "{} degenerate triangle{} dropped", dropped, dropped == 1 ? "" : "s");
+        scene.gltf_files.push_back({path_, model_.extensionsUsed, model_.extensionsRequired});
     }
 
 private:
-    void import_nodes(Scene& scene, int offset) {
-        for (size_t n = 0; n < model_.nodes.size(); ++n) {
-            const tinygltf::Node& source = model_.nodes[n];
-            SceneNode node;
-            node.name = source.name.empty() ? fmt::format("node{}", n) : source.name;
-            node.rest = rest_transform(source, path_);
-            scene.nodes.push_back(std::move(node));
-        }
+    // Every node's parent (-1: a root), after checking child indices, that
+    // no node has two parents and that there is no cycle (node_world_at
+    // would loop), over all the file's nodes.
+    std::vector<int> checked_parents() const {
+        std::vector<int> parents(model_.nodes.size(), -1);
         for (size_t n = 0; n < model_.nodes.size(); ++n) {
             for (int child : model_.nodes[n].children) {
                 if (child < 0 || size_t(child) >= model_.nodes.size())
                     throw_file_error(path_, "node {}: child index {} is out of range ({} nodes)", n, child,
                                      model_.nodes.size());
-                SceneNode& c = scene.nodes[offset + child];
-                if (c.parent >= 0) throw_file_error(path_, "node {} has two parents", child);
-                c.parent = offset + int(n);
+                if (parents[child] >= 0) throw_file_error(path_, "node {} has two parents", child);
+                parents[child] = int(n);
             }
         }
-        // A cycle would make node_world_at loop: walk up from every node.
         for (size_t n = 0; n < model_.nodes.size(); ++n) {
             size_t steps = 0;
-            for (int p = scene.nodes[offset + n].parent; p >= 0; p = scene.nodes[p].parent)
+            for (int p = parents[n]; p >= 0; p = parents[p])
                 if (++steps > model_.nodes.size()) throw_file_error(path_, "node {} is its own ancestor", n);
         }
+        return parents;
+    }
+
+    // The file's `scene`, else scene 0; its root nodes and their descendants,
+    // depth first. A file without scenes keeps every node (all its roots).
+    gltf::SceneNodes default_scene_nodes(const std::vector<int>& parents) const {
+        std::vector<int> roots;
+        if (model_.scenes.empty()) {
+            for (size_t n = 0; n < model_.nodes.size(); ++n)
+                if (parents[n] < 0) roots.push_back(int(n));
+        } else {
+            const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+            if (size_t(s) >= model_.scenes.size())
+                throw_file_error(path_, "scene {} (the file's `scene`) is out of range ({} scenes)", s,
+                                 model_.scenes.size());
+            roots = model_.scenes[s].nodes;
+            for (int r : roots)
+                if (r < 0 || size_t(r) >= model_.nodes.size())
+                    throw_file_error(path_, "scene {}: node index {} is out of range ({} nodes)", s, r,
+                                     model_.nodes.size());
+        }
+        gltf::SceneNodes nodes;
+        std::vector<bool> seen(model_.nodes.size(), false);
+        for (int root : roots) {
+            std::vector<int> stack{root};
+            while (!stack.empty()) {
+                const int n = stack.back();
+                stack.pop_back();
+                if (seen[n]) continue;
+                seen[n] = true;
+                nodes.order.push_back(n);
+                const std::vector<int>& children = model_.nodes[n].children;
+                stack.insert(stack.end(), children.rbegin(), children.rend());  // first child first
+            }
+        }
+        // Scene nodes in the file's order, so that parts keep the file's order.
+        nodes.scene_node.assign(model_.nodes.size(), -1);
+        int next = 0;
+        for (size_t n = 0; n < model_.nodes.size(); ++n)
+            if (seen[n]) nodes.scene_node[n] = next++;
+        return nodes;
+    }
+
+    void import_nodes(Scene& scene, const std::vector<int>& parents) {
+        const int offset = int(scene.nodes.size());
+        for (int& index : nodes_.scene_node)
+            if (index >= 0) index += offset;
+        for (size_t n = 0; n < model_.nodes.size(); ++n) {
+            if (nodes_.scene_node[n] < 0) continue;
+            const tinygltf::Node& source = model_.nodes[n];
+            SceneNode node;
+            node.name = source.name.empty() ? fmt::format("node{}", n) : source.name;
+            node.rest = rest_transform(source, path_);
+            // A listed root that has a parent outside the scene becomes a root.
+            node.parent = parents[n] >= 0 ? nodes_.scene_node[parents[n]] : -1;
+            scene.nodes.push_back(std::move(node));
+        }
+    }
+
+    // Skins and morph targets are not rigid motion: their meshes render in
+    // the bind pose (base positions). One warning per file names them.
+    void warn_bind_pose(const std::vector<bool>& used_meshes) const {
+        std::vector<std::string> named;
+        for (int n : nodes_.order) {
+            const tinygltf::Node& node = model_.nodes[n];
+            const int m = node.mesh;
+            if (m < 0 || !used_meshes[m]) continue;
+            const bool morphs = std::any_of(model_.meshes[m].primitives.begin(), model_.meshes[m].primitives.end(),
+                                            [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
+            if (node.skin < 0 && !morphs) continue;
+            const std::string what = node.skin >= 0 && morphs ? "skinned, with morph targets"
+                                     : node.skin >= 0         ? "skinned"
+                                                              : "morph targets";
+            const std::string mesh = model_.meshes[m].name.empty() ? fmt::format("mesh{}", m) : model_.meshes[m].name;
+            const std::string entry = fmt::format("mesh '{}' of node '{}' ({})", mesh,
+                                                  node.name.empty() ? fmt::format("node{}", n) : node.name, what);
+            if (std::find(named.begin(), named.end(), entry) == named.end()) named.push_back(entry);
+        }
+        if (named.empty()) return;
+        warn_file(path_, "{} render{} in the bind pose: rsl animates rigid nodes only, not skins or morph targets",
+                  fmt::join(named, ", "), named.size() == 1 ? "s" : "");
     }
 
     struct MaterialMesh {
@@ -432,7 +581,7 @@ private:
         throw_file_error(path_, "{}: unknown interpolation '{}'", what, name);
     }
 
-    void import_animation(size_t animation_index, Scene& scene, int offset) {
+    void import_animation(size_t animation_index, Scene& scene) {
         const tinygltf::Animation& animation = model_.animations[animation_index];
         for (size_t c = 0; c < animation.channels.size(); ++c) {
             const tinygltf::AnimationChannel& channel = animation.channels[c];
@@ -445,6 +594,7 @@ private:
                 throw_file_error(path_, "{}: sampler {} is out of range ({} samplers)", what, channel.sampler,
                                  animation.samplers.size());
             const tinygltf::AnimationSampler& sampler = animation.samplers[channel.sampler];
+            if (nodes_.scene_node[channel.target_node] < 0) continue;  // not in the default scene
             const Interpolation mode = interpolation(sampler.interpolation, what);
             const std::vector<float> times = reader_.floats(sampler.input, TINYGLTF_TYPE_SCALAR, what + " input");
             for (size_t k = 0; k < times.size(); ++k) {
@@ -452,7 +602,7 @@ private:
                     throw_file_error(path_, "{}: key time {} ({}) is not finite and increasing", what, k, times[k]);
             }
             const size_t expected = mode == Interpolation::CubicSpline ? 3 * times.size() : times.size();
-            SceneNode& node = scene.nodes[offset + channel.target_node];
+            SceneNode& node = scene.nodes[nodes_.scene_node[channel.target_node]];
             const bool is_rotation = channel.target_path == "rotation";
             if (!is_rotation && channel.target_path != "translation" && channel.target_path != "scale")
                 throw_file_error(path_, "{}: unknown target path '{}'", what, channel.target_path);
@@ -481,6 +631,7 @@ private:
     const GltfImageErrors& image_errors_;
     const std::filesystem::path& path_;
     AccessorReader reader_;
+    gltf::SceneNodes nodes_;
 };
 
 }  // namespace

@@ -1,7 +1,5 @@
 // glTF materials and base colour textures (gltf_materials.h).
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#include <tiny_gltf.h>
+#include "src/core/gltf_model.h"  // tinygltf, configured as the loader compiles it
 
 // The one translation unit that compiles stb_image (Debian's libstb-dev
 // header; the tests' PNG reader uses it too), for the two formats glTF 2.0

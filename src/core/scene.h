@@ -66,12 +66,30 @@ struct Part {
     int material = 0;   // index into Scene::materials
 };
 
+struct Scene;
+
+// A glTF point or spot light's radius unless the scene file's `light_radii`
+// gives one (scene units; 5 cm in glTF's metres: a light bulb).
+inline constexpr float kGltfLightRadius = 0.05f;
+
+// A small spherical light. Scene-file lights have a position (or a keyed
+// path); a glTF light (KHR_lights_punctual) hangs on a scene node and moves
+// with it. A spot light's cone scales what reaches a point in direction w
+// (light → point, unit) by shading::spot_cone_factor (glTF's smooth falloff,
+// docs/SCENE_FORMAT.md "glTF lights"); a point light has no cone.
 struct LocalLight {
+    std::string name;  // the glTF light's node (for `light_radii`); empty for scene-file lights
     float radius = 0.05f;
     Color power{1};  // RGB radiant power (W); radiance of the sphere = power / (4π² a²)
-    Vec3 position{0};
+    Vec3 position{0};  // without a node; with one, its world position at the scene's start (for display)
     std::optional<Vec3Track> path;
-    Vec3 position_at(float t) const { return path ? path->sample(t) : position; }
+    int node = -1;  // the scene node whose origin it sits at (−Z is the spot axis), or -1
+    bool spot = false;
+    float inner_cone_radians = 0, outer_cone_radians = 0;  // spot: 0 ≤ inner < outer ≤ π/2
+    Vec3 axis{0, 0, -1};  // spot axis without a node (world space, unit)
+
+    Vec3 position_at(const Scene& scene, float t) const;
+    Vec3 axis_at(const Scene& scene, float t) const;  // unit
 };
 
 struct EnvironmentDesc {
@@ -98,6 +116,21 @@ struct Camera {
     std::optional<Vec3Track> position_path, target_path;
     Vec3 position_at(float t) const { return position_path ? position_path->sample(t) : position; }
     Vec3 target_at(float t) const { return target_path ? target_path->sample(t) : target; }
+};
+
+// A glTF file's camera (the first perspective camera node of its default
+// scene): used when the scene file gives no camera pose (docs/SCENE_FORMAT.md).
+struct GltfCamera {
+    std::string name;  // the node's
+    int node = -1;     // scene node: the camera looks along its −Z, +Y up
+    float fov_y_degrees = 40;
+    bool used = false;  // the scene's camera is this one (the scene file gives no pose)
+};
+
+// What a loaded glTF file uses that rsl reads or drops, for `rsl info`.
+struct GltfFileNotes {
+    std::filesystem::path file;
+    std::vector<std::string> extensions_used, extensions_required;
 };
 
 struct AnimationRange {
@@ -127,6 +160,8 @@ struct Scene {
     std::vector<LocalLight> lights;
     EnvironmentDesc environment;
     Camera camera;
+    std::optional<GltfCamera> gltf_camera;  // the first glTF file's camera, if it has one
+    std::vector<GltfFileNotes> gltf_files;
     AnimationRange animation;
     PrecomputeSettings precompute;
 
@@ -138,7 +173,14 @@ struct Scene {
 // Loads a JSON scene file, a .gltf/.glb (one part per mesh node, node
 // animation), or a single .obj (one part). Throws rsl::Error naming the file.
 Scene load_scene(const std::filesystem::path& path);
-// Parts, nodes and animation of a glTF file, appended to `scene`.
+// Parts, nodes, animation, lights and camera of a glTF file's default scene,
+// appended to `scene`.
 void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material);
+
+// How rsl treats a glTF extension: "honoured", "ignored: …" (the file still
+// renders, without what the extension adds) or "not supported: …"; a file
+// that requires an extension rsl does not honour is refused.
+std::string gltf_extension_support(const std::string& name);
+bool gltf_extension_honoured(const std::string& name);
 
 }  // namespace rsl

@@ -1,6 +1,7 @@
 // Scene loading: JSON scene files (docs/SCENE_FORMAT.md), or a single
 // .gltf/.glb/.obj with defaults. Every error names the file and the key.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/core/error.h"
+#include "src/core/gltf_camera.h"
 #include "src/core/json_file.h"
 #include "src/core/scene.h"
 
@@ -82,13 +84,23 @@ void frame_camera(Scene& scene) {
     scene.camera.up = Vec3(0, 1, 0);
 }
 
-void finish_scene(Scene& scene, bool has_camera, bool has_animation) {
+// has_camera_pose: the scene file's camera gives a pose (a camera with only
+// a size keeps the glTF camera's pose); has_camera: it has a camera at all.
+void finish_scene(Scene& scene, bool has_camera, bool has_camera_pose, bool has_animation) {
     if (!has_animation) {
         const auto [start, end] = keyed_time_range(scene);
         scene.animation.start = start;
         scene.animation.end = end;
     }
-    if (!has_camera) frame_camera(scene);
+    // A glTF light's pose at the start, for what shows or edits lights without the scene's nodes.
+    for (LocalLight& light : scene.lights) {
+        if (light.node < 0) continue;
+        light.position = light.position_at(scene, scene.animation.start);
+        light.axis = light.axis_at(scene, scene.animation.start);
+    }
+    if (has_camera_pose) return;
+    if (scene.gltf_camera) use_gltf_camera(scene, world_bounds_at(scene, scene.animation.start));
+    else if (!has_camera) frame_camera(scene);
 }
 
 // Reads one JSON scene file. Keys are checked against the schema as they are
@@ -100,8 +112,8 @@ public:
     Scene read() {
         const Json root = parse_file();
         if (!root.is_object()) fail("", "the top level must be a JSON object");
-        check_keys(root, "", {"name", "gltf", "parts", "materials", "part_materials", "environment", "lights", "camera",
-                              "animation", "precompute"});
+        check_keys(root, "", {"name", "gltf", "parts", "materials", "part_materials", "environment", "lights",
+                              "light_radii", "camera", "animation", "precompute"});
         scene_.source = path_;
         scene_.name = root.contains("name") ? string_at(root, "name", "name") : path_.stem().string();
         read_materials(root);
@@ -118,13 +130,17 @@ public:
         if (root.contains("parts")) read_parts(root["parts"], part_materials);
         if (scene_.parts.empty()) fail("", "the scene has no parts (give `gltf` or `parts`)");
         check_part_material_names(part_materials);
+        if (root.contains("light_radii")) read_light_radii(root["light_radii"]);
 
         if (root.contains("environment")) read_environment(root["environment"]);
         if (root.contains("lights")) read_lights(root["lights"]);
         if (root.contains("camera")) read_camera(root["camera"]);
         if (root.contains("animation")) read_animation(root["animation"]);
         if (root.contains("precompute")) read_precompute(root["precompute"]);
-        finish_scene(scene_, root.contains("camera"), root.contains("animation"));
+        const bool has_camera = root.contains("camera");
+        const bool has_pose = has_camera && std::any_of(kCameraPoseKeys.begin(), kCameraPoseKeys.end(),
+                                                        [&](const char* key) { return root["camera"].contains(key); });
+        finish_scene(scene_, has_camera, has_pose, root.contains("animation"));
         return std::move(scene_);
     }
 
@@ -397,6 +413,23 @@ private:
         return times;
     }
 
+    // Radii of the glTF files' lights (named after their nodes); "*" for every one.
+    void read_light_radii(const Json& j) {
+        expect_object(j, "light_radii");
+        for (const auto& item : j.items()) {
+            const std::string& name = item.key();  // not a structured binding: clang 14 cannot capture one
+            positive_number_at(j, name.c_str(), "light_radii");  // checked here, applied below
+            const bool found = std::any_of(scene_.lights.begin(), scene_.lights.end(),
+                                           [&](const LocalLight& l) { return !l.name.empty() && l.name == name; });
+            if (name != "*" && !found) fail("light_radii." + name, "no glTF light is on a node of this name");
+        }
+        for (LocalLight& light : scene_.lights) {
+            if (light.name.empty()) continue;  // a scene-file light gives its own radius
+            if (j.contains(light.name)) light.radius = number(j[light.name], "light_radii." + light.name);
+            else if (j.contains("*")) light.radius = number(j["*"], "light_radii.*");
+        }
+    }
+
     void read_lights(const Json& lights) {
         if (!lights.is_array()) fail("lights", fmt::format("expected an array, got {}", lights.type_name()));
         for (size_t i = 0; i < lights.size(); ++i) {
@@ -484,6 +517,8 @@ private:
         }
     }
 
+    static constexpr std::array<const char*, 5> kCameraPoseKeys{"position", "target", "up", "fov_degrees", "path"};
+
     std::filesystem::path path_, dir_;
     Scene scene_;
     std::map<std::string, int> material_index_;
@@ -509,7 +544,7 @@ Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
         part.node = 0;
         scene.parts.push_back(std::move(part));
     }
-    finish_scene(scene, false, false);
+    finish_scene(scene, false, false, false);
     return scene;
 }
 

@@ -33,6 +33,7 @@ public:
     const std::vector<PartPose>& poses() const { return setup_.poses(); }
     const std::vector<SquareLight>& environment_squares() const { return setup_.environment_squares(); }
     const std::vector<Vec3>& light_positions() const { return setup_.light_positions(); }
+    const std::vector<Vec3>& light_axes() const { return setup_.light_axes(); }
     const Vec3& camera() const { return setup_.camera(); }
     // The CPU renderer's occluder lists (culling.h) as the shader reads them:
     // texel s = p·L + l (light l of receiver part p, environment lights

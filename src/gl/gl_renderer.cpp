@@ -318,14 +318,17 @@ void GlRenderer::upload_frame() {
     update_array_texture(parts_, part_records_);
 
     light_texels_.clear();
-    static_assert(kLightTexels == 2, "two texels per light below");
+    static_assert(kLightTexels == 3, "three texels per light below");
     for (const SquareLight& square : frame_.environment_squares()) {
         light_texels_.push_back(Vec4(square.direction, square.half_edge));
         light_texels_.push_back(Vec4(square.integral, 0.0f));
+        light_texels_.push_back(Vec4(0.0f));
     }
     for (size_t i = 0; i < local_lights_.size(); ++i) {
+        const Vec2 cone = spot_cone_scale_offset(local_lights_[i]);
         light_texels_.push_back(Vec4(frame_.light_positions()[i], local_lights_[i].radius));
-        light_texels_.push_back(Vec4(sphere_light_radiance(local_lights_[i]), 1.0f));
+        light_texels_.push_back(Vec4(sphere_light_radiance(local_lights_[i]), cone.x));
+        light_texels_.push_back(Vec4(frame_.light_axes()[i], cone.y));
     }
     if (light_texels_.empty()) light_texels_.push_back(Vec4(0.0f));
     update_array_texture(lights_, light_texels_);

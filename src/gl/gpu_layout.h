@@ -11,7 +11,8 @@
 //    normals    xyz = part-space normal,   w = SVDF cluster of the vertex (−1: none)
 //    tangents   xyz = part-space tangent (0: none)
 //  parts (kPartStride texels per part): pose, material, SVDF and OVDF records
-//  lights (kLightTexels per light): direction or position + half-edge or radius, integral or radiance
+//  lights (kLightTexels per light): environment square (direction, half-edge), (integral, 0), unused;
+//    sphere light (position, radius), (radiance, spot cone scale), (spot axis, spot cone offset)
 //  SVDF / OVDF tables: per (cluster, texel) `stride` texels = [μ, b₀ … b_{k−1}] padded
 //  SVDF / OVDF coefficients: per vertex / sample `stride` texels = [1, w₀ … w_{k−1}] padded,
 //    so a reconstruction is Σ_t dot(table_t, coefficients_t)
@@ -61,7 +62,7 @@ enum PartSlot : int {
 };
 static_assert(kSlotOvdfRecords < kPartStride);
 
-inline constexpr int kLightTexels = 2;        // per light in the lights texture
+inline constexpr int kLightTexels = 3;        // per light in the lights texture
 inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
 inline constexpr int kSurfacesPerTexel = 4;   // OVDF surface distances, RGBA
 

@@ -92,6 +92,7 @@ void handle_input(GLFWwindow* window, Input& input, ViewerState& state, float dt
             const float scale = 0.002f * state.camera.distance;
             light.position += scale * (dx * right - dy * up);
             light.path.reset();
+            light.node = -1;  // a glTF light leaves its node (position and axis hold its pose at the start)
             state.lights_dirty = true;
         } else {
             state.camera.yaw -= 0.005f * dx;

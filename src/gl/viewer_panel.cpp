@@ -97,6 +97,7 @@ void viewer_panel(ViewerState& state) {
             LocalLight& light = state.scene->lights.front();
             if (ImGui::DragFloat3("light (shift+drag)", &light.position.x, 0.01f)) {
                 light.path.reset();
+                light.node = -1;  // a glTF light leaves its node (position and axis hold its pose at the start)
                 state.lights_dirty = true;
             }
         }

@@ -29,6 +29,7 @@ void FrameSetup::reserve(size_t environment_lights, size_t local_lights) {
     const size_t lights = environment_lights + local_lights;
     squares_.reserve(environment_lights);
     light_positions_.reserve(local_lights);
+    light_axes_.reserve(local_lights);
     lists_.offsets.reserve(parts * lights + 1);
     // The lists themselves grow to what the first frames need and keep that
     // capacity: reserving parts² × lights would be gigabytes for a large scene.
@@ -78,7 +79,11 @@ void FrameSetup::update(const Scene& scene, const EnvironmentLights& environment
     append_squares(environment.first, rotation, blend_.first, squares_);
     append_squares(environment.second, rotation, blend_.second, squares_);
     light_positions_.resize(lights.size());
-    for (size_t i = 0; i < lights.size(); ++i) light_positions_[i] = lights[i].position_at(t);
+    light_axes_.resize(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+        light_positions_[i] = lights[i].position_at(scene, t);
+        light_axes_[i] = lights[i].axis_at(scene, t);
+    }
     camera_ = camera ? *camera : scene.camera.position_at(t);
 
     for (size_t p = 0; p < poses_.size(); ++p) {

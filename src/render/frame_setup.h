@@ -80,6 +80,7 @@ public:
     // integrals already weighted by the blend.
     const std::vector<SquareLight>& environment_squares() const { return squares_; }
     const std::vector<Vec3>& light_positions() const { return light_positions_; }
+    const std::vector<Vec3>& light_axes() const { return light_axes_; }  // spot axes (unit), per local light
     const Vec3& camera() const { return camera_; }
     BlendWeights blend() const { return blend_; }
     // Occluders of receiver p for light l (culling.h): occluders[offsets[p·L + l] ..
@@ -94,6 +95,7 @@ private:
     std::vector<PartPose> poses_;
     std::vector<SquareLight> squares_;
     std::vector<Vec3> light_positions_;
+    std::vector<Vec3> light_axes_;
     Vec3 camera_{0};
     BlendWeights blend_;
 };

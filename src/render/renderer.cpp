@@ -80,7 +80,11 @@ void Renderer::set_local_lights(std::vector<LocalLight> lights) {
     check_local_lights(scene_, lights);
     lights_ = std::move(lights);
     light_radiance_.clear();
-    for (const LocalLight& light : lights_) light_radiance_.push_back(sphere_light_radiance(light));
+    light_cones_.clear();
+    for (const LocalLight& light : lights_) {
+        light_radiance_.push_back(sphere_light_radiance(light));
+        light_cones_.push_back(spot_cone_scale_offset(light));
+    }
     frame_.reserve(rsls_.light_count(), lights_.size());
     update_frame();
 }

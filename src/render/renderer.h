@@ -121,8 +121,10 @@ private:
     const std::vector<PartPose>& poses_ = frame_.poses();
     const std::vector<SquareLight>& environment_squares_ = frame_.environment_squares();
     const std::vector<Vec3>& light_positions_ = frame_.light_positions();
+    const std::vector<Vec3>& light_axes_ = frame_.light_axes();
     const Vec3& camera_ = frame_.camera();
     std::vector<Color> light_radiance_;
+    std::vector<Vec2> light_cones_;  // spot_cone_scale_offset per local light
     // Occluders that can shadow receiver part p for light l (culling.h):
     // occluders_[offsets_[p·L + l] .. offsets_[p·L + l + 1]), and per
     // entry the footprint growth of the receiver by that occluder.

@@ -329,11 +329,14 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
             const Vec3 center = light_positions_[i];
             const float radius = lights_[i].radius;
             const Color radiance = light_radiance_[i];
+            const Vec3 axis = light_axes_[i];
+            const Vec2 cone = light_cones_[i];
             for (int k = 0; k < n; ++k) {
                 const SquareLight sq = sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), center, radius, radiance);
+                const float spot = shading::spot_cone_factor(axis, -sq.direction, cone.x, cone.y);
                 s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
                 s.half[k] = sq.half_edge;
-                s.ir[k] = sq.integral.r, s.ig[k] = sq.integral.g, s.ib[k] = sq.integral.b;
+                s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
             }
         }
         // Local direction → equal-area plane point p = (x, y) / √(1 + z).

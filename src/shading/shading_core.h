@@ -128,6 +128,16 @@ RSL_SHARED float sphere_cap_solid_angle(float radius, float distance) {
     float sin2 = min(1.0f, (radius / distance) * (radius / distance));
     return 2.0f * kPi * sin2 / (1.0f + sqrt(1.0f - sin2));
 }
+// A spot light's cone (glTF KHR_lights_punctual's smooth falloff): what
+// reaches a point in unit direction w from the light (light → point) is
+// scaled by clamp(dot(axis, w)·scale + offset, 0, 1)², with
+// scale = 1 / max(1e-3, cos θ_inner − cos θ_outer), offset = −cos θ_outer · scale
+// (spot_cone_scale_offset, src/core/sphere_light.h): 1 inside the inner
+// cone, 0 outside the outer one. A point light is scale 0, offset 1.
+RSL_SHARED float spot_cone_factor(vec3 axis, vec3 light_to_point, float scale, float offset) {
+    float f = clamp(dot(axis, light_to_point) * scale + offset, 0.0f, 1.0f);
+    return f * f;
+}
 // Whether a square of half-edge h centred on local direction w can overlap
 // the upper hemisphere: |p(w)| = √(1 − w.z) < 1 + √2·h.
 RSL_SHARED bool square_reaches_hemisphere(float local_z, float half_edge) {

@@ -126,7 +126,13 @@ void GroundTruth::set_time(float t) {
     else
         environment_ = {};
     light_positions_.clear();
-    for (const LocalLight& light : scene_.lights) light_positions_.push_back(light.position_at(t));
+    light_axes_.clear();
+    light_cones_.clear();
+    for (const LocalLight& light : scene_.lights) {
+        light_positions_.push_back(light.position_at(scene_, t));
+        light_axes_.push_back(light.axis_at(scene_, t));
+        light_cones_.push_back(spot_cone_scale_offset(light));
+    }
     camera_ = scene_.camera.position_at(t);
 }
 
@@ -138,9 +144,13 @@ Color GroundTruth::shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf
     uint64_t rays = 0;
     Color result = shade_environment(x, origin, wo, brdf, rays);
     if (options_.local_lights)
-        for (size_t i = 0; i < scene_.lights.size(); ++i)
+        for (size_t i = 0; i < scene_.lights.size(); ++i) {
+            // A spot's cone scales the light by the direction from its centre to x.
+            const float cone = spot_cone_factor_at(x.position, light_positions_[i], light_axes_[i], light_cones_[i]);
+            if (!(cone > 0.0f)) continue;
             result += shade_light(x, origin, wo, brdf, light_positions_[i], scene_.lights[i].radius,
-                                  sphere_light_radiance(scene_.lights[i]), rays);
+                                  sphere_light_radiance(scene_.lights[i]) * cone, rays);
+        }
     rays_traced_.fetch_add(rays, std::memory_order_relaxed);
     return result;
 }

@@ -93,7 +93,8 @@ private:
     std::vector<std::shared_ptr<const Brdf>> materials_;
     std::vector<std::shared_ptr<const Brdf>> specular_;  // per material: textured ones' specular lobe
     EnvironmentSamples environment_;
-    std::vector<Vec3> light_positions_;
+    std::vector<Vec3> light_positions_, light_axes_;
+    std::vector<Vec2> light_cones_;  // spot_cone_scale_offset
     Vec3 camera_{0};
     mutable std::atomic<uint64_t> rays_traced_{0};
 };

@@ -521,7 +521,7 @@ TEST_CASE("scene files load with their generated assets", "[assets]") {
     CHECK(k.parts.size() == 5);
     CHECK(k.environment.second_file.filename() == "overcast.exr");
     REQUIRE(k.lights.size() == 1);
-    CHECK(glm::distance(k.lights[0].position_at(0), k.lights[0].position_at(2)) > 0.5f);  // the light moves
+    CHECK(glm::distance(k.lights[0].position_at(k, 0), k.lights[0].position_at(k, 2)) > 0.5f);  // the light moves
     CHECK(k.animation.end == Approx(kKitchenLoopSeconds));
 
     if (!fs::exists(RSL_SHARED_ASSETS)) {

@@ -1,7 +1,9 @@
 #pragma once
 // Writes glTF files by hand (JSON + one binary buffer), independently of the
 // loader under test (tests/core/gltf_test.cpp; the instancing tests use it for
-// a mesh shared by several nodes).
+// a mesh shared by several nodes). By hand rather than through tinygltf's
+// writer because tinygltf 2.7 cannot write sparse accessors; everything else
+// (scenes, cameras, KHR_lights_punctual, skins) is plain JSON through doc().
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -26,6 +28,26 @@ public:
         return accessor(data.data(), data.size() * sizeof(float), 5126, data.size() / components(type), type);
     }
     int indices(const std::vector<uint32_t>& data) { return accessor(data.data(), data.size() * 4, 5125, data.size(), "SCALAR"); }
+
+    // A sparse float accessor of `count` elements: `base` (none: zeros, no
+    // buffer view) with `values` at `sparse_indices` (stored as uint16, as
+    // exporters write small index sets).
+    int sparse_floats(const std::vector<float>& base, size_t count, const char* type,
+                      const std::vector<uint16_t>& sparse_indices, const std::vector<float>& values) {
+        int a;
+        if (base.empty()) {
+            doc_["accessors"].push_back({{"componentType", 5126}, {"count", count}, {"type", type}});
+            a = int(doc_["accessors"].size()) - 1;
+        } else {
+            a = floats(base, type);
+        }
+        const int index_view = view(sparse_indices.data(), sparse_indices.size() * 2);
+        const int value_view = view(values.data(), values.size() * 4);
+        doc_["accessors"][a]["sparse"] = {{"count", sparse_indices.size()},
+                                          {"indices", {{"bufferView", index_view}, {"componentType", 5123}}},
+                                          {"values", {{"bufferView", value_view}}}};
+        return a;
+    }
 
     // A mesh from positions (flat xyz), optional normals and indices.
     int mesh(const std::vector<float>& positions, const std::vector<uint32_t>& corner_indices,
@@ -85,15 +107,21 @@ public:
     }
 
 private:
-    static size_t components(const std::string& type) { return type == "SCALAR" ? 1 : type == "VEC3" ? 3 : 4; }
+    static size_t components(const std::string& type) {
+        return type == "SCALAR" ? 1 : type == "VEC3" ? 3 : type == "MAT4" ? 16 : 4;
+    }
 
-    int accessor(const void* data, size_t bytes, int component_type, size_t count, const char* type) {
+    int view(const void* data, size_t bytes) {
         while (bin_.size() % 4) bin_.push_back(0);
         const size_t offset = bin_.size();
         bin_.resize(offset + bytes);
         std::memcpy(bin_.data() + offset, data, bytes);
         doc_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}});
-        doc_["accessors"].push_back({{"bufferView", doc_["bufferViews"].size() - 1},
+        return int(doc_["bufferViews"].size()) - 1;
+    }
+
+    int accessor(const void* data, size_t bytes, int component_type, size_t count, const char* type) {
+        doc_["accessors"].push_back({{"bufferView", view(data, bytes)},
                                      {"componentType", component_type},
                                      {"count", count},
                                      {"type", type}});

@@ -286,7 +286,7 @@ TEST_CASE("The scene-file example of docs/SCENE_FORMAT.md loads", "[scene][gltf]
     REQUIRE(scene.lights.size() == 1);
     CHECK(scene.lights[0].radius == Approx(0.05f));
     check_near(scene.lights[0].power, {20, 18, 15});
-    check_near(scene.lights[0].position_at(1), {0, 2, 1});
+    check_near(scene.lights[0].position_at(scene, 1), {0, 2, 1});
     check_near(scene.camera.position_at(2), {1.5f, 1.5f, 4.5f});
     check_near(scene.camera.target_at(2), {0, 1, 0});
     CHECK(scene.camera.fov_y_degrees == 40);

@@ -25,7 +25,8 @@ using test::make_scene;
 constexpr double kTolerance = 1e-3;
 
 // Ground (a glTF metallic-roughness material), a glossy sphere that moves,
-// an anisotropic sphere, two sphere lights, small real fields.
+// an anisotropic sphere, two sphere lights and a spot light carried by the
+// moving sphere, small real fields.
 Scene moving_scene() {
     Scene scene = make_scene("gl", Color(0.7f));
     scene.materials[0].model = "gltf_pbr";
@@ -60,6 +61,22 @@ Scene moving_scene() {
         light.position = position;
         scene.lights.push_back(light);
     }
+    // A spot light on a node that rides on the sliding sphere, 1 above it,
+    // pointing down and tilted (glTF's −Z), its cone edge across the ground.
+    SceneNode holder;
+    holder.name = "spot holder";
+    holder.parent = scene.parts[1].node;
+    holder.rest.translation = Vec3(0, 1.0f, 0);
+    holder.rest.rotation = glm::angleAxis(glm::radians(-70.0f), Vec3(1, 0, 0));
+    scene.nodes.push_back(holder);
+    LocalLight spot;
+    spot.radius = 0.05f;
+    spot.power = Color(3.0f);
+    spot.node = int(scene.nodes.size()) - 1;
+    spot.spot = true;
+    spot.inner_cone_radians = 0.3f;
+    spot.outer_cone_radians = 0.6f;
+    scene.lights.push_back(spot);
     PrecomputeSettings& pre = scene.precompute;
     pre.svdf_resolution = 16, pre.svdf_clusters = 8, pre.svdf_vectors = 4, pre.svdf_supersampling = 1;
     pre.ovdf_shells = 4, pre.ovdf_cube_resolution = 8, pre.ovdf_vdt_resolution = 16, pre.ovdf_vectors = 4;

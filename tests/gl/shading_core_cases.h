@@ -93,7 +93,9 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
             o.first = vec4(taps.i);
             o.second = vec4(taps.j);
         }
-    } else {  // the receiver's cone and the slab rule
+    } else {  // the receiver's cone, the slab rule and a spot light's cone
+        float spot_scale = 1.0f / (0.02f + abs(b.w));
+        float spot = spot_cone_factor(w, normalize(vec3(b.x, b.y, b.z) + vec3(1e-3f)), spot_scale, -a.w * spot_scale);
         vec3 lo = vec3(-0.5f, -0.3f, -0.2f);
         vec3 hi = vec3(0.4f, 0.6f, 0.1f);
         vec3 sides = box_sides(lo, hi, vec3(a.x, a.y, a.z));
@@ -102,7 +104,7 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
         o.first = vec4(ovdf_unshadowed(a.w, abs(b.x), ha) ? 1.0f : 0.0f, ovdf_receiver_distance(a.w, abs(b.y), abs(b.z)),
                        box_side(a.x, lo.x, hi.x), sides.x + 10.0f * sides.y + 100.0f * sides.z);
         o.second = vec4(clears_box_face(sides, w, sine) ? 1.0f : 0.0f,
-                        clears_box_face_scaled(sides, w * scale, scale, sine) ? 1.0f : 0.0f, sine, 0.0f);
+                        clears_box_face_scaled(sides, w * scale, scale, sine) ? 1.0f : 0.0f, sine, spot);
     }
     return o;
 }

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "src/frame/error_metrics.h"
 #include "src/render/renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
@@ -126,6 +127,67 @@ TEST_CASE("a sphere light is a per-vertex square of the cap's solid angle", "[re
         for (int ch = 0; ch < 3; ++ch)
             CHECK(colors.parts[0][v][ch] == Approx(expected[ch]).margin(scale[ch] * cosine_tolerance));
     }
+}
+
+TEST_CASE("a spot light's cone: the renderer's per-vertex sum against the ground truth", "[render]") {
+    // A spot 1 above a ground plane, pointing down: lit inside 0.3 rad, dark
+    // beyond 0.6 rad (radii 0.31 and 0.68 on the ground), glTF's falloff between.
+    Scene scene = make_scene("spot", Color(0.5f));
+    add_part(scene, make_plane(3.0f, 48));
+    LocalLight spot;
+    spot.radius = 0.02f;
+    spot.power = Color(3.0f, 2.0f, 1.0f);
+    spot.position = Vec3(0.1f, 1.0f, -0.05f);
+    spot.axis = glm::normalize(Vec3(0.2f, -1.0f, 0.1f));
+    spot.spot = true;
+    spot.inner_cone_radians = 0.3f;
+    spot.outer_cone_radians = 0.6f;
+    scene.lights.push_back(spot);
+    PartFields fields;
+    GroundTruthOptions options;
+    options.environment = false;
+    const VertexColors rendered = Renderer(scene, RslSet{}, fields, RenderOptions{}).shade();
+    const VertexColors truth = GroundTruth(scene, CubeMap(4), 0.0f, options).shade_vertices();
+    // The same light without its cone.
+    Scene point_scene = scene;
+    point_scene.lights[0].spot = false;
+    const VertexColors rendered_point = Renderer(point_scene, RslSet{}, fields, RenderOptions{}).shade();
+    const VertexColors truth_point = GroundTruth(point_scene, CubeMap(4), 0.0f, options).shade_vertices();
+
+    const TriangleMesh& mesh = scene.parts[0].mesh;
+    size_t dark = 0, full = 0, edge = 0;
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        const Vec3 w = glm::normalize(mesh.positions[v] - spot.position);
+        const float angle = std::acos(glm::dot(w, spot.axis));
+        // KHR_lights_punctual's reference falloff, independently of the shading core.
+        const float f = std::clamp((std::cos(angle) - std::cos(0.6f)) / (std::cos(0.3f) - std::cos(0.6f)), 0.0f, 1.0f);
+        const float cone = f * f;
+        const Color t = truth.parts[0][v], r = rendered.parts[0][v];
+        INFO("vertex " << v << " at " << angle << " rad: truth " << t.g << ", rendered " << r.g << ", cone " << cone
+                       << ", as a point light: truth " << truth_point.parts[0][v].g << ", rendered "
+                       << rendered_point.parts[0][v].g);
+        dark += angle > 0.6f;
+        full += angle < 0.3f;
+        edge += angle >= 0.3f && angle <= 0.6f;
+        // Both scale the point light's per-vertex value by the cone, the truth
+        // its exact integral, the renderer its square-light sum.
+        for (int c = 0; c < 3; ++c) {
+            // (margin: float rounding of cos θ, ~1e-7, where the cone is nearly 0)
+            CHECK(t[c] == Approx(cone * truth_point.parts[0][v][c]).epsilon(1e-4).margin(1e-6 * truth_point.parts[0][v][c]));
+            CHECK(r[c] == Approx(cone * rendered_point.parts[0][v][c]).epsilon(1e-4).margin(1e-6 * rendered_point.parts[0][v][c]));
+        }
+    }
+    CHECK(dark > 1000);
+    CHECK(full > 50);
+    CHECK(edge > 200);
+    // And the renderer against the truth: the square-light error of the point
+    // light (the BRDF table's texels, docs/RENDERER.md), no more.
+    const double error = compare_vertex_colors(rendered, truth).total.relative_l2();
+    const double point_error = compare_vertex_colors(rendered_point, truth_point).total.relative_l2();
+    INFO("relative L2: spot " << error << ", point " << point_error);
+    CHECK(error < 0.01);
+    CHECK(error < 1.5 * point_error);
+    CHECK(compare_vertex_colors(rendered_point, truth).total.relative_l2() > 0.3);  // the cone matters
 }
 
 // A small scene with real baked fields: a ground plane, two spheres (one
