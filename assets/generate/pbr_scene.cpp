@@ -3,17 +3,13 @@
 #include "assets/generate/primitives.h"
 
 namespace rsl::assets {
-namespace {
-
-MaterialDesc pbr(const std::string& name, Color base, float metallic, float roughness) {
+MaterialDesc gltf_pbr_material(const std::string& name, Color base, float metallic, float roughness) {
     MaterialDesc m;
     m.name = name;
     m.model = "gltf_pbr";
     m.params = {{"base_color", {base.r, base.g, base.b}}, {"metallic", {metallic}}, {"roughness", {roughness}}};
     return m;
 }
-
-}  // namespace
 
 std::shared_ptr<Texture> make_tile_texture(int tiles, int texels) {
     auto texture = std::make_shared<Texture>();
@@ -34,13 +30,13 @@ std::shared_ptr<Texture> make_tile_texture(int tiles, int texels) {
 GeneratedModel make_pbr_showcase() {
     GeneratedModel model;
     Scene& scene = model.scene;
-    MaterialDesc tiles = pbr("tiles", Color(1.0f), 0.0f, 0.6f);
+    MaterialDesc tiles = gltf_pbr_material("tiles", Color(1.0f), 0.0f, 0.6f);
     tiles.base_color_texture = make_tile_texture(8, 8);
     scene.materials = {tiles,
-                       pbr("gold", Color(1.0f, 0.78f, 0.34f), 1.0f, 0.3f),
-                       pbr("copper", Color(0.95f, 0.64f, 0.54f), 1.0f, 0.6f),
-                       pbr("red_plastic", Color(0.7f, 0.08f, 0.06f), 0.0f, 0.25f),
-                       pbr("white_ceramic", Color(0.85f), 0.0f, 0.12f)};
+                       gltf_pbr_material("gold", Color(1.0f, 0.78f, 0.34f), 1.0f, 0.3f),
+                       gltf_pbr_material("copper", Color(0.95f, 0.64f, 0.54f), 1.0f, 0.6f),
+                       gltf_pbr_material("red_plastic", Color(0.7f, 0.08f, 0.06f), 0.0f, 0.25f),
+                       gltf_pbr_material("white_ceramic", Color(0.85f), 0.0f, 0.12f)};
     // 3 m × 3 m of ground, the tiles repeated twice over it (wrap: repeat).
     TriangleMesh ground = grid_plane(3.0f, 3.0f, 48, 48);
     for (const Vec3& p : ground.positions) ground.texcoords.emplace_back((p.x / 3.0f + 0.5f) * 2, (p.z / 3.0f + 0.5f) * 2);

@@ -9,6 +9,8 @@
 
 namespace rsl::assets {
 
+// A glTF metallic-roughness material (model gltf_pbr) as the loader makes one.
+MaterialDesc gltf_pbr_material(const std::string& name, Color base, float metallic, float roughness);
 // Linear-RGB tiles with grout, `tiles` per side, `texels` per tile.
 std::shared_ptr<Texture> make_tile_texture(int tiles, int texels);
 // The scene: its materials (gltf_pbr, the ground's textured) on the parts.

@@ -16,23 +16,17 @@
 namespace rsl {
 namespace {
 
-MaterialDesc pbr(const std::string& name, Color base, float metallic, float roughness) {
-    MaterialDesc m;
-    m.name = name;
-    m.model = "gltf_pbr";
-    m.params = {{"base_color", {base.r, base.g, base.b}}, {"metallic", {metallic}}, {"roughness", {roughness}}};
-    return m;
-}
+using assets::gltf_pbr_material;
 
 // The scene written to `path` as a .glb: a textured rough ground, a gold
 // metal ball, a glossy white dielectric ball.
 void write_pbr_glb(const std::filesystem::path& path) {
     assets::GeneratedModel model;
     Scene& s = model.scene;
-    MaterialDesc ground = pbr("ground", Color(1.0f), 0.0f, 0.7f);
+    MaterialDesc ground = gltf_pbr_material("ground", Color(1.0f), 0.0f, 0.7f);
     ground.base_color_texture = assets::make_tile_texture(4, 4);
-    s.materials = {ground, pbr("gold", Color(1.0f, 0.78f, 0.34f), 1.0f, 0.35f),
-                   pbr("plastic", Color(0.9f), 0.0f, 0.3f)};
+    s.materials = {ground, gltf_pbr_material("gold", Color(1.0f, 0.78f, 0.34f), 1.0f, 0.35f),
+                   gltf_pbr_material("plastic", Color(0.9f), 0.0f, 0.3f)};
     TriangleMesh plane = test::make_plane(3.0f, 24, "ground");
     for (const Vec3& p : plane.positions) plane.texcoords.emplace_back((p.x / 3.0f + 0.5f) * 2, (p.z / 3.0f + 0.5f) * 2);
     model.add_node("ground", -1, Vec3(0), plane);
