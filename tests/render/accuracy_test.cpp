@@ -22,9 +22,7 @@ TEST_CASE("RSL renderer vs ground truth on a sphere over a plane", "[render][acc
     test::add_part(scene, test::make_icosphere(0.4f, 3, "ball"), pose);
     scene.camera.position = Vec3(1.2f, 1.8f, 2.5f);
     scene.camera.target = Vec3(0, 0.3f, 0);
-    PrecomputeSettings& pre = scene.precompute;
-    pre.svdf_resolution = 32, pre.svdf_clusters = 16, pre.svdf_vectors = 6, pre.svdf_supersampling = 2;
-    pre.ovdf_shells = 8, pre.ovdf_cube_resolution = 16, pre.ovdf_vdt_resolution = 32, pre.ovdf_vectors = 6;
+    scene.precompute = test::small_accuracy_precompute();
     const CubeMap environment = test::sky_with_sun(16);
 
     const VertexColors truth = GroundTruth(scene, environment, 0.0f).shade_vertices();

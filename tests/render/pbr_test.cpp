@@ -95,9 +95,7 @@ TEST_CASE("gltf_pbr parts with a base colour texture: RSL renderer vs ground tru
     Scene scene = load_scene(path);
     scene.camera.position = Vec3(0.3f, 1.6f, 2.6f);
     scene.camera.target = Vec3(0, 0.3f, 0);
-    PrecomputeSettings& pre = scene.precompute;
-    pre.svdf_resolution = 32, pre.svdf_clusters = 16, pre.svdf_vectors = 6, pre.svdf_supersampling = 2;
-    pre.ovdf_shells = 8, pre.ovdf_cube_resolution = 16, pre.ovdf_vdt_resolution = 32, pre.ovdf_vectors = 6;
+    scene.precompute = test::small_accuracy_precompute();
     const CubeMap environment = test::sky_with_sun(16);
 
     const GroundTruth truth(scene, environment, 0.0f);

@@ -67,4 +67,13 @@ inline CubeMap sky_with_sun(int n) {
     return map;
 }
 
+// Field settings small enough to bake in a test yet fine enough for the
+// renderer-vs-truth accuracy tests (32² SVDF, 8 shells of 16² × 32² VDTs).
+inline PrecomputeSettings small_accuracy_precompute() {
+    PrecomputeSettings pre;
+    pre.svdf_resolution = 32, pre.svdf_clusters = 16, pre.svdf_vectors = 6, pre.svdf_supersampling = 2;
+    pre.ovdf_shells = 8, pre.ovdf_cube_resolution = 16, pre.ovdf_vdt_resolution = 32, pre.ovdf_vectors = 6;
+    return pre;
+}
+
 }  // namespace rsl::test
