@@ -26,6 +26,10 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
+# ccache shares objects between clones of the tree (a CI run in a fresh
+# clone reuses what the session built): paths under the tree are hashed
+# relative to it, and the build folder's own path is left out.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 echo "== configure + build ($build, Release)"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 if [ "$mode" = render ]; then

@@ -6,16 +6,22 @@
 #   scripts/sanitize.sh [FUZZ_SECONDS]     (default 30 per fuzzer; 0: none)
 # The GL renderer and viewer are left out of this build (RSL_BUILD_GL=OFF):
 # Mesa's llvmpipe is not built with the sanitizers, and their tests stay on
-# the plain build. Environment: RSL_SANITIZE_BUILD_DIR (default build-sanitize).
+# the plain build. So are the Python module and the packaging tests
+# (RSL_BUILD_PYTHON=OFF; tests/CMakeLists.txt): a sanitized library loads only
+# into a sanitized host. Environment: RSL_SANITIZE_BUILD_DIR (default build-sanitize).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
 build=${RSL_SANITIZE_BUILD_DIR:-build-sanitize}
 start=$(date +%s)
 
+# ccache shares objects between clones of the tree (a CI run in a fresh
+# clone reuses what the session built): paths under the tree are hashed
+# relative to it, and the build folder's own path is left out.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 echo "== configure + build ($build: clang-14, ASan + UBSan, no GL)"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang-14 \
-  -DCMAKE_CXX_COMPILER=clang++-14 -DRSL_FUZZ=ON -DRSL_BUILD_GL=OFF >/dev/null
+  -DCMAKE_CXX_COMPILER=clang++-14 -DRSL_FUZZ=ON -DRSL_BUILD_GL=OFF -DRSL_BUILD_PYTHON=OFF >/dev/null
 cmake --build "$build" --parallel "$(nproc)"
 built=$(date +%s)
 

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -44,29 +46,22 @@ inline std::filesystem::path plant_stale_temporary(const std::filesystem::path& 
 }
 
 struct KilledRuns {
-    int killed = 0;      // runs that were killed (not ended first)
-    int cut_writes = 0;  // killed runs that left a temporary: killed inside a write
+    int killed = 0;  // runs that were killed (not ended first)
 };
 
 // Runs `command` once per delay, killed (SIGKILL) after that many seconds
 // unless it ends first, with `outputs` removed before each run; after each,
 // check_whole(path) is called for every output that exists (it must fail
-// the test when the file is partial), and `watched` (where the command
-// writes) is looked at for temporaries.
+// the test when the file is partial).
 inline KilledRuns run_killed(const std::string& command, const std::vector<double>& delays,
                              const std::vector<std::filesystem::path>& outputs,
-                             const std::function<void(const std::filesystem::path&)>& check_whole,
-                             const std::filesystem::path& watched) {
+                             const std::function<void(const std::filesystem::path&)>& check_whole) {
     KilledRuns runs;
     for (const double delay : delays) {
         for (const auto& output : outputs) std::filesystem::remove(output);
-        const size_t temporaries = temporaries_in(watched).size();
         const auto [status, text] = run_command(fmt::format("timeout -s KILL {:.3f} {}", delay, command));
         INFO("killed after " << delay << " s, status " << status << "\n" << text);
         if (status == 128 + 9) ++runs.killed;  // timeout's status for a child it killed
-        // A run that writes sweeps dead runs' temporaries first, so one more
-        // temporary than before means this run died inside a write.
-        if (status == 128 + 9 && temporaries_in(watched).size() > temporaries) ++runs.cut_writes;
         for (const auto& output : outputs)
             if (std::filesystem::exists(output)) {
                 INFO("under its final name: " << output);
@@ -74,6 +69,38 @@ inline KilledRuns run_killed(const std::string& command, const std::vector<doubl
             }
     }
     return runs;
+}
+
+// Runs `command` and kills it (SIGKILL) the moment a new temporary shows in
+// `watched`, so that the kill lands inside a write whatever the machine's
+// speed (the timed kills of run_killed depend on it: a sanitizer build or a
+// loaded machine moves the write). True when the kill left the temporary, a
+// write cut for certain; false when the command ended or finished its write
+// first.
+inline bool killed_inside_a_write(const std::string& command, const std::filesystem::path& watched) {
+    // A run sweeps dead runs' temporaries before it writes: look for a new name, not a larger count.
+    const std::vector<std::filesystem::path> before = temporaries_in(watched);
+    const auto new_temporary = [&] {
+        for (const auto& path : temporaries_in(watched))
+            if (std::find(before.begin(), before.end(), path) == before.end()) return true;
+        return false;
+    };
+    const std::string shell_command = "exec " + command;
+    const pid_t child = ::fork();
+    if (child == 0) {
+        const int null_fd = ::open("/dev/null", O_WRONLY);
+        ::dup2(null_fd, 1), ::dup2(null_fd, 2);
+        ::execl("/bin/sh", "sh", "-c", shell_command.c_str(), static_cast<char*>(nullptr));
+        std::_Exit(127);
+    }
+    int status = 0;
+    while (!new_temporary()) {
+        if (::waitpid(child, &status, WNOHANG) == child) return false;
+        ::usleep(100);
+    }
+    ::kill(child, SIGKILL);
+    ::waitpid(child, &status, 0);
+    return new_temporary();
 }
 
 // The scene the truth and render kill tests run: an (n + 1)²-vertex ground

@@ -203,7 +203,7 @@ TEST_CASE("rsl bake killed at any moment: no partial field file, and the rerun r
     // Kill (SIGKILL) at growing delays; whatever stands under a final name must be whole.
     int killed = 0;
     for (const double delay : {0.02, 0.05, 0.1, 0.15, 0.2, 0.3}) {
-        killed += run_killed(std::string(RSL_RSL_EXECUTABLE) + " bake -q " + scene, {delay}, {}, {}, cache).killed;
+        killed += run_killed(std::string(RSL_RSL_EXECUTABLE) + " bake -q " + scene, {delay}, {}, {}).killed;
         for (const fs::path& f : final_files()) CHECK_NOTHROW(read_field_header(f));  // magic, size, checksum
     }
     CHECK(killed > 0);  // else nothing was cut, and the test proved nothing

@@ -30,9 +30,14 @@ TEST_CASE("rsl truth killed at any moment: no partial output, and the rerun comp
     for (const fs::path& f : {exr, png}) check_whole(f);
     std::vector<double> delays;
     for (const double fraction : {0.1, 0.3, 0.4, 0.5, 0.6, 0.7, 0.85, 0.95}) delays.push_back(fraction * seconds);
-    const KilledRuns runs = run_killed(command, delays, {exr, png, rslv}, check_whole, dir);
+    const KilledRuns runs = run_killed(command, delays, {exr, png, rslv}, check_whole);
     CHECK(runs.killed > 0);  // else nothing was cut, and the test proved nothing
-    CHECK(runs.cut_writes > 0);  // the EXR write takes about a third of a run
+    // And one kill certain to land inside a write (the timed ones may miss it on a slow or loaded machine).
+    int tries = 0;
+    while (tries < 5 && !killed_inside_a_write(command, dir)) ++tries;
+    CHECK(tries < 5);
+    for (const fs::path& f : {exr, png, rslv})
+        if (fs::exists(f)) check_whole(f);
     // The sweep is tested whatever the kills left: a dead writer's temporary of each output.
     for (const fs::path& f : {exr, png, rslv}) plant_stale_temporary(f);
     REQUIRE(temporaries_in(dir).size() >= 3);
