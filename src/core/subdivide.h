@@ -15,10 +15,9 @@ namespace rsl {
 // mesh's own units) when that is set (> 0); off when !enabled.
 struct SubdivisionSettings {
     // Off unless the scene file asks: measured on coarse boxes under grace
-    // (docs/SCENE_FORMAT.md, "Subdivision"), it helps the image and the
-    // boxes on top, but a box under another gets worse (its new vertices
-    // fall where the OVDF is weakest, and on contact seams the truth shades
-    // black), so it is not yet a free default.
+    // (docs/SCENE_FORMAT.md, "Subdivision"), it helps the image, but a box
+    // under another gets worse (its new vertices fall where the OVDF is
+    // weakest), so it is not yet a free default.
     bool enabled = false;
     // With it on: the image error stops falling at R/4–R/8, the worst box's
     // per-vertex error keeps falling to R/8, and R/16 costs 3× more.
