@@ -99,13 +99,20 @@ void print_camera(const Scene& scene) {
 }
 
 void print_parts(const Scene& scene) {
-    size_t triangles = 0, dropped = 0;
+    size_t triangles = 0, dropped = 0, loaded = 0;
     for (const Part& p : scene.parts) {
         triangles += p.mesh.triangle_count();
         dropped += p.mesh.degenerate_dropped;
+        loaded += p.loaded_vertices;
     }
     fmt::print("  parts:             {} ({} vertices, {} triangles, {} degenerate triangles dropped)\n",
                scene.parts.size(), scene.vertex_count(), triangles, dropped);
+    const SubdivisionSettings& sub = scene.subdivision;
+    fmt::print("  subdivision:       {}: {} vertices loaded, {} after\n",
+               !sub.enabled          ? "off"
+               : sub.absolute_edge > 0 ? fmt::format("edges up to {}", sub.absolute_edge)
+                                       : fmt::format("edges up to {} x each part's bounding radius", sub.relative_edge),
+               loaded, scene.vertex_count());
     for (size_t i = 0; i < scene.parts.size(); ++i) {
         const Part& part = scene.parts[i];
         const MaterialDesc& m = scene.materials.at(part.material);
@@ -113,8 +120,10 @@ void print_parts(const Scene& scene) {
         const std::string dropped = part.mesh.degenerate_dropped
                                         ? fmt::format(" ({} degenerate dropped)", part.mesh.degenerate_dropped)
                                         : "";
-        fmt::print("    {:<16} {:>7} vertices {:>7} triangles{}  material {} ({}){}  origin at {}\n", part.name,
-                   part.mesh.vertex_count(), part.mesh.triangle_count(), dropped, m.name, m.model,
+        const std::string loaded_text =
+            part.loaded_vertices != part.mesh.vertex_count() ? fmt::format(" ({} loaded)", part.loaded_vertices) : "";
+        fmt::print("    {:<16} {:>7} vertices{} {:>7} triangles{}  material {} ({}){}  origin at {}\n", part.name,
+                   part.mesh.vertex_count(), loaded_text, part.mesh.triangle_count(), dropped, m.name, m.model,
                    is_animated(scene, part.node) ? "  animated" : "", vec3_text(origin));
         print_mesh_bounds(part.mesh, "      ");
     }

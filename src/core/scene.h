@@ -11,6 +11,7 @@
 
 #include "src/core/math.h"
 #include "src/core/mesh.h"
+#include "src/core/subdivide.h"
 #include "src/core/texture.h"
 
 namespace rsl {
@@ -64,6 +65,7 @@ struct Part {
     TriangleMesh mesh;  // in the part's frame
     int node = -1;      // scene node giving its transform
     int material = 0;   // index into Scene::materials
+    size_t loaded_vertices = 0;  // as the file gave them, before subdivide_scene_parts (`rsl info`)
 };
 
 struct Scene;
@@ -164,6 +166,7 @@ struct Scene {
     std::vector<GltfFileNotes> gltf_files;
     AnimationRange animation;
     PrecomputeSettings precompute;
+    SubdivisionSettings subdivision;
 
     Mat4 node_world_at(int node, float t) const;  // product of ancestors' local transforms
     Mat4 part_transform_at(int part, float t) const { return node_world_at(parts[part].node, t); }
@@ -173,6 +176,10 @@ struct Scene {
 // Loads a JSON scene file, a .gltf/.glb (one part per mesh node, node
 // animation), or a single .obj (one part). Throws rsl::Error naming the file.
 Scene load_scene(const std::filesystem::path& path);
+// Splits every part's long edges per scene.subdivision (src/core/subdivide.h)
+// and records each part's loaded vertex count. load_scene calls it; a scene
+// built in code calls it when it wants the same meshes a file would give.
+void subdivide_scene_parts(Scene& scene);
 // Parts, nodes, animation, lights and camera of a glTF file's default scene,
 // appended to `scene`.
 void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material);

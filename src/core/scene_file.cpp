@@ -113,7 +113,7 @@ public:
         const Json root = parse_file();
         if (!root.is_object()) fail("", "the top level must be a JSON object");
         check_keys(root, "", {"name", "gltf", "parts", "materials", "part_materials", "environment", "lights",
-                              "light_radii", "camera", "animation", "precompute"});
+                              "light_radii", "camera", "animation", "precompute", "subdivision"});
         scene_.source = path_;
         scene_.name = root.contains("name") ? string_at(root, "name", "name") : path_.stem().string();
         read_materials(root);
@@ -137,6 +137,8 @@ public:
         if (root.contains("camera")) read_camera(root["camera"]);
         if (root.contains("animation")) read_animation(root["animation"]);
         if (root.contains("precompute")) read_precompute(root["precompute"]);
+        if (root.contains("subdivision")) read_subdivision(root["subdivision"]);
+        subdivide_scene_parts(scene_);
         const bool has_camera = root.contains("camera");
         const bool has_pose = has_camera && std::any_of(kCameraPoseKeys.begin(), kCameraPoseKeys.end(),
                                                         [&](const char* key) { return root["camera"].contains(key); });
@@ -517,6 +519,25 @@ private:
         }
     }
 
+    // `false` (off), `true` (the default edge) or {enabled, relative_edge,
+    // edge}: an object turns it on unless its `enabled` is false.
+    void read_subdivision(const Json& j) {
+        SubdivisionSettings& s = scene_.subdivision;
+        if (j.is_boolean()) {
+            s.enabled = j.get<bool>();
+            return;
+        }
+        expect_object(j, "subdivision");
+        check_keys(j, "subdivision", {"enabled", "relative_edge", "edge"});
+        s.enabled = true;
+        if (j.contains("enabled")) {
+            if (!j["enabled"].is_boolean()) fail("subdivision.enabled", "expected true or false");
+            s.enabled = j["enabled"].get<bool>();
+        }
+        if (j.contains("relative_edge")) s.relative_edge = positive_number_at(j, "relative_edge", "subdivision");
+        if (j.contains("edge")) s.absolute_edge = positive_number_at(j, "edge", "subdivision");
+    }
+
     static constexpr std::array<const char*, 5> kCameraPoseKeys{"position", "target", "up", "fov_degrees", "path"};
 
     std::filesystem::path path_, dir_;
@@ -544,6 +565,7 @@ Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
         part.node = 0;
         scene.parts.push_back(std::move(part));
     }
+    subdivide_scene_parts(scene);
     finish_scene(scene, false, false, false);
     return scene;
 }

@@ -3,6 +3,33 @@
 #include "src/core/error.h"
 
 namespace rsl {
+namespace {
+
+// Per vertex, the direction into its triangles within its tangent plane: the
+// mean of the directions to their centroids, where those do not cancel (an
+// interior vertex, whose triangles surround it, stays where it is).
+std::vector<Vec3> inward_directions(const TriangleMesh& mesh) {
+    std::vector<Vec3> sum(mesh.vertex_count(), Vec3(0));
+    std::vector<float> length(mesh.vertex_count(), 0.0f);
+    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+        const uint32_t* tri = &mesh.indices[t];
+        const Vec3 centroid = (mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]) / 3.0f;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 d = centroid - mesh.positions[tri[k]];
+            sum[tri[k]] += d;
+            length[tri[k]] += glm::length(d);
+        }
+    }
+    for (size_t v = 0; v < sum.size(); ++v) {
+        const Vec3 n = mesh.normals[v];
+        const Vec3 in_plane = sum[v] - n * glm::dot(n, sum[v]);
+        const float size = glm::length(in_plane);
+        sum[v] = size > 0.25f * length[v] && size > 0.0f ? in_plane / size : Vec3(0);
+    }
+    return sum;
+}
+
+}  // namespace
 
 PosedScene::PosedScene(const Scene& scene, float t) : scene_(scene) {
     if (scene.parts.empty()) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
@@ -10,6 +37,7 @@ PosedScene::PosedScene(const Scene& scene, float t) : scene_(scene) {
         const int mesh = rays_.add_mesh(scene.parts[p].mesh);
         const int instance = rays_.add_instance(mesh, Mat4(1.0f));
         RSL_CHECK(mesh == int(p) && instance == int(p));
+        inward_.push_back(inward_directions(scene.parts[p].mesh));
     }
     transforms_.resize(scene.parts.size());
     linear_.resize(scene.parts.size());
@@ -38,6 +66,8 @@ SurfacePoint PosedScene::vertex(int part, int v) const {
     const Vec3 t = mesh.tangents.empty() ? Vec3(0) : linear_[part] * Vec3(mesh.tangents[v]);
     x.frame = Frame::from_normal_tangent(n, t);
     x.offset_normal = x.frame.z;
+    const Vec3 inward = inward_[size_t(part)][size_t(v)];
+    if (inward != Vec3(0)) x.position += glm::normalize(linear_[part] * inward) * offset_.distance(x.position);
     return x;
 }
 

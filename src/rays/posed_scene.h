@@ -29,6 +29,10 @@ public:
     // World-space vertex: position by the part's transform, normal by its
     // inverse transpose, tangent by its linear part (exact also under
     // non-uniform scale), frame by Gram-Schmidt (Frame::from_normal_tangent).
+    // A vertex on the border of its surface (a box's face along the ground it
+    // stands on) moves by the ray offset into its own triangles, so that it
+    // is shaded as its face next to the border, not as a point lying on the
+    // other part, whose triangles every ray would hit at t = 0 (docs/TRUTH.md).
     SurfacePoint vertex(int part, int vertex) const;
     // World-space point of a primary-ray hit: barycentric position, shading
     // normal and tangent; rays leave on the geometric normal's side that faces
@@ -42,6 +46,7 @@ private:
     float time_ = 0;
     std::vector<Mat4> transforms_;
     std::vector<Mat3> linear_, normal_;
+    std::vector<std::vector<Vec3>> inward_;  // per part and vertex: towards its triangles (part frame), or 0
 };
 
 }  // namespace rsl

@@ -267,3 +267,25 @@ TEST_CASE("assets/scenes/instanced.json: 17 parts of 3 unique meshes", "[fields]
     for (int p : groups[1].parts) origins.emplace(scene.part_transform_at(p, 0)[3].x, scene.part_transform_at(p, 0)[3].z);
     CHECK(origins.size() == 8);
 }
+
+TEST_CASE("A different subdivision setting selects other field files, never a stale one", "[fields][instances][subdivide]") {
+    const fs::path dir = scratch_dir("subdivision_cache");
+    write_text(dir / "box.obj", kUnitBoxObj);
+    write_text(dir / "none.hdr", "");
+    auto planned_files = [&](const std::string& setting) {
+        write_text(dir / "scene.json", R"({"parts": [{"obj": "box.obj"}, {"obj": "box.obj", "name": "again"}],
+                                           "environment": {"file": "none.hdr"}, "subdivision": )" + setting + "}");
+        Scene scene = load_scene(dir / "scene.json");
+        tiny_settings(scene);
+        const SceneFields plan = plan_fields(scene, default_field_options(scene));
+        REQUIRE(plan.unique.size() == 1);  // the two instances still share their subdivided mesh
+        return std::pair{plan.unique[0].svdf_outcome.file, plan.unique[0].ovdf_outcome.file};
+    };
+    const auto off = planned_files("false"), coarse = planned_files(R"({"edge": 0.4})"),
+               fine = planned_files(R"({"edge": 0.2})");
+    CHECK(off.first != coarse.first);
+    CHECK(off.second != coarse.second);
+    CHECK(coarse.first != fine.first);
+    CHECK(coarse.second != fine.second);
+    CHECK(planned_files(R"({"edge": 0.2})") == fine);  // and the same setting finds its files again
+}

@@ -215,3 +215,34 @@ TEST_CASE("A sphere light matches the irradiance of a spherical source", "[trace
     REQUIRE(luminance(blocked.shade(point_on_floor(Vec3(0)), Vec3(0, 1, 0), blocked.part_brdf(0))) == 0.0f);
     REQUIRE(luminance(blocked.shade(point_on_floor(Vec3(1.6f, 0, 0.2f)), Vec3(0, 1, 0), blocked.part_brdf(0))) > 0.0f);
 }
+
+TEST_CASE("A box standing on the ground: its vertices along the seam are shaded as its faces next to it", "[trace][truth]") {
+    // Vertices on the seam lie on the ground's triangles; without the nudge
+    // into their own face every ray hits the ground at t = 0 and they come
+    // out black (docs/TRUTH.md). Reference: the same box lifted by 1e-4,
+    // where nothing is degenerate.
+    auto box_on_ground = [](float lift) {
+        Scene scene = test::make_scene("seam", Color(1));
+        test::add_part(scene, test::make_plane(8.0f, 8, "ground"));
+        Transform pose;
+        pose.translation = Vec3(0.05f, 0.5f + lift, 0.1f);  // off the ground's grid lines
+        test::add_part(scene, test::make_flat_box(Vec3(0.5f), 2, "box"), pose);
+        scene.camera.position = Vec3(20, 3, 20);  // sees the +X and +Z faces (the view must be above a face's horizon)
+        return scene;
+    };
+    const CubeMap sky = test::constant_cube(8, Color(1));
+    const Scene touching = box_on_ground(0), lifted = box_on_ground(1e-4f);
+    const VertexColors a = GroundTruth(touching, sky, 0).shade_vertices();
+    const VertexColors b = GroundTruth(lifted, sky, 0).shade_vertices();
+    const TriangleMesh& box = touching.parts[1].mesh;
+    int seam = 0;
+    for (size_t v = 0; v < box.vertex_count(); ++v) {
+        // The bottom row of the faces the camera sees.
+        if (box.positions[v].y != -0.5f || !(box.normals[v].x > 0.5f || box.normals[v].z > 0.5f)) continue;
+        ++seam;
+        INFO("vertex " << v << ": touching " << a.parts[1][v].r << ", lifted " << b.parts[1][v].r);
+        CHECK(a.parts[1][v].r > 0.4f);  // a white sky over the upper half of the hemisphere: 0.5
+        CHECK(a.parts[1][v].r == Approx(b.parts[1][v].r).epsilon(0.03));
+    }
+    CHECK(seam == 6);  // 2 faces × 3 vertices
+}

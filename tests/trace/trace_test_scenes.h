@@ -70,6 +70,36 @@ inline TriangleMesh make_icosphere(float radius, int level, const std::string& n
     return mesh;
 }
 
+// A box of half extents h centred at the origin, flat-shaded as exporters
+// write one (each face its own vertices and normal: the edges are creases),
+// each face split into n × n quads, with tangents and a per-face uv.
+inline TriangleMesh make_flat_box(Vec3 h, int n, const std::string& name = "box") {
+    TriangleMesh mesh;
+    mesh.name = name;
+    for (int axis = 0; axis < 3; ++axis)
+        for (float sign : {-1.0f, 1.0f}) {
+            Vec3 normal(0), u(0), v(0);
+            normal[axis] = sign;
+            u[(axis + 1) % 3] = 1;
+            v[(axis + 2) % 3] = sign;  // u × v = sign · axis: counter-clockwise seen from outside
+            const uint32_t base = uint32_t(mesh.positions.size());
+            for (int j = 0; j <= n; ++j)
+                for (int i = 0; i <= n; ++i) {
+                    const Vec3 local = normal + (2.0f * i / n - 1) * u + (2.0f * j / n - 1) * v;
+                    mesh.positions.push_back(local * h);
+                    mesh.normals.push_back(normal);
+                    mesh.tangents.emplace_back(u, 1.0f);
+                    mesh.texcoords.emplace_back(float(i) / n, float(j) / n);
+                }
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    const uint32_t a = base + uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+                    for (uint32_t index : {a, b, d, a, d, c}) mesh.indices.push_back(index);
+                }
+        }
+    return mesh;
+}
+
 inline MaterialDesc lambert(Color albedo, const std::string& name = "white") {
     MaterialDesc m;
     m.name = name;

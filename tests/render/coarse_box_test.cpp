@@ -1,0 +1,98 @@
+// Coarse meshes against the truth (issue 16): two flat-shaded boxes of a few
+// hundred vertices stacked on a ground plane. Per-vertex shading sees light
+// and shadow only at vertices, so the scene's subdivision (src/core/subdivide.h)
+// must bring each box's error down to that of a finely tessellated part.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "src/frame/error_metrics.h"
+#include "src/render/renderer.h"
+#include "src/trace/ground_truth.h"
+#include "tests/render/render_test_scenes.h"
+
+namespace rsl {
+namespace {
+
+Scene stacked_boxes(bool subdivide) {
+    Scene scene = test::make_scene("coarse_boxes", Color(0.7f));
+    test::add_part(scene, test::make_plane(6.0f, 40, "ground"));
+    Transform bottom, top;
+    bottom.translation = Vec3(0, 0.4f, 0);
+    top.translation = Vec3(0, 1.25f, 0);
+    test::add_part(scene, test::make_flat_box(Vec3(0.6f, 0.4f, 0.5f), 3, "bottom"), bottom);  // 96 vertices
+    test::add_part(scene, test::make_flat_box(Vec3(0.3f, 0.45f, 0.3f), 5, "top"), top);       // 216 vertices
+    scene.precompute = test::small_accuracy_precompute();
+    scene.subdivision.enabled = subdivide;
+    subdivide_scene_parts(scene);
+    return scene;
+}
+
+struct PartErrors {
+    double all = 0, bottom = 0, top = 0;
+};
+
+PartErrors render_against_truth(const Scene& scene, const CubeMap& environment, const RenderOptions& options) {
+    const VertexColors truth = GroundTruth(scene, environment, 0.0f).shade_vertices();
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    Renderer renderer(scene, fit_environment_lights(environment, options.environment_lights), fields, options);
+    const VertexErrorReport report = compare_vertex_colors(renderer.shade(), truth);
+    return {report.total.relative_l2(), report.parts[1].relative_l2(), report.parts[2].relative_l2()};
+}
+
+// Grace (small bright windows: hard shadows) when the shared assets are
+// there, else the synthetic sky with a sun.
+CubeMap test_environment() {
+    const std::filesystem::path grace = std::filesystem::path(RSL_SHARED_ASSETS) / "probes/grace.hdr";
+    return std::filesystem::exists(grace) ? load_environment(grace, 16) : test::sky_with_sun(16);
+}
+
+struct BoxRuns {
+    PartErrors coarse, subdivided;
+};
+const BoxRuns& box_runs() {
+    static const BoxRuns runs = [] {
+        const CubeMap environment = test_environment();
+        RenderOptions options;
+        options.environment_lights = 30;
+        return BoxRuns{render_against_truth(stacked_boxes(false), environment, options),
+                       render_against_truth(stacked_boxes(true), environment, options)};
+    }();
+    return runs;
+}
+
+#define BOX_ERRORS_INFO(runs)                                                                                   \
+    INFO("relative L2 all / bottom / top: coarse " << runs.coarse.all << " / " << runs.coarse.bottom << " / "  \
+                                                   << runs.coarse.top << ", subdivided " << runs.subdivided.all \
+                                                   << " / " << runs.subdivided.bottom << " / " << runs.subdivided.top)
+
+TEST_CASE("Coarse stacked boxes vs the truth: the boxes within 5%, the top one better subdivided", "[render][accuracy][subdivide]") {
+    const Scene coarse = stacked_boxes(false), fine = stacked_boxes(true);
+    CHECK(coarse.parts[1].mesh.vertex_count() == 96);
+    CHECK(fine.parts[1].mesh.vertex_count() > 10 * 96);
+    CHECK(fine.parts[0].mesh.vertex_count() == coarse.parts[0].mesh.vertex_count());  // the ground is fine already
+    const BoxRuns& runs = box_runs();
+    BOX_ERRORS_INFO(runs);
+    // Measured under grace (docs/SCENE_FORMAT.md, "Subdivision"): top box
+    // 2.2% coarse, 1.5% subdivided; 8.7% coarse while the truth shaded the
+    // seam vertices black (docs/TRUTH.md).
+    CHECK(runs.coarse.top < 0.05);
+    CHECK(runs.coarse.bottom < 0.05);
+    CHECK(runs.subdivided.top < 0.05);
+    CHECK(runs.subdivided.top < runs.coarse.top);
+    CHECK(runs.subdivided.all < 0.05);
+}
+
+// Open (issue 16): the subdivided bottom box has vertices on its top face
+// within a few hundredths of R of the top box (and on the line under its
+// edges), the OVDF's known weak spot (docs/FIELDS.md, "Not done"): 2.2%
+// coarse, 12.6% subdivided; rays in place of the OVDF (ExactVisibility)
+// bring such a box to about 5%. Runs and reports without failing the suite.
+TEST_CASE("Coarse stacked boxes vs the truth: the box under another within 5%", "[render][accuracy][subdivide][!mayfail]") {
+    const BoxRuns& runs = box_runs();
+    BOX_ERRORS_INFO(runs);
+    CHECK(runs.subdivided.bottom < 0.05);
+}
+
+}  // namespace
+}  // namespace rsl
