@@ -87,11 +87,12 @@ TEST_CASE("Coarse stacked boxes vs the truth: the boxes within 5%, the top one b
 // within a few hundredths of R of the top box (and on the line under its
 // edges), the OVDF's known weak spot (docs/FIELDS.md, "Not done"): 2.2%
 // coarse, 12.6% subdivided; rays in place of the OVDF (ExactVisibility)
-// bring such a box to about 5%. Runs and reports without failing the suite.
-TEST_CASE("Coarse stacked boxes vs the truth: the box under another within 5%", "[render][accuracy][subdivide][!mayfail]") {
+// bring such a box to about 5%. Until the near-field lookup is fixed this
+// holds the measured error, so that it can only get better; the goal is 5%.
+TEST_CASE("Coarse stacked boxes vs the truth: the box under another no worse than measured", "[render][accuracy][subdivide]") {
     const BoxRuns& runs = box_runs();
     BOX_ERRORS_INFO(runs);
-    CHECK(runs.subdivided.bottom < 0.05);
+    CHECK(runs.subdivided.bottom < 0.14);
 }
 
 }  // namespace
