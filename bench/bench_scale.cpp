@@ -56,27 +56,6 @@ size_t field_ram_bytes(const PartFields& fields, size_t& unique, size_t& meshes)
     return bytes;
 }
 
-// The objects' error: every part but the ground (the static receiver), and the worst part.
-struct ObjectErrors {
-    double objects = 0, worst = 0;
-    std::string worst_part;
-};
-ObjectErrors object_errors(const VertexErrorReport& report) {
-    ErrorStats objects;
-    ObjectErrors result;
-    for (size_t p = 0; p < report.parts.size(); ++p) {
-        if (report.part_names[p] == "ground") continue;
-        objects.diff_squared += report.parts[p].diff_squared;
-        objects.reference_squared += report.parts[p].reference_squared;
-        if (report.parts[p].relative_l2() > result.worst) {
-            result.worst = report.parts[p].relative_l2();
-            result.worst_part = report.part_names[p];
-        }
-    }
-    result.objects = objects.relative_l2();
-    return result;
-}
-
 struct ScaleRow {
     int parts = 0;
     float reach = 0;
@@ -148,10 +127,10 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
         const auto start = BenchClock::now();
         const VertexColors reference = truth.shade_vertices();
         const VertexErrorReport error = compare_vertex_colors(colors, reference);
-        const ObjectErrors objects = object_errors(error);
+        const ObjectErrorReport objects = object_errors(error);
         row["truth_seconds"] = seconds_since(start);
         row["relative_l2_vs_truth"] = error.total.relative_l2();
-        row["objects_relative_l2"] = objects.objects;
+        row["objects_relative_l2"] = objects.objects.relative_l2();
         row["worst_part"] = objects.worst_part;
         row["worst_part_relative_l2"] = objects.worst;
     }

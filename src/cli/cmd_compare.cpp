@@ -1,6 +1,7 @@
 // `rsl compare A B`: the error of a result A against a reference B, both
 // per-vertex (.rslv) or both images (.exr). Prints `relative L2: …` first.
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include "src/cli/command.h"
 #include "src/core/error.h"
@@ -19,6 +20,7 @@ struct CompareArgs {
     float error_scale = 0;
     std::string scene;
     int width = 0, height = 0;
+    std::vector<std::string> receivers = kDefaultReceivers;
 };
 
 enum class Kind { Vertices, Image };
@@ -51,6 +53,12 @@ void compare_vertices(const CompareArgs& args) {
                report.total.relative_l2(), report.total.count, args.a, a.producer, args.b, b.producer);
     fmt::print("max error: {:.6g} (RGB distance; {:.6g} of the largest reference value {:.6g})\n",
                report.total.max_error, report.total.relative_max(), report.total.max_reference);
+    const ObjectErrorReport objects = object_errors(report, args.receivers);
+    if (objects.object_parts > 0)
+        fmt::print("objects: relative L2 {:.6g} over {} vertices of {} parts (all but the receivers {}); "
+                   "worst part {}: {:.6g}\n",
+                   objects.objects.relative_l2(), objects.objects.count, objects.object_parts,
+                   fmt::join(args.receivers, ", "), objects.worst_part, objects.worst);
     for (size_t p = 0; p < report.parts.size(); ++p)
         fmt::print("part {}: relative L2 {:.6g}, max error {:.6g}, {} vertices\n", report.part_names[p],
                    report.parts[p].relative_l2(), report.parts[p].max_error, report.parts[p].count);
@@ -83,7 +91,7 @@ void compare_image_files(const CompareArgs& args) {
 }
 
 RegisterCommand compare_command({"compare",
-    "Error of A against the reference B (both .rslv or both .exr): relative L2, max, per part, H1 for images",
+    "Error of A against the reference B (both .rslv or both .exr): relative L2, max, the objects and the worst part, per part, H1 for images",
     50, [](CLI::App& app) {
         auto args = std::make_shared<CompareArgs>();
         app.add_option("a", args->a, "Result to measure (.rslv or .exr)")->required()->check(CLI::ExistingFile);
@@ -93,6 +101,9 @@ RegisterCommand compare_command({"compare",
         app.add_option("--scene", args->scene, "Scene to draw a per-vertex error image on (vertex files)");
         app.add_option("--width", args->width, "Error image width for vertex files (default: the camera's)");
         app.add_option("--height", args->height, "Error image height for vertex files (default: the camera's)");
+        app.add_option("--receivers", args->receivers,
+                       "Parts left out of the objects' error, the static receivers (default: ground, floor)")
+            ->delimiter(',');
         app.callback([args] {
             const Kind ka = kind_of(args->a), kb = kind_of(args->b);
             if (ka != kb) throw_error("{} and {} are of different kinds: compare .rslv with .rslv, .exr with .exr", args->a, args->b);

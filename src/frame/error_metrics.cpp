@@ -41,6 +41,28 @@ double ErrorStats::relative_max() const {
     return max_error > 0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
+void ErrorStats::merge(const ErrorStats& other) {
+    diff_squared += other.diff_squared;
+    reference_squared += other.reference_squared;
+    max_error = std::max(max_error, other.max_error);
+    max_reference = std::max(max_reference, other.max_reference);
+    count += other.count;
+}
+
+ObjectErrorReport object_errors(const VertexErrorReport& report, const std::vector<std::string>& receivers) {
+    ObjectErrorReport result;
+    for (size_t p = 0; p < report.parts.size(); ++p) {
+        if (std::find(receivers.begin(), receivers.end(), report.part_names[p]) != receivers.end()) continue;
+        result.objects.merge(report.parts[p]);
+        ++result.object_parts;
+        if (result.worst_part.empty() || report.parts[p].relative_l2() > result.worst) {
+            result.worst = report.parts[p].relative_l2();
+            result.worst_part = report.part_names[p];
+        }
+    }
+    return result;
+}
+
 VertexErrorReport compare_vertex_colors(const VertexColors& a, const VertexColors& b) {
     RSL_CHECK_EQ(a.parts.size(), b.parts.size());
     VertexErrorReport report;

@@ -22,6 +22,8 @@ struct ErrorStats {
     double relative_l2() const;
     // max |a − b| / max |b|.
     double relative_max() const;
+    // The stats of both element sets together.
+    void merge(const ErrorStats& other);
 };
 
 struct VertexErrorReport {
@@ -32,6 +34,23 @@ struct VertexErrorReport {
 // A and B must describe the same vertices (check_same_vertices). Parts both
 // layered (textured) are compared at unit texture (diffuse + specular).
 VertexErrorReport compare_vertex_colors(const VertexColors& a, const VertexColors& b);
+
+// The static receivers of the project's scenes, a ground or a floor under
+// the objects. A large receiver can make the all-vertex error look right
+// while the objects on it are far off, so the objects are measured apart.
+inline const std::vector<std::string> kDefaultReceivers = {"ground", "floor"};
+
+// The error of the objects: every part not named in `receivers`, together,
+// and the worst of them (largest relative L2; empty name when no part is an
+// object).
+struct ObjectErrorReport {
+    ErrorStats objects;
+    size_t object_parts = 0;
+    std::string worst_part;
+    double worst = 0;
+};
+ObjectErrorReport object_errors(const VertexErrorReport& report,
+                                const std::vector<std::string>& receivers = kDefaultReceivers);
 
 // The one image error of the project (`rsl compare`, the demos, the
 // baselines' tables; docs/TRUTH.md "Errors"): the pixels that count are those

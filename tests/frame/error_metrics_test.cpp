@@ -1,6 +1,8 @@
 // Error measures against hand-computed values.
 #include <random>
 
+#include <fmt/core.h>
+
 #include <catch2/catch.hpp>
 
 #include "src/core/error.h"
@@ -87,4 +89,43 @@ TEST_CASE("False colours are ordered from dark to red and clamp", "[trace][error
     REQUIRE(false_color(1.0f).r > false_color(1.0f).b);
     REQUIRE(false_color(-3.0f) == false_color(0.0f));
     REQUIRE(false_color(7.0f) == false_color(1.0f));
+}
+
+TEST_CASE("The objects' error leaves out the receivers, and names the worst object", "[trace][error]") {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> uni(0.1f, 2.0f), scale(0.5f, 1.5f);
+    for (int round = 0; round < 50; ++round) {
+        // A ground of many vertices nearly right, objects of few vertices off by a random factor each.
+        VertexColors b, a;
+        const int objects = 1 + round % 5;
+        b.add_part("ground", 400);
+        for (int o = 0; o < objects; ++o) b.add_part(fmt::format("object{}", o), 10 + 7 * o);
+        for (auto& part : b.parts)
+            for (Color& c : part) c = Color(uni(rng), uni(rng), uni(rng));
+        a = b;
+        std::vector<float> factor(b.parts.size(), 1.001f);
+        for (size_t p = 1; p < factor.size(); ++p) factor[p] = scale(rng);
+        for (size_t p = 0; p < a.parts.size(); ++p)
+            for (Color& c : a.parts[p]) c *= factor[p];
+        const ObjectErrorReport r = object_errors(compare_vertex_colors(a, b));
+
+        // Brute force: the relative L2 over the object vertices, and the part whose factor is furthest from 1.
+        double diff = 0, reference = 0;
+        size_t worst = 1;
+        for (size_t p = 1; p < b.parts.size(); ++p) {
+            for (size_t v = 0; v < b.parts[p].size(); ++v) {
+                const DVec3 d = DVec3(a.parts[p][v]) - DVec3(b.parts[p][v]);
+                diff += glm::dot(d, d), reference += glm::dot(DVec3(b.parts[p][v]), DVec3(b.parts[p][v]));
+            }
+            if (std::abs(factor[p] - 1) > std::abs(factor[worst] - 1)) worst = p;
+        }
+        INFO("round " << round);
+        REQUIRE(r.object_parts == size_t(objects));
+        REQUIRE(r.objects.relative_l2() == Approx(std::sqrt(diff / reference)).epsilon(1e-6));
+        REQUIRE(r.worst_part == b.part_names[worst]);
+        REQUIRE(r.worst == Approx(std::abs(factor[worst] - 1)).epsilon(1e-4));
+        // Named receivers are left out too; with every part a receiver, nothing is an object.
+        REQUIRE(object_errors(compare_vertex_colors(a, b), {"ground", "object0"}).object_parts == size_t(objects - 1));
+        REQUIRE(object_errors(compare_vertex_colors(a, b), b.part_names).worst_part.empty());
+    }
 }

@@ -63,6 +63,13 @@ TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cl
     INFO(same);
     REQUIRE(same_status == 0);
     REQUIRE(same.rfind("relative L2: 0 ", 0) == 0);
+    CHECK(same.find("objects:") == std::string::npos);  // the floor is a receiver: no object to measure
+    auto [objects_status, objects] = run_command(rsl + " compare " + (dir / "truth.rslv").string() + " " +
+                                                 (dir / "truth.rslv").string() + " --receivers ground,wall");
+    INFO(objects);
+    REQUIRE(objects_status == 0);
+    CHECK(objects.find("objects: relative L2 0 over 4 vertices of 1 parts (all but the receivers ground, wall); "
+                       "worst part floor: 0\n") != std::string::npos);
     auto [image_status, images] = run_command(rsl + " compare " + out.string() + " " + out.string() + " --error-image " +
                                       (dir / "err.png").string());
     INFO(images);
