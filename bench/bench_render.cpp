@@ -82,6 +82,7 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     const VertexColors reference = truth.shade_vertices();
     const double truth_seconds = since(start);
     const VertexErrorReport error = compare_vertex_colors(colors, reference);
+    const ObjectErrorReport objects = object_errors(error);
     const RenderStats& stats = renderer->stats();
     bench_emit({{"bench", "render"},
                 {"case", c.name},
@@ -109,7 +110,10 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
                 {"truth_seconds", truth_seconds},
                 {"speedup_shading", truth_seconds / shade_seconds},
                 {"speedup_with_image", (truth_seconds + image_seconds) / (shade_seconds + image_seconds)},
-                {"relative_l2_vs_truth", error.total.relative_l2()}});
+                {"relative_l2_vs_truth", error.total.relative_l2()},
+                {"objects_relative_l2_vs_truth", objects.objects.relative_l2()},
+                {"worst_part", objects.worst_part},
+                {"worst_part_relative_l2_vs_truth", objects.worst}});
 }
 
 void bench_render(const BenchOptions& options) {

@@ -114,7 +114,11 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
                         row.render_seconds = since(start);
                         row.truth_seconds = truth_seconds;
                         row.vertices = colors.vertex_count();
-                        row.error = compare_vertex_colors(colors, reference).total.relative_l2();
+                        const VertexErrorReport error = compare_vertex_colors(colors, reference);
+                        const ObjectErrorReport objects = object_errors(error);
+                        row.error = error.total.relative_l2();
+                        row.objects_error = objects.objects.relative_l2();
+                        row.worst_part = objects.worst_part, row.worst_part_error = objects.worst;
                         RenderOptions no_occluders;
                         no_occluders.occluders = false;
                         Renderer self_only(*scene, rsls, setup.fields, no_occluders);
@@ -130,9 +134,12 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
                                 compare_vertex_colors(light_only.shade_vertices(), reference).total.relative_l2();
                         }
                         if (progress)
-                            std::fprintf(stderr, "%s t=%.2f %s %s K=%d: %.4f (light %.4f, no occluders %.4f)\n",
+                            std::fprintf(stderr,
+                                         "%s t=%.2f %s %s K=%d: %.4f, objects %.4f, worst %s %.4f (light %.4f, no "
+                                         "occluders %.4f)\n",
                                          row.scene.c_str(), t, row.environment.c_str(), row.material.c_str(), k,
-                                         row.error, row.light_error, row.no_occluder_error);
+                                         row.error, row.objects_error, row.worst_part.c_str(), row.worst_part_error,
+                                         row.light_error, row.no_occluder_error);
                         rows.push_back(row);
                     }
                 }
@@ -178,6 +185,9 @@ nlohmann::json accuracy_row_json(const AccuracyRow& row) {
             {"lights", row.lights},
             {"vertices", row.vertices},
             {"relative_l2", row.error},
+            {"objects_relative_l2", row.objects_error},
+            {"worst_part", row.worst_part},
+            {"worst_part_relative_l2", row.worst_part_error},
             {"relative_l2_light_only", row.light_error},
             {"relative_l2_without_occluders", row.no_occluder_error},
             {"truth_seconds", row.truth_seconds},

@@ -42,6 +42,9 @@ struct AccuracyRow {
     int lights = 0;
     size_t vertices = 0;
     double error = 0;        // renderer vs truth, per-vertex relative L2 (RGB)
+    double objects_error = 0;  // the same over every part but the ground (object_errors)
+    std::string worst_part;    // the object part of largest error, and that error
+    double worst_part_error = 0;
     double light_error = -1;  // truth under the RSL reconstruction of the map vs truth (light approximation alone); -1: not measured
     double no_occluder_error = 0;  // renderer without the OVDF factor vs truth
     double truth_seconds = 0, render_seconds = 0;
