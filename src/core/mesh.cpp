@@ -208,7 +208,8 @@ size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& so
             Vec3 xyz = given;
             // In double and twice: one float pass leaves a large tangent, or
             // one nearly along the normal, visibly out of the tangent plane.
-            if (std::abs(glm::dot(n, xyz)) > 1e-6f) {
+            // Relative to its length: a small tangent is normalized next.
+            if (std::abs(glm::dot(DVec3(n), DVec3(xyz))) > 1e-7 * glm::length(DVec3(xyz))) {
                 DVec3 d(xyz);
                 for (int pass = 0; pass < 2; ++pass) d -= DVec3(n) * glm::dot(DVec3(n), d);
                 xyz = Vec3(d);

@@ -179,6 +179,18 @@ TEST_CASE("Normals and tangents too large to square in float are normalized, not
     CHECK(glm::length(Vec3(tri.tangents[0]) - Vec3(0, 0, 1)) < 1e-4f);
     CHECK(glm::length(Vec3(tri.tangents[1]) - Vec3(0, 0, 1)) > 0.5f);  // the rule, not the noise
     CHECK(tri.tangents[2] == Vec4(0, 0, 1, 1));
+    // A small tangent whose out-of-plane part is small only in absolute terms
+    // (fuzz_glb, 10-minute run: 6.6e-7 of 1.8e-4): tested against 1e-6 before
+    // it was normalized, it kept that part and came out 0.2° off the plane.
+    tri.normals.assign(3, glm::normalize(Vec3(0.2676166f, 0.00061977f, 2.9915566e21f)));
+    tri.tangents.assign(3, Vec4(1.7566317e-4f, 6.299986e-10f, 6.6383188e-7f, 6.4096906e-10f));
+    validate_and_complete(tri, "tri");
+    for (const Vec4& t : tri.tangents) {
+        INFO(t.x << " " << t.y << " " << t.z);
+        CHECK(std::abs(glm::dot(Vec3(t), tri.normals[0])) < 1e-6f);
+        CHECK(unit_and_finite(Vec3(t)));
+        CHECK(glm::length(Vec3(t) - Vec3(1, 0, 0)) < 1e-4f);
+    }
 }
 
 TEST_CASE("glTF accessors and buffers that made the loader allocate without bound are refused", "[bad-input][fuzz]") {
