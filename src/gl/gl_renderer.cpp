@@ -142,10 +142,15 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
 
     // Display geometry: part-space positions of every vertex, indices per part.
     std::vector<Vec3> positions3;
+    std::vector<Vec2> texcoords;  // 0 for parts without: only textured parts read them
     std::vector<uint32_t> indices;
     first_index_.clear();
     for (const Part& part : scene_.parts) {
         positions3.insert(positions3.end(), part.mesh.positions.begin(), part.mesh.positions.end());
+        if (part.mesh.texcoords.size() == part.mesh.vertex_count())
+            texcoords.insert(texcoords.end(), part.mesh.texcoords.begin(), part.mesh.texcoords.end());
+        else
+            texcoords.resize(positions3.size(), Vec2(0.0f));
         first_index_.push_back(indices.size());
         indices.insert(indices.end(), part.mesh.indices.begin(), part.mesh.indices.end());
     }
@@ -161,13 +166,20 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     glBindBuffer(GL_ARRAY_BUFFER, colors_.id());
     glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 16, nullptr);
     glEnableVertexAttribArray(1);
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, 16, reinterpret_cast<const void*>(layer_bytes_));
+    glEnableVertexAttribArray(2);
+    display_texcoords_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, display_texcoords_.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(texcoords.size() * sizeof(Vec2)), texcoords.data(), GL_STATIC_DRAW);
+    glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, sizeof(Vec2), nullptr);
+    glEnableVertexAttribArray(3);
     display_indices_ = make_buffer();
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, display_indices_.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
                  GL_STATIC_DRAW);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    gpu_bytes_ += positions3.size() * sizeof(Vec3) + indices.size() * sizeof(uint32_t);
+    gpu_bytes_ += positions3.size() * (sizeof(Vec3) + sizeof(Vec2)) + indices.size() * sizeof(uint32_t);
     check_gl("uploading the scene");
 }
 
@@ -418,10 +430,18 @@ void GlRenderer::draw(const Mat4& view_projection, float exposure) {
     glUniformMatrix4fv(uniform(display_program_, "u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
     glUniform1f(uniform(display_program_, "u_exposure"), exposure);
     const GLint model = uniform(display_program_, "u_model");
+    const GLint textured = uniform(display_program_, "u_textured");
+    glUniform1i(uniform(display_program_, "u_base_color"), 0);
     glBindVertexArray(display_vao_.id());
     const auto& poses = frame_.poses();
-    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+    const size_t parts = scene_.parts.size();
+    for (size_t p = 0; p < parts; ++p) {
         glUniformMatrix4fv(model, 1, GL_FALSE, &poses[p].transform[0][0]);
+        // Layered as last shaded (the colour buffer's second rectangle holds its specular layer).
+        const std::shared_ptr<const rsl::Texture>& texture = library_.part_texture(int(p));
+        const bool layer = texture && part_tables_[parts + p] != nullptr;
+        glUniform1i(textured, layer ? 1 : 0);
+        if (layer) bind_texture(0, GL_TEXTURE_2D, base_color_texture(texture));
         const size_t count = first_index_[p + 1] - first_index_[p];
         glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
                                  reinterpret_cast<const void*>(first_index_[p] * sizeof(uint32_t)),
@@ -431,6 +451,31 @@ void GlRenderer::draw(const Mat4& view_projection, float exposure) {
     end_pass(2);
     drew_[frame_parity_] = true;
     check_gl("the display pass");
+}
+
+GLuint GlRenderer::base_color_texture(const std::shared_ptr<const rsl::Texture>& texture) {
+    for (const auto& [source, uploaded] : base_colors_)
+        if (source == texture) return uploaded.id();
+    // Linear RGB(A) floats, row 0 at v = 0 as GL's first row; GL_LINEAR
+    // without mipmaps is Texture::sample's bilinear between texel centers.
+    const Image& image = texture->image;
+    Texture uploaded = make_texture();
+    glBindTexture(GL_TEXTURE_2D, uploaded.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, image.channels == 4 ? GL_RGBA32F : GL_RGB32F, image.width, image.height, 0,
+                 image.channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT, image.pixels.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    auto wrap = [](TextureWrap w) {
+        return w == TextureWrap::ClampToEdge ? GL_CLAMP_TO_EDGE
+               : w == TextureWrap::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
+    };
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap(texture->wrap_s));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap(texture->wrap_t));
+    check_gl("uploading a base colour texture");
+    base_colors_.emplace_back(texture, std::move(uploaded));
+    return base_colors_.back().second.id();
 }
 
 void GlRenderer::begin_pass(int pass) {
@@ -480,13 +525,15 @@ VertexColors GlRenderer::make_output() const {
 }
 
 void GlRenderer::shade(VertexColors& out) {
-    match_layers(library_, scene_, out);  // first: it refuses a textured part without texture coordinates
     shade();
     read_colors(out);
 }
 
 void GlRenderer::read_colors(VertexColors& out) const {
     RSL_CHECK_EQ(out.parts.size(), scene_.parts.size());
+    // Any `out` (the viewer's too) gets the layers of the shaded materials;
+    // a textured part without texture coordinates is refused here.
+    match_layers(library_, scene_, out);
     const size_t parts = scene_.parts.size();
     // Layer 0 at the buffer's start, the specular layer one vertex rectangle further.
     std::vector<Vec4> texels(static_cast<size_t>(vertex_count_) * (layered_ ? 2 : 1));

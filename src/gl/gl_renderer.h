@@ -75,9 +75,9 @@ public:
     // Runs the shading pass and fills the vertex-colour buffer (on the GPU).
     void shade();
     // shade() and the colours copied to the CPU (tests, `rsl render --backend gl`).
-    // Textured parts get two layers (match_layers), as the CPU renderer's.
     void shade(VertexColors& out) override;
     VertexColors make_output() const override;
+    // Textured parts get two layers (match_layers), as the CPU renderer's.
     void read_colors(VertexColors& out) const;
     VertexColors shade_and_read() {
         VertexColors out = make_output();
@@ -162,7 +162,10 @@ private:
     Buffer colors_;
     size_t layer_bytes_ = 0;  // one vertex rectangle of RGBA32F
     VertexArray empty_vao_, display_vao_;
-    Buffer display_positions_, display_indices_;
+    Buffer display_positions_, display_texcoords_, display_indices_;
+    // Base colour textures of the display pass, uploaded at their first draw.
+    std::vector<std::pair<std::shared_ptr<const rsl::Texture>, Texture>> base_colors_;
+    GLuint base_color_texture(const std::shared_ptr<const rsl::Texture>& texture);
     std::vector<size_t> first_index_;  // per part, into display_indices_, and the total
     Query queries_[2][3];              // [frame parity][pass]
     bool query_pending_[2] = {false, false};
