@@ -1,6 +1,17 @@
 #version 330 core
 // Exposure and the sRGB transfer curve (srgb.glsl, as src/core/image.h's tone-mapped PNG).
+// A textured part is formed as the CPU's image formation does it: the
+// interpolated diffuse layer times the base colour texture per pixel (linear
+// RGB, bilinear between texel centers, the sampler's wrap modes), plus the
+// interpolated specular layer.
 in vec3 v_color;
+in vec3 v_specular;
+in vec2 v_texcoord;
 uniform float u_exposure;
+uniform bool u_textured;
+uniform sampler2D u_base_color;
 layout(location = 0) out vec4 o_color;
-void main() { o_color = vec4(srgb(v_color * u_exposure), 1.0); }
+void main() {
+    vec3 color = u_textured ? v_color * texture(u_base_color, v_texcoord).rgb + v_specular : v_color;
+    o_color = vec4(srgb(color * u_exposure), 1.0);
+}

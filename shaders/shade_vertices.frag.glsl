@@ -42,6 +42,9 @@ uniform vec3 u_face_s[kCubeFaces];
 uniform vec3 u_face_t[kCubeFaces];
 
 layout(location = 0) out vec4 o_color;
+// Textured parts (kSlotSpecular.w = 1): o_color is the diffuse sum at unit
+// texture, o_specular the specular table's sum under the same visibility.
+layout(location = 1) out vec4 o_specular;
 
 vec4 fetch(sampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0); }
 vec4 part_texel(int part, int slot) { return fetch(u_parts, part * kPartStride + slot); }
@@ -214,6 +217,7 @@ void main() {
     int vertex = texel.y * kArrayWidth + texel.x;
     if (vertex >= u_vertex_count) {
         o_color = vec4(0.0);
+        o_specular = vec4(0.0);
         return;
     }
     vec4 position = texelFetch(u_positions, texel, 0);
@@ -225,6 +229,8 @@ void main() {
     mat3 normal_matrix = mat3(part_texel(part, kSlotNormal).xyz, part_texel(part, kSlotNormal + 1).xyz,
                               part_texel(part, kSlotNormal + 2).xyz);
     vec4 material = part_texel(part, kSlotMaterial);
+    vec4 specular_material = part_texel(part, kSlotSpecular);
+    bool layered = specular_material.w > 0.5;
     vec4 svdf = part_texel(part, kSlotSvdf);
     int local_vertex = vertex - int(part_texel(part, kSlotVertices).x);
     bool isotropic = material.y > 0.5;
@@ -242,7 +248,7 @@ void main() {
             g_svdf_coefficients[t] = fetch(u_svdf_coefficients, int(svdf.y) + local_vertex * stride + t);
     }
 
-    vec3 color = vec3(0.0);
+    vec3 color = vec3(0.0), specular = vec3(0.0);
     if (wo.z > 0.0) {
         int first = u_environment_enabled ? 0 : u_environment_lights;
         int last = u_local_enabled ? u_light_count : u_environment_lights;
@@ -268,12 +274,9 @@ void main() {
             vec3 local = to_local(frame, direction);
             vec2 lp = hemisphere_to_plane(local);
             if (!(h > 0.0f) || !square_reaches_hemisphere(local.z, h)) continue;
-            vec3 brdf;
-            if (isotropic) {
-                brdf = brdf_average(material, to_view_aligned(lp, alignment), h, wo);
-            } else {
-                brdf = brdf_average(material, lp, h, wo);
-            }
+            vec2 square = isotropic ? to_view_aligned(lp, alignment) : lp;
+            vec3 brdf = brdf_average(material, square, h, wo);
+            vec3 specular_brdf = layered ? brdf_average(specular_material, square, h, wo) : vec3(0.0);
             float visibility = self ? visible_fraction_from_distance(svdf_distance(svdf, cluster, lp), h) : 1.0;
             int slot = part * u_light_count + l;
             int list_end = int(list_texel(slot + 1));
@@ -288,7 +291,9 @@ void main() {
                 visibility *= ovdf_visible_fraction(o, point, dir, h);
             }
             color += integral * brdf * visibility;
+            specular += integral * specular_brdf * visibility;
         }
     }
     o_color = vec4(color, 1.0);
+    o_specular = vec4(specular, 1.0);
 }

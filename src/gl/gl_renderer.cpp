@@ -117,31 +117,40 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     parts_ = make_array_texture(part_records_);
     lights_ = make_array_texture({Vec4(0.0f)});
 
-    // The render target and the buffer that carries it to the display pass.
-    target_ = make_texture();
-    glBindTexture(GL_TEXTURE_2D, target_.id());
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kArrayTextureWidth, rect_height_, 0, GL_RGBA, GL_FLOAT, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    // The render targets (diffuse or only layer; specular layer of textured
+    // parts) and the buffer that carries them to the display pass.
     target_fbo_ = make_framebuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo_.id());
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target_.id(), 0);
+    for (Texture* target : {&target_, &specular_target_}) {
+        *target = make_texture();
+        glBindTexture(GL_TEXTURE_2D, target->id());
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kArrayTextureWidth, rect_height_, 0, GL_RGBA, GL_FLOAT, nullptr);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, target == &target_ ? GL_COLOR_ATTACHMENT0 : GL_COLOR_ATTACHMENT1,
+                               GL_TEXTURE_2D, target->id(), 0);
+    }
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error("GL renderer: the RGBA32F vertex-colour target is not renderable on this driver");
+        throw Error("GL renderer: the RGBA32F vertex-colour targets are not renderable on this driver");
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    layer_bytes_ = size_t(kArrayTextureWidth) * rect_height_ * 16;
     colors_ = make_buffer();
     glBindBuffer(GL_PIXEL_PACK_BUFFER, colors_.id());
-    glBufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(size_t(kArrayTextureWidth) * rect_height_ * 16), nullptr,
-                 GL_STREAM_COPY);
+    glBufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(2 * layer_bytes_), nullptr, GL_STREAM_COPY);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    gpu_bytes_ += 2 * size_t(kArrayTextureWidth) * rect_height_ * 16;
+    gpu_bytes_ += 4 * layer_bytes_;
 
     // Display geometry: part-space positions of every vertex, indices per part.
     std::vector<Vec3> positions3;
+    std::vector<Vec2> texcoords;  // 0 for parts without: only textured parts read them
     std::vector<uint32_t> indices;
     first_index_.clear();
     for (const Part& part : scene_.parts) {
         positions3.insert(positions3.end(), part.mesh.positions.begin(), part.mesh.positions.end());
+        if (part.mesh.texcoords.size() == part.mesh.vertex_count())
+            texcoords.insert(texcoords.end(), part.mesh.texcoords.begin(), part.mesh.texcoords.end());
+        else
+            texcoords.resize(positions3.size(), Vec2(0.0f));
         first_index_.push_back(indices.size());
         indices.insert(indices.end(), part.mesh.indices.begin(), part.mesh.indices.end());
     }
@@ -157,22 +166,51 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     glBindBuffer(GL_ARRAY_BUFFER, colors_.id());
     glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 16, nullptr);
     glEnableVertexAttribArray(1);
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, 16, reinterpret_cast<const void*>(layer_bytes_));
+    glEnableVertexAttribArray(2);
+    display_texcoords_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, display_texcoords_.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(texcoords.size() * sizeof(Vec2)), texcoords.data(), GL_STATIC_DRAW);
+    glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, sizeof(Vec2), nullptr);
+    glEnableVertexAttribArray(3);
     display_indices_ = make_buffer();
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, display_indices_.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
                  GL_STATIC_DRAW);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    gpu_bytes_ += positions3.size() * sizeof(Vec3) + indices.size() * sizeof(uint32_t);
+    gpu_bytes_ += positions3.size() * (sizeof(Vec3) + sizeof(Vec2)) + indices.size() * sizeof(uint32_t);
     check_gl("uploading the scene");
 }
 
+std::vector<std::shared_ptr<const BrdfTable>> GlRenderer::wanted_tables() const {
+    std::vector<std::shared_ptr<const BrdfTable>> wanted;
+    for (int p = 0; p < library_.part_count(); ++p) wanted.push_back(library_.table(library_.part_material(p)));
+    for (int p = 0; p < library_.part_count(); ++p)
+        wanted.push_back(library_.specular_table(library_.part_material(p)));
+    RSL_CHECK_EQ(wanted.size(), 2 * scene_.parts.size());
+    return wanted;
+}
+
+void GlRenderer::write_material_record(size_t i, const BrdfTable* table, int first_slice) {
+    const size_t parts = scene_.parts.size();
+    const bool specular = i >= parts;
+    part_records_[(i % parts) * kPartStride + (specular ? kSlotSpecular : kSlotMaterial)] =
+        table ? material_record(*table, first_slice, specular) : Vec4(0.0f);
+}
+
+void GlRenderer::set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> tables) {
+    part_tables_ = std::move(tables);
+    layered_ = std::any_of(part_tables_.begin() + std::ptrdiff_t(scene_.parts.size()), part_tables_.end(),
+                           [](const auto& table) { return table != nullptr; });
+}
+
 void GlRenderer::upload_all_tables() {
-    part_tables_.clear();
-    for (int p = 0; p < library_.part_count(); ++p) part_tables_.push_back(library_.table(library_.part_material(p)));
-    RSL_CHECK_EQ(part_tables_.size(), scene_.parts.size());
+    set_part_tables(wanted_tables());
+    const size_t parts = scene_.parts.size();
     const size_t old_bytes = materials_.sat.size() * sizeof(float) + materials_.offsets.size() * 16;
-    materials_ = pack_materials(part_tables_);
+    materials_ = pack_materials({part_tables_.begin(), part_tables_.begin() + std::ptrdiff_t(parts)},
+                                {part_tables_.begin() + std::ptrdiff_t(parts), part_tables_.end()});
     const int corners = materials_.resolution + 1;
     GLint max_3d = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max_3d);
@@ -192,11 +230,13 @@ void GlRenderer::upload_all_tables() {
     else
         brdf_offsets_ = make_array_texture(materials_.offsets);
     slots_.clear();
-    for (size_t p = 0; p < part_tables_.size(); ++p) {
-        part_records_[p * kPartStride + kSlotMaterial] = materials_.part_material[p];
-        const int first = int(materials_.part_material[p].x);
-        if (std::none_of(slots_.begin(), slots_.end(), [&](const TableSlot& s) { return s.first_slice == first; }))
-            slots_.push_back(TableSlot{part_tables_[p], first, part_tables_[p]->slice_count()});
+    for (size_t i = 0; i < part_tables_.size(); ++i) {
+        const BrdfTable* table = part_tables_[i].get();
+        const int first = int(i < parts ? materials_.part_material[i].x : materials_.part_specular[i - parts].x);
+        write_material_record(i, table, first);
+        if (table &&
+            std::none_of(slots_.begin(), slots_.end(), [&](const TableSlot& s) { return s.first_slice == first; }))
+            slots_.push_back(TableSlot{part_tables_[i], first, table->slice_count()});
     }
     gpu_bytes_ = gpu_bytes_ - old_bytes + materials_.sat.size() * sizeof(float) + materials_.offsets.size() * 16;
     ++uploads_.full;
@@ -204,19 +244,13 @@ void GlRenderer::upload_all_tables() {
 }
 
 void GlRenderer::sync_materials() {
-    // Textured materials need a second (specular) layer per vertex, which this
-    // backend does not compute yet: refuse rather than drop the texture.
-    for (int p = 0; p < library_.part_count(); ++p)
-        if (library_.part_texture(p))
-            throw_file_error(scene_.source, "GL renderer: part '{}' has a base colour texture (material '{}'); "
-                             "textured materials render with --backend cpu only", scene_.parts[size_t(p)].name,
-                             library_.desc(library_.part_material(p)).name);
     bool changed = false;
+    const size_t parts = scene_.parts.size();
     for (int p = 0; p < library_.part_count(); ++p)
-        changed = changed || library_.table(library_.part_material(p)) != part_tables_[size_t(p)];
+        changed = changed || library_.table(library_.part_material(p)) != part_tables_[size_t(p)] ||
+                  library_.specular_table(library_.part_material(p)) != part_tables_[parts + size_t(p)];
     if (!changed) return;  // the common frame: nothing to compare or allocate
-    std::vector<std::shared_ptr<const BrdfTable>> wanted;
-    for (int p = 0; p < library_.part_count(); ++p) wanted.push_back(library_.table(library_.part_material(p)));
+    const std::vector<std::shared_ptr<const BrdfTable>> wanted = wanted_tables();
     // In place: every table the parts now use either already has slices, or
     // takes over the slices of a table no part uses any more, of the same
     // layout (slice count, resolution).
@@ -227,7 +261,7 @@ void GlRenderer::sync_materials() {
             if (slots_[s].table == wanted[p]) slot_of[p] = int(s), slot_used[s] = true;
     std::vector<std::pair<int, std::shared_ptr<const BrdfTable>>> moves;  // slot ← new table
     for (size_t p = 0; p < wanted.size(); ++p) {
-        if (slot_of[p] >= 0) continue;
+        if (slot_of[p] >= 0 || !wanted[p]) continue;  // null: an untextured part's specular table
         for (size_t q = 0; q < p; ++q)  // a new table shared by an earlier part
             if (wanted[q] == wanted[p]) slot_of[p] = slot_of[q];
         if (slot_of[p] >= 0) continue;
@@ -256,14 +290,9 @@ void GlRenderer::sync_materials() {
         ++uploads_.tables;
     }
     if (!moves.empty()) update_array_texture(brdf_offsets_, materials_.offsets);
-    for (size_t p = 0; p < wanted.size(); ++p) {
-        const TableSlot& slot = slots_[size_t(slot_of[p])];
-        // As pack_materials writes it: (first slice, isotropic, V, 0).
-        part_records_[p * kPartStride + kSlotMaterial] =
-            Vec4(float(slot.first_slice), slot.table->isotropic() ? 1.0f : 0.0f,
-                 float(slot.table->options().view_samples), 0.0f);
-    }
-    part_tables_ = std::move(wanted);
+    for (size_t p = 0; p < wanted.size(); ++p)
+        write_material_record(p, wanted[p].get(), wanted[p] ? slots_[size_t(slot_of[p])].first_slice : 0);
+    set_part_tables(wanted);
     check_gl("uploading a BRDF table");
 }
 
@@ -342,6 +371,9 @@ void GlRenderer::shade() {
     upload_frame();
     begin_pass(0);
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo_.id());
+    // The specular target only when some part is textured: others write no second layer.
+    const GLenum draw_buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(layered_ ? 2 : 1, draw_buffers);
     glViewport(0, 0, kArrayTextureWidth, rect_height_);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
@@ -374,10 +406,14 @@ void GlRenderer::shade() {
 
     // Render target → pixel-pack buffer: stays on the GPU.
     begin_pass(1);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, colors_.id());
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, kArrayTextureWidth, rect_height_, GL_RGBA, GL_FLOAT, nullptr);
+    for (int layer = 0; layer < (layered_ ? 2 : 1); ++layer) {
+        glReadBuffer(GL_COLOR_ATTACHMENT0 + GLenum(layer));
+        glReadPixels(0, 0, kArrayTextureWidth, rect_height_, GL_RGBA, GL_FLOAT,
+                     reinterpret_cast<void*>(size_t(layer) * layer_bytes_));
+    }
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     end_pass(1);
@@ -394,10 +430,18 @@ void GlRenderer::draw(const Mat4& view_projection, float exposure) {
     glUniformMatrix4fv(uniform(display_program_, "u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
     glUniform1f(uniform(display_program_, "u_exposure"), exposure);
     const GLint model = uniform(display_program_, "u_model");
+    const GLint textured = uniform(display_program_, "u_textured");
+    glUniform1i(uniform(display_program_, "u_base_color"), 0);
     glBindVertexArray(display_vao_.id());
     const auto& poses = frame_.poses();
-    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+    const size_t parts = scene_.parts.size();
+    for (size_t p = 0; p < parts; ++p) {
         glUniformMatrix4fv(model, 1, GL_FALSE, &poses[p].transform[0][0]);
+        // Layered as last shaded (the colour buffer's second rectangle holds its specular layer).
+        const std::shared_ptr<const rsl::Texture>& texture = library_.part_texture(int(p));
+        const bool layer = texture && part_tables_[parts + p] != nullptr;
+        glUniform1i(textured, layer ? 1 : 0);
+        if (layer) bind_texture(0, GL_TEXTURE_2D, base_color_texture(texture));
         const size_t count = first_index_[p + 1] - first_index_[p];
         glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
                                  reinterpret_cast<const void*>(first_index_[p] * sizeof(uint32_t)),
@@ -407,6 +451,31 @@ void GlRenderer::draw(const Mat4& view_projection, float exposure) {
     end_pass(2);
     drew_[frame_parity_] = true;
     check_gl("the display pass");
+}
+
+GLuint GlRenderer::base_color_texture(const std::shared_ptr<const rsl::Texture>& texture) {
+    for (const auto& [source, uploaded] : base_colors_)
+        if (source == texture) return uploaded.id();
+    // Linear RGB(A) floats, row 0 at v = 0 as GL's first row; GL_LINEAR
+    // without mipmaps is Texture::sample's bilinear between texel centers.
+    const Image& image = texture->image;
+    Texture uploaded = make_texture();
+    glBindTexture(GL_TEXTURE_2D, uploaded.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, image.channels == 4 ? GL_RGBA32F : GL_RGB32F, image.width, image.height, 0,
+                 image.channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT, image.pixels.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    auto wrap = [](TextureWrap w) {
+        return w == TextureWrap::ClampToEdge ? GL_CLAMP_TO_EDGE
+               : w == TextureWrap::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
+    };
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap(texture->wrap_s));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap(texture->wrap_t));
+    check_gl("uploading a base colour texture");
+    base_colors_.emplace_back(texture, std::move(uploaded));
+    return base_colors_.back().second.id();
 }
 
 void GlRenderer::begin_pass(int pass) {
@@ -455,17 +524,35 @@ VertexColors GlRenderer::make_output() const {
     return colors;
 }
 
+void GlRenderer::shade(VertexColors& out) {
+    shade();
+    read_colors(out);
+}
+
 void GlRenderer::read_colors(VertexColors& out) const {
     RSL_CHECK_EQ(out.parts.size(), scene_.parts.size());
-    std::vector<Vec4> texels(static_cast<size_t>(vertex_count_));
+    // Any `out` (the viewer's too) gets the layers of the shaded materials;
+    // a textured part without texture coordinates is refused here.
+    match_layers(library_, scene_, out);
+    const size_t parts = scene_.parts.size();
+    // Layer 0 at the buffer's start, the specular layer one vertex rectangle further.
+    std::vector<Vec4> texels(static_cast<size_t>(vertex_count_) * (layered_ ? 2 : 1));
     glBindBuffer(GL_COPY_READ_BUFFER, colors_.id());
-    glGetBufferSubData(GL_COPY_READ_BUFFER, 0, GLsizeiptr(texels.size() * sizeof(Vec4)), texels.data());
+    glGetBufferSubData(GL_COPY_READ_BUFFER, 0, GLsizeiptr(size_t(vertex_count_) * sizeof(Vec4)), texels.data());
+    if (layered_)
+        glGetBufferSubData(GL_COPY_READ_BUFFER, GLintptr(layer_bytes_), GLsizeiptr(size_t(vertex_count_) * sizeof(Vec4)),
+                           texels.data() + vertex_count_);
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
     check_gl("reading the vertex colours");
     out.time = time_;
-    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+    for (size_t p = 0; p < parts; ++p) {
         RSL_CHECK_EQ(out.parts[p].size(), scene_.parts[p].mesh.vertex_count());
         for (size_t v = 0; v < out.parts[p].size(); ++v) out.parts[p][v] = Color(texels[first_vertex_[p] + v]);
+        // match_layers gave `out` the layers of the library's materials, which the tables follow.
+        RSL_CHECK_EQ(out.layered(p), part_tables_[parts + p] != nullptr);
+        if (!out.layered(p)) continue;
+        for (size_t v = 0; v < out.specular[p].size(); ++v)
+            out.specular[p][v] = Color(texels[size_t(vertex_count_ + first_vertex_[p]) + v]);
     }
 }
 

@@ -75,11 +75,9 @@ public:
     // Runs the shading pass and fills the vertex-colour buffer (on the GPU).
     void shade();
     // shade() and the colours copied to the CPU (tests, `rsl render --backend gl`).
-    void shade(VertexColors& out) override {
-        shade();
-        read_colors(out);
-    }
+    void shade(VertexColors& out) override;
     VertexColors make_output() const override;
+    // Textured parts get two layers (match_layers), as the CPU renderer's.
     void read_colors(VertexColors& out) const;
     VertexColors shade_and_read() {
         VertexColors out = make_output();
@@ -112,6 +110,11 @@ private:
     // the same layout changed, else a full pack (upload_all_tables).
     void sync_materials();
     void upload_all_tables();
+    // Per part its table, then per part its specular table (null: untextured).
+    std::vector<std::shared_ptr<const BrdfTable>> wanted_tables() const;
+    // Entry i of wanted_tables() into its part record (kSlotMaterial or kSlotSpecular).
+    void write_material_record(size_t i, const BrdfTable* table, int first_slice);
+    void set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> tables);
     void collect_timings();
     // Time pass 0 (shading), 1 (pack) or 2 (display): a timer query, or the clock.
     void begin_pass(int pass);
@@ -123,9 +126,11 @@ private:
     std::vector<LocalLight> local_lights_;
     PartFields fields_;
     MaterialLibrary library_;
-    // What the BRDF texture holds: per part its table, per distinct table its
-    // slices (first, count); the revisions it was built from.
+    // What the BRDF texture holds: per part its table then per part its
+    // specular table (wanted_tables() order), per distinct table its slices
+    // (first, count); layered_: some part has a specular table.
     std::vector<std::shared_ptr<const BrdfTable>> part_tables_;
+    bool layered_ = false;
     struct TableSlot {
         std::shared_ptr<const BrdfTable> table;
         int first_slice = 0, slices = 0;
@@ -150,11 +155,17 @@ private:
     ArrayTexture occluder_lists_;  // FrameState::occluder_list_texels
     ArrayTexture svdf_tables_, svdf_coefficients_, ovdf_tables_, ovdf_coefficients_, ovdf_frames_;
     Texture brdf_;
-    Texture target_;
+    Texture target_, specular_target_;  // colour attachments 0 (diffuse or only layer) and 1 (specular)
     Framebuffer target_fbo_;
-    Buffer colors_;  // GL_PIXEL_PACK_BUFFER when written, GL_ARRAY_BUFFER when drawn
+    // GL_PIXEL_PACK_BUFFER when written, GL_ARRAY_BUFFER when drawn: the
+    // vertex rectangle of attachment 0, then (layered_ only) that of attachment 1.
+    Buffer colors_;
+    size_t layer_bytes_ = 0;  // one vertex rectangle of RGBA32F
     VertexArray empty_vao_, display_vao_;
-    Buffer display_positions_, display_indices_;
+    Buffer display_positions_, display_texcoords_, display_indices_;
+    // Base colour textures of the display pass, uploaded at their first draw.
+    std::vector<std::pair<std::shared_ptr<const rsl::Texture>, Texture>> base_colors_;
+    GLuint base_color_texture(const std::shared_ptr<const rsl::Texture>& texture);
     std::vector<size_t> first_index_;  // per part, into display_indices_, and the total
     Query queries_[2][3];              // [frame parity][pass]
     bool query_pending_[2] = {false, false};

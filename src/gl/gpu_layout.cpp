@@ -175,24 +175,41 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
     return g;
 }
 
-PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable>>& part_tables) {
+Vec4 material_record(const BrdfTable& table, int first_slice, bool specular) {
+    return Vec4(float(first_slice), table.isotropic() ? 1.0f : 0.0f, float(table.options().view_samples),
+                specular ? 1.0f : 0.0f);
+}
+
+PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable>>& part_tables,
+                               const std::vector<std::shared_ptr<const BrdfTable>>& part_specular_tables) {
+    RSL_CHECK(part_specular_tables.empty() || part_specular_tables.size() == part_tables.size());
     PackedMaterials out;
     std::map<const BrdfTable*, int> first_slice;
-    for (const auto& table : part_tables) {
-        RSL_CHECK(table != nullptr);
-        const int n = table->grid().n;
+    auto place = [&](const BrdfTable& table) {
+        const int n = table.grid().n;
         if (out.resolution == 0) out.resolution = n;
         if (n != out.resolution)
             throw Error(fmt::format("GL renderer: BRDF tables of {}² and {}² texels; all must share one resolution",
                                     out.resolution, n));
-        auto [it, inserted] = first_slice.emplace(table.get(), out.slices);
+        auto [it, inserted] = first_slice.emplace(&table, out.slices);
         if (inserted) {
-            out.sat.insert(out.sat.end(), table->sat_data().begin(), table->sat_data().end());
-            for (int s = 0; s < table->slice_count(); ++s) out.offsets.push_back(Vec4(table->offset(s), 0.0f));
-            out.slices += table->slice_count();
+            out.sat.insert(out.sat.end(), table.sat_data().begin(), table.sat_data().end());
+            for (int s = 0; s < table.slice_count(); ++s) out.offsets.push_back(Vec4(table.offset(s), 0.0f));
+            out.slices += table.slice_count();
         }
-        out.part_material.push_back(Vec4(float(it->second), table->isotropic() ? 1.0f : 0.0f,
-                                         float(table->options().view_samples), 0.0f));
+        return it->second;
+    };
+    for (const auto& table : part_tables) {
+        RSL_CHECK(table != nullptr);
+        out.part_material.push_back(material_record(*table, place(*table), false));
+    }
+    for (size_t p = 0; p < part_tables.size(); ++p) {
+        const BrdfTable* specular = part_specular_tables.empty() ? nullptr : part_specular_tables[p].get();
+        // One view parametrization per vertex: the shader aligns the square
+        // once, by the diffuse table's isotropy.
+        if (specular && specular->isotropic() != part_tables[p]->isotropic())
+            throw Error("GL renderer: a specular table and its diffuse table differ in isotropy");
+        out.part_specular.push_back(specular ? material_record(*specular, place(*specular), true) : Vec4(0.0f));
     }
     return out;
 }

@@ -43,7 +43,7 @@ inline constexpr int kArrayTextureWidth = 2048;
 inline constexpr int kArrayTextureShift = 11;
 static_assert(1 << kArrayTextureShift == kArrayTextureWidth);
 
-inline constexpr int kPartStride = 21;
+inline constexpr int kPartStride = 22;
 // Texel slots inside a part record.
 enum PartSlot : int {
     kSlotTransform = 0,   // 4 columns
@@ -59,8 +59,9 @@ enum PartSlot : int {
     kSlotBoxLow = 18,     // (the mesh's bounding box low corner, 0): the slab rule (square_lights.h)
     kSlotBoxHigh = 19,    // (high corner, 0)
     kSlotOvdfRecords = 20, // (first shell zoom record, first surface-distance texel, 0, 0), in the frames texture
+    kSlotSpecular = 21,    // textured part: its specular table as kSlotMaterial, w = 1; else all 0
 };
-static_assert(kSlotOvdfRecords < kPartStride);
+static_assert(kSlotSpecular < kPartStride);
 
 inline constexpr int kLightTexels = 3;        // per light in the lights texture
 inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
@@ -88,6 +89,7 @@ inline constexpr ShaderIntConstant kShaderIntConstants[] = {
     {"kSlotBoxLow", kSlotBoxLow},
     {"kSlotBoxHigh", kSlotBoxHigh},
     {"kSlotOvdfRecords", kSlotOvdfRecords},
+    {"kSlotSpecular", kSlotSpecular},
     {"kLightTexels", kLightTexels},
     {"kSurfacesPerTexel", kSurfacesPerTexel},
 };
@@ -121,10 +123,18 @@ struct PackedMaterials {
     std::vector<float> sat;      // (N+1)² × slices × RGB, 3D-texture order
     std::vector<Vec4> offsets;   // per slice
     std::vector<Vec4> part_material;  // per part: (first slice, isotropic, V, 0)
+    std::vector<Vec4> part_specular;  // per part: (first slice, isotropic, V, 1), or 0 without a specular table
 };
 
-// Stacks the distinct tables the parts use (same N required).
-PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable>>& part_tables);
+// The kSlotMaterial / kSlotSpecular record of a table whose slices start at
+// `first_slice`; `specular` sets w (the shader's "layered" flag).
+Vec4 material_record(const BrdfTable& table, int first_slice, bool specular);
+
+// Stacks the distinct tables the parts use (same N required): each part's
+// table, and its specular table where `part_specular_tables` (empty, or one
+// per part, null for untextured parts) has one.
+PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable>>& part_tables,
+                               const std::vector<std::shared_ptr<const BrdfTable>>& part_specular_tables = {});
 
 // The pose slots of one part record.
 void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, Vec4* record);

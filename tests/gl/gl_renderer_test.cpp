@@ -6,6 +6,7 @@
 
 #include "src/gl/gl_renderer.h"
 #include "src/gl/gpu_layout.h"
+#include "assets/generate/pbr_scene.h"
 #include "src/render/renderer.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
@@ -93,13 +94,21 @@ void check_against_cpu(const Scene& scene, const EnvironmentLights& lights, cons
         gpu.set_time(t);
         const VertexColors expected = cpu.shade();
         const VertexColors colors = gpu.shade_and_read();
-        const test::ColorDifference d = test::compare_colors(colors, expected, kTolerance);
-        INFO("t = " << t << ": relative L2 " << d.relative_l2 << ", max relative " << d.max_relative << ", "
-                    << d.over_tolerance << " of " << d.vertices << " vertices over " << kTolerance
-                    << ", mean value " << d.mean_luminance);
-        CHECK(d.mean_luminance > 1e-3);  // a lit scene: the comparison means something
-        CHECK(d.relative_l2 < 1e-5);
-        CHECK(d.over_tolerance <= d.vertices / 1000);
+        // Both layers of textured parts (their diffuse in `parts`, at unit texture).
+        bool cpu_layered = false, gl_layered = false;
+        for (size_t p = 0; p < scene.parts.size(); ++p)
+            cpu_layered = cpu_layered || expected.layered(p), gl_layered = gl_layered || colors.layered(p);
+        CHECK(gl_layered == cpu_layered);
+        for (const bool specular : {false, true}) {
+            if (specular && !cpu_layered) break;
+            const test::ColorDifference d = test::compare_colors(colors, expected, kTolerance, specular);
+            INFO("t = " << t << (specular ? " specular layer" : "") << ": relative L2 " << d.relative_l2
+                        << ", max relative " << d.max_relative << ", " << d.over_tolerance << " of " << d.vertices
+                        << " vertices over " << kTolerance << ", mean value " << d.mean_luminance);
+            CHECK(d.mean_luminance > 1e-3);  // a lit scene: the comparison means something
+            CHECK(d.relative_l2 < 1e-5);
+            CHECK(d.over_tolerance <= d.vertices / 1000);
+        }
         CHECK(gpu.frame().occluder_pairs() == cpu.stats().occluder_pairs);
     }
 }
@@ -108,6 +117,28 @@ TEST_CASE("GL vertex colours equal the CPU renderer's (fields, local lights, iso
     const Scene scene = moving_scene();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     check_against_cpu(scene, test::random_rsls(16, 3), fields, RenderOptions{}, {0.0f, 0.5f, 1.0f});
+}
+
+TEST_CASE("GL shades a textured part in two layers as the CPU does", "[gl-renderer]") {
+    // The ground's gltf_pbr material gets a base colour texture: its colours
+    // become a diffuse layer at unit texture and a specular layer, each from
+    // its own table under the same visibility (both compared above).
+    Scene scene = moving_scene();
+    scene.materials[0].base_color_texture = assets::make_tile_texture(4, 4);
+    TriangleMesh& ground = scene.parts[0].mesh;
+    for (const Vec3& p : ground.positions) ground.texcoords.emplace_back(p.x / 3.0f + 0.5f, p.z / 3.0f + 0.5f);
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    test::gl_context();
+    gl::GlRenderer gpu(scene, test::random_rsls(16, 3), fields, RenderOptions{});
+    const VertexColors colors = gpu.shade_and_read();
+    REQUIRE(colors.layered(0));  // the GL backend no longer refuses textured parts
+    CHECK(!colors.layered(1));
+    CHECK(colors.textures[0] == scene.materials[0].base_color_texture);
+    check_against_cpu(scene, test::random_rsls(16, 3), fields, RenderOptions{}, {0.0f, 1.0f});
+    // Without texture coordinates the part is refused, naming it.
+    scene.parts[0].mesh.texcoords.clear();
+    gl::GlRenderer bare(scene, test::random_rsls(8, 3), fields, RenderOptions{});
+    CHECK_THROWS_WITH(bare.shade_and_read(), Catch::Contains("ground"));
 }
 
 TEST_CASE("GL matches the CPU with hundreds of parts (occluder lists, no part limit)", "[gl-renderer]") {

@@ -31,19 +31,31 @@ struct ColorDifference {
 // Per vertex and channel, |gl − cpu| is compared with tolerance·max(|cpu|,
 // floor), where floor = 1e-2 × the mean |cpu| over the scene: values far below
 // the scene's level (deep shadow, grazing views) are compared absolutely.
-inline ColorDifference compare_colors(const VertexColors& gl, const VertexColors& cpu, double tolerance) {
+// `specular`: the textured parts' specular layers (VertexColors::specular)
+// instead of `parts`; a part layered in one and not the other counts all its
+// vertices as over the tolerance.
+inline ColorDifference compare_colors(const VertexColors& gl, const VertexColors& cpu, double tolerance,
+                                      bool specular = false) {
     ColorDifference d;
+    const auto& expected = specular ? cpu.specular : cpu.parts;
+    const auto& actual = specular ? gl.specular : gl.parts;
     double sum = 0, error2 = 0, norm2 = 0;
     size_t values = 0;
-    for (const auto& part : cpu.parts)
+    for (const auto& part : expected)
         for (const Color& c : part) sum += std::abs(c.r) + std::abs(c.g) + std::abs(c.b), values += 3;
     const double floor = 1e-2 * sum / std::max<size_t>(values, 1);
     d.mean_luminance = sum / std::max<size_t>(values, 1);
-    for (size_t p = 0; p < cpu.parts.size(); ++p)
-        for (size_t v = 0; v < cpu.parts[p].size(); ++v) {
+    for (size_t p = 0; p < expected.size(); ++p) {
+        const size_t vertices = std::max(expected[p].size(), p < actual.size() ? actual[p].size() : 0);
+        if (p >= actual.size() || actual[p].size() != expected[p].size()) {
+            d.vertices += vertices, d.over_tolerance += vertices;
+            d.max_relative = d.relative_l2 = INFINITY;
+            continue;
+        }
+        for (size_t v = 0; v < expected[p].size(); ++v) {
             double worst = 0;
             for (int c = 0; c < 3; ++c) {
-                const double a = gl.parts[p][v][c], b = cpu.parts[p][v][c];
+                const double a = actual[p][v][c], b = expected[p][v][c];
                 error2 += (a - b) * (a - b), norm2 += b * b;
                 worst = std::max(worst, std::abs(a - b) / std::max(std::abs(b), floor));
             }
@@ -51,7 +63,8 @@ inline ColorDifference compare_colors(const VertexColors& gl, const VertexColors
             d.over_tolerance += worst > tolerance ? 1 : 0;
             ++d.vertices;
         }
-    d.relative_l2 = std::sqrt(error2 / std::max(norm2, 1e-30));
+    }
+    if (std::isfinite(d.relative_l2)) d.relative_l2 = std::sqrt(error2 / std::max(norm2, 1e-30));
     return d;
 }
 
