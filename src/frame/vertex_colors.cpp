@@ -96,9 +96,14 @@ VertexColors read_vertex_colors(const std::filesystem::path& path) {
         const uint8_t flag = version >= 2 ? r.get<uint8_t>("layered flag") : 0;
         if (flag > 1) throw_file_error(path, "corrupt: part '{}' has layered flag {}", colors.part_names.back(), flag);
         layered.push_back(flag == 1);
-        total += counts.back() * (flag ? 2 : 1);
-        if (total > r.remaining())  // also guards the multiplication below
-            throw_file_error(path, "corrupt: {} vertices do not fit in the file", total);
+        // Compared before they are added: a count near 2^64 would wrap when
+        // doubled for its two layers. total ≤ remaining holds, so this also
+        // guards the multiplication below.
+        const uint64_t layers = flag ? 2 : 1;
+        if (counts.back() > (r.remaining() - total) / layers)
+            throw_file_error(path, "corrupt: part '{}' has {} vertices{}, which do not fit in the file",
+                             colors.part_names.back(), counts.back(), flag ? " in two layers" : "");
+        total += counts.back() * layers;
     }
     if (total * sizeof(Color) != r.remaining())
         throw_file_error(path, "corrupt: header says {} vertices ({} bytes of data), file holds {} bytes", total,

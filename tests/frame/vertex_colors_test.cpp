@@ -1,11 +1,14 @@
 // .rslv files: exact round trip, and refusal of foreign, truncated, corrupt,
 // other-version and mismatched files with a message naming the file.
+#include <cstring>
 #include <filesystem>
 #include <random>
 
 #include <catch2/catch.hpp>
 
 #include "src/core/atomic_file.h"
+#include "src/core/binary_io.h"
+#include "src/core/texture.h"
 #include "src/core/error.h"
 #include "src/frame/vertex_colors.h"
 #include "tests/test_support.h"
@@ -140,4 +143,27 @@ TEST_CASE("layered (textured) parts round-trip as version 2; files without them 
     CHECK(read_file(path)[8] == 1);
     // A layered file against an unlayered one of the same vertices is not comparable.
     CHECK_THROWS_WITH(check_same_vertices(back, "a.rslv", folded, "b.rslv"), Catch::Contains("layered"));
+}
+
+TEST_CASE("A layered part's vertex count that overflows when doubled is refused", "[frame][vertex_colors][bad-input]") {
+    // fuzz_vertex_colors (10-minute run): 2^63 + 2 vertices in two layers
+    // wrapped to 4, which the data matched; allocating them threw
+    // std::length_error instead of an error naming the file.
+    VertexColors colors;
+    colors.scene_name = "overflow";
+    colors.producer = "test";
+    colors.add_part("textured_part", 2, std::make_shared<Texture>());
+    const auto path = temp_dir() / "overflow.rslv";
+    write_vertex_colors(path, colors);
+    std::string bytes = read_file(path);
+    const size_t name = bytes.find("textured_part");
+    REQUIRE(name != std::string::npos);
+    const uint64_t wrapping = (uint64_t(1) << 63) + 2;
+    std::memcpy(bytes.data() + name + std::strlen("textured_part"), &wrapping, sizeof wrapping);
+    const uint64_t checksum = fnv1a64(bytes.data(), bytes.size() - 8);
+    std::memcpy(bytes.data() + bytes.size() - 8, &checksum, 8);
+    write_file_atomically(path, bytes);
+    const std::string message = error_of([&] { read_vertex_colors(path); });
+    CHECK(message.find(path.string()) == 0);
+    CHECK_THAT(message, Catch::Contains("do not fit in the file"));
 }
