@@ -59,7 +59,11 @@ inline KilledRuns run_killed(const std::string& command, const std::vector<doubl
     KilledRuns runs;
     for (const double delay : delays) {
         for (const auto& output : outputs) std::filesystem::remove(output);
-        const auto [status, text] = run_command(fmt::format("timeout -s KILL {:.3f} {}", delay, command));
+        // --foreground: timeout kills only the command and reaps it. Without
+        // it, timeout KILLs its whole process group, itself included, and the
+        // orphaned command lives on as a zombie until init reaps it, so a
+        // rerun may still see it alive and rightly keep its temporaries.
+        const auto [status, text] = run_command(fmt::format("timeout --foreground -s KILL {:.3f} {}", delay, command));
         INFO("killed after " << delay << " s, status " << status << "\n" << text);
         if (status == 128 + 9) ++runs.killed;  // timeout's status for a child it killed
         for (const auto& output : outputs)

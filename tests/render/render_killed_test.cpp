@@ -85,7 +85,7 @@ TEST_CASE("rsl render killed at any moment: no partial output or field, and the 
     INFO(text);
     REQUIRE(status == 0);
     for (const fs::path& f : {exr, png, rslv}) check_whole(f);
-    CHECK(temporaries_in(dir).empty());
+    for (const auto& left : temporaries_in(dir)) FAIL_CHECK("left behind: " << left.filename().string());
     CHECK(temporaries_in(cache).empty());
     fs::remove_all(dir);
 }
