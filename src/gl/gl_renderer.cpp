@@ -459,6 +459,7 @@ GLuint GlRenderer::base_color_texture(const std::shared_ptr<const rsl::Texture>&
     // Linear RGB(A) floats, row 0 at v = 0 as GL's first row; GL_LINEAR
     // without mipmaps is Texture::sample's bilinear between texel centers.
     const Image& image = texture->image;
+    RSL_CHECK(image.channels == 3 || image.channels == 4);  // the glTF loader decodes to RGB
     Texture uploaded = make_texture();
     glBindTexture(GL_TEXTURE_2D, uploaded.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
