@@ -104,37 +104,62 @@ Image contact_sheet(const std::vector<Image>& tiles, const std::vector<std::stri
     return sheet;
 }
 
+namespace {
+
+// A log10 axis spanning [lo, hi] (both > 0) in whole decades.
+struct LogAxis {
+    int first = 0, decades = 1;
+    LogAxis(double lo, double hi) {
+        if (!(hi > 0) || !(lo > 0)) lo = 0.01, hi = 1;
+        first = int(std::floor(std::log10(lo)));
+        decades = std::max(1, int(std::ceil(std::log10(hi))) - first);
+    }
+    double fraction(double v) const { return (std::log10(std::max(v, 1e-30)) - first) / decades; }
+    static std::string label(int decade) {
+        return decade >= 0 ? fmt::format("{:g}", std::pow(10.0, decade)) : fmt::format("1E{}", decade);
+    }
+};
+
+}  // namespace
+
 Image line_plot(const std::vector<Series>& series, const std::string& x_label, const std::string& y_label, int width,
-                int height) {
+                int height, bool log_x) {
     Image plot(width, height, 3);
     fill_rect(plot, 0, 0, width, height, Color(1.0f));
     const int left = 64, right = width - 150, top = 20, bottom = height - 44;
-    double x_max = 1, y_min = 1e30, y_max = 0;
+    double x_min = 1e30, x_max = log_x ? 0 : 1, y_min = 1e30, y_max = 0;
     for (const Series& s : series)
         for (size_t i = 0; i < s.x.size(); ++i) {
             x_max = std::max(x_max, s.x[i]);
+            if (s.x[i] > 0) x_min = std::min(x_min, s.x[i]);
             if (s.y[i] > 0) y_min = std::min(y_min, s.y[i]), y_max = std::max(y_max, s.y[i]);
         }
-    if (!(y_max > 0)) y_min = 0.01, y_max = 1;
-    const int decade_lo = int(std::floor(std::log10(y_min))), decade_hi = int(std::ceil(std::log10(y_max)));
-    const int decades = std::max(1, decade_hi - decade_lo);
-    auto px = [&](double x) { return float(left + (right - left) * x / x_max); };
-    auto py = [&](double y) {
-        return float(bottom - (bottom - top) * (std::log10(std::max(y, 1e-30)) - decade_lo) / decades);
-    };
+    const LogAxis ly(y_min, y_max), lx(x_min, x_max);
+    auto px = [&](double x) { return float(left + (right - left) * (log_x ? lx.fraction(x) : x / x_max)); };
+    auto py = [&](double y) { return float(bottom - (bottom - top) * ly.fraction(y)); };
     const Color grid(0.85f), axis(0.0f);
-    for (int d = decade_lo; d <= decade_lo + decades; ++d) {
-        for (int m = 1; m < 10 && d < decade_lo + decades; ++m)
+    for (int d = ly.first; d <= ly.first + ly.decades; ++d) {
+        for (int m = 1; m < 10 && d < ly.first + ly.decades; ++m)
             draw_line(plot, float(left), py(m * std::pow(10.0, d)), float(right), py(m * std::pow(10.0, d)),
                       m == 1 ? Color(0.7f) : grid);
-        const std::string label = d >= 0 ? fmt::format("{:g}", std::pow(10.0, d)) : fmt::format("1E{}", d);
+        const std::string label = LogAxis::label(d);
         draw_text(plot, left - 6 - text_width(label), int(py(std::pow(10.0, d))) - 3, label, axis);
     }
-    const double x_step = x_max > 50 ? 20 : x_max > 20 ? 10 : 5;
-    for (double x = 0; x <= x_max + 1e-9; x += x_step) {
-        draw_line(plot, px(x), float(top), px(x), float(bottom), grid);
-        const std::string label = fmt::format("{:g}", x);
-        draw_text(plot, int(px(x)) - text_width(label) / 2, bottom + 6, label, axis);
+    if (log_x) {
+        for (int d = lx.first; d <= lx.first + lx.decades; ++d) {
+            for (int m = 1; m < 10 && d < lx.first + lx.decades; ++m)
+                draw_line(plot, px(m * std::pow(10.0, d)), float(top), px(m * std::pow(10.0, d)), float(bottom),
+                          m == 1 ? Color(0.7f) : grid);
+            const std::string label = LogAxis::label(d);
+            draw_text(plot, int(px(std::pow(10.0, d))) - text_width(label) / 2, bottom + 6, label, axis);
+        }
+    } else {
+        const double x_step = x_max > 50 ? 20 : x_max > 20 ? 10 : 5;
+        for (double x = 0; x <= x_max + 1e-9; x += x_step) {
+            draw_line(plot, px(x), float(top), px(x), float(bottom), grid);
+            const std::string label = fmt::format("{:g}", x);
+            draw_text(plot, int(px(x)) - text_width(label) / 2, bottom + 6, label, axis);
+        }
     }
     draw_line(plot, float(left), float(bottom), float(right), float(bottom), axis);
     draw_line(plot, float(left), float(top), float(left), float(bottom), axis);
@@ -145,6 +170,7 @@ Image line_plot(const std::vector<Series>& series, const std::string& x_label, c
         for (size_t i = 0; i < s.x.size(); ++i) {
             if (i > 0) draw_line(plot, px(s.x[i - 1]), py(s.y[i - 1]), px(s.x[i]), py(s.y[i]), s.color, 2);
             fill_rect(plot, int(px(s.x[i])) - 3, int(py(s.y[i])) - 3, int(px(s.x[i])) + 4, int(py(s.y[i])) + 4, s.color);
+            if (i < s.labels.size()) draw_text(plot, int(px(s.x[i])) + 6, int(py(s.y[i])) - 10, s.labels[i], axis);
         }
         const int ly = top + 10 + int(k) * 16;
         fill_rect(plot, right + 12, ly, right + 30, ly + 7, s.color);

@@ -26,9 +26,11 @@ struct Series {
     std::string name;
     Color color;
     std::vector<double> x, y;  // y > 0 (log axis)
+    std::vector<std::string> labels;  // optional, one per point, drawn beside its marker
 };
-// Lines with square markers; x linear from 0, y on a log10 axis spanning the data.
+// Lines with square markers; y on a log10 axis spanning the data, x linear
+// from 0 or (log_x) on a log10 axis too.
 Image line_plot(const std::vector<Series>& series, const std::string& x_label, const std::string& y_label,
-                int width = 640, int height = 420);
+                int width = 640, int height = 420, bool log_x = false);
 
 }  // namespace rsl::raster

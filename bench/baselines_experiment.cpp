@@ -5,6 +5,8 @@
 // same definition `rsl compare` uses.
 #include "bench/baselines_experiment.h"
 
+#include "bench/experiment_support.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,8 +25,7 @@
 namespace rsl {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using Clock = ExperimentClock;
 
 struct MethodResult {
     std::string method;  // "truth", "sh", "haar", "rsl"
@@ -35,39 +36,6 @@ struct MethodResult {
     Image image;
     std::string label() const { return method == "truth" ? "TRUTH" : fmt::format("{} {}", method, terms); }
 };
-
-// The scene as compared: a probe swapped in, or every material made Lambertian
-// (its diffuse colour kept) for the diffuse rows.
-void adapt_scene(Scene& scene, const BaselinesExperiment& args) {
-    if (!args.environment.empty()) {
-        scene.environment.file = std::filesystem::absolute(args.environment);
-        scene.environment.second_file.clear();
-    }
-    if (args.resolution > 0) scene.environment.resolution = args.resolution;
-    if (args.diffuse)
-        for (MaterialDesc& m : scene.materials) {
-            std::vector<float> albedo{0.5f, 0.5f, 0.5f};
-            for (const char* key : {"albedo", "kd"})
-                if (auto it = m.params.find(key); it != m.params.end()) albedo = it->second;
-            if (albedo.size() == 1) albedo = {albedo[0], albedo[0], albedo[0]};
-            m.model = "lambert";
-            m.params = {{"albedo", albedo}};
-            m.file.clear();
-        }
-}
-
-// Median wall time of `repeats` calls, in milliseconds.
-template <typename Frame>
-double median_ms(int repeats, const Frame& frame) {
-    std::vector<double> ms;
-    for (int r = 0; r < std::max(1, repeats); ++r) {
-        const auto start = Clock::now();
-        frame();
-        ms.push_back(1e3 * seconds_since(start));
-    }
-    std::sort(ms.begin(), ms.end());
-    return ms[ms.size() / 2];
-}
 
 size_t field_bytes(const PartFields& fields) {
     size_t bytes = 0;
@@ -137,9 +105,9 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
     }
     write_png(dir / "sheet.png", raster::contact_sheet(tiles, labels, 4, gain));
 
-    std::vector<raster::Series> series = {{"SH", Color(0.85f, 0.2f, 0.1f), {}, {}},
-                                          {"HAAR", Color(0.1f, 0.45f, 0.85f), {}, {}},
-                                          {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}}};
+    std::vector<raster::Series> series = {{"SH", Color(0.85f, 0.2f, 0.1f), {}, {}, {}},
+                                          {"HAAR", Color(0.1f, 0.45f, 0.85f), {}, {}, {}},
+                                          {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}, {}}};
     for (const MethodResult& r : results) {
         const int s = r.method == "sh" ? 0 : r.method == "haar" ? 1 : r.method == "rsl" ? 2 : -1;
         if (s < 0) continue;
@@ -157,7 +125,7 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
 void run_baselines_experiment(const BaselinesExperiment& args) {
     auto scene_ptr = std::make_shared<Scene>(load_scene(args.scene));
     Scene& scene = *scene_ptr;
-    adapt_scene(scene, args);
+    adapt_scene(scene, args.environment, args.resolution, args.diffuse);
     const float t = args.time;
     auto say = [&](const std::string& line) {
         if (!args.quiet) fmt::print(stderr, "{}\n", line);

@@ -103,7 +103,9 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
                     const VertexColors reference = truth.shade_vertices();
                     const double truth_seconds = since(start);
                     for (int k : light_counts) {
-                        AccuracyRow row{sc.name, env.name, glossy ? "glossy" : "diffuse", t, k};
+                        AccuracyRow row;
+                        row.scene = sc.name, row.environment = env.name, row.material = glossy ? "glossy" : "diffuse";
+                        row.time = t, row.lights = k;
                         row.settings = sc.scene_settings ? "scene" : "bench";
                         const RslSet rsls = fit_environment_lights(env.map, k);
                         RenderOptions options;

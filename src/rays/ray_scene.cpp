@@ -70,8 +70,9 @@ struct RayScene::Impl {
         ray.flags = 0;
     }
 
-    // One packet of up to 16 rays from a shared origin; t_far per ray.
-    void occluded_packet(const Vec3& o, const Vec3* dirs, const float* t_fars, float t_far_all,
+    // One packet of up to 16 rays from a shared origin o, or (origins not
+    // null) each from its own; t_far per ray, or t_far_all.
+    void occluded_packet(const Vec3& o, const Vec3* origins, const Vec3* dirs, const float* t_fars, float t_far_all,
                          int count, float t_near, uint8_t* visible) const {
         alignas(64) RTCRay16 ray;
         alignas(64) std::array<int, kPacketSize> valid;
@@ -79,7 +80,8 @@ struct RayScene::Impl {
             const bool active = k < count;
             valid[k] = active ? -1 : 0;
             const Vec3 d = active ? dirs[k] : Vec3(0, 0, 1);
-            ray.org_x[k] = o.x, ray.org_y[k] = o.y, ray.org_z[k] = o.z;
+            const Vec3 from = origins && active ? origins[k] : o;
+            ray.org_x[k] = from.x, ray.org_y[k] = from.y, ray.org_z[k] = from.z;
             ray.dir_x[k] = d.x, ray.dir_y[k] = d.y, ray.dir_z[k] = d.z;
             ray.tnear[k] = t_near;
             ray.tfar[k] = active ? (t_fars ? t_fars[k] : t_far_all) : 0.0f;
@@ -234,15 +236,23 @@ void RayScene::occluded_batch(const Vec3& origin, const Vec3* dirs, int count, f
                               uint8_t* visible) const {
     impl_->require_committed();
     for (int start = 0; start < count; start += kPacketSize)
-        impl_->occluded_packet(origin, dirs + start, nullptr, t_far, std::min(kPacketSize, count - start),
+        impl_->occluded_packet(origin, nullptr, dirs + start, nullptr, t_far, std::min(kPacketSize, count - start),
                                t_near, visible + start);
+}
+
+void RayScene::occluded_batch(const Vec3* origins, const Vec3* dirs, int count, float t_near, float t_far,
+                              uint8_t* visible) const {
+    impl_->require_committed();
+    for (int start = 0; start < count; start += kPacketSize)
+        impl_->occluded_packet(Vec3(0), origins + start, dirs + start, nullptr, t_far,
+                               std::min(kPacketSize, count - start), t_near, visible + start);
 }
 
 void RayScene::occluded_batch(const Vec3& origin, const Vec3* dirs, const float* t_fars, int count,
                               float t_near, uint8_t* visible) const {
     impl_->require_committed();
     for (int start = 0; start < count; start += kPacketSize)
-        impl_->occluded_packet(origin, dirs + start, t_fars + start, 0.0f,
+        impl_->occluded_packet(origin, nullptr, dirs + start, t_fars + start, 0.0f,
                                std::min(kPacketSize, count - start), t_near, visible + start);
 }
 

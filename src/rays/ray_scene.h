@@ -67,6 +67,11 @@ public:
     // visible[k] = 1 when dirs[k] reaches t_far unoccluded.
     void occluded_batch(const Vec3& origin, const Vec3* dirs, int count, float t_near, float t_far,
                         uint8_t* visible) const;
+    // Rays each from its own origin, in packets of 16 in the given order (so
+    // neighbours in the arrays should be coherent: neighbouring origins
+    // towards one light, or one origin's rays over one square).
+    void occluded_batch(const Vec3* origins, const Vec3* dirs, int count, float t_near, float t_far,
+                        uint8_t* visible) const;
     // Same with a t_far per ray (rays towards a sphere light end on its surface).
     void occluded_batch(const Vec3& origin, const Vec3* dirs, const float* t_fars, int count,
                         float t_near, uint8_t* visible) const;

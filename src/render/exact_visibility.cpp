@@ -1,11 +1,56 @@
 #include "src/render/exact_visibility.h"
 
+#include <array>
+#include <atomic>
+#include <cstring>
+
+#include "src/core/error.h"
 #include "src/core/hemisphere.h"
 
 namespace rsl {
 
-ExactVisibility::ExactVisibility(const Scene& scene, float t, ExactVisibilityMode mode, int samples_per_side)
-    : mode_(mode), samples_(samples_per_side), posed_(scene, t) {
+namespace {
+
+// splitmix64: a stateless hash of (vertex, square, sample) to uniform bits, so
+// that jittered points do not depend on which thread shades which block.
+inline uint64_t mix(uint64_t z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+inline float unit_float(uint64_t bits) { return float(bits >> 40) * (1.0f / float(1 << 24)); }  // [0, 1)
+
+inline uint64_t float_bits(float x) {
+    uint32_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    return bits;
+}
+
+std::atomic<uint64_t> next_id{1};
+
+// Per thread: the surface points of the block being shaded (the renderer
+// asks for every light of a block in turn) and the rays of one batch.
+struct BatchScratch {
+    uint64_t owner = 0;
+    int part = -1, first_vertex = -1;
+    std::vector<SurfacePoint> points;
+    std::vector<Vec3> origins;  // per vertex, cached with its point
+    std::vector<bool> cached;
+    std::vector<Vec3> ray_origins, ray_dirs;
+    std::vector<uint8_t> visible;
+    std::vector<int> counted, first_ray;
+};
+
+}  // namespace
+
+ExactVisibility::ExactVisibility(const Scene& scene, float t, ExactVisibilityMode mode, int samples_per_side,
+                                 bool jitter)
+    : mode_(mode), samples_(samples_per_side), jitter_(jitter), id_(next_id++), posed_(scene, t) {
+    if (samples_per_side < 1 || samples_per_side > kMaxSamplesPerSide)
+        throw_error("ray-traced visibility: {} samples per side is outside [1, {}]", samples_per_side,
+                    kMaxSamplesPerSide);
     if (mode == ExactVisibilityMode::All) return;
     const int parts = int(scene.parts.size());
     for (int receiver = 0; receiver < parts; ++receiver) {
@@ -24,29 +69,118 @@ const RayScene& ExactVisibility::occluders_of(int part) const {
     return mode_ == ExactVisibilityMode::All ? posed_.rays() : *per_part_[part];
 }
 
-float ExactVisibility::visible_fraction(int part, int vertex, const Vec2& center, float half_edge) const {
+uint64_t ExactVisibility::seed(int part, int vertex, const Vec2& center) const {
+    return jitter_ ? mix((uint64_t(part) << 32 | uint32_t(vertex)) ^ mix(float_bits(center.x) << 32 | float_bits(center.y)))
+                   : 0;
+}
+
+float ExactVisibility::visible_fraction(int part, int vertex, const Vec2& center, float half_edge,
+                                        size_t* rays) const {
     const SurfacePoint x = posed_.vertex(part, vertex);
     const Vec3 origin = posed_.offset().origin(x.position, x.offset_normal);
-    if (mode_ != ExactVisibilityMode::OthersProduct) return fraction(occluders_of(part), x, origin, center, half_edge);
+    const uint64_t bits = seed(part, vertex, center);
+    if (mode_ != ExactVisibilityMode::OthersProduct)
+        return fraction(occluders_of(part), x, origin, center, half_edge, bits, rays);
     float product = 1.0f;
     for (size_t j = 0; j < per_part_.size() && product > 0.0f; ++j)
-        if (int(j) != part) product *= fraction(*per_part_[j], x, origin, center, half_edge);
+        if (int(j) != part) product *= fraction(*per_part_[j], x, origin, center, half_edge, bits, rays);
     return product;
 }
 
-float ExactVisibility::fraction(const RayScene& rays, const SurfacePoint& x, const Vec3& origin, const Vec2& center,
-                                float half_edge) const {
-    int counted = 0, visible = 0;
+void ExactVisibility::visible_fraction_batch(int part, int first_vertex, const int* offset, const float* center_x,
+                                             const float* center_y, const float* half_edge, const bool* skip, int m,
+                                             float* out, size_t* rays) const {
+    if (mode_ == ExactVisibilityMode::OthersProduct) {  // a product over parts: one query at a time
+        for (int i = 0; i < m; ++i)
+            out[i] = skip && skip[i] ? 0.0f
+                                     : visible_fraction(part, first_vertex + offset[i], Vec2(center_x[i], center_y[i]),
+                                                        half_edge[i], rays);
+        return;
+    }
+    thread_local BatchScratch s;
+    if (s.owner != id_ || s.part != part || s.first_vertex != first_vertex) {
+        s.owner = id_, s.part = part, s.first_vertex = first_vertex;
+        s.cached.assign(s.cached.size(), false);
+    }
+    s.ray_origins.clear(), s.ray_dirs.clear();
+    s.counted.resize(size_t(m));
+    s.first_ray.resize(size_t(m) + 1);
+    const size_t per_query = size_t(samples_) * size_t(samples_);
+    for (int i = 0; i < m; ++i) {
+        s.first_ray[size_t(i)] = int(s.ray_dirs.size());
+        s.counted[size_t(i)] = 0;
+        if (skip && skip[i]) continue;
+        const size_t k = size_t(offset[i]);
+        if (k >= s.cached.size()) s.points.resize(k + 1), s.origins.resize(k + 1), s.cached.resize(k + 1, false);
+        if (!s.cached[k]) {
+            s.points[k] = posed_.vertex(part, first_vertex + offset[i]);
+            s.origins[k] = posed_.offset().origin(s.points[k].position, s.points[k].offset_normal);
+            s.cached[k] = true;
+        }
+        const size_t first = s.ray_dirs.size();
+        s.ray_dirs.resize(first + per_query);
+        const Vec2 center(center_x[i], center_y[i]);
+        const int cast = square_directions(s.points[k], center, half_edge[i], seed(part, first_vertex + offset[i], center),
+                                           s.ray_dirs.data() + first, s.counted[size_t(i)]);
+        s.ray_dirs.resize(first + size_t(cast));
+        s.ray_origins.resize(first + size_t(cast), s.origins[k]);
+    }
+    s.first_ray[size_t(m)] = int(s.ray_dirs.size());
+    const int total = int(s.ray_dirs.size());
+    s.visible.resize(size_t(total));
+    if (total > 0)
+        occluders_of(part).occluded_batch(s.ray_origins.data(), s.ray_dirs.data(), total, 0.0f, 1e30f, s.visible.data());
+    if (rays) *rays += size_t(total);
+    for (int i = 0; i < m; ++i) {
+        if (skip && skip[i]) {
+            out[i] = 0.0f;
+            continue;
+        }
+        int reached = 0;
+        for (int r = s.first_ray[size_t(i)]; r < s.first_ray[size_t(i) + 1]; ++r) reached += s.visible[size_t(r)];
+        out[i] = s.counted[size_t(i)] > 0 ? float(reached) / float(s.counted[size_t(i)]) : 1.0f;
+    }
+}
+
+int ExactVisibility::square_directions(const SurfacePoint& x, const Vec2& center, float half_edge, uint64_t seed,
+                                       Vec3* dirs, int& counted) const {
+    int cast = 0;
+    counted = 0;
+    const float cell = 2.0f / float(samples_);
     for (int j = 0; j < samples_; ++j)
         for (int i = 0; i < samples_; ++i) {
-            const Vec2 p = center + half_edge * Vec2(2.0f * (i + 0.5f) / samples_ - 1.0f, 2.0f * (j + 0.5f) / samples_ - 1.0f);
+            float u = 0.5f, v = 0.5f;  // where in its cell the point lies
+            if (jitter_) {
+                const uint64_t bits = mix(seed + uint64_t(j * samples_ + i));
+                u = unit_float(bits), v = unit_float(bits << 24);
+            }
+            const Vec2 p = center + half_edge * Vec2((float(i) + u) * cell - 1.0f, (float(j) + v) * cell - 1.0f);
             if (glm::dot(p, p) >= 1.0f) continue;  // below the shading horizon
             const Vec3 dir = x.frame.to_world(plane_to_hemisphere(p));
             ++counted;
             // As the ground truth: a direction into the surface is occluded.
-            if (glm::dot(dir, x.offset_normal) > 0.0f && !rays.occluded(origin, dir, 0.0f, 1e30f)) ++visible;
+            if (glm::dot(dir, x.offset_normal) > 0.0f) dirs[cast++] = dir;
         }
-    return counted > 0 ? float(visible) / float(counted) : 1.0f;
+    return cast;
+}
+
+float ExactVisibility::fraction(const RayScene& rays, const SurfacePoint& x, const Vec3& origin, const Vec2& center,
+                                float half_edge, uint64_t seed, size_t* traced) const {
+    constexpr int kMax = kMaxSamplesPerSide * kMaxSamplesPerSide;
+    std::array<Vec3, kMax> dirs;
+    std::array<uint8_t, kMax> visible;
+    int counted = 0;
+    const int cast = square_directions(x, center, half_edge, seed, dirs.data(), counted);
+    if (counted == 0) return 1.0f;
+    int reached = 0;
+    if (cast == 1) {
+        reached = rays.occluded(origin, dirs[0], 0.0f, 1e30f) ? 0 : 1;
+    } else if (cast > 1) {
+        rays.occluded_batch(origin, dirs.data(), cast, 0.0f, 1e30f, visible.data());
+        for (int k = 0; k < cast; ++k) reached += visible[size_t(k)];
+    }
+    if (traced) *traced += size_t(cast);
+    return float(reached) / float(counted);
 }
 
 }  // namespace rsl

@@ -40,6 +40,7 @@ struct RenderStats {
     size_t occluder_pairs_culled = 0;  // ... of which culled
     size_t block_occluders_culled = 0; // (block, occluder, light) triples skipped by the block's bounding sphere
     size_t occluder_lookups = 0;       // OVDF lookups that ran (vertex, light, occluder)
+    size_t shadow_rays = 0;            // rays traced by exact_visibility (the ray-traced baseline)
 };
 
 }  // namespace rsl

@@ -146,7 +146,7 @@ void Renderer::shade(VertexColors& out) {
     sync_materials();
     match_layers(library_, scene_, out);
     out.time = time_;
-    std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0};
+    std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0}, shadow_rays{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
         RenderStats counts;
         for (size_t b = range.begin(); b != range.end(); ++b) shade_block(blocks_[b], out, counts);
@@ -154,7 +154,9 @@ void Renderer::shade(VertexColors& out) {
         vertices.fetch_add(counts.vertices, std::memory_order_relaxed);
         occluder_lookups.fetch_add(counts.occluder_lookups, std::memory_order_relaxed);
         block_culled.fetch_add(counts.block_occluders_culled, std::memory_order_relaxed);
+        shadow_rays.fetch_add(counts.shadow_rays, std::memory_order_relaxed);
     });
+    stats_.shadow_rays = shadow_rays.load();
     stats_.occluder_lookups = occluder_lookups.load();
     stats_.block_occluders_culled = block_culled.load();
     stats_.lookups = lookups.load();

@@ -69,6 +69,10 @@ struct Renderer::BlockScratch {
     alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
     alignas(64) float spr[kBlock], spg[kBlock], spb[kBlock];  // the specular table's averages
     alignas(64) bool needed[kBlock];  // per vertex: the current (light, occluder) needs a lookup
+    // Ray-traced visibility (options.exact_visibility): per query, whether it
+    // needs no rays, and its visible fraction.
+    alignas(64) bool skip[kBlock];
+    alignas(64) float exact[kBlock];
 
     // Per occluder part (sized to the scene on first use): what the block
     // knows of it, valid while `stamp` equals the block's. The bounding cone
@@ -377,28 +381,33 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         table.square_average_batch(queries, ColorOutputs{s.br, s.bg, s.bb});
         if (specular) specular->square_average_batch(queries, ColorOutputs{s.spr, s.spg, s.spb});
 
+        // A square whose BRDF average is 0 (clipped away below the horizon)
+        // adds nothing whatever its visibility: no visibility lookups (nor rays) for it.
+        auto adds_nothing = [&](int i) {
+            return s.br[i] == 0.0f && s.bg[i] == 0.0f && s.bb[i] == 0.0f &&
+                   (!specular || (s.spr[i] == 0.0f && s.spg[i] == 0.0f && s.spb[i] == 0.0f));
+        };
         const ExactVisibility* exact = options_.exact_visibility.get();
         const ExactVisibilityMode exact_mode = exact ? exact->mode() : ExactVisibilityMode::All;
         const bool exact_others = exact_mode == ExactVisibilityMode::Others || exact_mode == ExactVisibilityMode::OthersProduct;
         if (exact && !exact_others) {
-            for (int i = 0; i < m; ++i)
-                s.vis[i] = exact->visible_fraction(part_index, block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
+            for (int i = 0; i < m; ++i) s.skip[i] = adds_nothing(i);
+            exact->visible_fraction_batch(part_index, block.begin, s.index, s.qx, s.qy, s.qh, s.skip, m, s.vis,
+                                          &counts.shadow_rays);
         } else if (svdf) {
             svdf->visible_fraction_batch(block.begin, s.index, s.qx, s.qy, s.qh, m, s.vis);
         } else {
             for (int i = 0; i < m; ++i) s.vis[i] = 1.0f;
         }
+        for (int i = 0; i < m; ++i)
+            if (adds_nothing(i)) s.vis[i] = 0.0f;
         if (exact && exact_others) {
-            for (int i = 0; i < m; ++i)
-                s.vis[i] *= exact->visible_fraction(part_index, block.begin + s.index[i], Vec2(s.qx[i], s.qy[i]), s.qh[i]);
+            for (int i = 0; i < m; ++i) s.skip[i] = !(s.vis[i] > 0.0f);
+            exact->visible_fraction_batch(part_index, block.begin, s.index, s.qx, s.qy, s.qh, s.skip, m, s.exact,
+                                          &counts.shadow_rays);
+            for (int i = 0; i < m; ++i) s.vis[i] *= s.exact[i];
         }
         const bool field_occluders = !exact || exact_mode == ExactVisibilityMode::Self;
-        // A square whose BRDF average is 0 (clipped away below the horizon)
-        // adds nothing whatever its visibility: no occluder lookups for it.
-        for (int i = 0; i < m; ++i)
-            if (s.br[i] == 0.0f && s.bg[i] == 0.0f && s.bb[i] == 0.0f &&
-                (!specular || (s.spr[i] == 0.0f && s.spg[i] == 0.0f && s.spb[i] == 0.0f)))
-                s.vis[i] = 0.0f;
 
         // Other parts' shadows: receiver point and light direction in the occluder's frame.
         for (size_t e = offsets_[slot_base + l]; field_occluders && e < offsets_[slot_base + l + 1]; ++e) {

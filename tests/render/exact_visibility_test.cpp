@@ -3,6 +3,8 @@
 // parameterization computed by brute force.
 #include <catch2/catch.hpp>
 
+#include <random>
+
 #include "src/core/hemisphere.h"
 #include "src/render/exact_visibility.h"
 #include "tests/render/render_test_scenes.h"
@@ -25,6 +27,7 @@ TEST_CASE("exact visibility of squares under a sphere", "[render][exact]") {
     const ExactVisibility self(scene, 0.0f, ExactVisibilityMode::Self, grid);
     const ExactVisibility others(scene, 0.0f, ExactVisibilityMode::Others, grid);
     const ExactVisibility product(scene, 0.0f, ExactVisibilityMode::OthersProduct, grid);
+    const ExactVisibility jittered(scene, 0.0f, ExactVisibilityMode::All, grid, true);
     // The ball (half-angle 30° from the vertex) in the plane: |p| < √2·sin(15°).
     const float cap = std::sqrt(2.0f) * std::sin(kPi / 12.0f);
     auto expected = [&](const Vec2& c, float h) {
@@ -51,10 +54,93 @@ TEST_CASE("exact visibility of squares under a sphere", "[render][exact]") {
         CHECK(all.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
         CHECK(others.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
         CHECK(product.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
+        CHECK(jittered.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
         CHECK(self.visible_fraction(0, center, c.center, c.half_edge) == 1.0f);  // a plane never shadows itself
     }
     CHECK(all.visible_fraction(0, center, Vec2(0), 0.05f) == 0.0f);
     CHECK(all.visible_fraction(0, center, Vec2(0.7f, 0.0f), 0.05f) == 1.0f);
+}
+
+// The ray-traced many-light baseline's estimator: one jittered ray per
+// square is unbiased (its mean over many seeds is the exact fraction, its
+// variance a Bernoulli ray's), and stratifying lowers the variance (S = 2:
+// under half of one ray's on a square the ball's edge crosses).
+TEST_CASE("jittered ray-traced visibility is unbiased", "[render][exact]") {
+    Scene scene = test::make_scene("under a ball");
+    test::add_part(scene, test::make_plane(4.0f, 8, "ground"));
+    Transform pose;
+    pose.translation = Vec3(0, 1.0f, 0);
+    test::add_part(scene, test::make_icosphere(0.5f, 4, "ball"), pose);
+    int center = 0;
+    for (size_t v = 0; v < scene.parts[0].mesh.positions.size(); ++v)
+        if (glm::length(scene.parts[0].mesh.positions[v]) < 1e-4f) center = int(v);
+    const ExactVisibility exact(scene, 0.0f, ExactVisibilityMode::All, 16);
+    const Vec2 c(0.3f, 0.1f);  // straddles the ball's edge at |p| ≈ 0.366
+    const float h = 0.2f;
+    const float want = exact.visible_fraction(0, center, c, h);
+    REQUIRE(want > 0.2f);
+    REQUIRE(want < 0.8f);
+    for (int side : {1, 2}) {
+        const ExactVisibility jittered(scene, 0.0f, ExactVisibilityMode::All, side, true);
+        double sum = 0, squares = 0;
+        const int trials = 4000;
+        for (int k = 0; k < trials; ++k) {
+            // A shift far below a ray's footprint changes the seed, not the geometry.
+            const Vec2 shifted = c + Vec2(1e-7f * float(k % 64), 1e-7f * float(k / 64));
+            const double v = jittered.visible_fraction(0, center, shifted, h);
+            sum += v, squares += v * v;
+        }
+        const double mean = sum / trials, variance = squares / trials - mean * mean;
+        INFO("S = " << side << ": mean " << mean << " (exact " << want << "), variance " << variance);
+        CHECK(mean == Approx(want).margin(0.025));  // about 4 standard errors
+        if (side == 1) CHECK(variance == Approx(want * (1 - want)).margin(0.03));  // one Bernoulli ray
+        if (side == 2) CHECK(variance < 0.5 * want * (1 - want));  // strata: less than half of one ray's
+    }
+}
+
+// The renderer asks for a block's squares of one light at once; the batch
+// must give exactly what one query at a time gives, in every mode, with
+// and without jitter, whichever blocks came before on the thread.
+TEST_CASE("ray-traced visibility: a batch equals its queries one at a time", "[render][exact]") {
+    Scene scene = test::make_scene("ball and box");
+    test::add_part(scene, test::make_plane(4.0f, 12, "ground"));
+    Transform pose;
+    pose.translation = Vec3(0.3f, 0.8f, 0);
+    test::add_part(scene, test::make_icosphere(0.5f, 3, "ball"), pose);
+    const int vertices = int(scene.parts[0].mesh.vertex_count());
+    std::mt19937 rng(19);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (ExactVisibilityMode mode : {ExactVisibilityMode::All, ExactVisibilityMode::Self, ExactVisibilityMode::Others,
+                                     ExactVisibilityMode::OthersProduct})
+        for (bool jitter : {false, true})
+            for (int side : {1, 2, 4}) {
+                const ExactVisibility visibility(scene, 0.0f, mode, side, jitter);
+                for (int first : {0, 40, 0, 100}) {  // the per-thread vertex cache changes block and back
+                    const int m = 64;
+                    std::vector<int> offset(m);
+                    std::vector<float> cx(m), cy(m), h(m), out(m);
+                    bool skip[m];
+                    for (int i = 0; i < m; ++i) {
+                        offset[size_t(i)] = int(unit(rng) * float(std::min(64, vertices - first)));
+                        const float radius = 0.95f * std::sqrt(unit(rng)), angle = 2.0f * kPi * unit(rng);
+                        cx[size_t(i)] = radius * std::cos(angle), cy[size_t(i)] = radius * std::sin(angle);
+                        h[size_t(i)] = 0.02f + 0.4f * unit(rng);
+                        skip[i] = unit(rng) < 0.2f;
+                    }
+                    size_t batch_rays = 0, single_rays = 0;
+                    visibility.visible_fraction_batch(0, first, offset.data(), cx.data(), cy.data(), h.data(), skip, m,
+                                                      out.data(), &batch_rays);
+                    for (int i = 0; i < m; ++i) {
+                        const float want = skip[i] ? 0.0f
+                                                   : visibility.visible_fraction(0, first + offset[size_t(i)],
+                                                                                 Vec2(cx[size_t(i)], cy[size_t(i)]),
+                                                                                 h[size_t(i)], &single_rays);
+                        INFO("mode " << int(mode) << " jitter " << jitter << " S " << side << " query " << i);
+                        CHECK(out[size_t(i)] == want);
+                    }
+                    CHECK(batch_rays == single_rays);
+                }
+            }
 }
 
 }  // namespace
