@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "baselines/raster.h"
@@ -55,7 +56,7 @@ int samples_for_budget(uint64_t budget, uint64_t pairs) {
 }
 
 void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
-                   double truth_ms, const std::vector<Row>& rows) {
+                   double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
     const std::filesystem::path dir(args.output);
     nlohmann::json json = {{"scene", scene.name},
                            {"source", scene.source.string()},
@@ -64,14 +65,15 @@ void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t v
                            {"vertices", vertices},
                            {"truth_ms", truth_ms},
                            {"receivers", args.receivers},
+                           {"gl_device", gl_device},
                            {"methods", nlohmann::json::array()}};
     std::string table = fmt::format(
         "Scene `{}`, environment `{}`, t = {}, {} vertices; truth {:.0f} ms. Errors: relative L2 against the "
-        "truth (objects: all parts but {}).\n\n"
+        "truth (objects: all parts but {}). GL rows: {}.\n\n"
         "| method | K | ms / frame | rays / frame | vertices | objects | worst part | image |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | --- | ---: |\n",
         scene.name, scene.environment.file.filename().string(), args.time, vertices, truth_ms,
-        fmt::format("{}", fmt::join(args.receivers, ", ")));
+        fmt::format("{}", fmt::join(args.receivers, ", ")), gl_device);
     for (const Row& r : rows) {
         json["methods"].push_back({{"method", r.method}, {"setting", r.setting}, {"lights", r.lights},
                                    {"frame_ms", r.frame_ms}, {"rays", r.rays}, {"vertex_error", r.vertex_error},
@@ -205,7 +207,23 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
         say(fmt::format("ray budget {}: {} pairs need rays, so S = {}", args.ray_budget, rays_at_one, samples));
         ray_row("rays-budget", samples);
     }
-    write_outputs(args, scene, truth_colors.vertex_count(), truth_image, truth_ms, rows);
+    // The GL rows: the fields' sum on the GPU path, and shadow maps.
+    std::string gl_device = "none asked for";
+    if (!args.gl_lights.empty() || !args.shadow_map_resolutions.empty()) {
+        try {
+            for (int k : args.gl_lights) {
+                RenderOptions o = options;
+                o.environment_lights = k;
+                const auto renderer = make_renderer(Backend::Gl, scene, lights_for(k), setup.fields, o);
+                gl_device = renderer->device();
+                measure(make_row("rsl-gl", k, k), *renderer);
+            }
+        } catch (const Error& e) {
+            gl_device = fmt::format("skipped ({})", e.what());
+            say("GL rows " + gl_device);
+        }
+    }
+    write_outputs(args, scene, truth_colors.vertex_count(), truth_image, truth_ms, rows, gl_device);
 }
 
 }  // namespace rsl

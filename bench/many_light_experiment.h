@@ -3,7 +3,8 @@
 // lights"): what a user would pick instead of precomputed fields. One static
 // frame shaded with the same RSLs, light integrals and BRDF-SAT averages, the
 // visibility factor alone changing:
-//   rsl     — the fields (SVDF × Π OVDF), K = 10, 30, 100 lights;
+//   rsl     — the fields (SVDF × Π OVDF), K = 10, 30, 100 lights, on the
+//             CPU and (rsl-gl) on the GL path;
 //   rays    — S×S stratified shadow rays per vertex and light (S = 1, 2, 4),
 //             Embree packets on every core, no precomputation;
 //   budget  — the same with S set per frame from a fixed ray budget;
@@ -31,7 +32,8 @@ struct ManyLightExperiment {
     int baseline_lights = 30;                // K of the ray-traced and shadow-mapped rows
     std::vector<int> ray_samples{1, 2, 4};   // S: S×S rays per vertex and light
     uint64_t ray_budget = 0;                 // rays per frame for the budget row; 0: no such row
-    std::vector<int> shadow_map_resolutions{256, 1024};  // empty: no GL rows
+    std::vector<int> gl_lights{30};          // K of the RSL rows on the GL path (empty: none)
+    std::vector<int> shadow_map_resolutions{256, 1024};  // GL shadow-map rows (empty: none)
     std::vector<std::string> receivers{"ground", "floor"};  // parts left out of the objects' error
 };
 

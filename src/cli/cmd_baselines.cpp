@@ -46,6 +46,7 @@ RegisterCommand baselines_command({"baselines",
         auto rsl = std::make_shared<std::string>("10,30,60,100");
         auto rays = std::make_shared<std::string>("1,2,4");
         auto maps = std::make_shared<std::string>("256,1024");
+        auto gl_lights = std::make_shared<std::string>("30");
         app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
         app.add_option("--time,-t", args->time, "Time in seconds (the static frame)")->capture_default_str();
         app.add_option("-o,--output", args->output, "Output folder (default out/baselines, or out/many_light)");
@@ -76,12 +77,14 @@ RegisterCommand baselines_command({"baselines",
         group->add_option("--baseline-lights", many->baseline_lights, "K of the ray-traced and shadow-mapped rows")
             ->capture_default_str()
             ->check(CLI::Range(1, 1000));
+        group->add_option("--gl-lights", *gl_lights, "K of the RSL rows on the GL path (empty: none)")
+            ->capture_default_str();
         group->add_option("--shadow-maps", *maps, "Shadow-map resolutions of the GL rows (empty: none)")
             ->capture_default_str();
         group->add_option("--receivers", many->receivers, "Parts left out of the objects' error")
             ->capture_default_str()
             ->delimiter(',');
-        app.callback([&app, args, many, many_light, sh, haar, rsl, rays, maps] {
+        app.callback([&app, args, many, many_light, sh, haar, rsl, rays, maps, gl_lights] {
             if (*many_light) {
                 many->scene = args->scene;
                 many->time = args->time;
@@ -98,6 +101,7 @@ RegisterCommand baselines_command({"baselines",
                     if (s > ExactVisibility::kMaxSamplesPerSide)
                         throw_error("--ray-samples: {} is above {}", s, ExactVisibility::kMaxSamplesPerSide);
                 many->shadow_map_resolutions = parse_list(*maps, "--shadow-maps", true);
+                many->gl_lights = parse_list(*gl_lights, "--gl-lights", true);
                 run_many_light_experiment(*many);
                 return;
             }
