@@ -1,0 +1,76 @@
+#pragma once
+// The depth pass of the shadow-mapped many-light baseline
+// (RenderOptions::shadow_maps; docs/GPU.md, "Shadow-mapped visibility"): a
+// competitor to the RSL visibility, not part of the RSL method.
+//
+// Per environment square light, one orthographic depth map along the
+// light's centre direction; every part is drawn into layer l of one
+// GL_TEXTURE_2D_ARRAY (DEPTH_COMPONENT32F, resolution² × lights). The maps
+// span one sphere around the posed scene (every part's world bounding
+// sphere), through the shading core's shadow_map_point, which the shading
+// pass calls too, so a vertex finds itself where it was drawn. The shading
+// pass reads the array two ways, through two sampler objects: raw depths
+// (the PCSS blocker search) and compared (GL_LEQUAL, GL_LINEAR: each tap is a
+// 2×2 bilinear comparison). Outside a map the border is depth 1: nothing in
+// front.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "src/gl/gl_objects.h"
+#include "src/render/frame_setup.h"
+
+namespace rsl::gl {
+
+// Throws rsl::Error unless the resolution lies in
+// [ShadowMapOptions::kMinResolution, kMaxResolution] and pcf_distance > 0.
+void check_shadow_map_options(const ShadowMapOptions& options);
+
+// A sphere (centre, radius) holding every part's world bounding sphere,
+// grown by 1 % so that no triangle touches the maps' faces.
+Vec4 shadow_map_sphere(const std::vector<PartPose>& poses);
+
+// The parts' triangles as the display pass draws them: its vertex array
+// (attribute 0 = part-space positions, and the index buffer), per part the
+// first index (and the total at the end) and the first vertex.
+struct ShadowCasters {
+    GLuint vertex_array = 0;
+    std::span<const size_t> first_index;
+    std::span<const int> first_vertex;
+};
+
+class ShadowMaps {
+public:
+    ShadowMaps();  // needs a current context: the depth program, the samplers
+
+    // Every part into each square's layer, at `resolution` texels per side.
+    // The array is re-allocated only when the resolution or the number of
+    // squares changes; rsl::Error when the driver cannot hold it.
+    void render(int resolution, const std::vector<PartPose>& poses, const std::vector<SquareLight>& squares,
+                const ShadowCasters& casters);
+
+    Vec4 sphere() const { return sphere_; }  // of the last render
+    int resolution() const { return resolution_; }
+    int layers() const { return layers_; }
+    size_t bytes() const { return size_t(resolution_) * size_t(resolution_) * size_t(layers_) * 4; }
+    // The array on two texture units: raw depths, and compared depths.
+    void bind(int depth_unit, int compare_unit) const;
+    // bind(), and the shading pass's uniforms of the maps and the filter
+    // (shaders/shade_vertices.frag.glsl, u_shadow_*); `shading` in use.
+    void bind_for_shading(const Program& shading, const ShadowMapOptions& options, int depth_unit,
+                          int compare_unit) const;
+    // Leaves the two units' sampler objects unbound (other passes use units plainly).
+    static void unbind(int depth_unit, int compare_unit);
+
+private:
+    void allocate(int resolution, int layers);
+
+    Program program_;
+    Texture depths_;
+    Framebuffer framebuffer_;
+    Sampler raw_, compare_;
+    int resolution_ = 0, layers_ = 0;
+    Vec4 sphere_{0.0f, 0.0f, 0.0f, 1.0f};
+};
+
+}  // namespace rsl::gl
