@@ -47,9 +47,9 @@ uniform vec3 u_face_t[kCubeFaces];
 // The shadow-mapped baseline (src/gl/shadow_maps.h): layer l = environment light l.
 uniform bool u_shadow_maps;      // environment lights' visibility from the maps
 uniform bool u_shadow_pcss;      // PCSS (blocker search); else PCF at u_pcf_depth
-uniform sampler2DArray u_shadow_depths;         // the maps' depths (blocker search)
-uniform sampler2DArrayShadow u_shadow_compare;  // the same, compared: 2×2 bilinear
+uniform sampler2DArray u_shadow_depths;  // the maps (read with texelFetch)
 uniform vec4 u_shadow_sphere;    // the maps' sphere: centre, radius
+uniform int u_shadow_resolution; // texels per side
 uniform float u_shadow_texel;    // 1 / resolution: a texel, across and in depth
 uniform float u_pcf_depth;       // PCF: the occluder distance assumed, in depth units
 
@@ -232,24 +232,55 @@ bool clears_box(int part, vec3 point, vec3 light, mat3 inverse_linear, float h) 
 // directions (shadow_tap_point) above the horizon; a ray along one reaches
 // the blockers' depth at `distance` × its slope across the map. PCF assumes
 // the distance (u_pcf_depth); PCSS searches blockers and takes their mean
-// depth (blocker_distance). Each tap is compared with the receiver's own
-// tangent plane there, minus the bias.
+// distance (blocker_distance). Each texel a tap reads is compared with the
+// receiver's own tangent plane at the texel's centre (the receiver-plane
+// depth bias), less a constant bias.
+struct ShadowReceiver {
+    vec3 q;         // the receiver in the map: (u, v, depth)
+    vec2 gradient;  // its tangent plane's depth per unit map offset
+    float bias;     // depth units
+    int layer;
+};
 vec2 g_shadow_slope[kShadowTaps];
+
+// Texel t of the receiver's map: 1 (nothing in front) outside it.
+float shadow_depth(ShadowReceiver r, ivec2 t) {
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(u_shadow_resolution)))) return 1.0;
+    return texelFetch(u_shadow_depths, ivec3(t, r.layer), 0).r;
+}
+// The receiver's tangent plane at texel t's centre: a texel nearer than
+// this less the bias blocks.
+float shadow_plane(ShadowReceiver r, ivec2 t) {
+    vec2 center = (vec2(t) + 0.5) * u_shadow_texel;
+    return r.q.z + dot(center - r.q.xy, r.gradient);
+}
+// Lit share at map point uv, bilinear over the four nearest texels.
+float shadow_lit(ShadowReceiver r, vec2 uv) {
+    vec2 t = uv * float(u_shadow_resolution) - 0.5;
+    vec2 base = floor(t);
+    vec2 f = t - base;
+    float lit = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 texel = ivec2(base) + ivec2(k & 1, k >> 1);
+        float weight = ((k & 1) == 0 ? 1.0 - f.x : f.x) * ((k >> 1) == 0 ? 1.0 - f.y : f.y);
+        if (shadow_depth(r, texel) >= shadow_plane(r, texel) - r.bias) lit += weight;
+    }
+    return lit;
+}
 
 // PCSS's blocker search: the mean distance (depth units) from the blockers
 // that the taps at `distance` × slope find down to the receiver's tangent
 // plane below each (not to the receiver itself: a blocker plane tilted
 // against the light, found far to the side, would read as near), or 0 when
 // they find none.
-float blocker_distance(vec3 q, vec2 gradient, float bias, int taps, float distance, int layer) {
+float blocker_distance(ShadowReceiver r, int taps, float distance) {
     float sum = 0.0;
     int blockers = 0;
     for (int k = 0; k < taps; ++k) {
-        vec2 offset = distance * g_shadow_slope[k];
-        float depth = texture(u_shadow_depths, vec3(q.xy + offset, float(layer))).r;
-        float receiver = q.z + dot(offset, gradient);
-        if (depth < receiver - bias) {
-            sum += receiver - depth;
+        ivec2 texel = ivec2(floor((r.q.xy + distance * g_shadow_slope[k]) * float(u_shadow_resolution)));
+        float depth = shadow_depth(r, texel), plane = shadow_plane(r, texel);
+        if (depth < plane - r.bias) {
+            sum += plane - depth;
             ++blockers;
         }
     }
@@ -258,10 +289,11 @@ float blocker_distance(vec3 q, vec2 gradient, float bias, int taps, float distan
 
 float shadow_visible_fraction(int layer, vec3 light, vec3 p, mat3 frame, vec2 lp, float h) {
     LocalFrame m = shadow_map_frame(light);
-    vec3 n = frame[2];
-    vec3 q = shadow_map_point(m, u_shadow_sphere.xyz, u_shadow_sphere.w, p);
-    vec2 gradient = shadow_receiver_gradient(m, n);
-    float bias = (kShadowDepthBiasTexels + kShadowSlopeBiasTexels * length(gradient)) * u_shadow_texel;
+    ShadowReceiver r;
+    r.q = shadow_map_point(m, u_shadow_sphere.xyz, u_shadow_sphere.w, p);
+    r.gradient = shadow_receiver_gradient(m, frame[2]);
+    r.bias = kShadowDepthBiasTexels * u_shadow_texel;
+    r.layer = layer;
     int taps = 0;
     for (int i = 0; i < kShadowTaps; ++i) {
         vec2 point = shadow_tap_point(lp, h, i);
@@ -272,14 +304,11 @@ float shadow_visible_fraction(int layer, vec3 light, vec3 p, mat3 frame, vec2 lp
     float distance = u_pcf_depth;
     if (u_shadow_pcss) {
         // Over the widest footprint: rays up to the map's near face (depth 0).
-        distance = blocker_distance(q, gradient, bias, taps, q.z, layer);
+        distance = blocker_distance(r, taps, r.q.z);
         if (distance == 0.0) return 1.0;
     }
     float lit = 0.0;
-    for (int k = 0; k < taps; ++k) {
-        vec2 offset = distance * g_shadow_slope[k];
-        lit += texture(u_shadow_compare, vec4(q.xy + offset, float(layer), q.z + dot(offset, gradient) - bias));
-    }
+    for (int k = 0; k < taps; ++k) lit += shadow_lit(r, r.q.xy + distance * g_shadow_slope[k]);
     return lit / float(taps);
 }
 

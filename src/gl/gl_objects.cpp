@@ -29,7 +29,6 @@ void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 void delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
 void delete_program(GLuint id) { glDeleteProgram(id); }
 void delete_query(GLuint id) { glDeleteQueries(1, &id); }
-void delete_sampler(GLuint id) { glDeleteSamplers(1, &id); }
 
 Texture make_texture() {
     GLuint id = 0;
@@ -60,11 +59,6 @@ Query make_query() {
     GLuint id = 0;
     glGenQueries(1, &id);
     return Query(id);
-}
-Sampler make_sampler() {
-    GLuint id = 0;
-    glGenSamplers(1, &id);
-    return Sampler(id);
 }
 
 namespace {

@@ -47,7 +47,6 @@ void delete_framebuffer(GLuint id);
 void delete_renderbuffer(GLuint id);
 void delete_program(GLuint id);
 void delete_query(GLuint id);
-void delete_sampler(GLuint id);
 using Texture = Handle<delete_texture>;
 using Buffer = Handle<delete_buffer>;
 using VertexArray = Handle<delete_vertex_array>;
@@ -55,7 +54,6 @@ using Framebuffer = Handle<delete_framebuffer>;
 using Renderbuffer = Handle<delete_renderbuffer>;
 using Program = Handle<delete_program>;
 using Query = Handle<delete_query>;
-using Sampler = Handle<delete_sampler>;  // sampler objects: one texture read two ways
 
 Texture make_texture();
 Buffer make_buffer();
@@ -63,7 +61,6 @@ VertexArray make_vertex_array();
 Framebuffer make_framebuffer();
 Renderbuffer make_renderbuffer();
 Query make_query();
-Sampler make_sampler();
 
 // Compiles one shader from `source`; throws rsl::Error with the driver's log,
 // naming `label` (the shader file, or what the source is).

@@ -16,7 +16,7 @@ namespace {
 enum Unit : int {
     kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitOccluders, kUnitBrdf,
     kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
-    kUnitOvdfFrames, kUnitShadowDepths, kUnitShadowCompare, kUnitCount
+    kUnitOvdfFrames, kUnitShadowMaps, kUnitCount
 };
 
 // Timed passes (PassTimings), the index of their timer queries.
@@ -77,7 +77,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
                                         "u_parts",           "u_lights",            "u_occluder_lists",
                                         "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
                                         "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
-                                        "u_ovdf_frames",     "u_shadow_depths",     "u_shadow_compare"};
+                                        "u_ovdf_frames",     "u_shadow_depths"};
     for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(shade_program_, samplers[unit]), unit);
     glUniform3fv(uniform(shade_program_, "u_face_normal"), 6, &geometry.face_normal[0].x);
     glUniform3fv(uniform(shade_program_, "u_face_s"), 6, &geometry.face_s[0].x);
@@ -412,7 +412,6 @@ void GlRenderer::shade() {
     bind_shadow_uniforms();
     glBindVertexArray(empty_vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    ShadowMaps::unbind(kUnitShadowDepths, kUnitShadowCompare);
     end_pass(kPassShade);
 
     // Render target → pixel-pack buffer: stays on the GPU.
@@ -455,7 +454,7 @@ void GlRenderer::render_shadow_maps() {
 void GlRenderer::bind_shadow_uniforms() {
     const bool on = options_.shadow_maps.enabled && shadow_maps_ && shadow_maps_->layers() > 0;
     glUniform1i(uniform(shade_program_, "u_shadow_maps"), on ? 1 : 0);
-    if (on) shadow_maps_->bind_for_shading(shade_program_, options_.shadow_maps, kUnitShadowDepths, kUnitShadowCompare);
+    if (on) shadow_maps_->bind_for_shading(shade_program_, options_.shadow_maps, kUnitShadowMaps);
 }
 
 void GlRenderer::draw(const Mat4& view_projection, float exposure) {

@@ -11,14 +11,6 @@ namespace {
 
 GLint uniform(const Program& program, const char* name) { return glGetUniformLocation(program.id(), name); }
 
-// Depth 1 outside a map: taps beyond its edge see nothing in front.
-void clamp_to_far_border(GLuint sampler) {
-    const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glSamplerParameterfv(sampler, GL_TEXTURE_BORDER_COLOR, far);
-}
-
 }  // namespace
 
 void check_shadow_map_options(const ShadowMapOptions& options) {
@@ -46,17 +38,6 @@ Vec4 shadow_map_sphere(const std::vector<PartPose>& poses) {
 ShadowMaps::ShadowMaps() {
     program_ = build_program("shadow_depth.vert.glsl", "shadow_depth.frag.glsl", shading_prelude());
     framebuffer_ = make_framebuffer();
-    raw_ = make_sampler();
-    glSamplerParameteri(raw_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glSamplerParameteri(raw_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glSamplerParameteri(raw_.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    clamp_to_far_border(raw_.id());
-    compare_ = make_sampler();
-    glSamplerParameteri(compare_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glSamplerParameteri(compare_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(compare_.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glSamplerParameteri(compare_.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);  // lit: reference ≤ stored depth
-    clamp_to_far_border(compare_.id());
     check_gl("creating the shadow maps");
 }
 
@@ -69,7 +50,9 @@ void ShadowMaps::allocate(int resolution, int layers) {
                     resolution, max_layers, max_size);
     depths_ = make_texture();
     glBindTexture(GL_TEXTURE_2D_ARRAY, depths_.id());
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);  // read by texelFetch only
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     while (glGetError() != GL_NO_ERROR) {}  // only this allocation's error below
     glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, resolution, resolution, layers, 0,
                  GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
@@ -131,27 +114,15 @@ void ShadowMaps::render(int resolution, const std::vector<PartPose>& poses, cons
     check_gl("the shadow-map pass");
 }
 
-void ShadowMaps::bind(int depth_unit, int compare_unit) const {
-    for (const auto& [unit, sampler] : {std::pair{depth_unit, raw_.id()}, std::pair{compare_unit, compare_.id()}}) {
-        glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-        glBindTexture(GL_TEXTURE_2D_ARRAY, depths_.id());
-        glBindSampler(GLuint(unit), sampler);
-    }
-}
-
-void ShadowMaps::bind_for_shading(const Program& shading, const ShadowMapOptions& options, int depth_unit,
-                                  int compare_unit) const {
-    bind(depth_unit, compare_unit);
+void ShadowMaps::bind_for_shading(const Program& shading, const ShadowMapOptions& options, int unit) const {
+    glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D_ARRAY, depths_.id());
     glUniform1i(uniform(shading, "u_shadow_pcss"), options.filter == ShadowFilter::Pcss ? 1 : 0);
     glUniform4f(uniform(shading, "u_shadow_sphere"), sphere_.x, sphere_.y, sphere_.z, sphere_.w);
+    glUniform1i(uniform(shading, "u_shadow_resolution"), resolution_);
     glUniform1f(uniform(shading, "u_shadow_texel"), 1.0f / float(resolution_));
     // pcf_distance × radius in the world; shadow_map_point scales by 0.5 / radius.
     glUniform1f(uniform(shading, "u_pcf_depth"), 0.5f * options.pcf_distance);
-}
-
-void ShadowMaps::unbind(int depth_unit, int compare_unit) {
-    glBindSampler(GLuint(depth_unit), 0);
-    glBindSampler(GLuint(compare_unit), 0);
 }
 
 }  // namespace rsl::gl

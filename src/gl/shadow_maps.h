@@ -9,10 +9,8 @@
 // span one sphere around the posed scene (every part's world bounding
 // sphere), through the shading core's shadow_map_point, which the shading
 // pass calls too, so a vertex finds itself where it was drawn. The shading
-// pass reads the array two ways, through two sampler objects: raw depths
-// (the PCSS blocker search) and compared (GL_LEQUAL, GL_LINEAR: each tap is a
-// 2×2 bilinear comparison). Outside a map the border is depth 1: nothing in
-// front.
+// pass reads the depths with texelFetch and compares each texel itself
+// (with the receiver's plane at that texel: shaders/shade_vertices.frag.glsl).
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -41,7 +39,7 @@ struct ShadowCasters {
 
 class ShadowMaps {
 public:
-    ShadowMaps();  // needs a current context: the depth program, the samplers
+    ShadowMaps();  // needs a current context: the depth program
 
     // Every part into each square's layer, at `resolution` texels per side.
     // The array is re-allocated only when the resolution or the number of
@@ -53,14 +51,10 @@ public:
     int resolution() const { return resolution_; }
     int layers() const { return layers_; }
     size_t bytes() const { return size_t(resolution_) * size_t(resolution_) * size_t(layers_) * 4; }
-    // The array on two texture units: raw depths, and compared depths.
-    void bind(int depth_unit, int compare_unit) const;
-    // bind(), and the shading pass's uniforms of the maps and the filter
-    // (shaders/shade_vertices.frag.glsl, u_shadow_*); `shading` in use.
-    void bind_for_shading(const Program& shading, const ShadowMapOptions& options, int depth_unit,
-                          int compare_unit) const;
-    // Leaves the two units' sampler objects unbound (other passes use units plainly).
-    static void unbind(int depth_unit, int compare_unit);
+    // The array on texture unit `unit`, and the shading pass's uniforms of
+    // the maps and the filter (shaders/shade_vertices.frag.glsl, u_shadow_*);
+    // `shading` in use.
+    void bind_for_shading(const Program& shading, const ShadowMapOptions& options, int unit) const;
 
 private:
     void allocate(int resolution, int layers);
@@ -68,7 +62,6 @@ private:
     Program program_;
     Texture depths_;
     Framebuffer framebuffer_;
-    Sampler raw_, compare_;
     int resolution_ = 0, layers_ = 0;
     Vec4 sphere_{0.0f, 0.0f, 0.0f, 1.0f};
 };

@@ -438,17 +438,15 @@ RSL_SHARED bool clears_box_face_scaled(vec3 sides, vec3 inverse_linear_light, ve
 // a 5×5 grid steps by 1/5 when the edge runs along its rows.
 RSL_CONST int kShadowTaps = 21;
 RSL_CONST int kShadowLatticeStep = 13;
-// Biases, in texels (1 / resolution: the same length across and in depth,
-// see shadow_map_point). Each tap is compared with the receiver's own
-// tangent plane there (the receiver-plane bias: a large kernel on a plane
-// tilted to the light would shadow the plane itself) minus a constant and a
-// slope term for the 2×2 bilinear comparison's footprint. The receiver is
-// not moved off its surface along its normal: that moved shadow edges by
-// the offset × tan θ (on tests/gl/shadow_map_test.cpp's 30° light, 1.5
-// texels doubled the error) and the plane comparison already keeps lit
-// faces lit there.
+// Bias, in texels (1 / resolution: the same length across and in depth,
+// see shadow_map_point). Each texel a tap reads is compared with the
+// receiver's own tangent plane at the texel's centre (the receiver-plane
+// depth bias: a large kernel on a plane tilted to the light would otherwise
+// shadow the plane itself), less this constant for the depth's
+// interpolation and the facets around the vertex. The receiver is not moved
+// off its surface along its normal: that moved shadow edges by the offset ×
+// tan θ (1.5 texels doubled tests/gl/shadow_map_test.cpp's error at 30°).
 RSL_CONST float kShadowDepthBiasTexels = 1.0f;
-RSL_CONST float kShadowSlopeBiasTexels = 1.5f;
 // Least cosine to L used in a tap's slope and the receiver plane's gradient,
 // so that grazing directions and planes stay finite.
 RSL_CONST float kShadowMinCosine = 0.2f;
