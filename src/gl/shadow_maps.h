@@ -63,7 +63,7 @@ private:
     Texture depths_;
     Framebuffer framebuffer_;
     int resolution_ = 0, layers_ = 0;
-    Vec4 sphere_{0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 sphere_{0.0f};  // radius 0 until the first render
 };
 
 }  // namespace rsl::gl
