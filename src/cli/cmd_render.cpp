@@ -32,6 +32,8 @@ struct RenderArgs {
     int samples = 1;
     float exposure = 0;
     bool quiet = false;
+    int shadow_maps = 0;  // 0: off; else the resolution (GL only)
+    std::string shadow_filter = "pcss";
 };
 
 // "A:B:STEP" → the times A, A + STEP, … ≤ B (inclusive within rounding).
@@ -70,6 +72,16 @@ void run_render(const RenderArgs& args) {
     options.occluders = !args.no_occluders;
     options.occluder_culling = !args.no_culling;
     options.material_override = parse_material_overrides(args.materials);
+    if (args.shadow_maps != 0) {  // before the fit and the bake: a bad value costs nothing
+        if (args.shadow_maps < ShadowMapOptions::kMinResolution || args.shadow_maps > ShadowMapOptions::kMaxResolution)
+            throw_error("--shadow-maps {}: expected a resolution of {}..{} texels", args.shadow_maps,
+                        ShadowMapOptions::kMinResolution, ShadowMapOptions::kMaxResolution);
+        if (backend == Backend::Cpu)
+            throw_error("--shadow-maps: shadow-mapped visibility is a GL baseline (add --backend gl)");
+        options.shadow_maps.enabled = true;
+        options.shadow_maps.resolution = args.shadow_maps;
+        options.shadow_maps.filter = args.shadow_filter == "pcf" ? ShadowFilter::Pcf : ShadowFilter::Pcss;
+    }
 
     const RenderSetup setup = prepare_render(args.scene, options, !args.quiet);
     const Scene& scene = *setup.scene;
@@ -119,6 +131,7 @@ void run_render(const RenderArgs& args) {
                    "culled) -> {}\n",
                    t, colors.vertex_count(), stats.lights, blend, renderer->backend(), shading_ms, image_ms,
                    stats.occluder_pairs, stats.occluder_pairs_culled, exr.string());
+        if (const std::string passes = renderer->pass_times(); !passes.empty()) fmt::print("  GPU passes: {}\n", passes);
     }
 }
 
@@ -144,6 +157,13 @@ RegisterCommand render_command({"render",
         app.add_option("--height", args->height, "Image height (default: the scene camera's)");
         app.add_option("--samples", args->samples, "S: SxS primary rays per pixel")->capture_default_str();
         app.add_option("--exposure", args->exposure, "PNG exposure in stops (default 0: automatic, as rsl truth)")->capture_default_str();
+        auto* shadow_maps = app.add_option("--shadow-maps", args->shadow_maps,
+            "RES: the shadow-mapped baseline (gl backend): environment lights' visibility from one RESxRES "
+            "depth map each (16..8192) instead of the SVDF/OVDF fields (docs/GPU.md)");
+        app.add_option("--shadow-filter", args->shadow_filter,
+                       "With --shadow-maps: pcss (blocker search; default) or pcf (fixed occluder distance, "
+                       "0.1 x the scene's radius)")
+            ->check(CLI::IsMember({"pcf", "pcss"}))->needs(shadow_maps)->capture_default_str();
         app.add_flag("--quiet,-q", args->quiet, "No progress lines");
         app.callback([args] { run_render(*args); });
     }});

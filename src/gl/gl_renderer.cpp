@@ -16,8 +16,11 @@ namespace {
 enum Unit : int {
     kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitOccluders, kUnitBrdf,
     kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
-    kUnitOvdfFrames, kUnitCount
+    kUnitOvdfFrames, kUnitShadowMaps, kUnitCount
 };
+
+// Timed passes (PassTimings), the index of their timer queries.
+enum Pass : int { kPassShade, kPassPack, kPassDisplay, kPassShadow, kPassCount };
 
 void bind_texture(int unit, GLenum target, GLuint texture) {
     glActiveTexture(GL_TEXTURE0 + unit);
@@ -74,7 +77,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
                                         "u_parts",           "u_lights",            "u_occluder_lists",
                                         "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
                                         "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
-                                        "u_ovdf_frames"};
+                                        "u_ovdf_frames",     "u_shadow_depths"};
     for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(shade_program_, samplers[unit]), unit);
     glUniform3fv(uniform(shade_program_, "u_face_normal"), 6, &geometry.face_normal[0].x);
     glUniform3fv(uniform(shade_program_, "u_face_s"), 6, &geometry.face_s[0].x);
@@ -85,6 +88,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
         for (Query& query : frame) query = make_query();
     clock_timing_ = timer_queries_measure_nothing();
     timings_.clock = clock_timing_;
+    check_shadow_map_options(options_.shadow_maps);
     check_gl("creating the GL renderer");
     set_local_lights(local_lights_);  // checks them, sizes the frame, poses at t = 0
 }
@@ -302,6 +306,9 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
     options_.self_visibility = options.self_visibility;
     options_.occluders = options.occluders;
     options_.occluder_culling = options.occluder_culling;
+    check_shadow_map_options(options.shadow_maps);
+    options_.shadow_maps = options.shadow_maps;
+    shadow_maps_stale_ = true;
 }
 
 void GlRenderer::set_environment_lights(EnvironmentLights lights) {
@@ -333,6 +340,7 @@ void GlRenderer::set_view(float t, const Vec3& camera, const Mat3& environment_r
 
 void GlRenderer::update_frame() {
     frame_.update(scene_, environment_, local_lights_, options_, time_, view_rotation_, view_camera_);
+    shadow_maps_stale_ = true;  // poses or lights may have moved
     stats_.occluder_pairs = frame_.occluder_pairs();
     stats_.occluder_pairs_culled = frame_.occluder_pairs_culled();
     stats_.lights = size_t(frame_.light_count());
@@ -369,7 +377,8 @@ void GlRenderer::shade() {
     collect_timings();
     sync_materials();
     upload_frame();
-    begin_pass(0);
+    render_shadow_maps();
+    begin_pass(kPassShade);
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo_.id());
     // The specular target only when some part is textured: others write no second layer.
     const GLenum draw_buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
@@ -400,12 +409,13 @@ void GlRenderer::shade() {
     glUniform1i(uniform(shade_program_, "u_brdf_resolution"), materials_.resolution);
     const Vec3 camera = frame_.camera();
     glUniform3f(uniform(shade_program_, "u_camera"), camera.x, camera.y, camera.z);
+    bind_shadow_uniforms();
     glBindVertexArray(empty_vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    end_pass(0);
+    end_pass(kPassShade);
 
     // Render target → pixel-pack buffer: stays on the GPU.
-    begin_pass(1);
+    begin_pass(kPassPack);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, colors_.id());
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     for (int layer = 0; layer < (layered_ ? 2 : 1); ++layer) {
@@ -416,14 +426,39 @@ void GlRenderer::shade() {
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    end_pass(1);
+    end_pass(kPassPack);
     query_pending_[frame_parity_] = !clock_timing_;
     drew_[frame_parity_] = false;
     check_gl("the shading pass");
 }
 
+void GlRenderer::render_shadow_maps() {
+    shadowed_[frame_parity_] = false;
+    if (clock_timing_) timings_.shadow_ms = 0;  // this frame's, unless drawn below
+    const ShadowMapOptions& options = options_.shadow_maps;
+    const std::vector<SquareLight>& squares = frame_.environment_squares();
+    if (!options.enabled || !options_.environment || squares.empty()) return;
+    if (!shadow_maps_) shadow_maps_ = std::make_unique<ShadowMaps>();
+    if (!shadow_maps_stale_ && shadow_maps_->resolution() == options.resolution &&
+        shadow_maps_->layers() == int(squares.size()))
+        return;
+    begin_pass(kPassShadow);
+    shadow_maps_->render(options.resolution, frame_.poses(), squares,
+                         ShadowCasters{display_vao_.id(), first_index_, first_vertex_});
+    end_pass(kPassShadow);
+    shadow_maps_stale_ = false;
+    shadowed_[frame_parity_] = true;
+}
+
+// The shading pass's view of the maps; u_shadow_maps false leaves the RSL visibility.
+void GlRenderer::bind_shadow_uniforms() {
+    const bool on = options_.shadow_maps.enabled && shadow_maps_ && shadow_maps_->layers() > 0;
+    glUniform1i(uniform(shade_program_, "u_shadow_maps"), on ? 1 : 0);
+    if (on) shadow_maps_->bind_for_shading(shade_program_, options_.shadow_maps, kUnitShadowMaps);
+}
+
 void GlRenderer::draw(const Mat4& view_projection, float exposure) {
-    begin_pass(2);
+    begin_pass(kPassDisplay);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glUseProgram(display_program_.id());
@@ -448,7 +483,7 @@ void GlRenderer::draw(const Mat4& view_projection, float exposure) {
                                  first_vertex_[p]);
     }
     glBindVertexArray(0);
-    end_pass(2);
+    end_pass(kPassDisplay);
     drew_[frame_parity_] = true;
     check_gl("the display pass");
 }
@@ -494,7 +529,7 @@ void GlRenderer::end_pass(int pass) {
         return;
     }
     glFinish();
-    double* ms[3] = {&timings_.shade_ms, &timings_.pack_ms, &timings_.display_ms};
+    double* ms[kPassCount] = {&timings_.shade_ms, &timings_.pack_ms, &timings_.display_ms, &timings_.shadow_ms};
     *ms[pass] = clock_ms() - pass_start_ms_;
 }
 
@@ -504,17 +539,27 @@ void GlRenderer::collect_timings() {
     if (!query_pending_[frame_parity_]) return;
     Query* queries = queries_[frame_parity_];
     GLuint available = 0;
-    glGetQueryObjectuiv(queries[1].id(), GL_QUERY_RESULT_AVAILABLE, &available);
+    glGetQueryObjectuiv(queries[kPassPack].id(), GL_QUERY_RESULT_AVAILABLE, &available);
     if (!available) return;
-    GLuint64 ns[3] = {0, 0, 0};
-    for (int q = 0; q < (drew_[frame_parity_] ? 3 : 2); ++q) {
+    GLuint64 ns[kPassCount] = {0, 0, 0, 0};
+    const bool ran[kPassCount] = {true, true, drew_[frame_parity_], shadowed_[frame_parity_]};
+    for (int q = 0; q < kPassCount; ++q) {
+        if (!ran[q]) continue;
         glGetQueryObjectuiv(queries[q].id(), GL_QUERY_RESULT_AVAILABLE, &available);
         if (available) glGetQueryObjectui64v(queries[q].id(), GL_QUERY_RESULT, &ns[q]);
     }
-    timings_.shade_ms = double(ns[0]) * 1e-6;
-    timings_.pack_ms = double(ns[1]) * 1e-6;
-    timings_.display_ms = double(ns[2]) * 1e-6;
+    timings_.shade_ms = double(ns[kPassShade]) * 1e-6;
+    timings_.pack_ms = double(ns[kPassPack]) * 1e-6;
+    timings_.display_ms = double(ns[kPassDisplay]) * 1e-6;
+    timings_.shadow_ms = double(ns[kPassShadow]) * 1e-6;
     query_pending_[frame_parity_] = false;
+}
+
+std::string GlRenderer::pass_times() const {
+    const PassTimings& t = timings_;
+    const std::string shadow = t.shadow_ms > 0 ? fmt::format("shadow maps {:.1f} ms, ", t.shadow_ms) : "";
+    return fmt::format("{}shading {:.1f} ms, pack {:.1f} ms{}", shadow, t.shade_ms, t.pack_ms,
+                       t.clock ? " (clock)" : " (timer queries)");
 }
 
 VertexColors GlRenderer::make_output() const {

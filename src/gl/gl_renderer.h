@@ -18,6 +18,15 @@
 // before a frame, a material whose revision() changed has its table
 // re-uploaded into its own slices of the stacked BRDF texture (only a change
 // of the tables' layout, e.g. isotropic → anisotropic, re-packs them all).
+//
+// A competitor baseline rides along (RenderOptions::shadow_maps, GL only;
+// docs/GPU.md "Shadow-mapped visibility"): with it enabled, each frame first
+// draws one depth map per environment RSL (shadow_maps.h), and the shading
+// pass takes every environment light's visibility from its map, filtered
+// over the light's square (PCF or PCSS), instead of SVDF × Π OVDF; local
+// lights keep the fields. From C++: options.shadow_maps.enabled = true
+// (resolution, filter) before make_renderer(Backend::Gl, …), or
+// set_toggles() between frames.
 #include <memory>
 #include <vector>
 
@@ -26,6 +35,7 @@
 #include "src/gl/frame_state.h"
 #include "src/gl/gl_objects.h"
 #include "src/gl/gpu_layout.h"
+#include "src/gl/shadow_maps.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
 #include "src/frame/vertex_colors.h"
@@ -36,8 +46,10 @@ namespace rsl::gl {
 // GPU time of each pass (ms): of the last frame whose timer queries are
 // done, or, where timer queries measure nothing (software rasterizers, see
 // gl_renderer.cpp), of the last frame by the CPU clock around glFinish.
+// shadow_ms: the shadow-map depth pass (RenderOptions::shadow_maps), 0 for
+// a frame that drew none (maps off, or nothing moved since the last maps).
 struct PassTimings {
-    double shade_ms = 0, pack_ms = 0, display_ms = 0;
+    double shade_ms = 0, pack_ms = 0, display_ms = 0, shadow_ms = 0;
     bool clock = false;  // measured by the CPU clock around glFinish
 };
 
@@ -90,15 +102,20 @@ public:
     // Display pass into the bound framebuffer (depth test on, caller clears).
     void draw(const Mat4& view_projection, float exposure);
 
-    // Live changes (the viewer): visibility/light toggles of `options` (not
-    // material overrides or table options: materials() is the library).
+    // Live changes (the viewer): visibility/light toggles of `options` and
+    // its shadow maps (not material overrides or table options: materials()
+    // is the library). Throws rsl::Error for shadow-map options out of range.
     void set_toggles(const RenderOptions& options);
     const RenderOptions& options() const { return options_; }
     MaterialUploads material_uploads() const { return uploads_; }
 
     const FrameState& frame() const { return frame_; }
     PassTimings timings() const { return timings_; }
-    size_t gpu_bytes() const { return gpu_bytes_; }
+    // "shadow maps 3.1 ms, shading 40.2 ms, pack 0.3 ms (clock)": the last measured frame.
+    std::string pass_times() const override;
+    // The shadow maps' sphere (centre, radius) of the last frame that drew them; (0, 0, 0, 0) before.
+    Vec4 shadow_map_sphere() const { return shadow_maps_ ? shadow_maps_->sphere() : Vec4(0.0f); }
+    size_t gpu_bytes() const { return gpu_bytes_ + (shadow_maps_ ? shadow_maps_->bytes() : 0); }
     GLuint color_buffer() const { return colors_.id(); }
     int vertex_count() const { return vertex_count_; }
 
@@ -115,8 +132,12 @@ private:
     // Entry i of wanted_tables() into its part record (kSlotMaterial or kSlotSpecular).
     void write_material_record(size_t i, const BrdfTable* table, int first_slice);
     void set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> tables);
+    // The depth maps of the frame's environment squares, when enabled and
+    // the frame changed since the last ones (update_frame marks them stale).
+    void render_shadow_maps();
+    void bind_shadow_uniforms();
     void collect_timings();
-    // Time pass 0 (shading), 1 (pack) or 2 (display): a timer query, or the clock.
+    // Time a pass (kPass*): a timer query, or the clock.
     void begin_pass(int pass);
     void end_pass(int pass);
 
@@ -167,9 +188,12 @@ private:
     std::vector<std::pair<std::shared_ptr<const rsl::Texture>, Texture>> base_colors_;
     GLuint base_color_texture(const std::shared_ptr<const rsl::Texture>& texture);
     std::vector<size_t> first_index_;  // per part, into display_indices_, and the total
-    Query queries_[2][3];              // [frame parity][pass]
+    std::unique_ptr<ShadowMaps> shadow_maps_;  // made when first enabled
+    bool shadow_maps_stale_ = true;
+    Query queries_[2][4];              // [frame parity][pass]
     bool query_pending_[2] = {false, false};
-    bool drew_[2] = {false, false};  // whether the display query ran
+    bool drew_[2] = {false, false};      // whether the display query ran
+    bool shadowed_[2] = {false, false};  // whether the shadow-map query ran
     int frame_parity_ = 0;
     PassTimings timings_;
     bool clock_timing_ = false;  // timer queries of this driver measure nothing

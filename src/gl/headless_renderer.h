@@ -46,6 +46,7 @@ public:
     }
     using VertexRenderer::shade;
     const RenderStats& stats() const override { return renderer_.stats(); }
+    std::string pass_times() const override { return renderer_.pass_times(); }
 
     const GlRenderer& renderer() const { return renderer_; }
 

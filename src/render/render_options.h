@@ -12,6 +12,23 @@ namespace rsl {
 
 class ExactVisibility;  // src/render/exact_visibility.h
 
+// A competitor baseline, GL backend only (docs/GPU.md, "Shadow-mapped
+// visibility"): every environment RSL's visibility factor (what replaces
+// SVDF × Π OVDF) comes from an orthographic depth map along the light's
+// centre, filtered over the light's square; local lights keep the fields.
+// The CPU renderer refuses it (rsl::Error).
+enum class ShadowFilter {
+    Pcf,   // fixed blocker distance: pcf_distance × the scene's bounding radius
+    Pcss,  // blocker search, then the kernel of the blocker's mean distance
+};
+struct ShadowMapOptions {
+    static constexpr int kMinResolution = 16, kMaxResolution = 8192;
+    bool enabled = false;
+    int resolution = 1024;  // texels per side of each light's map (depth32F: 4·res² bytes per light)
+    ShadowFilter filter = ShadowFilter::Pcss;
+    float pcf_distance = 0.1f;  // Pcf only: the occluder distance the kernel assumes, × the bounding radius
+};
+
 struct RenderOptions {
     int environment_lights = 30;     // K: RSLs fitted to the environment map
     bool cross_face_lights = true;   // fit regions across cube-face borders (docs/LIGHTFIT.md)
@@ -29,6 +46,7 @@ struct RenderOptions {
     // Diagnostic: ray-traced visibility in place of the SVDF, the OVDFs or both
     // (its mode says which); it must be posed at the renderer's time.
     std::shared_ptr<const ExactVisibility> exact_visibility;
+    ShadowMapOptions shadow_maps;  // GL backend only
 };
 
 // Counters of one shading pass (for `rsl render` and the benchmarks).

@@ -51,6 +51,10 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
       fields_(checked(scene, std::move(fields))),
       library_(scene_material_library(scene, options)),
       frame_(scene, fields_) {
+    // A GL baseline (docs/GPU.md "Shadow-mapped visibility"): there is no CPU version to fall back on.
+    if (options.shadow_maps.enabled)
+        throw_file_error(scene.source, "shadow-mapped visibility (RenderOptions::shadow_maps, --shadow-maps) "
+                                       "exists on the GL backend only; the CPU renderer has none");
     const size_t parts = scene.parts.size();
     for (size_t p = 0; p < parts; ++p) {
         const Part& part = scene.parts[p];

@@ -67,6 +67,9 @@ public:
     }
     // Counters of the last frame (what a backend does not count stays 0).
     virtual const RenderStats& stats() const = 0;
+    // The backend's own pass times of the last measured frame, as one line
+    // for printing (`rsl render`); empty where it has none (the CPU).
+    virtual std::string pass_times() const { return {}; }
 
     // By name, for command lines and demos; errors name the part, material
     // and parameter (and leave everything unchanged).

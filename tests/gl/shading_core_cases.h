@@ -11,7 +11,7 @@ namespace rsl::shading {
 
 // RSL_GLSL_BEGIN
 
-RSL_CONST int kShadingCoreModes = 11;
+RSL_CONST int kShadingCoreModes = 12;
 
 struct CaseOutput {
     vec4 first;
@@ -93,7 +93,7 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
             o.first = vec4(taps.i);
             o.second = vec4(taps.j);
         }
-    } else {  // the receiver's cone, the slab rule and a spot light's cone
+    } else if (mode == 10) {  // the receiver's cone, the slab rule and a spot light's cone
         float spot_scale = 1.0f / (0.02f + abs(b.w));
         float spot = spot_cone_factor(w, normalize(vec3(b.x, b.y, b.z) + vec3(1e-3f)), spot_scale, -a.w * spot_scale);
         vec3 lo = vec3(-0.5f, -0.3f, -0.2f);
@@ -105,6 +105,14 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
                        box_side(a.x, lo.x, hi.x), sides.x + 10.0f * sides.y + 100.0f * sides.z);
         o.second = vec4(clears_box_face(sides, w, sine) ? 1.0f : 0.0f,
                         clears_box_face_scaled(sides, w * scale, scale, sine) ? 1.0f : 0.0f, sine, spot);
+    } else {  // the shadow-mapped baseline: map frame and point, a tap's slope, the receiver's gradient, the taps
+        LocalFrame m = shadow_map_frame(w);
+        vec3 q = shadow_map_point(m, vec3(b.x, b.y, b.z), 0.5f + abs(a.w), 2.0f * vec3(a.x, a.y, a.z));
+        vec2 slope = shadow_map_slope(m, normalize(vec3(b.x, b.y, b.w) + vec3(1e-3f)));
+        vec2 gradient = shadow_receiver_gradient(m, normalize(vec3(a.y, b.w, a.x) + vec3(1e-3f)));
+        vec2 tap = shadow_tap_point(vec2(a.x, a.y), ha, min(kShadowTaps - 1, int(float(kShadowTaps) * abs(b.z))));
+        o.first = vec4(q.x, q.y, q.z, tap.x);
+        o.second = vec4(slope.x, slope.y, gradient.y, tap.y);
     }
     return o;
 }
