@@ -12,15 +12,28 @@
 namespace rsl {
 namespace {
 
-TEST_CASE("exact visibility of squares under a sphere", "[render][exact]") {
+// A ball of radius 0.5 whose centre is 1 above a ground plane: from the
+// ground vertex under it, a cap of half-angle 30°.
+Scene ball_over_ground() {
     Scene scene = test::make_scene("under a ball");
     test::add_part(scene, test::make_plane(4.0f, 8, "ground"));
     Transform pose;
     pose.translation = Vec3(0, 1.0f, 0);
     test::add_part(scene, test::make_icosphere(0.5f, 4, "ball"), pose);
-    int center = 0;  // the ground vertex under the ball
-    for (size_t v = 0; v < scene.parts[0].mesh.positions.size(); ++v)
-        if (glm::length(scene.parts[0].mesh.positions[v]) < 1e-4f) center = int(v);
+    return scene;
+}
+
+int vertex_under_ball(const Scene& scene) {
+    const std::vector<Vec3>& ground = scene.parts[0].mesh.positions;
+    for (size_t v = 0; v < ground.size(); ++v)
+        if (glm::length(ground[v]) < 1e-4f) return int(v);
+    FAIL("no ground vertex at the origin");
+    return -1;
+}
+
+TEST_CASE("exact visibility of squares under a sphere", "[render][exact]") {
+    const Scene scene = ball_over_ground();
+    const int center = vertex_under_ball(scene);
 
     const int grid = 16;
     const ExactVisibility all(scene, 0.0f, ExactVisibilityMode::All, grid);
@@ -66,14 +79,8 @@ TEST_CASE("exact visibility of squares under a sphere", "[render][exact]") {
 // variance a Bernoulli ray's), and stratifying lowers the variance (S = 2:
 // under half of one ray's on a square the ball's edge crosses).
 TEST_CASE("jittered ray-traced visibility is unbiased", "[render][exact]") {
-    Scene scene = test::make_scene("under a ball");
-    test::add_part(scene, test::make_plane(4.0f, 8, "ground"));
-    Transform pose;
-    pose.translation = Vec3(0, 1.0f, 0);
-    test::add_part(scene, test::make_icosphere(0.5f, 4, "ball"), pose);
-    int center = 0;
-    for (size_t v = 0; v < scene.parts[0].mesh.positions.size(); ++v)
-        if (glm::length(scene.parts[0].mesh.positions[v]) < 1e-4f) center = int(v);
+    const Scene scene = ball_over_ground();
+    const int center = vertex_under_ball(scene);
     const ExactVisibility exact(scene, 0.0f, ExactVisibilityMode::All, 16);
     const Vec2 c(0.3f, 0.1f);  // straddles the ball's edge at |p| ≈ 0.366
     const float h = 0.2f;
