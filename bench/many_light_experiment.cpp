@@ -130,6 +130,9 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
     auto scene_ptr = std::make_shared<Scene>(load_scene(args.scene));
     Scene& scene = *scene_ptr;
     adapt_scene(scene, args.environment, args.resolution, false);
+    // One map: every row shades one RSL set (lights_for), so the truth must
+    // not blend in a second map the rows do not see.
+    scene.environment.second_file.clear();
     const float t = args.time;
     auto say = [&](const std::string& line) {
         if (!args.quiet) fmt::print(stderr, "{}\n", line);
