@@ -13,6 +13,7 @@
 #include "src/cli/command.h"
 #include "src/core/error.h"
 #include "src/render/exact_visibility.h"
+#include "src/render/render_options.h"
 
 namespace rsl::cli {
 namespace {
@@ -23,11 +24,15 @@ std::vector<int> parse_list(const std::string& text, const char* what, bool allo
     size_t start = 0;
     while (start <= text.size()) {
         const size_t comma = std::min(text.find(',', start), text.size());
+        const std::string item = text.substr(start, comma - start);
+        size_t used = 0;
         try {
-            values.push_back(std::stoi(text.substr(start, comma - start)));
+            values.push_back(std::stoi(item, &used));
         } catch (const std::exception&) {
-            throw_error("{} '{}': expected comma-separated integers", what, text);
+            used = 0;
         }
+        if (used == 0 || used != item.size())  // "2x" is not 2
+            throw_error("{} '{}': expected comma-separated integers", what, text);
         if (values.back() < 1) throw_error("{} '{}': every value must be at least 1", what, text);
         start = comma + 1;
     }
@@ -101,6 +106,10 @@ RegisterCommand baselines_command({"baselines",
                     if (s > ExactVisibility::kMaxSamplesPerSide)
                         throw_error("--ray-samples: {} is above {}", s, ExactVisibility::kMaxSamplesPerSide);
                 many->shadow_map_resolutions = parse_list(*maps, "--shadow-maps", true);
+                for (int r : many->shadow_map_resolutions)
+                    if (r < ShadowMapOptions::kMinResolution || r > ShadowMapOptions::kMaxResolution)
+                        throw_error("--shadow-maps: {} is outside [{}, {}]", r, ShadowMapOptions::kMinResolution,
+                                    ShadowMapOptions::kMaxResolution);
                 many->gl_lights = parse_list(*gl_lights, "--gl-lights", true);
                 run_many_light_experiment(*many);
                 return;

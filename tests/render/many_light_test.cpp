@@ -12,6 +12,7 @@
 #include "src/render/exact_visibility.h"
 #include "src/render/renderer.h"
 #include "src/trace/ground_truth.h"
+#include "tests/test_support.h"
 
 namespace rsl {
 namespace {
@@ -68,6 +69,34 @@ TEST_CASE("ray-traced many-light on the static bunny against the truth under the
     CHECK(error < 1.1 * light_error);
     CHECK(error_vs_truth < 0.5 * light_error);
     CHECK(error < 0.25 * unshadowed_error);
+}
+
+}  // namespace
+}  // namespace rsl
+
+namespace rsl {
+namespace {
+
+// `rsl baselines --many-light` refuses bad settings before any work, naming
+// the option and the value.
+TEST_CASE("rsl baselines --many-light refuses out-of-range settings", "[render][many-light][cli]") {
+    const std::string scene = std::string(RSL_SOURCE_DIR) + "/assets/scenes/bunny.json";
+    const struct {
+        std::string arguments, message;
+    } cases[] = {{"--ray-samples 17", "--ray-samples: 17 is above 16"},
+                 {"--ray-samples 0", "every value must be at least 1"},
+                 {"--shadow-maps 2x", "expected comma-separated integers"},
+                 {"--shadow-maps 256,8", "--shadow-maps: 8 is outside [16, 8192]"},
+                 {"--baseline-lights 0", "--baseline-lights"}};
+    for (const auto& c : cases) {
+        const std::string output_dir = std::string(RSL_BINARY_DIR) + "/many_light_cli_refused";
+        const auto [status, output] = test::run_rsl("baselines " + scene + " --many-light -q -o " + output_dir + " " +
+                                                    c.arguments);
+        INFO(c.arguments << " -> " << output);
+        CHECK(status != 0);
+        CHECK(output.find(c.message) != std::string::npos);
+        CHECK(!std::filesystem::exists(output_dir));  // refused before any work
+    }
 }
 
 }  // namespace
