@@ -214,6 +214,23 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     return visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, cone), h);
 }
 
+// The exact shadow of a part that is a rectangle or a box
+// (shape_visible_fraction): shape = (center, kind), point in the part's
+// frame, `axes` the receiver's shading frame moved into it.
+float exact_shape_fraction(int part, vec4 shape, vec3 point, mat3 axes, vec2 lp, float h) {
+    // Within the field's reach only, as its lookup and the occluder lists.
+    vec4 field = part_texel(part, kSlotOvdfCenter);
+    if (!(length(point - field.xyz) < field.w * part_texel(part, kSlotOvdfShells).w)) return 1.0;
+    mat3 to_shape = transpose(mat3(part_texel(part, kSlotShapeS).xyz, part_texel(part, kSlotShapeT).xyz,
+                                   part_texel(part, kSlotShapeNormal).xyz));
+    LocalFrame frame;
+    frame.x = to_shape * axes[0];
+    frame.y = to_shape * axes[1];
+    frame.z = to_shape * axes[2];
+    return shape_visible_fraction(int(shape.w + 0.5), to_shape * (point - shape.xyz), frame, lp, h,
+                                  part_texel(part, kSlotShapeLow).xyz, part_texel(part, kSlotShapeHigh).xyz);
+}
+
 // The slab rule (clears_box_face_scaled): point in the part's frame, light =
 // inverse_linear·(world direction), not normalized; the face normals are the
 // rows of inverse_linear.
@@ -394,7 +411,9 @@ void main() {
                 vec3 point = (inverse * vec4(p, 1.0)).xyz;
                 vec3 dir = normalize(mat3(inverse) * direction);
                 if (clears_box(o, point, mat3(inverse) * direction, mat3(inverse), h)) continue;
-                visibility *= ovdf_visible_fraction(o, point, dir, h);
+                vec4 shape = part_texel(o, kSlotShape);
+                visibility *= shape.w > 0.5 ? exact_shape_fraction(o, shape, point, mat3(inverse) * frame, lp, h)
+                                            : ovdf_visible_fraction(o, point, dir, h);
             }
             color += integral * brdf * visibility;
             specular += integral * specular_brdf * visibility;

@@ -68,7 +68,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
       library_(scene_material_library(scene, options)),
       frame_(scene, fields_) {
 
-    const PackedGeometry geometry = pack_geometry(scene, fields_);
+    const PackedGeometry geometry = pack_geometry(scene, fields_, options_.exact_shapes);
     const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride) + shading_prelude();
     shade_program_ = build_program("fullscreen.vert.glsl", "shade_vertices.frag.glsl", defines);
     display_program_ = build_program("display.vert.glsl", "display.frag.glsl", srgb_prelude());

@@ -6,6 +6,7 @@
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/render/ovdf_occluder.h"
+#include "src/render/occluder_shape.h"
 
 namespace rsl::gl {
 
@@ -69,7 +70,7 @@ void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, 
     for (int c = 0; c < 4; ++c) record[kSlotInverse + c] = inverse[c];
 }
 
-PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
+PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool exact_shapes) {
     PackedGeometry g;
     const size_t parts = scene.parts.size();
     g.part_static.assign(parts * kPartStride, Vec4(0.0f));
@@ -92,6 +93,15 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields) {
         const Bounds box = mesh.bounds();
         record[kSlotBoxLow] = Vec4(box.lo, 0.0f);
         record[kSlotBoxHigh] = Vec4(box.hi, 0.0f);
+        if (exact_shapes) {
+            const OccluderShape shape = find_occluder_shape(mesh);
+            record[kSlotShape] = Vec4(shape.center, float(shape.kind));
+            record[kSlotShapeS] = Vec4(shape.s, 0.0f);
+            record[kSlotShapeT] = Vec4(shape.t, 0.0f);
+            record[kSlotShapeNormal] = Vec4(shape.normal, 0.0f);
+            record[kSlotShapeLow] = Vec4(shape.lo, 0.0f);
+            record[kSlotShapeHigh] = Vec4(shape.hi, 0.0f);
+        }
 
         const Svdf* svdf = p < fields.self.size() ? fields.self[p].get() : nullptr;
         if (svdf && svdf_records.count(svdf)) {

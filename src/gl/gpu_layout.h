@@ -10,7 +10,7 @@
 //    positions  xyz = part-space position, w = part index
 //    normals    xyz = part-space normal,   w = SVDF cluster of the vertex (−1: none)
 //    tangents   xyz = part-space tangent (0: none)
-//  parts (kPartStride texels per part): pose, material, SVDF and OVDF records
+//  parts (kPartStride texels per part): pose, material, SVDF and OVDF records, exact shape
 //  lights (kLightTexels per light): environment square (direction, half-edge), (integral, 0), unused;
 //    sphere light (position, radius), (radiance, spot cone scale), (spot axis, spot cone offset)
 //  SVDF / OVDF tables: per (cluster, texel) `stride` texels = [μ, b₀ … b_{k−1}] padded
@@ -43,7 +43,7 @@ inline constexpr int kArrayTextureWidth = 2048;
 inline constexpr int kArrayTextureShift = 11;
 static_assert(1 << kArrayTextureShift == kArrayTextureWidth);
 
-inline constexpr int kPartStride = 22;
+inline constexpr int kPartStride = 28;
 // Texel slots inside a part record.
 enum PartSlot : int {
     kSlotTransform = 0,   // 4 columns
@@ -60,8 +60,16 @@ enum PartSlot : int {
     kSlotBoxHigh = 19,    // (high corner, 0)
     kSlotOvdfRecords = 20, // (first shell zoom record, first surface-distance texel, 0, 0), in the frames texture
     kSlotSpecular = 21,    // textured part: its specular table as kSlotMaterial, w = 1; else all 0
+    // A part of exact shape (src/render/occluder_shape.h): (center, kind), (s, 0), (t, 0), (normal, 0)
+    // and the shape's (lo, hi) in those coordinates; kind 0 (shading::kShapeNone) for other parts.
+    kSlotShape = 22,
+    kSlotShapeS = 23,
+    kSlotShapeT = 24,
+    kSlotShapeNormal = 25,
+    kSlotShapeLow = 26,
+    kSlotShapeHigh = 27,
 };
-static_assert(kSlotSpecular < kPartStride);
+static_assert(kSlotShapeHigh < kPartStride);
 
 inline constexpr int kLightTexels = 3;        // per light in the lights texture
 inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
@@ -90,6 +98,12 @@ inline constexpr ShaderIntConstant kShaderIntConstants[] = {
     {"kSlotBoxHigh", kSlotBoxHigh},
     {"kSlotOvdfRecords", kSlotOvdfRecords},
     {"kSlotSpecular", kSlotSpecular},
+    {"kSlotShape", kSlotShape},
+    {"kSlotShapeS", kSlotShapeS},
+    {"kSlotShapeT", kSlotShapeT},
+    {"kSlotShapeNormal", kSlotShapeNormal},
+    {"kSlotShapeLow", kSlotShapeLow},
+    {"kSlotShapeHigh", kSlotShapeHigh},
     {"kLightTexels", kLightTexels},
     {"kSurfacesPerTexel", kSurfacesPerTexel},
 };
@@ -114,8 +128,10 @@ struct PackedGeometry {
 };
 
 // Packs meshes and fields. Occluder fields must be OvdfOccluder (the
-// compressed field); others throw rsl::Error naming the scene.
-PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields);
+// compressed field); others throw rsl::Error naming the scene. With
+// `exact_shapes` (RenderOptions), parts of exact shape get their kSlotShape*
+// records.
+PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool exact_shapes = true);
 
 struct PackedMaterials {
     int resolution = 0;  // N

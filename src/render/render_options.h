@@ -40,6 +40,10 @@ struct RenderOptions {
     // OVDF lookups split into a per-(vertex, occluder) half and a per-light half
     // (src/render/ovdf_lookup.h; same values as the field's own lookup, faster).
     bool fast_occluder_lookups = true;
+    // Parts that are a flat rectangle (a ground, a wall) or a box shadow the
+    // others exactly, from their shape, in place of their OVDF
+    // (src/render/occluder_shape.h).
+    bool exact_shapes = true;
     // Per-part material override: part name → material name (scene materials).
     std::map<std::string, std::string> material_override;
     BrdfTableOptions brdf_table;     // resolution of the BRDF summed-area tables

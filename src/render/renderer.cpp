@@ -66,6 +66,7 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
             blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kBlockSize))});
         local_bounds_.push_back(part.mesh.bounding_sphere());
         local_boxes_.push_back(part.mesh.bounds());
+        shapes_.push_back(options_.exact_shapes ? find_occluder_shape(part.mesh) : OccluderShape{});
         local_reach_.push_back(fields_.occluder[p] ? fields_.occluder[p]->reach() : BoundingSphere{});
         // Compressed OVDFs blended by coefficients take the split lookup.
         const auto* ovdf = dynamic_cast<const OvdfOccluder*>(fields_.occluder[p].get());

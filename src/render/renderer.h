@@ -29,6 +29,7 @@
 #include "src/render/frame_setup.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/part_fields.h"
+#include "src/render/occluder_shape.h"
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"
 #include "src/frame/vertex_colors.h"
@@ -108,6 +109,7 @@ private:
     std::vector<Block> blocks_;
     std::vector<BoundingSphere> local_bounds_;       // per part, in its own frame
     std::vector<Bounds> local_boxes_;                // per part, in its own frame (the slab rule, square_lights.h)
+    std::vector<OccluderShape> shapes_;              // per part: its exact shape, if any (occluder_shape.h)
     std::vector<BoundingSphere> local_reach_;        // per part: its occluder field's reach (radius 0: none)
     // Per part: the fast split lookup of its OVDF (null: the field's own lookup).
     std::vector<std::unique_ptr<const OvdfLookup>> fast_lookups_;

@@ -179,6 +179,7 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
     const PartPose& occluder = poses_[o];
     const bool is_environment = size_t(l) < environment_squares_.size();
     const OvdfLookup* fast = fast_lookups_[o].get();
+    const OccluderShape& shape = shapes_[o];
     const OccluderField& field = *fields_.occluder[o];
     // An environment light has one direction in the occluder's frame.
     const Vec3 light_local = is_environment ? glm::normalize(occluder.inverse_linear * environment_squares_[size_t(l)].direction)
@@ -219,7 +220,21 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
                 continue;
         }
         ++counts.occluder_lookups;
-        if (fast) {
+        if (shape.kind != shading::kShapeNone) {  // a rectangle or a box: its exact shadow (occluder_shape.h)
+            // Within the field's reach only, as its lookup (and so the
+            // occluder lists and culling): the part shadows nothing beyond it.
+            const Vec3 local = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
+            const BoundingSphere& reach = local_reach_[size_t(o)];
+            if (!(glm::length(local - reach.center) < reach.radius)) continue;
+            const Mat3& il = occluder.inverse_linear;
+            shading::LocalFrame frame;
+            frame.x = shape.direction_to_shape(il * Vec3(s.xx[k], s.xy[k], s.xz[k]));
+            frame.y = shape.direction_to_shape(il * Vec3(s.yx[k], s.yy[k], s.yz[k]));
+            frame.z = shape.direction_to_shape(il * Vec3(s.zx[k], s.zy[k], s.zz[k]));
+            const Vec3 point = shape.to_shape(local);
+            s.vis[i] *= shading::shape_visible_fraction(shape.kind, point, frame, Vec2(s.qx[i], s.qy[i]), s.qh[i],
+                                                        shape.lo, shape.hi);
+        } else if (fast) {
             OvdfPoint& q = v.points[k];
             const bool needs_point = !v.prepared[k] || q.kind == OvdfPoint::Slow;
             const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))

@@ -490,6 +490,90 @@ RSL_SHARED vec2 shadow_tap_point(vec2 c, float half_edge, int i) {
     return c + half_edge * vec2(2.0f * u - 1.0f, 2.0f * v - 1.0f);
 }
 
+// ---- occluders of exact shape: flat rectangles and boxes (src/render/planar_occluder.h) ----
+//
+// A ground or a wall is one flat rectangle, and its shadow is known exactly:
+// a ray leaves the receiver and crosses the rectangle's plane or not. Its
+// OVDF, sampled on shells, blends samples from both sides of the plane and
+// comes out far too dark near it (docs/RENDERER.md, "Flat occluders").
+// Coordinates are the rectangle's own: (s, t) across it from its centre,
+// height along its normal; the rectangle is |s| ≤ half.x, |t| ≤ half.y.
+
+// How far (× the shape's size) a receiver may lie from a face and still
+// count as on it. A vertex resting on the ground lands a few float ULPs above
+// or below the plane once posed, differently on the CPU and the GPU; without
+// the margin the two renderers would shadow it from opposite sides.
+RSL_CONST float kShapeContactMargin = 1e-5f;
+
+// Whether the ray from `point` along `dir` (any length; an affine map of
+// both keeps the answer) crosses the rectangle. A receiver on the plane
+// (a part resting on the ground; within the contact margin) counts as above
+// it, the side the rectangle's normal faces.
+RSL_SHARED bool planar_blocks(vec3 point, vec3 dir, vec2 half_extent) {
+    bool above = point.z >= -kShapeContactMargin * (half_extent.x + half_extent.y);
+    if (above ? !(dir.z < 0.0f) : !(dir.z > 0.0f)) return false;
+    float t = -point.z / dir.z;
+    float s = point.x + t * dir.x;
+    float u = point.y + t * dir.y;
+    return abs(s) <= half_extent.x && abs(u) <= half_extent.y;
+}
+// Whether the ray from `point` along `dir` passes through the inside of the
+// box [lo, hi] (the slab test), the box shrunk by the contact margin: a ray
+// that starts on a face and leaves it is free, one that enters is blocked,
+// so a part resting on a box is shadowed by it only where it really is.
+RSL_SHARED bool box_blocks(vec3 point, vec3 dir, vec3 lo, vec3 hi) {
+    float margin = kShapeContactMargin * length(hi - lo);
+    float entry = 0.0f;
+    float exit = 3.0e38f;
+    for (int a = 0; a < 3; ++a) {
+        float low = lo[a] + margin;
+        float high = hi[a] - margin;
+        if (dir[a] == 0.0f) {
+            if (point[a] < low || point[a] > high) return false;
+            continue;
+        }
+        float t0 = (low - point[a]) / dir[a];
+        float t1 = (high - point[a]) / dir[a];
+        entry = max(entry, min(t0, t1));
+        exit = min(exit, max(t0, t1));
+    }
+    return exit > entry;
+}
+// The exact shapes' kinds (kSlotShape in gpu_layout.h).
+RSL_CONST int kShapeNone = 0;
+RSL_CONST int kShapeRectangle = 1;  // lo, hi = (−half s, −half t, 0), (half s, half t, 0)
+RSL_CONST int kShapeBox = 2;
+// Plane radius of a tap pulled in to just above the horizon (elevation ≈ 0.1°).
+RSL_CONST float kHorizonTapRadius = 0.999f;
+// The visible share of the square (plane centre c, half-edge h) of a
+// receiver whose shading frame has axes `frame` (in the shape's coordinates)
+// against a rectangle or a box: the filter taps above the receiver's horizon
+// (as the shadow maps' shadow_tap_point) whose rays miss it. A square that
+// only grazes the hemisphere between its taps still has a BRDF average
+// (a sandwiched vertex lit by the one light low on its horizon was the
+// bug): then every tap counts, pulled in to just above the horizon.
+RSL_SHARED float shape_visible_fraction(int shape, vec3 point, LocalFrame frame, vec2 c, float h, vec3 lo, vec3 hi) {
+    int above = 0;
+    for (int i = 0; i < kShadowTaps; ++i) {
+        vec2 tap = shadow_tap_point(c, h, i);
+        if (dot(tap, tap) < 1.0f) ++above;
+    }
+    int lit = 0;
+    for (int i = 0; i < kShadowTaps; ++i) {
+        vec2 tap = shadow_tap_point(c, h, i);
+        float r2 = dot(tap, tap);
+        if (r2 >= 1.0f) {
+            if (above > 0) continue;  // below the horizon: the BRDF average is 0 there
+            tap = tap * (kHorizonTapRadius / sqrt(r2));
+        }
+        vec3 w = plane_to_hemisphere(tap);
+        vec3 dir = frame.x * w.x + frame.y * w.y + frame.z * w.z;
+        bool blocked = shape == kShapeBox ? box_blocks(point, dir, lo, hi) : planar_blocks(point, dir, vec2(hi.x, hi.y));
+        if (!blocked) ++lit;
+    }
+    return float(lit) / float(above > 0 ? above : kShadowTaps);
+}
+
 // RSL_GLSL_END (the GPU's copy ends here)
 
 }  // namespace rsl::shading

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "src/render/occluder_shape.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/gpu_layout.h"
 #include "assets/generate/pbr_scene.h"
@@ -84,8 +85,13 @@ Scene moving_scene() {
     return scene;
 }
 
+// `discrete_taps`: the exact shapes' 21 taps per square (occluder_shape.h)
+// are a discrete test, so a tap that falls on the horizon or on a shape's
+// edge to float rounding may land on the other side on the GPU: one tap of
+// one light, a few tenths of a percent of one vertex (measured: 1 vertex of
+// 697 at 0.5%). Such scenes allow two such vertices.
 void check_against_cpu(const Scene& scene, const EnvironmentLights& lights, const PartFields& fields,
-                       const RenderOptions& options, const std::vector<float>& times) {
+                       const RenderOptions& options, const std::vector<float>& times, bool discrete_taps = false) {
     test::gl_context();
     Renderer cpu(scene, lights, fields, options);
     gl::GlRenderer gpu(scene, lights, fields, options);
@@ -106,8 +112,8 @@ void check_against_cpu(const Scene& scene, const EnvironmentLights& lights, cons
                         << ", max relative " << d.max_relative << ", " << d.over_tolerance << " of " << d.vertices
                         << " vertices over " << kTolerance << ", mean value " << d.mean_luminance);
             CHECK(d.mean_luminance > 1e-3);  // a lit scene: the comparison means something
-            CHECK(d.relative_l2 < 1e-5);
-            CHECK(d.over_tolerance <= d.vertices / 1000);
+            CHECK(d.relative_l2 < (discrete_taps ? 5e-4 : 1e-5));
+            CHECK(d.over_tolerance <= d.vertices / 1000 + (discrete_taps ? 2 : 0));
         }
         CHECK(gpu.frame().occluder_pairs() == cpu.stats().occluder_pairs);
     }
@@ -170,7 +176,12 @@ TEST_CASE("GL matches the CPU with hundreds of parts (occluder lists, no part li
     PartFields fields;
     fields.self.assign(scene.parts.size(), nullptr);
     fields.occluder.assign(scene.parts.size(), ball_fields.occluder[0]);
-    check_against_cpu(scene, test::random_rsls(12, 5), fields, RenderOptions{}, {0.0f});
+    // The ground gets the balls' field here, not its own, so its rectangle
+    // (src/render/occluder_shape.h) would be culled by a ball-sized bounding
+    // cone on the CPU and not on the GPU: this test is about the lists.
+    RenderOptions options;
+    options.exact_shapes = false;
+    check_against_cpu(scene, test::random_rsls(12, 5), fields, options, {0.0f});
     // The shared field goes up once: the tables of 200 instances are those of one.
     PartFields shared_two;
     shared_two.occluder.assign(2, ball_fields.occluder[0]);
@@ -187,9 +198,38 @@ TEST_CASE("GL matches the CPU with each visibility factor switched off", "[gl-re
     SECTION("no self-visibility") { options.self_visibility = false; }
     SECTION("no occluders") { options.occluders = false; }
     SECTION("no culling") { options.occluder_culling = false; }
+    SECTION("the ground's OVDF, not its rectangle") { options.exact_shapes = false; }
     SECTION("local lights only") { options.environment = false; }
     SECTION("environment only") { options.local_lights = false; }
     check_against_cpu(scene, lights, fields, options, {0.25f});
+}
+
+// A box tumbling over the ground, a second box resting on the ground and a
+// sphere just above that box: the ground's rectangle and both boxes shadow
+// the others by shape (src/render/occluder_shape.h), including at the
+// box-on-ground contact.
+TEST_CASE("GL matches the CPU with occluders of exact shape (a ground, boxes, contacts)", "[gl-renderer]") {
+    Scene scene = test::make_scene("shapes", Color(0.6f));
+    add_part(scene, make_plane(4.0f, 16, "ground"));
+    Transform resting, tumbling, ball;
+    resting.translation = Vec3(0.3f, 0.3f, 0.0f);
+    add_part(scene, test::make_flat_box(Vec3(0.4f, 0.3f, 0.35f), 4, "resting"), resting);
+    tumbling.translation = Vec3(-0.6f, 0.8f, 0.2f);
+    add_part(scene, test::make_flat_box(Vec3(0.25f, 0.15f, 0.2f), 3, "tumbling"), tumbling);
+    ball.translation = Vec3(0.3f, 0.83f, 0.0f);
+    add_part(scene, make_icosphere(0.2f, 2, "ball"), ball);
+    QuatTrack spin;
+    spin.times = {0.0f, 1.0f};
+    spin.values = {Quat(1, 0, 0, 0), glm::angleAxis(1.2f, glm::normalize(Vec3(1, 1, 0)))};
+    scene.nodes[scene.parts[2].node].rotation = spin;
+    scene.camera.position = Vec3(1.5f, 1.6f, 2.2f);
+    scene.camera.target = Vec3(0, 0.3f, 0);
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    // All three shapes found, on both sides.
+    CHECK(find_occluder_shape(scene.parts[0].mesh).kind == shading::kShapeRectangle);
+    CHECK(find_occluder_shape(scene.parts[1].mesh).kind == shading::kShapeBox);
+    CHECK(find_occluder_shape(scene.parts[3].mesh).kind == shading::kShapeNone);
+    check_against_cpu(scene, test::random_rsls(16, 7), fields, RenderOptions{}, {0.0f, 0.6f}, true);
 }
 
 TEST_CASE("GL matches the CPU under a blend of two environments", "[gl-renderer]") {

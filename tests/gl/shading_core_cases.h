@@ -11,7 +11,7 @@ namespace rsl::shading {
 
 // RSL_GLSL_BEGIN
 
-RSL_CONST int kShadingCoreModes = 12;
+RSL_CONST int kShadingCoreModes = 13;
 
 struct CaseOutput {
     vec4 first;
@@ -105,7 +105,19 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
                        box_side(a.x, lo.x, hi.x), sides.x + 10.0f * sides.y + 100.0f * sides.z);
         o.second = vec4(clears_box_face(sides, w, sine) ? 1.0f : 0.0f,
                         clears_box_face_scaled(sides, w * scale, scale, sine) ? 1.0f : 0.0f, sine, spot);
-    } else {  // the shadow-mapped baseline: map frame and point, a tap's slope, the receiver's gradient, the taps
+    } else if (mode == 12) {  // exact shapes: a rectangle's and a box's rays, then a square's visible share
+        vec3 point = vec3(2.0f * a.x, 2.0f * a.y, 0.5f * a.z);
+        vec3 hi = vec3(0.5f + abs(b.x), 0.5f + abs(b.y), 0.2f + 0.5f * abs(a.w));
+        vec3 flat_hi = vec3(hi.x, hi.y, 0.0f);
+        LocalFrame f = frame_from_normal_tangent(normalize(vec3(b.z, b.w, a.w) + vec3(0.0f, 0.0f, 1e-3f)), vec3(1.0f, 0.0f, 0.0f));
+        vec2 c = vec2(0.8f * b.x, 0.8f * b.w);
+        vec3 outside = point + vec3(0.0f, 0.0f, hi.z + 0.1f);  // above the box
+        o.first = vec4(planar_blocks(point, w, vec2(hi.x, hi.y)) ? 1.0f : 0.0f, box_blocks(outside, -w, -hi, hi) ? 1.0f : 0.0f,
+                       shape_visible_fraction(kShapeRectangle, point, f, c, ha, -flat_hi, flat_hi),
+                       shape_visible_fraction(kShapeBox, outside, f, c, ha, -hi, hi));
+        o.second = vec4(shape_visible_fraction(kShapeRectangle, vec3(point.x, point.y, 0.0f), f, c, ha, -flat_hi, flat_hi),
+                        shape_visible_fraction(kShapeBox, vec3(point.x, point.y, hi.z), f, c, ha, -hi, hi), 0.0f, 0.0f);
+    } else if (mode == 11) {  // the shadow-mapped baseline: map frame and point, a tap's slope, the receiver's gradient, the taps
         LocalFrame m = shadow_map_frame(w);
         vec3 q = shadow_map_point(m, vec3(b.x, b.y, b.z), 0.5f + abs(a.w), 2.0f * vec3(a.x, a.y, a.z));
         vec2 slope = shadow_map_slope(m, normalize(vec3(b.x, b.y, b.w) + vec3(1e-3f)));

@@ -1,0 +1,178 @@
+// Occluders of exact shape (src/render/occluder_shape.h): which meshes are
+// found to be one rectangle or one box, and the taps' visible share of a
+// square against rays cast at the mesh itself.
+#include <catch2/catch.hpp>
+
+#include <functional>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "src/core/hemisphere.h"
+#include "src/rays/ray_scene.h"
+#include "src/render/occluder_shape.h"
+#include "tests/trace/trace_test_scenes.h"
+
+namespace rsl {
+namespace {
+
+TriangleMesh moved(TriangleMesh mesh, const Mat4& m) {
+    for (Vec3& p : mesh.positions) p = Vec3(m * Vec4(p, 1.0f));
+    for (Vec3& n : mesh.normals) n = glm::normalize(Mat3(m) * n);
+    return mesh;
+}
+
+Mat4 tilted() {
+    return glm::translate(Mat4(1.0f), Vec3(0.3f, -0.2f, 0.5f)) * glm::rotate(Mat4(1.0f), 0.7f, glm::normalize(Vec3(1, 2, 3)));
+}
+
+}  // namespace
+
+TEST_CASE("A grid plane is found as its rectangle, anywhere; boxes, holes and bends are not", "[render][shape]") {
+    const TriangleMesh plane = test::make_plane(6.0f, 12, "ground");  // 6 × 6 at y = 0
+    const std::optional<OccluderShape> r = find_rectangle(plane);
+    REQUIRE(r);
+    CHECK(r->kind == shading::kShapeRectangle);
+    CHECK(find_occluder_shape(plane).kind == shading::kShapeRectangle);
+    CHECK(std::abs(std::abs(r->normal.y) - 1.0f) < 1e-6f);
+    CHECK(r->hi.x == Approx(3.0f));
+    CHECK(r->hi.y == Approx(3.0f));
+    CHECK(r->lo == -r->hi);
+    CHECK(glm::length(r->center) < 1e-5f);
+    // The plane's vertices map onto the rectangle's border or inside it, at height 0.
+    for (const Vec3& p : plane.positions) {
+        const Vec3 q = r->to_shape(p);
+        CHECK(std::abs(q.z) < 1e-5f);
+        CHECK(std::abs(q.x) <= r->hi.x + 1e-5f);
+        CHECK(std::abs(q.y) <= r->hi.y + 1e-5f);
+    }
+
+    const std::optional<OccluderShape> t = find_rectangle(moved(plane, tilted()));
+    REQUIRE(t);
+    CHECK(t->hi.x == Approx(3.0f));
+    CHECK(glm::length(t->center - Vec3(tilted()[3])) < 1e-5f);
+    CHECK(std::abs(glm::dot(t->normal, glm::normalize(Mat3(tilted()) * Vec3(0, 1, 0)))) == Approx(1.0f));
+
+    CHECK_FALSE(find_rectangle(test::make_flat_box(Vec3(0.5f), 2)));
+    TriangleMesh holed = plane;  // one cell's two triangles gone
+    holed.indices.erase(holed.indices.begin() + 6 * 40, holed.indices.begin() + 6 * 41);
+    CHECK_FALSE(find_rectangle(holed));
+    CHECK(find_occluder_shape(holed).kind == shading::kShapeNone);
+    TriangleMesh bent = plane;
+    bent.positions[plane.positions.size() / 2].y += 1e-3f;
+    CHECK_FALSE(find_rectangle(bent));
+}
+
+TEST_CASE("A closed box mesh is found as its box; an open box, a moved vertex and a sphere are not", "[render][shape]") {
+    const TriangleMesh box = test::make_flat_box(Vec3(0.6f, 0.4f, 0.5f), 3);
+    const OccluderShape shape = find_occluder_shape(box);
+    REQUIRE(shape.kind == shading::kShapeBox);
+    CHECK(shape.lo == Vec3(-0.6f, -0.4f, -0.5f));
+    CHECK(shape.hi == Vec3(0.6f, 0.4f, 0.5f));
+    CHECK(shape.to_shape(Vec3(0.1f, 0.2f, 0.3f)) == Vec3(0.1f, 0.2f, 0.3f));  // the mesh's own frame
+    TriangleMesh open = box;  // one face's triangles gone (each face has 3 × 3 cells, 2 triangles each)
+    open.indices.resize(open.indices.size() - 3 * 18);
+    CHECK_FALSE(find_box(open));
+    TriangleMesh dented = box;
+    dented.positions[5] *= 0.9f;
+    CHECK_FALSE(find_box(dented));
+    CHECK(find_occluder_shape(test::make_icosphere(1.0f, 2)).kind == shading::kShapeNone);
+}
+
+// Shape coordinates of a receiver frame, and the share both ways: the 21
+// taps of shape_visible_fraction, and a 32 × 32 grid of rays over the square
+// cast at the mesh. The taps step the share by about 1/21, so the mean error
+// is small and the largest a few steps; a wrong side, axis or sign misses by
+// far more. Receivers above, below and on a tilted rectangle, and around and
+// on the faces of a box.
+struct ShapeCase {
+    Vec3 p, normal;
+};
+
+void check_against_rays(const TriangleMesh& mesh, const OccluderShape& shape, const std::function<ShapeCase(std::mt19937&)>& make) {
+    RayScene rays;
+    rays.add_instance(rays.add_mesh(mesh), Mat4(1.0f));
+    rays.commit();
+    std::mt19937 rng(1717);
+    std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+    double total_error = 0;
+    float worst = 0;
+    int cases = 0, partial = 0;
+    constexpr int kSide = 32;
+    while (cases < 400) {
+        const ShapeCase x = make(rng);
+        const Frame frame = Frame::from_normal_tangent(x.normal, Vec3(0));
+        const Vec2 c(0.8f * uniform(rng), 0.8f * uniform(rng));
+        const float h = 0.05f + 0.3f * std::abs(uniform(rng));
+        int reference_taps = 0, reference_lit = 0;
+        for (int j = 0; j < kSide; ++j)
+            for (int i = 0; i < kSide; ++i) {
+                const Vec2 q = c + h * Vec2(2.0f * (i + 0.5f) / kSide - 1.0f, 2.0f * (j + 0.5f) / kSide - 1.0f);
+                if (glm::dot(q, q) >= 1.0f) continue;
+                const Vec3 dir = frame.to_world(plane_to_hemisphere(q));
+                ++reference_taps;
+                // From just off the receiver's surface, along its normal.
+                if (!rays.occluded(x.p + 1e-4f * x.normal, dir, 0.0f, 1e30f)) ++reference_lit;
+            }
+        if (reference_taps < kSide * kSide / 2) continue;  // mostly below the horizon: few taps to compare
+        shading::LocalFrame f;
+        f.x = shape.direction_to_shape(frame.x), f.y = shape.direction_to_shape(frame.y), f.z = shape.direction_to_shape(frame.z);
+        const float ours = shading::shape_visible_fraction(shape.kind, shape.to_shape(x.p), f, c, h, shape.lo, shape.hi);
+        const float reference = float(reference_lit) / float(reference_taps);
+        const float error = std::abs(ours - reference);
+        INFO("case " << cases << ": ours " << ours << ", rays " << reference);
+        CHECK(error < 0.2f);
+        total_error += error;
+        worst = std::max(worst, error);
+        partial += reference > 0.02f && reference < 0.98f;
+        ++cases;
+    }
+    INFO("mean error " << total_error / cases << ", worst " << worst << ", partly shadowed cases " << partial);
+    CHECK(total_error / cases < 0.02);
+    CHECK(partial > 40);  // the cases cross shadow edges, not only all-lit or all-dark squares
+}
+
+TEST_CASE("A flat rectangle's visible share of a square matches rays cast at it", "[render][shape]") {
+    const TriangleMesh mesh = moved(test::make_plane(4.0f, 8, "ground"), tilted());
+    const std::optional<OccluderShape> r = find_rectangle(mesh);
+    REQUIRE(r);
+    int index = 0;
+    check_against_rays(mesh, *r, [&](std::mt19937& rng) {
+        std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+        // Over the rectangle (±1.5 of its ±2), within 1 of its plane on either
+        // side; every fifth on the plane itself, facing along it like a box
+        // side resting on the ground (the rays then start on the normal's side).
+        const bool on_plane = index++ % 5 == 0;
+        const float height = on_plane ? 0.0f : uniform(rng);
+        ShapeCase x;
+        x.p = r->center + 1.5f * uniform(rng) * r->s + 1.5f * uniform(rng) * r->t + height * r->normal;
+        x.normal = glm::normalize(Vec3(uniform(rng), uniform(rng), uniform(rng)) + Vec3(1e-3f));
+        if (on_plane) {
+            x.normal = glm::normalize(x.normal - r->normal * glm::dot(x.normal, r->normal));
+            x.p += 2e-4f * r->normal;  // the rays' origin above the plane, as the shape counts it
+        }
+        return x;
+    });
+}
+
+TEST_CASE("A box's visible share of a square matches rays cast at it", "[render][shape]") {
+    const TriangleMesh mesh = test::make_flat_box(Vec3(0.6f, 0.4f, 0.5f), 3);
+    const OccluderShape box = find_occluder_shape(mesh);
+    REQUIRE(box.kind == shading::kShapeBox);
+    int index = 0;
+    check_against_rays(mesh, box, [&](std::mt19937& rng) {
+        std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+        ShapeCase x;
+        x.normal = glm::normalize(Vec3(uniform(rng), uniform(rng), uniform(rng)) + Vec3(1e-3f));
+        if (index++ % 4 == 0) {  // on the top face, looking out of it or along it (a part resting on the box)
+            x.p = Vec3(0.8f * uniform(rng), 0.4f, 0.8f * uniform(rng));
+            if (x.normal.y < 0.0f) x.normal.y = -x.normal.y;
+            return x;
+        }
+        do x.p = 1.5f * Vec3(uniform(rng), uniform(rng), uniform(rng));  // around it, outside
+        while (std::abs(x.p.x) <= 0.6f && std::abs(x.p.y) <= 0.4f && std::abs(x.p.z) <= 0.5f);
+        return x;
+    });
+}
+
+}  // namespace rsl
