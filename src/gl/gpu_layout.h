@@ -131,7 +131,7 @@ struct PackedGeometry {
 // compressed field); others throw rsl::Error naming the scene. With
 // `exact_shapes` (RenderOptions), parts of exact shape get their kSlotShape*
 // records.
-PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool exact_shapes = true);
+PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool exact_shapes = false);
 
 struct PackedMaterials {
     int resolution = 0;  // N

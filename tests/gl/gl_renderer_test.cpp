@@ -176,12 +176,10 @@ TEST_CASE("GL matches the CPU with hundreds of parts (occluder lists, no part li
     PartFields fields;
     fields.self.assign(scene.parts.size(), nullptr);
     fields.occluder.assign(scene.parts.size(), ball_fields.occluder[0]);
-    // The ground gets the balls' field here, not its own, so its rectangle
-    // (src/render/occluder_shape.h) would be culled by a ball-sized bounding
-    // cone on the CPU and not on the GPU: this test is about the lists.
-    RenderOptions options;
-    options.exact_shapes = false;
-    check_against_cpu(scene, test::random_rsls(12, 5), fields, options, {0.0f});
+    // The ground gets the balls' field here, not its own: with exact shapes
+    // its rectangle would be culled by a ball-sized bounding cone on the CPU
+    // and not on the GPU. This test is about the lists (exact shapes off).
+    check_against_cpu(scene, test::random_rsls(12, 5), fields, RenderOptions{}, {0.0f});
     // The shared field goes up once: the tables of 200 instances are those of one.
     PartFields shared_two;
     shared_two.occluder.assign(2, ball_fields.occluder[0]);
@@ -198,7 +196,7 @@ TEST_CASE("GL matches the CPU with each visibility factor switched off", "[gl-re
     SECTION("no self-visibility") { options.self_visibility = false; }
     SECTION("no occluders") { options.occluders = false; }
     SECTION("no culling") { options.occluder_culling = false; }
-    SECTION("the ground's OVDF, not its rectangle") { options.exact_shapes = false; }
+    SECTION("the ground's rectangle, not its OVDF") { options.exact_shapes = true; }
     SECTION("local lights only") { options.environment = false; }
     SECTION("environment only") { options.local_lights = false; }
     check_against_cpu(scene, lights, fields, options, {0.25f});
@@ -229,7 +227,9 @@ TEST_CASE("GL matches the CPU with occluders of exact shape (a ground, boxes, co
     CHECK(find_occluder_shape(scene.parts[0].mesh).kind == shading::kShapeRectangle);
     CHECK(find_occluder_shape(scene.parts[1].mesh).kind == shading::kShapeBox);
     CHECK(find_occluder_shape(scene.parts[3].mesh).kind == shading::kShapeNone);
-    check_against_cpu(scene, test::random_rsls(16, 7), fields, RenderOptions{}, {0.0f, 0.6f}, true);
+    RenderOptions options;
+    options.exact_shapes = true;
+    check_against_cpu(scene, test::random_rsls(16, 7), fields, options, {0.0f, 0.6f}, true);
 }
 
 TEST_CASE("GL matches the CPU under a blend of two environments", "[gl-renderer]") {

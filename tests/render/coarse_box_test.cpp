@@ -76,6 +76,7 @@ const BoxRuns& box_runs() {
         const CubeMap environment = test_environment();
         RenderOptions options;
         options.environment_lights = 30;
+        options.exact_shapes = true;
         RenderOptions ovdf = options;
         ovdf.exact_shapes = false;
         return BoxRuns{render_against_truth(stacked_boxes(false), environment, options),
