@@ -6,6 +6,7 @@
 
 #include "src/core/error.h"
 #include "src/gl/gpu_layout.h"
+#include "src/render/occluder_shape.h"
 #include "src/render/ovdf_occluder.h"
 #include "tests/trace/trace_test_scenes.h"
 
@@ -93,6 +94,63 @@ TEST_CASE("BRDF tables are stacked once each, in sat_data() order", "[gl-layout]
     CHECK(m.offsets[4 + 5] == Vec4(aniso->offset(5), 0.0f));
     options.resolution = 16;
     CHECK_THROWS_AS(gl::pack_materials({iso, BrdfTable::build(*make_brdf(lambert), options)}), Error);
+}
+
+// Textured parts' second lobe (kSlotSpecular): its table is stacked after the
+// diffuse ones (once, however many parts share it), its record carries w = 1,
+// and untextured parts get an all-zero record. A specular table whose
+// isotropy differs from its diffuse table's is refused.
+TEST_CASE("Specular tables of textured parts get their own records and slices", "[gl-layout]") {
+    MaterialDesc lambert = test::lambert(Color(1.0f));
+    MaterialDesc glossy;
+    glossy.name = "glossy";
+    glossy.model = "blinn_phong";
+    glossy.params = {{"kd", {0.0f, 0.0f, 0.0f}}, {"ks", {0.3f, 0.3f, 0.3f}}, {"exponent", {20.0f}}};
+    MaterialDesc ward;
+    ward.name = "ward";
+    ward.model = "ward_anisotropic";
+    ward.params = {{"kd", {0.2f, 0.2f, 0.2f}}, {"ks", {0.2f, 0.2f, 0.2f}}, {"alpha_x", {0.2f}}, {"alpha_y", {0.4f}}};
+    BrdfTableOptions options;
+    options.resolution = 8, options.view_samples = 4;
+    const auto diffuse = BrdfTable::build(*make_brdf(lambert), options);
+    const auto specular = BrdfTable::build(*make_brdf(glossy), options);
+    REQUIRE(diffuse->isotropic());
+    REQUIRE(specular->isotropic());
+    const gl::PackedMaterials m = gl::pack_materials({diffuse, diffuse, diffuse}, {specular, nullptr, specular});
+    CHECK(m.slices == 2 * diffuse->slice_count());  // each table once
+    REQUIRE(m.part_specular.size() == 3);
+    CHECK(m.part_specular[0] == gl::material_record(*specular, diffuse->slice_count(), true));
+    CHECK(m.part_specular[0].w == 1.0f);
+    CHECK(m.part_specular[1] == Vec4(0.0f));
+    CHECK(m.part_specular[2] == m.part_specular[0]);
+    CHECK(m.part_material[0].w == 0.0f);  // the diffuse record is not layered
+    const size_t slice = 9 * 9 * 3;
+    CHECK(std::equal(specular->sat_data().begin(), specular->sat_data().end(),
+                     m.sat.begin() + size_t(diffuse->slice_count()) * slice));
+    CHECK(m.offsets[size_t(diffuse->slice_count())] == Vec4(specular->offset(0), 0.0f));
+    const auto aniso = BrdfTable::build(*make_brdf(ward), options);
+    CHECK_THROWS_AS(gl::pack_materials({diffuse}, {aniso}), Error);
+}
+
+// Exact shapes (src/render/occluder_shape.h) reach the part records only when
+// asked for: the ground's rectangle, nothing for a sphere.
+TEST_CASE("Part records carry a flat part's rectangle when exact shapes are on", "[gl-layout]") {
+    Scene scene = test::make_scene("shapes", Color(0.5f));
+    test::add_part(scene, test::make_plane(2.0f, 6, "ground"));
+    test::add_part(scene, test::make_icosphere(0.3f, 1, "ball"));
+    PartFields fields;
+    fields.self.assign(2, nullptr);
+    fields.occluder.assign(2, nullptr);
+    const gl::PackedGeometry off = gl::pack_geometry(scene, fields), on = gl::pack_geometry(scene, fields, true);
+    const OccluderShape ground = find_occluder_shape(scene.parts[0].mesh);
+    REQUIRE(ground.kind == shading::kShapeRectangle);
+    const Vec4* record = &on.part_static[0];
+    CHECK(record[gl::kSlotShape] == Vec4(ground.center, float(shading::kShapeRectangle)));
+    CHECK(record[gl::kSlotShapeS] == Vec4(ground.s, 0.0f));
+    CHECK(record[gl::kSlotShapeNormal] == Vec4(ground.normal, 0.0f));
+    CHECK(record[gl::kSlotShapeHigh] == Vec4(ground.hi, 0.0f));
+    CHECK(on.part_static[gl::kPartStride + gl::kSlotShape].w == 0.0f);  // the ball: none
+    for (int slot = gl::kSlotShape; slot <= gl::kSlotShapeHigh; ++slot) CHECK(off.part_static[size_t(slot)] == Vec4(0.0f));
 }
 
 }  // namespace
