@@ -42,8 +42,8 @@ struct RenderOptions {
     bool fast_occluder_lookups = true;
     // Parts that are a flat rectangle (a ground, a wall) or a box shadow the
     // others exactly, from their shape, in place of their OVDF
-    // (src/render/occluder_shape.h). Off by default: the 21 taps per lookup
-    // cost the bunny and the robot 20–30% of their frame (docs/RENDERER.md).
+    // (src/render/occluder_shape.h). Off by default: the taps cost the bunny
+    // and the robot about 19% of their frame (docs/RENDERER.md).
     bool exact_shapes = false;
     // Per-part material override: part name → material name (scene materials).
     std::map<std::string, std::string> material_override;

@@ -539,6 +539,58 @@ RSL_SHARED bool box_blocks(vec3 point, vec3 dir, vec3 lo, vec3 hi) {
     }
     return exit > entry;
 }
+// Interval arithmetic for the whole-square test below: the range of a·x
+// over x ∈ [lo, hi], and of x·y over two intervals.
+RSL_SHARED vec2 scaled_range(float a, vec2 r) { return vec2(min(a * r.x, a * r.y), max(a * r.x, a * r.y)); }
+RSL_SHARED vec2 product_range(vec2 a, vec2 b) {
+    float p0 = a.x * b.x;
+    float p1 = a.x * b.y;
+    float p2 = a.y * b.x;
+    float p3 = a.y * b.y;
+    return vec2(min(min(p0, p1), min(p2, p3)), max(max(p0, p1), max(p2, p3)));
+}
+RSL_SHARED vec2 square_range(vec2 r) {  // of x² over x ∈ r
+    float a = r.x * r.x;
+    float b = r.y * r.y;
+    return vec2(r.x <= 0.0f && r.y >= 0.0f ? 0.0f : min(a, b), max(a, b));
+}
+// Whether a rectangle decides a whole square at once: 1 when every direction
+// of the square's part above the receiver's horizon leaves the plane, 0 when
+// every one reaches it inside the rectangle, −1 when the taps must decide.
+// The directions' coordinates are bounded by interval arithmetic over the
+// square (plane_to_hemisphere of each coordinate range), with a relative
+// margin, so an answer here is the one every tap would give: a ground under
+// an object decides most (vertex, light) pairs with no tap at all.
+RSL_SHARED float rectangle_decides_square(vec3 point, LocalFrame frame, vec2 c, float h, vec2 half_extent) {
+    vec2 qx = vec2(c.x - h, c.x + h);
+    vec2 qy = vec2(c.y - h, c.y + h);
+    vec2 r2 = square_range(qx) + square_range(qy);
+    r2.y = min(r2.y, 1.0f);  // only taps above the horizon count
+    if (r2.x >= 1.0f) return -1.0f;
+    vec2 root = vec2(sqrt(2.0f - r2.y), sqrt(2.0f - r2.x));
+    vec2 wx = product_range(qx, root);
+    vec2 wy = product_range(qy, root);
+    vec2 wz = vec2(1.0f - r2.y, 1.0f - r2.x);
+    vec2 dx = scaled_range(frame.x.x, wx) + scaled_range(frame.y.x, wy) + scaled_range(frame.z.x, wz);
+    vec2 dy = scaled_range(frame.x.y, wx) + scaled_range(frame.y.y, wy) + scaled_range(frame.z.y, wz);
+    vec2 dz = scaled_range(frame.x.z, wx) + scaled_range(frame.y.z, wy) + scaled_range(frame.z.z, wz);
+    float scale = length(frame.x) + length(frame.y) + length(frame.z);
+    float margin = 1e-4f * scale;
+    bool above = point.z >= -kShapeContactMargin * (half_extent.x + half_extent.y);
+    // Towards the plane: down from above it, up from below.
+    vec2 toward = above ? vec2(-dz.y, -dz.x) : dz;
+    if (toward.y < -margin) return 1.0f;  // every direction leaves the plane
+    if (!(toward.x > margin)) return -1.0f;
+    // Every direction reaches the plane at t = |height| / |d.z| ≤ |height| / toward.x,
+    // across by at most t·|d.x| and t·|d.y|.
+    float t = abs(point.z) / toward.x;
+    float across_x = t * max(abs(dx.x), abs(dx.y));
+    float across_y = t * max(abs(dy.x), abs(dy.y));
+    bool inside = abs(point.x) + across_x < half_extent.x * (1.0f - 1e-4f) &&
+                  abs(point.y) + across_y < half_extent.y * (1.0f - 1e-4f);
+    return inside ? 0.0f : -1.0f;
+}
+
 // The exact shapes' kinds (kSlotShape in gpu_layout.h).
 RSL_CONST int kShapeNone = 0;
 RSL_CONST int kShapeRectangle = 1;  // lo, hi = (−half s, −half t, 0), (half s, half t, 0)
@@ -557,6 +609,10 @@ RSL_SHARED float shape_visible_fraction(int shape, vec3 point, LocalFrame frame,
     for (int i = 0; i < kShadowTaps; ++i) {
         vec2 tap = shadow_tap_point(c, h, i);
         if (dot(tap, tap) < 1.0f) ++above;
+    }
+    if (shape == kShapeRectangle && above > 0) {
+        float whole = rectangle_decides_square(point, frame, c, h, vec2(hi.x, hi.y));
+        if (whole >= 0.0f) return whole;
     }
     int lit = 0;
     for (int i = 0; i < kShadowTaps; ++i) {

@@ -175,4 +175,39 @@ TEST_CASE("A box's visible share of a square matches rays cast at it", "[render]
     });
 }
 
+// The whole-square test decides only what every tap would: wherever it
+// answers, the 21 taps (above the horizon, one by one against the plane)
+// give that same share. And it answers often (below an object over the
+// ground, most squares), or it would save nothing.
+TEST_CASE("A rectangle's whole-square answer is always the taps' own", "[render][shape]") {
+    std::mt19937 rng(4242);
+    std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+    const Vec2 half_extent(3.0f, 2.0f);
+    int decided = 0, checked = 0;
+    for (int n = 0; n < 20000; ++n) {
+        const Vec3 point(3.2f * uniform(rng), 2.2f * uniform(rng), n % 7 == 0 ? 0.0f : 1.5f * uniform(rng));
+        const Frame frame = Frame::from_normal_tangent(glm::normalize(Vec3(uniform(rng), uniform(rng), uniform(rng)) + Vec3(1e-3f)), Vec3(0));
+        shading::LocalFrame f;
+        f.x = frame.x, f.y = frame.y, f.z = frame.z;
+        const Vec2 c(1.2f * uniform(rng), 1.2f * uniform(rng));
+        const float h = 0.01f + 0.4f * std::abs(uniform(rng));
+        int above = 0, lit = 0;
+        for (int i = 0; i < shading::kShadowTaps; ++i) {
+            const Vec2 tap = shading::shadow_tap_point(c, h, i);
+            if (glm::dot(tap, tap) >= 1.0f) continue;
+            ++above;
+            lit += !shading::planar_blocks(point, frame.to_world(plane_to_hemisphere(tap)), half_extent);
+        }
+        if (above == 0) continue;
+        ++checked;
+        const float whole = shading::rectangle_decides_square(point, f, c, h, half_extent);
+        if (whole < 0.0f) continue;
+        ++decided;
+        INFO("case " << n << ": whole-square " << whole << ", taps " << lit << " of " << above);
+        CHECK(whole == float(lit) / float(above));
+    }
+    INFO(decided << " of " << checked << " decided whole");
+    CHECK(decided > checked / 4);
+}
+
 }  // namespace rsl
