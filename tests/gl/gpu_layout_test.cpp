@@ -72,14 +72,24 @@ TEST_CASE("packed SVDF and OVDF rows reconstruct the fields' values", "[gl-layou
     CHECK(g.ovdf_tables_half);
 }
 
-TEST_CASE("BRDF tables are stacked once each, in sat_data() order", "[gl-layout]") {
-    MaterialDesc lambert = test::lambert(Color(0.5f));
+// An anisotropic material and small tables for the BRDF packing tests.
+MaterialDesc anisotropic_ward() {
     MaterialDesc ward;
     ward.name = "ward";
     ward.model = "ward_anisotropic";
     ward.params = {{"kd", {0.2f, 0.2f, 0.2f}}, {"ks", {0.2f, 0.2f, 0.2f}}, {"alpha_x", {0.2f}}, {"alpha_y", {0.4f}}};
+    return ward;
+}
+BrdfTableOptions small_tables() {
     BrdfTableOptions options;
     options.resolution = 8, options.view_samples = 4;
+    return options;
+}
+
+TEST_CASE("BRDF tables are stacked once each, in sat_data() order", "[gl-layout]") {
+    MaterialDesc lambert = test::lambert(Color(0.5f));
+    const MaterialDesc ward = anisotropic_ward();
+    BrdfTableOptions options = small_tables();
     const auto iso = BrdfTable::build(*make_brdf(lambert), options);
     const auto aniso = BrdfTable::build(*make_brdf(ward), options);
     const gl::PackedMaterials m = gl::pack_materials({iso, aniso, iso});
@@ -106,12 +116,8 @@ TEST_CASE("Specular tables of textured parts get their own records and slices", 
     glossy.name = "glossy";
     glossy.model = "blinn_phong";
     glossy.params = {{"kd", {0.0f, 0.0f, 0.0f}}, {"ks", {0.3f, 0.3f, 0.3f}}, {"exponent", {20.0f}}};
-    MaterialDesc ward;
-    ward.name = "ward";
-    ward.model = "ward_anisotropic";
-    ward.params = {{"kd", {0.2f, 0.2f, 0.2f}}, {"ks", {0.2f, 0.2f, 0.2f}}, {"alpha_x", {0.2f}}, {"alpha_y", {0.4f}}};
-    BrdfTableOptions options;
-    options.resolution = 8, options.view_samples = 4;
+    const MaterialDesc ward = anisotropic_ward();
+    BrdfTableOptions options = small_tables();
     const auto diffuse = BrdfTable::build(*make_brdf(lambert), options);
     const auto specular = BrdfTable::build(*make_brdf(glossy), options);
     REQUIRE(diffuse->isotropic());
