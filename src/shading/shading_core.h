@@ -490,12 +490,12 @@ RSL_SHARED vec2 shadow_tap_point(vec2 c, float half_edge, int i) {
     return c + half_edge * vec2(2.0f * u - 1.0f, 2.0f * v - 1.0f);
 }
 
-// ---- occluders of exact shape: flat rectangles and boxes (src/render/planar_occluder.h) ----
+// ---- occluders of exact shape: flat rectangles and boxes (src/render/occluder_shape.h) ----
 //
 // A ground or a wall is one flat rectangle, and its shadow is known exactly:
 // a ray leaves the receiver and crosses the rectangle's plane or not. Its
 // OVDF, sampled on shells, blends samples from both sides of the plane and
-// comes out far too dark near it (docs/RENDERER.md, "Flat occluders").
+// comes out far too dark near it (docs/RENDERER.md, "Occluders of exact shape").
 // Coordinates are the rectangle's own: (s, t) across it from its centre,
 // height along its normal; the rectangle is |s| ≤ half.x, |t| ≤ half.y.
 
@@ -505,12 +505,16 @@ RSL_SHARED vec2 shadow_tap_point(vec2 c, float half_edge, int i) {
 // the margin the two renderers would shadow it from opposite sides.
 RSL_CONST float kShapeContactMargin = 1e-5f;
 
+// Whether a receiver is on the side of the rectangle its normal faces. One
+// on the plane (a part resting on the ground; within the contact margin)
+// counts as above it.
+RSL_SHARED bool above_rectangle(vec3 point, vec2 half_extent) {
+    return point.z >= -kShapeContactMargin * (half_extent.x + half_extent.y);
+}
 // Whether the ray from `point` along `dir` (any length; an affine map of
-// both keeps the answer) crosses the rectangle. A receiver on the plane
-// (a part resting on the ground; within the contact margin) counts as above
-// it, the side the rectangle's normal faces.
+// both keeps the answer) crosses the rectangle.
 RSL_SHARED bool planar_blocks(vec3 point, vec3 dir, vec2 half_extent) {
-    bool above = point.z >= -kShapeContactMargin * (half_extent.x + half_extent.y);
+    bool above = above_rectangle(point, half_extent);
     if (above ? !(dir.z < 0.0f) : !(dir.z > 0.0f)) return false;
     float t = -point.z / dir.z;
     float s = point.x + t * dir.x;
@@ -576,7 +580,7 @@ RSL_SHARED float rectangle_decides_square(vec3 point, LocalFrame frame, vec2 c, 
     vec2 dz = scaled_range(frame.x.z, wx) + scaled_range(frame.y.z, wy) + scaled_range(frame.z.z, wz);
     float scale = length(frame.x) + length(frame.y) + length(frame.z);
     float margin = 1e-4f * scale;
-    bool above = point.z >= -kShapeContactMargin * (half_extent.x + half_extent.y);
+    bool above = above_rectangle(point, half_extent);
     // Towards the plane: down from above it, up from below.
     vec2 toward = above ? vec2(-dz.y, -dz.x) : dz;
     if (toward.y < -margin) return 1.0f;  // every direction leaves the plane
