@@ -45,6 +45,8 @@ void Ovdf::prepare() {
         RSL_CHECK_LT(std::abs(glm::dot(face_s_[f], face_normal_[f])), 1e-4f);
     }
     const int n = p.cube_resolution;
+    segment_column_.resize(size_t(n));
+    for (int i = 0; i < n; ++i) segment_column_[size_t(i)] = i * p.segments_per_side / n;
     frames_.resize(size_t(6) * n * n);
     for (int f = 0; f < 6; ++f)
         for (int j = 0; j < n; ++j)
@@ -79,7 +81,7 @@ float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_ed
 
 OvdfLocation Ovdf::locate(const Vec3& point, float d) const {
     OvdfLocation at;
-    const Vec3 dir = d > 0 ? (point - center) / d : Vec3(0, 0, 1);
+    const Vec3 dir = d > 0 ? (point - center) * (1.0f / d) : Vec3(0, 0, 1);
     const shading::ShellPair shells = shading::ovdf_shell_pair(shell_coordinate(d), params.shells);  // clamped inside
     at.s0 = shells.lower;
     at.fs = shells.upper_weight;

@@ -130,8 +130,12 @@ public:
     int sample_index(int shell, int face, int i, int j) const {
         return shading::ovdf_sample_index(shell, face, i, j, params.cube_resolution);
     }
+    // shading::ovdf_segment_of with its two divisions read from a table
+    // (prepare()): the renderers locate a receiver once per (vertex,
+    // occluder), and integer division was a sixth of that.
     int segment_of(int shell, int face, int i, int j) const {
-        return shading::ovdf_segment_of(shell, face, i, j, params.cube_resolution, params.segments_per_side);
+        const int m = params.segments_per_side;
+        return ((shell * shading::kCubeFaces + face) * m + segment_column_[size_t(j)]) * m + segment_column_[size_t(i)];
     }
     Vec3 sample_position(int shell, int face, int i, int j) const;
     const Frame& sample_frame(int face, int i, int j) const {
@@ -164,6 +168,7 @@ private:
     std::vector<float> shell_radii_;
     std::vector<OvdfZoom> shell_zoom_;
     std::vector<Frame> frames_;                 // per (face, i, j)
+    std::vector<int> segment_column_;           // per sample column i: i·m / n, its segment column
     std::array<Vec3, 6> face_normal_{}, face_s_{}, face_t_{};
 };
 

@@ -128,8 +128,8 @@ void SquareFitter::gather(std::span<const FitTexel> texels, const RegionStats& s
     }
 }
 
-// The hot loop of the fit (rsl_lightfit builds with -fno-math-errno: sqrt's
-// errno path would keep it from vectorizing).
+// The hot loop of the fit (it vectorizes because everything builds with
+// -fno-math-errno, CMakeLists.txt).
 double SquareFitter::evaluate(float r, Vec2 offset) const {
     const float h = r / kSqrt2;  // half-edge of the square
     // A box far smaller than the disk is covered along the tangent direction

@@ -105,9 +105,9 @@ struct PacketScratch {
         }
     }
 
-    // In place. std::sqrt may set errno, which keeps the compiler from
-    // vectorizing it; the SIMD square root is correctly rounded like the
-    // scalar one, so the result is the same.
+    // In place, explicitly SIMD (the build's -fno-math-errno lets plain
+    // loops vectorize too, but this one must not depend on the flags); the
+    // SIMD square root is correctly rounded like the scalar one.
     static void sqrt_packet(float* values) {
 #if defined(__AVX__)
         for (int k = 0; k < kPacket; k += 8) _mm256_store_ps(values + k, _mm256_sqrt_ps(_mm256_load_ps(values + k)));

@@ -44,6 +44,12 @@ struct OccluderVertexScratch {
     OvdfPoint points[kBlock];
     OvdfTerm terms[kBlock * OvdfPoint::kMaxTerms];
     int terms_used = 0;
+    // An occluder of exact shape (occluder_shape.h): each vertex's point and
+    // shading frame in the shape's coordinates, and whether it lies within
+    // the field's reach (beyond it the part shadows nothing, as its OVDF).
+    Vec3 shape_point[kBlock];
+    shading::LocalFrame shape_frame[kBlock];
+    bool in_reach[kBlock];
 };
 
 // Per-thread scratch of one block (about 40 KB plus the occluder pool, never
@@ -168,6 +174,20 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
         // No cone (no culling, or not an OVDF): every light is looked up.
         v.cone[k] = !cones ? kOvdfNoCone : inside ? cone : -1.0f;
     }
+    const OccluderShape& shape = shapes_[size_t(o)];
+    if (shape.kind != shading::kShapeNone) {
+        const BoundingSphere& reach = local_reach_[size_t(o)];
+        const Mat3& il = poses_[o].inverse_linear;
+        for (int k = 0; k < n; ++k) {
+            const Vec3 local = Vec3(m * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
+            v.in_reach[k] = glm::length(local - reach.center) < reach.radius;
+            v.shape_point[k] = shape.to_shape(local);
+            shading::LocalFrame& frame = v.shape_frame[k];
+            frame.x = shape.direction_to_shape(il * Vec3(s.xx[k], s.xy[k], s.xz[k]));
+            frame.y = shape.direction_to_shape(il * Vec3(s.yx[k], s.yy[k], s.yz[k]));
+            frame.z = shape.direction_to_shape(il * Vec3(s.zx[k], s.zy[k], s.zz[k]));
+        }
+    }
     return v;
 }
 
@@ -223,17 +243,9 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
         if (shape.kind != shading::kShapeNone) {  // a rectangle or a box: its exact shadow (occluder_shape.h)
             // Within the field's reach only, as its lookup (and so the
             // occluder lists and culling): the part shadows nothing beyond it.
-            const Vec3 local = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
-            const BoundingSphere& reach = local_reach_[size_t(o)];
-            if (!(glm::length(local - reach.center) < reach.radius)) continue;
-            const Mat3& il = occluder.inverse_linear;
-            shading::LocalFrame frame;
-            frame.x = shape.direction_to_shape(il * Vec3(s.xx[k], s.xy[k], s.xz[k]));
-            frame.y = shape.direction_to_shape(il * Vec3(s.yx[k], s.yy[k], s.yz[k]));
-            frame.z = shape.direction_to_shape(il * Vec3(s.zx[k], s.zy[k], s.zz[k]));
-            const Vec3 point = shape.to_shape(local);
-            s.vis[i] *= shading::shape_visible_fraction(shape.kind, point, frame, Vec2(s.qx[i], s.qy[i]), s.qh[i],
-                                                        shape.lo, shape.hi);
+            if (!v.in_reach[k]) continue;
+            s.vis[i] *= shading::shape_visible_fraction(shape.kind, v.shape_point[k], v.shape_frame[k],
+                                                        Vec2(s.qx[i], s.qy[i]), s.qh[i], shape.lo, shape.hi);
         } else if (fast) {
             OvdfPoint& q = v.points[k];
             const bool needs_point = !v.prepared[k] || q.kind == OvdfPoint::Slow;

@@ -90,7 +90,7 @@ RSL_SHARED LocalFrame frame_from_normal_tangent(vec3 n, vec3 t) {
     f.z = normalize(n);
     vec3 x = t - f.z * dot(f.z, t);
     float len2 = dot(x, x);
-    f.x = len2 > 1e-12f ? x / sqrt(len2) : any_orthonormal(f.z);
+    f.x = len2 > 1e-12f ? x * (1.0f / sqrt(len2)) : any_orthonormal(f.z);  // one division, not three
     f.y = cross(f.z, f.x);
     return f;
 }
@@ -317,15 +317,17 @@ struct SampleTaps {
 };
 RSL_SHARED SampleTaps ovdf_sample_taps(vec3 dir, float cosine, vec3 s, vec3 t, int n) {
     float hi = float(n - 1);
-    float x = clamp((dot(dir, s) / cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
-    float y = clamp((dot(dir, t) / cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
+    float inverse_cosine = 1.0f / cosine;
+    float x = clamp((dot(dir, s) * inverse_cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
+    float y = clamp((dot(dir, t) * inverse_cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
     int i0 = min(int(x), n - 2);
     int j0 = min(int(y), n - 2);
     float fx = x - float(i0);
     float fy = y - float(j0);
     SampleTaps taps;
-    taps.i = ivec4(i0, i0 + 1, i0, i0 + 1);
-    taps.j = ivec4(j0, j0, j0 + 1, j0 + 1);
+    // Whole-vector arithmetic: the CPU builds and copies them in registers.
+    taps.i = ivec4(i0) + ivec4(0, 1, 0, 1);
+    taps.j = ivec4(j0) + ivec4(0, 0, 1, 1);
     taps.weight = vec4((1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy);
     return taps;
 }

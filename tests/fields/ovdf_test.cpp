@@ -264,3 +264,19 @@ TEST_CASE("OVDF lights receivers just outside a part and darkens those inside it
     CHECK(outside_error / outside < 0.4);
     CHECK(inside_dark >= 0.75 * inside);
 }
+
+TEST_CASE("OVDF segment table agrees with the shading core's segment formula", "[ovdf]") {
+    // The CPU reads i·m / n from a table; the GPU divides (shading_core.h).
+    for (const auto [n, m] : {std::pair{16, 1}, {16, 2}, {12, 3}, {13, 1}, {32, 4}, {6, 2}}) {
+        Ovdf field;
+        field.params.shells = 3;
+        field.params.cube_resolution = n;
+        field.params.segments_per_side = m;
+        field.prepare();
+        for (int shell = 0; shell < 3; ++shell)
+            for (int face = 0; face < 6; ++face)
+                for (int j = 0; j < n; ++j)
+                    for (int i = 0; i < n; ++i)
+                        REQUIRE(field.segment_of(shell, face, i, j) == shading::ovdf_segment_of(shell, face, i, j, n, m));
+    }
+}

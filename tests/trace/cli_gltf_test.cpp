@@ -143,7 +143,7 @@ TEST_CASE("a glTF scene with scenes, camera, point and spot lights, skin and spa
     CHECK(info.find("mesh 'crate' of node 'crate' (skinned) renders in the bind pose") != std::string::npos);
 
     auto [render_status, render] =
-        test::run_rsl("render " + scene + " -k 8 -q -o " + (dir / "render.exr").string() + " --vertex-out " +
+        test::run_rsl("render " + scene + " -k 20 -q -o " + (dir / "render.exr").string() + " --vertex-out " +
                       (dir / "render.rslv").string());
     INFO(render);
     REQUIRE(render_status == 0);
@@ -162,8 +162,12 @@ TEST_CASE("a glTF scene with scenes, camera, point and spot lights, skin and spa
     REQUIRE(std::regex_search(compare, m, std::regex(R"(relative L2: ([0-9.e+-]+))")));
     const double error = std::stod(m[1]);
     // Lit mostly by the two local lights (the environment is dim): the spot's
-    // pool and the crate's shadows. Measured 0.0xx; a lost cone (the spot as a
-    // point light) or a wrong light position costs several times more.
+    // pool and the crate's shadows. Measured 0.03 at K = 20; a lost cone (the
+    // spot as a point light) or a wrong light position costs several times
+    // more. K = 20, the method's smallest: the map is uniform, so every split
+    // of the light fit is a tie that rounding decides, and at K = 8 two
+    // partitions of equal fit error (two builds' rounding) rendered 3.4% and
+    // 12.5% off — regions wide enough to straddle the ground's horizon.
     CHECK(error < 0.1);
     // The spot's pool: the truth's ground vertex under the spot (inside its
     // inner cone) is far brighter than one beyond its outer cone.
