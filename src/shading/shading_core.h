@@ -560,19 +560,27 @@ RSL_SHARED vec2 square_range(vec2 r) {  // of x² over x ∈ r
     float b = r.y * r.y;
     return vec2(r.x <= 0.0f && r.y >= 0.0f ? 0.0f : min(a, b), max(a, b));
 }
-// Whether a rectangle decides a whole square at once: 1 when every direction
-// of the square's part above the receiver's horizon leaves the plane, 0 when
-// every one reaches it inside the rectangle, −1 when the taps must decide.
-// The directions' coordinates are bounded by interval arithmetic over the
-// square (plane_to_hemisphere of each coordinate range), with a relative
-// margin, so an answer here is the one every tap would give: a ground under
-// an object decides most (vertex, light) pairs with no tap at all.
-RSL_SHARED float rectangle_decides_square(vec3 point, LocalFrame frame, vec2 c, float h, vec2 half_extent) {
+// Bounds on the directions (in the shape's coordinates) of the part of a
+// square (plane centre c, half-edge h) above the receiver's horizon: each
+// coordinate's least and greatest value, by interval arithmetic over the
+// square (plane_to_hemisphere of each coordinate range), widened by a
+// relative margin for the taps' own rounding. So a whole-square answer
+// drawn from them is the one every tap would give.
+struct SquareDirections {
+    vec3 lo;
+    vec3 hi;
+    bool reaches_hemisphere;  // some of the square is above the horizon
+    bool inside_hemisphere;   // all of it is: every tap is above the horizon
+};
+RSL_SHARED SquareDirections square_directions(LocalFrame frame, vec2 c, float h) {
+    SquareDirections d;
     vec2 qx = vec2(c.x - h, c.x + h);
     vec2 qy = vec2(c.y - h, c.y + h);
     vec2 r2 = square_range(qx) + square_range(qy);
+    d.reaches_hemisphere = r2.x < 1.0f;
+    d.inside_hemisphere = r2.y < 1.0f - 1e-5f;  // a margin for the taps' rounding
     r2.y = min(r2.y, 1.0f);  // only taps above the horizon count
-    if (r2.x >= 1.0f) return -1.0f;
+    r2.x = min(r2.x, 1.0f);
     vec2 root = vec2(sqrt(2.0f - r2.y), sqrt(2.0f - r2.x));
     vec2 wx = product_range(qx, root);
     vec2 wy = product_range(qy, root);
@@ -580,21 +588,61 @@ RSL_SHARED float rectangle_decides_square(vec3 point, LocalFrame frame, vec2 c, 
     vec2 dx = scaled_range(frame.x.x, wx) + scaled_range(frame.y.x, wy) + scaled_range(frame.z.x, wz);
     vec2 dy = scaled_range(frame.x.y, wx) + scaled_range(frame.y.y, wy) + scaled_range(frame.z.y, wz);
     vec2 dz = scaled_range(frame.x.z, wx) + scaled_range(frame.y.z, wy) + scaled_range(frame.z.z, wz);
-    float scale = length(frame.x) + length(frame.y) + length(frame.z);
-    float margin = 1e-4f * scale;
+    float margin = 1e-4f * (length(frame.x) + length(frame.y) + length(frame.z));
+    d.lo = vec3(dx.x, dy.x, dz.x) - vec3(margin);
+    d.hi = vec3(dx.y, dy.y, dz.y) + vec3(margin);
+    return d;
+}
+// Whether a rectangle decides a whole square at once: 1 when every direction
+// of the square's part above the receiver's horizon leaves the plane, 0 when
+// every one reaches it inside the rectangle, −1 when the taps must decide.
+// A ground under an object decides most (vertex, light) pairs with no tap at all.
+RSL_SHARED float rectangle_decides_square(vec3 point, SquareDirections d, vec2 half_extent) {
+    if (!d.reaches_hemisphere) return -1.0f;
     bool above = above_rectangle(point, half_extent);
     // Towards the plane: down from above it, up from below.
-    vec2 toward = above ? vec2(-dz.y, -dz.x) : dz;
-    if (toward.y < -margin) return 1.0f;  // every direction leaves the plane
-    if (!(toward.x > margin)) return -1.0f;
+    vec2 toward = above ? vec2(-d.hi.z, -d.lo.z) : vec2(d.lo.z, d.hi.z);
+    if (toward.y < 0.0f) return 1.0f;  // every direction leaves the plane
+    if (!(toward.x > 0.0f)) return -1.0f;
     // Every direction reaches the plane at t = |height| / |d.z| ≤ |height| / toward.x,
     // across by at most t·|d.x| and t·|d.y|.
     float t = abs(point.z) / toward.x;
-    float across_x = t * max(abs(dx.x), abs(dx.y));
-    float across_y = t * max(abs(dy.x), abs(dy.y));
+    float across_x = t * max(abs(d.lo.x), abs(d.hi.x));
+    float across_y = t * max(abs(d.lo.y), abs(d.hi.y));
     bool inside = abs(point.x) + across_x < half_extent.x * (1.0f - 1e-4f) &&
                   abs(point.y) + across_y < half_extent.y * (1.0f - 1e-4f);
     return inside ? 0.0f : -1.0f;
+}
+// The same for a box (box_blocks' box, shrunk by the contact margin): 1 when
+// the receiver is on or beyond a face that every direction leaves; 0 when
+// every direction enters the box through the inside of one face; else −1.
+RSL_SHARED float box_decides_square(vec3 point, SquareDirections d, vec3 lo, vec3 hi) {
+    if (!d.reaches_hemisphere) return -1.0f;
+    float margin = kShapeContactMargin * length(hi - lo);
+    vec3 low = lo + vec3(margin);
+    vec3 high = hi - vec3(margin);
+    for (int a = 0; a < 3; ++a) {
+        if (point[a] >= high[a] && d.lo[a] > 0.0f) return 1.0f;
+        if (point[a] <= low[a] && d.hi[a] < 0.0f) return 1.0f;
+    }
+    for (int a = 0; a < 3; ++a) {
+        // The face the directions cross first, and when: t ∈ [t.x, t.y].
+        vec2 t = vec2(-1.0f);
+        if (point[a] < low[a] && d.lo[a] > 0.0f) t = vec2(low[a] - point[a]) / vec2(d.hi[a], d.lo[a]);
+        if (point[a] > high[a] && d.hi[a] < 0.0f) t = vec2(high[a] - point[a]) / vec2(d.lo[a], d.hi[a]);
+        // A face seen edge-on from far away: the slab test's entry and exit
+        // could round to one value.
+        if (!(t.x > 0.0f) || high[a] - low[a] < 1e-3f * abs(point[a] - low[a])) continue;
+        bool inside = true;
+        for (int b = 0; b < 3; ++b) {
+            if (b == a) continue;
+            vec2 across = vec2(point[b]) + product_range(t, vec2(d.lo[b], d.hi[b]));
+            float slack = 1e-4f * (high[b] - low[b]);
+            inside = inside && across.x > low[b] + slack && across.y < high[b] - slack;
+        }
+        if (inside) return 0.0f;
+    }
+    return -1.0f;
 }
 
 // The exact shapes' kinds (kSlotShape in gpu_layout.h).
@@ -611,13 +659,17 @@ RSL_CONST float kHorizonTapRadius = 0.999f;
 // (a sandwiched vertex lit by the one light low on its horizon was the
 // bug): then every tap counts, pulled in to just above the horizon.
 RSL_SHARED float shape_visible_fraction(int shape, vec3 point, LocalFrame frame, vec2 c, float h, vec3 lo, vec3 hi) {
-    int above = 0;
-    for (int i = 0; i < kShadowTaps; ++i) {
-        vec2 tap = shadow_tap_point(c, h, i);
-        if (dot(tap, tap) < 1.0f) ++above;
+    SquareDirections d = square_directions(frame, c, h);
+    int above = d.inside_hemisphere ? kShadowTaps : 0;
+    if (!d.inside_hemisphere) {
+        for (int i = 0; i < kShadowTaps; ++i) {
+            vec2 tap = shadow_tap_point(c, h, i);
+            if (dot(tap, tap) < 1.0f) ++above;
+        }
     }
-    if (shape == kShapeRectangle && above > 0) {
-        float whole = rectangle_decides_square(point, frame, c, h, vec2(hi.x, hi.y));
+    if (above > 0) {
+        float whole = shape == kShapeBox ? box_decides_square(point, d, lo, hi)
+                                         : rectangle_decides_square(point, d, vec2(hi.x, hi.y));
         if (whole >= 0.0f) return whole;
     }
     int lit = 0;

@@ -175,17 +175,28 @@ TEST_CASE("A box's visible share of a square matches rays cast at it", "[render]
     });
 }
 
-// The whole-square test decides only what every tap would: wherever it
-// answers, the 21 taps (above the horizon, one by one against the plane)
-// give that same share. And it answers often (below an object over the
-// ground, most squares), or it would save nothing.
-TEST_CASE("A rectangle's whole-square answer is always the taps' own", "[render][shape]") {
-    std::mt19937 rng(4242);
+// The whole-square tests decide only what every tap would: wherever they
+// answer, the 21 taps (above the horizon, one by one against the shape) give
+// that same share. And they answer often (below an object over the ground,
+// most squares), or they would save nothing.
+namespace {
+
+struct WholeSquareCount {
+    int checked = 0, decided = 0, shadowed = 0;
+};
+
+// Random receivers around (and on the faces of) the shape [lo, hi], random
+// frames and squares; whole(point, directions) is the test under check and
+// blocks(point, dir) the per-tap ray test it must agree with.
+template <class Whole, class Blocks>
+WholeSquareCount check_whole_square(uint32_t seed, Vec3 lo, Vec3 hi, Whole whole, Blocks blocks) {
+    std::mt19937 rng(seed);
     std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
-    const Vec2 half_extent(3.0f, 2.0f);
-    int decided = 0, checked = 0;
+    WholeSquareCount count;
     for (int n = 0; n < 20000; ++n) {
-        const Vec3 point(3.2f * uniform(rng), 2.2f * uniform(rng), n % 7 == 0 ? 0.0f : 1.5f * uniform(rng));
+        Vec3 point = 1.1f * Vec3(uniform(rng), uniform(rng), uniform(rng)) * glm::max(glm::abs(lo), glm::abs(hi)) +
+                     Vec3(0.0f, 0.0f, 1.5f * uniform(rng));
+        if (n % 7 == 0) point.z = hi.z;  // on the top face (a part resting on the shape)
         const Frame frame = Frame::from_normal_tangent(glm::normalize(Vec3(uniform(rng), uniform(rng), uniform(rng)) + Vec3(1e-3f)), Vec3(0));
         shading::LocalFrame f;
         f.x = frame.x, f.y = frame.y, f.z = frame.z;
@@ -196,18 +207,58 @@ TEST_CASE("A rectangle's whole-square answer is always the taps' own", "[render]
             const Vec2 tap = shading::shadow_tap_point(c, h, i);
             if (glm::dot(tap, tap) >= 1.0f) continue;
             ++above;
-            lit += !shading::planar_blocks(point, frame.to_world(plane_to_hemisphere(tap)), half_extent);
+            lit += !blocks(point, frame.to_world(plane_to_hemisphere(tap)));
         }
         if (above == 0) continue;
-        ++checked;
-        const float whole = shading::rectangle_decides_square(point, f, c, h, half_extent);
-        if (whole < 0.0f) continue;
-        ++decided;
-        INFO("case " << n << ": whole-square " << whole << ", taps " << lit << " of " << above);
-        CHECK(whole == float(lit) / float(above));
+        ++count.checked;
+        const float answer = whole(point, shading::square_directions(f, c, h));
+        if (answer < 0.0f) continue;
+        ++count.decided;
+        count.shadowed += answer == 0.0f;
+        INFO("case " << n << ": whole-square " << answer << ", taps " << lit << " of " << above);
+        CHECK(answer == float(lit) / float(above));
+        // And the renderer's function gives it too.
+        CHECK(answer == blocks.fraction(point, f, c, h));
     }
-    INFO(decided << " of " << checked << " decided whole");
-    CHECK(decided > checked / 4);
+    return count;
+}
+
+template <class Test>
+struct ShapeBlocks {
+    int kind;
+    Vec3 lo, hi;
+    Test test;
+    bool operator()(Vec3 point, Vec3 dir) const { return test(point, dir); }
+    float fraction(Vec3 point, shading::LocalFrame f, Vec2 c, float h) const {
+        return shading::shape_visible_fraction(kind, point, f, c, h, lo, hi);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("A rectangle's whole-square answer is always the taps' own", "[render][shape]") {
+    const Vec2 half_extent(3.0f, 2.0f);
+    const Vec3 hi(half_extent, 0.0f);
+    auto test = [&](Vec3 p, Vec3 d) { return shading::planar_blocks(p, d, half_extent); };
+    const ShapeBlocks<decltype(test)> blocks{shading::kShapeRectangle, -hi, hi, test};
+    const WholeSquareCount count = check_whole_square(
+        4242, -hi, hi, [&](Vec3 p, shading::SquareDirections d) { return shading::rectangle_decides_square(p, d, half_extent); },
+        blocks);
+    INFO(count.decided << " of " << count.checked << " decided whole, " << count.shadowed << " of them shadowed");
+    CHECK(count.decided > count.checked / 4);
+    CHECK(count.shadowed > count.decided / 10);
+}
+
+TEST_CASE("A box's whole-square answer is always the taps' own", "[render][shape]") {
+    const Vec3 lo(-0.6f, -0.4f, -0.5f), hi(0.6f, 0.4f, 0.5f);
+    auto test = [&](Vec3 p, Vec3 d) { return shading::box_blocks(p, d, lo, hi); };
+    const ShapeBlocks<decltype(test)> blocks{shading::kShapeBox, lo, hi, test};
+    const WholeSquareCount count = check_whole_square(
+        777, lo, hi, [&](Vec3 p, shading::SquareDirections d) { return shading::box_decides_square(p, d, lo, hi); },
+        blocks);
+    INFO(count.decided << " of " << count.checked << " decided whole, " << count.shadowed << " of them shadowed");
+    CHECK(count.decided > count.checked / 4);
+    CHECK(count.shadowed > count.decided / 20);
 }
 
 }  // namespace rsl
