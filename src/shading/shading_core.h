@@ -516,12 +516,14 @@ RSL_SHARED bool above_rectangle(vec3 point, vec2 half_extent) {
 // Whether the ray from `point` along `dir` (any length; an affine map of
 // both keeps the answer) crosses the rectangle.
 RSL_SHARED bool planar_blocks(vec3 point, vec3 dir, vec2 half_extent) {
-    bool above = above_rectangle(point, half_extent);
-    if (above ? !(dir.z < 0.0f) : !(dir.z > 0.0f)) return false;
+    // Written without branches (two compares), so that the taps' loop in
+    // shape_visible_fraction vectorizes on the CPU.
+    float toward = above_rectangle(point, half_extent) ? -dir.z : dir.z;
     float t = -point.z / dir.z;
     float s = point.x + t * dir.x;
     float u = point.y + t * dir.y;
-    return abs(s) <= half_extent.x && abs(u) <= half_extent.y;
+    float across = max(abs(s) - half_extent.x, abs(u) - half_extent.y);  // ≤ 0: inside the rectangle
+    return toward > 0.0f && across <= 0.0f;
 }
 // Whether the ray from `point` along `dir` passes through the inside of the
 // box [lo, hi] (the slab test), the box shrunk by the contact margin: a ray
@@ -651,6 +653,20 @@ RSL_CONST int kShapeRectangle = 1;  // lo, hi = (−half s, −half t, 0), (half
 RSL_CONST int kShapeBox = 2;
 // Plane radius of a tap pulled in to just above the horizon (elevation ≈ 0.1°).
 RSL_CONST float kHorizonTapRadius = 0.999f;
+// Tap i of a shape's filter: 1 when it is above the receiver's horizon, and
+// its direction in the shape's coordinates; one below the horizon is pulled
+// in to just above it (it counts only when no tap is above).
+RSL_SHARED int shape_tap_above(vec2 c, float h, int i) {
+    vec2 tap = shadow_tap_point(c, h, i);
+    return dot(tap, tap) < 1.0f ? 1 : 0;
+}
+RSL_SHARED vec3 shape_tap_direction(LocalFrame frame, vec2 c, float h, int i) {
+    vec2 tap = shadow_tap_point(c, h, i);
+    float r2 = dot(tap, tap);
+    tap = r2 >= 1.0f ? tap * (kHorizonTapRadius / sqrt(r2)) : tap;
+    vec3 w = plane_to_hemisphere(tap);
+    return frame.x * w.x + frame.y * w.y + frame.z * w.z;
+}
 // The visible share of the square (plane centre c, half-edge h) of a
 // receiver whose shading frame has axes `frame` (in the shape's coordinates)
 // against a rectangle or a box: the filter taps above the receiver's horizon
@@ -672,20 +688,25 @@ RSL_SHARED float shape_visible_fraction(int shape, vec3 point, LocalFrame frame,
                                          : rectangle_decides_square(point, d, vec2(hi.x, hi.y));
         if (whole >= 0.0f) return whole;
     }
-    int lit = 0;
-    for (int i = 0; i < kShadowTaps; ++i) {
-        vec2 tap = shadow_tap_point(c, h, i);
-        float r2 = dot(tap, tap);
-        if (r2 >= 1.0f) {
-            if (above > 0) continue;  // below the horizon: the BRDF average is 0 there
-            tap = tap * (kHorizonTapRadius / sqrt(r2));
+    // One loop per shape, each tap without branches (two integer sums, of
+    // the taps above the horizon and of all), so that the CPU's loops
+    // vectorize over the taps.
+    int lit_above = 0;
+    int lit_all = 0;
+    if (shape == kShapeBox) {
+        for (int i = 0; i < kShadowTaps; ++i) {
+            int lit = box_blocks(point, shape_tap_direction(frame, c, h, i), lo, hi) ? 0 : 1;
+            lit_above += shape_tap_above(c, h, i) * lit;
+            lit_all += lit;
         }
-        vec3 w = plane_to_hemisphere(tap);
-        vec3 dir = frame.x * w.x + frame.y * w.y + frame.z * w.z;
-        bool blocked = shape == kShapeBox ? box_blocks(point, dir, lo, hi) : planar_blocks(point, dir, vec2(hi.x, hi.y));
-        if (!blocked) ++lit;
+    } else {
+        for (int i = 0; i < kShadowTaps; ++i) {
+            int lit = planar_blocks(point, shape_tap_direction(frame, c, h, i), vec2(hi.x, hi.y)) ? 0 : 1;
+            lit_above += shape_tap_above(c, h, i) * lit;
+            lit_all += lit;
+        }
     }
-    return float(lit) / float(above > 0 ? above : kShadowTaps);
+    return above > 0 ? float(lit_above) / float(above) : float(lit_all) / float(kShadowTaps);
 }
 
 // RSL_GLSL_END (the GPU's copy ends here)
