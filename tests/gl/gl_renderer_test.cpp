@@ -179,7 +179,9 @@ TEST_CASE("GL matches the CPU with hundreds of parts (occluder lists, no part li
     // The ground gets the balls' field here, not its own: with exact shapes
     // its rectangle would be culled by a ball-sized bounding cone on the CPU
     // and not on the GPU. This test is about the lists (exact shapes off).
-    check_against_cpu(scene, test::random_rsls(12, 5), fields, RenderOptions{}, {0.0f});
+    RenderOptions lists_only;
+    lists_only.exact_shapes = false;
+    check_against_cpu(scene, test::random_rsls(12, 5), fields, lists_only, {0.0f});
     // The shared field goes up once: the tables of 200 instances are those of one.
     PartFields shared_two;
     shared_two.occluder.assign(2, ball_fields.occluder[0]);
@@ -196,7 +198,7 @@ TEST_CASE("GL matches the CPU with each visibility factor switched off", "[gl-re
     SECTION("no self-visibility") { options.self_visibility = false; }
     SECTION("no occluders") { options.occluders = false; }
     SECTION("no culling") { options.occluder_culling = false; }
-    SECTION("the ground's rectangle, not its OVDF") { options.exact_shapes = true; }
+    SECTION("the ground's OVDF, not its rectangle") { options.exact_shapes = false; }
     SECTION("local lights only") { options.environment = false; }
     SECTION("environment only") { options.local_lights = false; }
     check_against_cpu(scene, lights, fields, options, {0.25f});
