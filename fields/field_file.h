@@ -32,7 +32,10 @@ namespace rsl {
 // stores OVDF tables zoomed to each shell's bounding cone (fields/ovdf.h), so
 // version-1 OVDF files, which would read back as valid, are rebaked. Version
 // 3: OVDF samples inside the part trace from the surface outside them.
-inline constexpr uint32_t kFieldFormatVersion = 3;
+// Version 4: SVDF vertices on the part's own surface elsewhere (a box
+// standing on another box of one mesh) count as outside it
+// (RayScene's origins_outside_surfaces, as the truth).
+inline constexpr uint32_t kFieldFormatVersion = 4;
 enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
 
 // Positions, normals, tangents and indices: everything the tables depend on.

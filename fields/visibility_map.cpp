@@ -152,6 +152,9 @@ std::vector<float> trace_vertex_vdts(const RayScene& scene, const TriangleMesh& 
     const size_t vertices = subset ? subset->size() : mesh.vertex_count();
     const HemisphereSampling sampling(n, options.supersampling, options.coarse_to_fine);
     const RayOffset offset{scene.world_diagonal()};
+    // Where the truth starts a vertex's rays (PosedScene::vertex): one offset
+    // into its own triangles on the border of its surface, one along its normal.
+    const std::vector<Vec3> inward = border_inward_directions(mesh);
     std::vector<float> vdts(vertices * nn);
     std::atomic<size_t> done{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices, 64), [&](const tbb::blocked_range<size_t>& range) {
@@ -160,7 +163,8 @@ std::vector<float> trace_vertex_vdts(const RayScene& scene, const TriangleMesh& 
         for (size_t k = range.begin(); k != range.end(); ++k) {
             const size_t v = subset ? (*subset)[k] : k;
             const Frame frame = vertex_frame(mesh, v);
-            trace_coverage(scene, sampling, offset.origin(mesh.positions[v], frame.z), frame,
+            const Vec3 p = mesh.positions[v];
+            trace_coverage(scene, sampling, offset.origin(p + inward[v] * offset.distance(p), frame.z), frame,
                            options.below_horizon, scratch, scratch.coverage.data());
             compute_vdt(n, scratch.coverage.data(), vdts.data() + k * nn, options.mode, scratch.vdt);
         }

@@ -3,12 +3,8 @@
 #include "src/core/error.h"
 
 namespace rsl {
-namespace {
 
-// Per vertex, the direction into its triangles within its tangent plane: the
-// mean of the directions to their centroids, where those do not cancel (an
-// interior vertex, whose triangles surround it, stays where it is).
-std::vector<Vec3> inward_directions(const TriangleMesh& mesh) {
+std::vector<Vec3> border_inward_directions(const TriangleMesh& mesh) {
     std::vector<Vec3> sum(mesh.vertex_count(), Vec3(0));
     std::vector<float> length(mesh.vertex_count(), 0.0f);
     for (size_t t = 0; t < mesh.indices.size(); t += 3) {
@@ -29,15 +25,13 @@ std::vector<Vec3> inward_directions(const TriangleMesh& mesh) {
     return sum;
 }
 
-}  // namespace
-
-PosedScene::PosedScene(const Scene& scene, float t) : scene_(scene) {
+PosedScene::PosedScene(const Scene& scene, float t) : scene_(scene), rays_(/*origins_outside_surfaces=*/true) {
     if (scene.parts.empty()) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
     for (size_t p = 0; p < scene.parts.size(); ++p) {
         const int mesh = rays_.add_mesh(scene.parts[p].mesh);
         const int instance = rays_.add_instance(mesh, Mat4(1.0f));
         RSL_CHECK(mesh == int(p) && instance == int(p));
-        inward_.push_back(inward_directions(scene.parts[p].mesh));
+        inward_.push_back(border_inward_directions(scene.parts[p].mesh));
     }
     transforms_.resize(scene.parts.size());
     linear_.resize(scene.parts.size());

@@ -25,6 +25,44 @@ void check_device(RTCDevice device, const char* what) {
 
 Mat3 normal_matrix(const Mat4& m) { return glm::transpose(glm::inverse(Mat3(m))); }
 
+// What the occlusion filter reads of a mesh: Embree's own copies of its
+// buffers (valid while the geometry lives).
+struct MeshTriangles {
+    const float* positions = nullptr;
+    const uint32_t* indices = nullptr;
+};
+
+// An occlusion query's context: Embree's, then per ray (by its id, the lane)
+// up to which t a hit that leaves its triangle's front side is ignored.
+struct ExitContext {
+    RTCIntersectContext embree;
+    bool enabled = false;
+    std::array<float, kPacketSize> exit_t{};
+};
+
+// rtcOccluded's filter (RayScene(origins_outside_surfaces = true)). Embree
+// passes an instanced mesh's hits with the ray in the mesh's own frame, where
+// the triangle's normal is read too; the sign of dot(direction, normal) and
+// the ray parameter t are the same in both frames.
+void ignore_exits_near_origin(const RTCFilterFunctionNArguments* args) {
+    const auto* context = reinterpret_cast<const ExitContext*>(args->context);
+    if (!context->enabled) return;
+    const auto* mesh = static_cast<const MeshTriangles*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned lane = RTCRayN_id(args->ray, args->N, i) % unsigned(kPacketSize);
+        if (!(RTCRayN_tfar(args->ray, args->N, i) < context->exit_t[lane])) continue;
+        const uint32_t* tri = mesh->indices + 3 * size_t(RTCHitN_primID(args->hit, args->N, i));
+        const Vec3 p0 = glm::make_vec3(mesh->positions + 3 * size_t(tri[0]));
+        const Vec3 p1 = glm::make_vec3(mesh->positions + 3 * size_t(tri[1]));
+        const Vec3 p2 = glm::make_vec3(mesh->positions + 3 * size_t(tri[2]));
+        const Vec3 front = glm::cross(p1 - p0, p2 - p0);
+        const Vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                       RTCRayN_dir_z(args->ray, args->N, i));
+        if (glm::dot(dir, front) > 0.0f) args->valid[i] = 0;  // leaving the part: the origin is on its surface
+    }
+}
+
 }  // namespace
 
 struct RayScene::Impl {
@@ -36,8 +74,19 @@ struct RayScene::Impl {
     std::vector<int> instance_mesh;
     std::vector<Mat4> transforms;
     std::vector<Mat3> normal_matrices;
+    std::vector<std::unique_ptr<MeshTriangles>> mesh_triangles;  // the filter's user data, per mesh
     float world_diagonal = 0;
     bool committed = false;
+    bool origins_outside_surfaces = false;
+
+    // Up to which t a leaving hit of the ray (origin, dir) is ignored: a few
+    // ray offsets (the truth's origins sit one offset off their surface).
+    void set_exit(ExitContext& context, int lane, const Vec3& origin, const Vec3& dir) const {
+        context.enabled = origins_outside_surfaces;
+        const float length = glm::length(dir);
+        context.exit_t[size_t(lane)] =
+            origins_outside_surfaces && length > 0.0f ? 4.0f * RayOffset{world_diagonal}.distance(origin) / length : 0.0f;
+    }
 
     Impl() {
         device = rtcNewDevice(nullptr);
@@ -90,19 +139,22 @@ struct RayScene::Impl {
             ray.id[k] = unsigned(k);
             ray.flags[k] = 0;
         }
-        RTCIntersectContext context;
+        ExitContext context;
         // Deliberately not RTC_INTERSECT_CONTEXT_FLAG_COHERENT: with Embree
         // 3.13.5 and instanced scenes, coherent-mode packets intermittently
         // never return (reproduced: ~50% of runs of a 2-instance scene under
         // TBB hung inside rtcOccluded16; the default flag never did in 30).
-        rtcInitIntersectContext(&context);
-        rtcOccluded16(valid.data(), top, &context, &ray);
+        rtcInitIntersectContext(&context.embree);
+        for (int k = 0; k < count; ++k) set_exit(context, k, origins ? origins[k] : o, dirs[k]);
+        rtcOccluded16(valid.data(), top, &context.embree, &ray);
         // Embree marks an occluded ray by setting tfar to −∞.
         for (int k = 0; k < count; ++k) visible[k] = ray.tfar[k] >= 0.0f ? 1 : 0;
     }
 };
 
-RayScene::RayScene() : impl_(std::make_unique<Impl>()) {}
+RayScene::RayScene(bool origins_outside_surfaces) : impl_(std::make_unique<Impl>()) {
+    impl_->origins_outside_surfaces = origins_outside_surfaces;
+}
 RayScene::~RayScene() = default;
 RayScene::RayScene(RayScene&&) noexcept = default;
 RayScene& RayScene::operator=(RayScene&&) noexcept = default;
@@ -130,6 +182,11 @@ int RayScene::add_mesh(const TriangleMesh& mesh) {
         bounds.extend(mesh.positions[i]);
     }
     std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+    if (m.origins_outside_surfaces) {
+        m.mesh_triangles.push_back(std::make_unique<MeshTriangles>(MeshTriangles{vertices, indices}));
+        rtcSetGeometryUserData(geometry, m.mesh_triangles.back().get());
+        rtcSetGeometryOccludedFilterFunction(geometry, ignore_exits_near_origin);
+    }
     rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
     rtcCommitGeometry(geometry);
 
@@ -202,9 +259,10 @@ bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float t_near, float
     impl_->require_committed();
     RTCRay ray;
     Impl::init_ray(ray, origin, dir, t_near, t_far);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcOccluded1(impl_->top, &context, &ray);
+    ExitContext context;
+    rtcInitIntersectContext(&context.embree);
+    impl_->set_exit(context, 0, origin, dir);
+    rtcOccluded1(impl_->top, &context.embree, &ray);
     return ray.tfar < 0.0f;
 }
 

@@ -37,9 +37,27 @@ struct RayOffset {
     Vec3 origin(const Vec3& p, const Vec3& n) const { return p + n * distance(p); }
 };
 
+// Per vertex of `mesh`, the unit direction into its own triangles within its
+// tangent plane where it lies on the border of its surface (a box's face
+// along the ground it stands on), else 0: the mean of the directions to its
+// triangles' centroids, where those do not cancel. Rays of such a vertex
+// start one ray offset along it, so that it is shaded as its face next to
+// the border, not as a point on the other part (docs/TRUTH.md); the truth
+// (PosedScene::vertex) and the SVDF bake both do. Defined in posed_scene.cpp.
+std::vector<Vec3> border_inward_directions(const TriangleMesh& mesh);
+
 class RayScene {
 public:
-    RayScene();
+    // `origins_outside_surfaces`: occlusion queries ignore a hit within a few
+    // ray offsets (RayOffset) of the origin where the ray leaves the hit
+    // triangle through its front (counter-clockwise, outward) side. An origin
+    // that lies on another part's surface — a vertex on the seam where two
+    // parts touch — then counts as just outside that part, as the renderer's
+    // exact shapes count it; a ray that enters the part there is still
+    // blocked (docs/TRUTH.md, "Vertices on another part's surface"). The
+    // truth's scenes (PosedScene) set it; the field bakes, which trace from
+    // sample points, do not.
+    explicit RayScene(bool origins_outside_surfaces = false);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;

@@ -221,3 +221,65 @@ TEST_CASE("Offset origins leave their own surface, also far from the origin", "[
         REQUIRE(offset.distance(Vec3(shift)) < 1e-4f * scene.world_diagonal() + 1e-3f * shift * 1e-2f);
     }
 }
+
+TEST_CASE("Origins on another part's surface count as outside it: a ray that leaves is free, one that enters is blocked",
+          "[trace][ray_scene]") {
+    // A box under random rotations and non-uniform scales; origins on its
+    // faces (where parts touch, a neighbour's vertex lies on them), rays in
+    // random directions. The box is convex: a ray leaving a face never
+    // meets it again, one entering always does.
+    std::mt19937 rng(2024);
+    std::uniform_real_distribution<float> uni(-1, 1);
+    const TriangleMesh box = test::make_flat_box(Vec3(0.5f, 0.3f, 0.4f), 3, "box");
+    int leaving = 0, entering = 0, wrong_with = 0, blocked_without = 0;
+    for (int pose_index = 0; pose_index < 20; ++pose_index) {
+        Transform tr;
+        tr.translation = Vec3(uni(rng), uni(rng), uni(rng));
+        tr.rotation = glm::angleAxis(3.0f * uni(rng), glm::normalize(Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(1e-3f)));
+        tr.scale = Vec3(1.0f + 0.5f * uni(rng), 1.0f + 0.5f * uni(rng), 1.0f + 0.5f * uni(rng));
+        const Mat4 pose = tr.matrix();
+        RayScene with(/*origins_outside_surfaces=*/true), without;
+        for (RayScene* scene : {&with, &without}) {
+            scene->add_instance(scene->add_mesh(box), pose);
+            scene->commit();
+        }
+        const Mat3 normal_matrix = glm::transpose(glm::inverse(Mat3(pose)));
+        for (int k = 0; k < 200; ++k) {
+            // A point inside a random face: every third one on a vertex of
+            // the face's 3×3 grid (±h/3), the others anywhere but its edges,
+            // where a ray can enter one face and leave by the next.
+            const int axis = int(3.0f * (0.5f + 0.5f * uni(rng))) % 3;
+            const Vec3 half(0.5f, 0.3f, 0.4f);
+            Vec3 local = 0.98f * half * Vec3(uni(rng), uni(rng), uni(rng));
+            if (k % 3 == 0)
+                for (int c = 0; c < 3; ++c) local[c] = (uni(rng) < 0.0f ? -1.0f : 1.0f) * half[c] / 3.0f;
+            const float side = uni(rng) < 0.0f ? -1.0f : 1.0f;
+            local[axis] = side * half[axis];
+            Vec3 outward_local(0);
+            outward_local[axis] = side;
+            const Vec3 origin = Vec3(pose * Vec4(local, 1.0f));
+            const Vec3 outward = glm::normalize(normal_matrix * outward_local);
+            const Vec3 dir = glm::normalize(Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(1e-4f));
+            const float cos_out = glm::dot(dir, outward);
+            if (std::abs(cos_out) < 0.05f) continue;  // grazing: either answer is fair at an edge
+            const bool blocked = with.occluded(origin, dir, 0.0f, 1e30f);
+            INFO("pose " << pose_index << ", face axis " << axis << " side " << side << ", cos to outward " << cos_out
+                          << ", local " << local.x << " " << local.y << " " << local.z << ", without "
+                          << without.occluded(origin, dir, 0.0f, 1e30f));
+            if (cos_out > 0.0f) {
+                ++leaving;
+                if (blocked) ++wrong_with;
+                if (without.occluded(origin, dir, 0.0f, 1e30f)) ++blocked_without;
+            } else {
+                ++entering;
+                CHECK(blocked);
+            }
+        }
+    }
+    CHECK(leaving > 1000);
+    CHECK(entering > 1000);
+    CHECK(wrong_with == 0);
+    // Without the rule such origins are a coin toss: some leaving rays hit
+    // the face they start on (the reason for the rule).
+    CHECK(blocked_without > leaving / 20);
+}

@@ -246,3 +246,40 @@ TEST_CASE("A box standing on the ground: its vertices along the seam are shaded 
     }
     CHECK(seam == 6);  // 2 faces × 3 vertices
 }
+
+TEST_CASE("The ground under a box's edge: its vertices there see the open half, as an instant outside the box",
+          "[trace][truth]") {
+    // Ground vertices on the line where the box's side faces meet the
+    // ground have ground on both sides, so they do not move into their own
+    // triangles; their rays start on the box's side plane. Rays leaving the
+    // box there are free, rays entering it blocked (RayScene's
+    // origins_outside_surfaces), as for the same box lifted by 1e-3: above
+    // the rays' origin offset (about 1e-4 here), so nothing is degenerate.
+    auto box_on_ground = [](float lift) {
+        Scene scene = test::make_scene("edge", Color(1));
+        test::add_part(scene, test::make_plane(8.0f, 32, "ground"));  // grid lines every 0.25
+        Transform pose;
+        pose.translation = Vec3(0.5f, 0.5f + lift, 0.5f);  // the box's bottom edges on grid lines x, z = 0, 1
+        test::add_part(scene, test::make_flat_box(Vec3(0.5f), 2, "box"), pose);
+        scene.camera.position = Vec3(20, 3, 20);
+        return scene;
+    };
+    const CubeMap sky = test::constant_cube(8, Color(1));
+    const Scene touching = box_on_ground(0), lifted = box_on_ground(1e-3f);
+    const VertexColors a = GroundTruth(touching, sky, 0).shade_vertices();
+    const VertexColors b = GroundTruth(lifted, sky, 0).shade_vertices();
+    const TriangleMesh& ground = touching.parts[0].mesh;
+    int edge = 0;
+    for (size_t v = 0; v < ground.vertex_count(); ++v) {
+        const Vec3 p = ground.positions[v];
+        const bool on_x_edge = (p.x == 0.0f || p.x == 1.0f) && p.z > 0.1f && p.z < 0.9f;
+        const bool on_z_edge = (p.z == 0.0f || p.z == 1.0f) && p.x > 0.1f && p.x < 0.9f;
+        if (!on_x_edge && !on_z_edge) continue;
+        ++edge;
+        INFO("ground vertex at " << p.x << ", " << p.z << ": touching " << a.parts[0][v].r << ", lifted "
+                                 << b.parts[0][v].r);
+        CHECK(a.parts[0][v].r > 0.3f);  // the open half of a white sky, less the box's corner: about 0.5
+        CHECK(a.parts[0][v].r == Approx(b.parts[0][v].r).epsilon(0.03));
+    }
+    CHECK(edge == 12);  // 4 edges × 3 inner vertices
+}
