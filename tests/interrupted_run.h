@@ -121,6 +121,7 @@ inline void write_killable_scene(const std::filesystem::path& dir, int n, const 
   "name": "killed",
   "parts": [ { "name": "ground", "obj": "ground.obj" }, { "name": "box", "obj": "box.obj" } ],
   "environment": { "file": "white.exr", "resolution": 16 },
+  "subdivision": false,
   "camera": { "position": [0, 3, 4], "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 50,
               "width": 1600, "height": 1200 })" + (precompute.empty() ? "" : ",\n  \"precompute\": " + precompute) +
                                          "\n}\n");

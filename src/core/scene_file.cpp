@@ -565,6 +565,7 @@ Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
         part.node = 0;
         scene.parts.push_back(std::move(part));
     }
+    scene.subdivision.enabled = false;  // no scene file, so no way to switch it off: as loaded
     subdivide_scene_parts(scene);
     finish_scene(scene, false, false, false);
     return scene;

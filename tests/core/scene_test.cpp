@@ -131,7 +131,8 @@ TEST_CASE("Scene files: OBJ parts, transforms, defaults and every kind of error"
     write_text(dir / "scene.json", R"({
       "parts": [ { "obj": "tet.obj", "transform": { "translation": [0, 1, 0], "rotation_axis_angle": [0, 0, 1, 90], "scale": 2 } },
                  { "name": "second", "obj": "tet.obj", "material": "red" } ],
-      "materials": { "red": { "model": "ward", "albedo": [1, 0, 0], "alpha": 0.2 } }
+      "materials": { "red": { "model": "ward", "albedo": [1, 0, 0], "alpha": 0.2 } },
+      "subdivision": false
     })");
     const Scene scene = load_scene(dir / "scene.json");
     CHECK(scene.name == "scene");

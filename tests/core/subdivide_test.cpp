@@ -143,7 +143,7 @@ TEST_CASE("subdivision: an absurd target is an error naming the file", "[core][s
     CHECK(message.find("subdivision") != std::string::npos);
 }
 
-TEST_CASE("subdivision: the scene file's setting, its default (off) and its switches", "[core][subdivide]") {
+TEST_CASE("subdivision: the scene file's setting, its default (on) and its switches", "[core][subdivide]") {
     const auto dir = test::scratch_dir("subdivide_scene");
     test::write_text(dir / "box.obj", test::kUnitBoxObj);
     test::write_text(dir / "none.hdr", "");  // load_scene checks that it exists; the renderers read it
@@ -156,10 +156,12 @@ TEST_CASE("subdivision: the scene file's setting, its default (off) and its swit
     const Scene off = load_scene(scene_with("false"));
     CHECK(off.parts[0].loaded_vertices == 8);  // no `vn`: smooth normals, one vertex per corner
     CHECK(off.parts[0].mesh.vertex_count() == 8);
-    CHECK(load_scene(scene_with("")).vertex_count() == 8);  // off unless asked for (subdivide.h says why)
+    const Scene by_default = load_scene(scene_with(""));  // on unless switched off (subdivide.h says why)
+    CHECK(by_default.vertex_count() > 8);
     CHECK(load_scene(scene_with(R"({"enabled": false, "edge": 0.2})")).vertex_count() == 8);
 
     const Scene on = load_scene(scene_with("true"));
+    CHECK(by_default.vertex_count() == on.vertex_count());
     const TriangleMesh& mesh = on.parts[0].mesh;
     CHECK(on.parts[0].loaded_vertices == 8);
     const float target = SubdivisionSettings{}.relative_edge * mesh.bounding_sphere().radius;

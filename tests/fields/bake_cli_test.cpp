@@ -75,6 +75,7 @@ void write_instanced_scene(const fs::path& dir) {
              { "name": "box1", "obj": "box.obj", "transform": { "translation": [1.5, 0, 0] } },
              { "name": "box2", "obj": "box.obj", "transform": { "translation": [-1.5, 0, 0], "scale": 0.5 } },
              { "name": "box3", "obj": "box.obj", "transform": { "rotation_axis_angle": [0, 1, 0, 30] } } ],
+  "subdivision": false,
   "precompute": { "svdf": { "resolution": 8, "clusters": 4, "vectors": 2, "supersampling": 1 },
                   "ovdf": { "shells": 2, "cube_resolution": 4, "vdt_resolution": 8, "vectors": 2 } }
 })");

@@ -30,26 +30,7 @@ Scene stacked_boxes(bool subdivide) {
 
 struct PartErrors {
     double all = 0, bottom = 0, top = 0;
-    // The bottom box over the vertices the truth does not shade black: the
-    // truth blackens the line where the top box's side faces meet the bottom
-    // box's top face (their rays start on the top box's side plane;
-    // docs/TRUTH.md), where the renderer sees the open half of their
-    // hemisphere. Sandwiched vertices are black in both and drop out too.
-    double bottom_lit = 0;
-    double all_lit = 0;  // every part, the same way (the ground's vertices under the bottom box's edges too)
 };
-
-double relative_l2_where_lit(const std::vector<std::vector<Color>>& ours, const std::vector<std::vector<Color>>& truth) {
-    double difference = 0, norm = 0;
-    for (size_t p = 0; p < truth.size(); ++p)
-        for (size_t v = 0; v < truth[p].size(); ++v) {
-            if (truth[p][v] == Color(0.0f)) continue;
-            const Color d = ours[p][v] - truth[p][v];
-            difference += double(glm::dot(d, d));
-            norm += double(glm::dot(truth[p][v], truth[p][v]));
-        }
-    return std::sqrt(difference / norm);
-}
 
 PartErrors render_against_truth(const Scene& scene, const CubeMap& environment, const RenderOptions& options) {
     const VertexColors truth = GroundTruth(scene, environment, 0.0f).shade_vertices();
@@ -57,8 +38,7 @@ PartErrors render_against_truth(const Scene& scene, const CubeMap& environment, 
     Renderer renderer(scene, fit_environment_lights(environment, options.environment_lights), fields, options);
     const VertexColors ours = renderer.shade();
     const VertexErrorReport report = compare_vertex_colors(ours, truth);
-    return {report.total.relative_l2(), report.parts[1].relative_l2(), report.parts[2].relative_l2(),
-            relative_l2_where_lit({ours.parts[1]}, {truth.parts[1]}), relative_l2_where_lit(ours.parts, truth.parts)};
+    return {report.total.relative_l2(), report.parts[1].relative_l2(), report.parts[2].relative_l2()};
 }
 
 // Grace (small bright windows: hard shadows) when the shared assets are
@@ -90,9 +70,7 @@ const BoxRuns& box_runs() {
     INFO("relative L2 all / bottom / top: coarse " << runs.coarse.all << " / " << runs.coarse.bottom << " / "  \
                                                    << runs.coarse.top << ", subdivided " << runs.subdivided.all \
                                                    << " / " << runs.subdivided.bottom << " / " << runs.subdivided.top \
-                                                   << " (where the truth is lit: bottom " << runs.subdivided.bottom_lit \
-                                                   << ", all " << runs.subdivided.all_lit << " / coarse " << runs.coarse.all_lit \
-                                                   << "), coarse with OVDFs " << runs.coarse_ovdf.all << " / "       \
+                                                   << ", coarse with OVDFs " << runs.coarse_ovdf.all << " / "        \
                                                    << runs.coarse_ovdf.bottom << " / " << runs.coarse_ovdf.top)
 
 // The ground and both boxes are exact shapes (src/render/occluder_shape.h):
@@ -110,11 +88,15 @@ TEST_CASE("Coarse stacked boxes vs the truth: each box within 5%, coarse and sub
     CHECK(runs.coarse.top < 0.03);
     CHECK(runs.coarse.bottom < 0.03);
     CHECK(runs.subdivided.top < 0.03);
-    // Measured 6.8%: the seam vertices the truth shades partly (some rays
-    // start on the top box's side plane) still count; not yet the 5% goal.
-    CHECK(runs.subdivided.bottom_lit < 0.08);
-    CHECK(runs.subdivided.all_lit < 0.05);
-    CHECK(runs.coarse.all_lit < 0.05);
+    // Measured 6.8%, over vertices on the bottom box's top face a few
+    // centimetres from the top box's wall, where a window of grace is cut
+    // off sharply. The square lights alone (the truth under the map the RSLs
+    // reconstruct, against the truth) are 5.0% on this box at K = 30 and at
+    // K = 100: the goal of 5% is the light approximation's own floor here,
+    // and the coarse box's 1.5% comes from having no vertices near that edge.
+    CHECK(runs.subdivided.bottom < 0.08);
+    CHECK(runs.subdivided.all < 0.04);
+    CHECK(runs.coarse.all < 0.03);
 }
 
 TEST_CASE("Coarse stacked boxes: exact shapes beat the OVDFs near contacts", "[render][accuracy][subdivide]") {

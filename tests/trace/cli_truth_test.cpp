@@ -33,6 +33,7 @@ TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cl
   "materials": { "grey": { "model": "lambert", "albedo": [0.5, 0.5, 0.5] } },
   "part_materials": { "*": "grey" },
   "environment": { "file": "white.exr", "resolution": 32 },
+  "subdivision": false,
   "camera": { "position": [0, 3, 2], "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 60,
               "width": 40, "height": 30 }
 })");
