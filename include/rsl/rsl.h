@@ -249,12 +249,16 @@ public:
     void set_material_parameter(const std::string& material, const std::string& key, const std::vector<float>& value);
 
     // Per-vertex colours of the current frame (for the gl backends, read
-    // back from the GPU).
+    // back from the GPU). A part with a base colour texture is given at unit
+    // texture (its diffuse and specular sums added).
     VertexColors shade();
     // The image of vertex colours, formed by primary rays as `rsl render`
-    // does (the scene posed at the current frame).
+    // does (the scene posed at the current frame). Colours carry no texture
+    // layers: a textured part is formed at unit texture.
     Image form_image(const VertexColors& colors, const ImageSettings& settings = {}) const;
-    Image render_image(const ImageSettings& settings = {});  // shade() then form_image
+    // Shades and forms the image as `rsl render` does, textured parts with
+    // their base colour texture per pixel.
+    Image render_image(const ImageSettings& settings = {});
     // The ground truth (`rsl truth`) of the current frame: every environment
     // texel and light with shadow rays.
     VertexColors truth(const TruthSettings& settings = {}) const;

@@ -182,11 +182,13 @@ VertexColors Renderer::shade() {
     State& s = *state_;
     s.update_frame();
     s.renderer->shade(s.output);
-    return to_api(s.output);
+    // A textured part's colour at unit texture: its diffuse and specular
+    // layers summed (render_image applies the texture per pixel).
+    return to_api(s.output.at_unit_texture());
 }
 
-Image Renderer::form_image(const VertexColors& colors, const ImageSettings& settings) const {
-    const State& s = *state_;
+Image Renderer::State::form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings) const {
+    const State& s = *this;
     const rsl::Scene& scene = s.scene();
     if (settings.samples < 1) throw_error("samples {}: expected at least 1", settings.samples);
     if (settings.width < 0 || settings.height < 0)
@@ -198,11 +200,20 @@ Image Renderer::form_image(const VertexColors& colors, const ImageSettings& sett
     s.posed->set_time(s.time);
     ImageFormationOptions formation;
     formation.samples_per_side = settings.samples;
-    return to_api(::rsl::form_image(*s.posed, PinholeCamera::at_time(scene.camera, s.time, width, height),
-                                    to_internal(colors, "form_image colours"), formation));
+    return to_api(::rsl::form_image(*s.posed, PinholeCamera::at_time(scene.camera, s.time, width, height), colors,
+                                    formation));
 }
 
-Image Renderer::render_image(const ImageSettings& settings) { return form_image(shade(), settings); }
+Image Renderer::form_image(const VertexColors& colors, const ImageSettings& settings) const {
+    return state_->form_image(to_internal(colors, "form_image colours"), settings);
+}
+
+Image Renderer::render_image(const ImageSettings& settings) {
+    State& s = *state_;
+    s.update_frame();
+    s.renderer->shade(s.output);
+    return s.form_image(s.output, settings);  // with the layers: textures per pixel
+}
 
 VertexColors Renderer::truth(const TruthSettings& settings) const {
     const State& s = *state_;

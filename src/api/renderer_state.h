@@ -33,6 +33,9 @@ struct Renderer::State {
         renderer->set_time(time);
         frame_stale = false;
     }
+    // The image of internal vertex colours, layered parts' textures applied
+    // per pixel, as `rsl render` forms it (the scene posed at `time`).
+    Image form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings) const;
     int part_index(const std::string& part) const;  // throws naming the parts
     void check_part(int part) const;
 };
