@@ -216,34 +216,58 @@ TEST_CASE("A sphere light matches the irradiance of a spherical source", "[trace
     REQUIRE(luminance(blocked.shade(point_on_floor(Vec3(1.6f, 0, 0.2f)), Vec3(0, 1, 0), blocked.part_brdf(0))) > 0.0f);
 }
 
+namespace {
+
+// A unit box (flat-shaded, 2 × 2 quads a face) centred at `center` on an
+// 8 m ground of `ground_cells`² cells, under a camera that sees the box's
+// +X and +Z faces (the view must be above a face's horizon).
+Scene unit_box_on_ground(int ground_cells, const Vec3& center) {
+    Scene scene = test::make_scene("box_on_ground", Color(1));
+    test::add_part(scene, test::make_plane(8.0f, ground_cells, "ground"));
+    Transform pose;
+    pose.translation = center;
+    test::add_part(scene, test::make_flat_box(Vec3(0.5f), 2, "box"), pose);
+    scene.camera.position = Vec3(20, 3, 20);
+    return scene;
+}
+
+// Shades `touching` and `lifted` (the same scene with a gap) under a white
+// sky and checks that the vertices of `part` that `selected` picks are lit
+// above `at_least` and as in the lifted scene; returns how many it checked.
+template <typename Selected>
+int check_seam_as_lifted(const Scene& touching, const Scene& lifted, int part, Selected selected, float at_least) {
+    const CubeMap sky = test::constant_cube(8, Color(1));
+    const VertexColors a = GroundTruth(touching, sky, 0).shade_vertices();
+    const VertexColors b = GroundTruth(lifted, sky, 0).shade_vertices();
+    const TriangleMesh& mesh = touching.parts[size_t(part)].mesh;
+    int checked = 0;
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        if (!selected(mesh.positions[v], mesh.normals[v])) continue;
+        ++checked;
+        const Vec3 p = mesh.positions[v];
+        INFO("part " << part << " vertex " << v << " at " << p.x << ", " << p.y << ", " << p.z << ": touching "
+                     << a.parts[part][v].r << ", lifted " << b.parts[part][v].r);
+        CHECK(a.parts[part][v].r > at_least);
+        CHECK(a.parts[part][v].r == Approx(b.parts[part][v].r).epsilon(0.03));
+    }
+    return checked;
+}
+
+}  // namespace
+
 TEST_CASE("A box standing on the ground: its vertices along the seam are shaded as its faces next to it", "[trace][truth]") {
     // Vertices on the seam lie on the ground's triangles; without the nudge
     // into their own face every ray hits the ground at t = 0 and they come
     // out black (docs/TRUTH.md). Reference: the same box lifted by 1e-4,
     // where nothing is degenerate.
-    auto box_on_ground = [](float lift) {
-        Scene scene = test::make_scene("seam", Color(1));
-        test::add_part(scene, test::make_plane(8.0f, 8, "ground"));
-        Transform pose;
-        pose.translation = Vec3(0.05f, 0.5f + lift, 0.1f);  // off the ground's grid lines
-        test::add_part(scene, test::make_flat_box(Vec3(0.5f), 2, "box"), pose);
-        scene.camera.position = Vec3(20, 3, 20);  // sees the +X and +Z faces (the view must be above a face's horizon)
-        return scene;
-    };
-    const CubeMap sky = test::constant_cube(8, Color(1));
-    const Scene touching = box_on_ground(0), lifted = box_on_ground(1e-4f);
-    const VertexColors a = GroundTruth(touching, sky, 0).shade_vertices();
-    const VertexColors b = GroundTruth(lifted, sky, 0).shade_vertices();
-    const TriangleMesh& box = touching.parts[1].mesh;
-    int seam = 0;
-    for (size_t v = 0; v < box.vertex_count(); ++v) {
-        // The bottom row of the faces the camera sees.
-        if (box.positions[v].y != -0.5f || !(box.normals[v].x > 0.5f || box.normals[v].z > 0.5f)) continue;
-        ++seam;
-        INFO("vertex " << v << ": touching " << a.parts[1][v].r << ", lifted " << b.parts[1][v].r);
-        CHECK(a.parts[1][v].r > 0.4f);  // a white sky over the upper half of the hemisphere: 0.5
-        CHECK(a.parts[1][v].r == Approx(b.parts[1][v].r).epsilon(0.03));
-    }
+    // The box off the ground's grid lines.
+    const Scene touching = unit_box_on_ground(8, Vec3(0.05f, 0.5f, 0.1f)),
+                lifted = unit_box_on_ground(8, Vec3(0.05f, 0.5f + 1e-4f, 0.1f));
+    // The bottom row of the faces the camera sees; a white sky over the
+    // upper half of the hemisphere gives 0.5.
+    const int seam = check_seam_as_lifted(touching, lifted, 1, [](const Vec3& p, const Vec3& n) {
+        return p.y == -0.5f && (n.x > 0.5f || n.z > 0.5f);
+    }, 0.4f);
     CHECK(seam == 6);  // 2 faces × 3 vertices
 }
 
@@ -255,31 +279,14 @@ TEST_CASE("The ground under a box's edge: its vertices there see the open half, 
     // box there are free, rays entering it blocked (RayScene's
     // origins_outside_surfaces), as for the same box lifted by 1e-3: above
     // the rays' origin offset (about 1e-4 here), so nothing is degenerate.
-    auto box_on_ground = [](float lift) {
-        Scene scene = test::make_scene("edge", Color(1));
-        test::add_part(scene, test::make_plane(8.0f, 32, "ground"));  // grid lines every 0.25
-        Transform pose;
-        pose.translation = Vec3(0.5f, 0.5f + lift, 0.5f);  // the box's bottom edges on grid lines x, z = 0, 1
-        test::add_part(scene, test::make_flat_box(Vec3(0.5f), 2, "box"), pose);
-        scene.camera.position = Vec3(20, 3, 20);
-        return scene;
-    };
-    const CubeMap sky = test::constant_cube(8, Color(1));
-    const Scene touching = box_on_ground(0), lifted = box_on_ground(1e-3f);
-    const VertexColors a = GroundTruth(touching, sky, 0).shade_vertices();
-    const VertexColors b = GroundTruth(lifted, sky, 0).shade_vertices();
-    const TriangleMesh& ground = touching.parts[0].mesh;
-    int edge = 0;
-    for (size_t v = 0; v < ground.vertex_count(); ++v) {
-        const Vec3 p = ground.positions[v];
+    // Grid lines every 0.25; the box's bottom edges on the lines x, z = 0, 1.
+    const Scene touching = unit_box_on_ground(32, Vec3(0.5f, 0.5f, 0.5f)),
+                lifted = unit_box_on_ground(32, Vec3(0.5f, 0.5f + 1e-3f, 0.5f));
+    // The open half of a white sky, less the box's corner: about 0.5.
+    const int edge = check_seam_as_lifted(touching, lifted, 0, [](const Vec3& p, const Vec3&) {
         const bool on_x_edge = (p.x == 0.0f || p.x == 1.0f) && p.z > 0.1f && p.z < 0.9f;
         const bool on_z_edge = (p.z == 0.0f || p.z == 1.0f) && p.x > 0.1f && p.x < 0.9f;
-        if (!on_x_edge && !on_z_edge) continue;
-        ++edge;
-        INFO("ground vertex at " << p.x << ", " << p.z << ": touching " << a.parts[0][v].r << ", lifted "
-                                 << b.parts[0][v].r);
-        CHECK(a.parts[0][v].r > 0.3f);  // the open half of a white sky, less the box's corner: about 0.5
-        CHECK(a.parts[0][v].r == Approx(b.parts[0][v].r).epsilon(0.03));
-    }
+        return on_x_edge || on_z_edge;
+    }, 0.3f);
     CHECK(edge == 12);  // 4 edges × 3 inner vertices
 }
