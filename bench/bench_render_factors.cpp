@@ -70,8 +70,12 @@ void bench_factors(const BenchOptions& options) {
         std::string environment;  // "scene": the scene's own map; else a probe under shared assets
         float time;
     };
+    // The scene's own sun and sky at mid-stride, then, with the shared probes,
+    // the small bright window of ennis and the broad grace.
     std::vector<Frame> frames = {{"scene", 0.5f}};
-    if (!options.quick && fs::exists(options.shared_assets / "probes/grace.hdr")) frames.push_back({"grace", 0.0f});
+    if (!options.quick)
+        for (const Frame& probe : {Frame{"ennis", 0.5f}, Frame{"grace", 0.0f}})
+            if (fs::exists(options.shared_assets / "probes" / (probe.environment + ".hdr"))) frames.push_back(probe);
     const std::vector<int> light_counts = options.quick ? std::vector<int>{30} : std::vector<int>{30, 100};
     const RenderBenchCase robot{"robot", "robot.json", false, 30, 0.5f};
     for (const Frame& frame : frames) {
@@ -87,20 +91,26 @@ void bench_factors(const BenchOptions& options) {
         const double truth_seconds = since(start);
         for (int k : light_counts) {
             const RslSet rsls = fit_environment_lights(map, k);
-            auto emit = [&](const std::string& variant, double error, double seconds) {
+            // All vertices, the objects (every part but the ground) and the worst part.
+            auto emit = [&](const std::string& variant, const VertexColors& colors, double seconds) {
+                const VertexErrorReport error = compare_vertex_colors(colors, reference);
+                const ObjectErrorReport objects = object_errors(error);
                 bench_emit({{"bench", "render-factors"}, {"scene", "robot"}, {"environment", env_name},
                             {"time", frame.time}, {"lights", k}, {"variant", variant},
-                            {"relative_l2", error}, {"seconds", seconds}, {"truth_seconds", truth_seconds}});
-                std::fprintf(stderr, "robot %s t=%.2f K=%d %s: %.4f (%.1f s)\n", env_name.c_str(), frame.time, k,
-                             variant.c_str(), error, seconds);
+                            {"relative_l2", error.total.relative_l2()},
+                            {"objects_relative_l2", objects.objects.relative_l2()}, {"worst_part", objects.worst_part},
+                            {"worst_part_relative_l2", objects.worst}, {"seconds", seconds},
+                            {"truth_seconds", truth_seconds}});
+                std::fprintf(stderr, "robot %s t=%.2f K=%d %s: %.4f, objects %.4f, worst %s %.4f (%.1f s)\n",
+                             env_name.c_str(), frame.time, k, variant.c_str(), error.total.relative_l2(),
+                             objects.objects.relative_l2(), objects.worst_part.c_str(), objects.worst, seconds);
             };
             // The square-vs-region light approximation alone: the exact
             // integral under the map the RSLs stand for.
             start = Clock::now();
             const VertexColors light_only =
                 GroundTruth(*base, lightfit::reconstruct(rsls, map.resolution()), frame.time).shade_vertices();
-            emit("light only (truth under the RSLs' map)", compare_vertex_colors(light_only, reference).total.relative_l2(),
-                 since(start));
+            emit("light only (truth under the RSLs' map)", light_only, since(start));
             for (const Variant& v : variants(options.quick)) {
                 auto scene = std::make_shared<Scene>(*base);
                 if (v.fields) v.fields(scene->precompute);
@@ -115,7 +125,7 @@ void bench_factors(const BenchOptions& options) {
                     make_renderer(Backend::Cpu, *scene, rsls, setup.fields, render_options);
                 renderer->set_time(frame.time);
                 const VertexColors colors = renderer->shade();
-                emit(v.name, compare_vertex_colors(colors, reference).total.relative_l2(), since(start));
+                emit(v.name, colors, since(start));
             }
         }
     }
