@@ -55,8 +55,9 @@ public:
     // parts touch — then counts as just outside that part, as the renderer's
     // exact shapes count it; a ray that enters the part there is still
     // blocked (docs/TRUTH.md, "Vertices on another part's surface"). The
-    // truth's scenes (PosedScene) set it; the field bakes, which trace from
-    // sample points, do not.
+    // truth's scenes (PosedScene) and the SVDF bake, which trace from
+    // vertices, set it; the OVDF bake, which traces from points in space,
+    // does not.
     explicit RayScene(bool origins_outside_surfaces = false);
     ~RayScene();
     RayScene(const RayScene&) = delete;
