@@ -1,10 +1,12 @@
 // The ground truth against analytic answers: the furnace, a square area light
 // (polygon form factor), a sphere's shadow from a small source, moving parts,
-// and a spherical local light.
+// a spherical local light, and the per-pixel truth of a wall on a floor.
+#include <atomic>
 #include <cmath>
 
 #include <catch2/catch.hpp>
 
+#include "src/frame/image_formation.h"
 #include "src/trace/ground_truth.h"
 #include "tests/trace/trace_test_scenes.h"
 
@@ -289,4 +291,46 @@ TEST_CASE("The ground under a box's edge: its vertices there see the open half, 
         return on_x_edge || on_z_edge;
     }, 0.3f);
     CHECK(edge == 12);  // 4 edges × 3 inner vertices
+}
+
+TEST_CASE("Per-pixel truth against a known answer: a wall on a floor (a half-space occluder) under a uniform sky",
+          "[trace][truth]") {
+    // An infinite wall standing on an infinite floor: from any point of
+    // either, the other hides exactly the half of its hemisphere that leads
+    // into it, and that half holds half of the cosine weight by symmetry.
+    // Under a uniform sky L, with direct light only, every Lambertian point
+    // of either reflects albedo × L / 2, right up to the seam. A 400 m floor
+    // and wall seen within a few metres of their seam stand for the
+    // infinite ones (what they leave open lies within 1° of the horizon).
+    const float albedo = 0.6f;
+    Scene scene = test::make_scene("half_space", Color(albedo));
+    test::add_part(scene, test::make_plane(400.0f, 4, "floor"));
+    Transform wall;  // the plane's +Y normal turned to −X, its bottom edge on the floor at x = 0
+    wall.rotation = glm::angleAxis(glm::radians(90.0f), Vec3(0, 0, 1));
+    wall.translation = Vec3(0, 200, 0);
+    test::add_part(scene, test::make_plane(400.0f, 4, "wall"), wall);
+    scene.camera.position = Vec3(-3.0f, 1.6f, 1.0f);
+    scene.camera.target = Vec3(0.0f, 0.4f, 0.0f);
+    const GroundTruth truth(scene, test::constant_cube(16, Color(1)), 0.0f);
+    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, 0.0f, 80, 60);
+    std::atomic<int> floor_hits{0}, wall_hits{0};  // both must be in view
+    const Image image = trace_image(truth.posed(), camera, {}, [&](const RayHit& hit, const Vec3& dir) {
+        ++(hit.instance == 0 ? floor_hits : wall_hits);
+        return truth.shade_hit(hit, dir);
+    });
+    int covered = 0, wrong = 0;
+    float lowest = 1e9f, highest = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            if (image.at(x, y)[3] < 1.0f) continue;  // the sky, past the floor's far edge
+            ++covered;
+            const float value = image.at(x, y)[0];
+            lowest = std::min(lowest, value), highest = std::max(highest, value);
+            if (std::abs(value - 0.5f * albedo) > 0.01f * 0.5f * albedo) ++wrong;
+        }
+    INFO(covered << " pixels, " << wrong << " off by more than 1%; values " << lowest << " .. " << highest);
+    CHECK(covered > image.width * image.height / 2);
+    CHECK(floor_hits > covered / 5);
+    CHECK(wall_hits > covered / 5);
+    CHECK(wrong == 0);
 }
