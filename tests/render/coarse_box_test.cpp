@@ -41,11 +41,12 @@ PartErrors render_against_truth(const Scene& scene, const CubeMap& environment, 
     return {report.total.relative_l2(), report.parts[1].relative_l2(), report.parts[2].relative_l2()};
 }
 
+const std::filesystem::path kGrace = std::filesystem::path(RSL_SHARED_ASSETS) / "probes/grace.hdr";
+
 // Grace (small bright windows: hard shadows) when the shared assets are
 // there, else the synthetic sky with a sun.
 CubeMap test_environment() {
-    const std::filesystem::path grace = std::filesystem::path(RSL_SHARED_ASSETS) / "probes/grace.hdr";
-    return std::filesystem::exists(grace) ? load_environment(grace, 16) : test::sky_with_sun(16);
+    return std::filesystem::exists(kGrace) ? load_environment(kGrace, 16) : test::sky_with_sun(16);
 }
 
 struct BoxRuns {
@@ -85,9 +86,12 @@ TEST_CASE("Coarse stacked boxes vs the truth: each box within 5%, coarse and sub
     CHECK(fine.parts[0].mesh.vertex_count() == coarse.parts[0].mesh.vertex_count());  // the ground is fine already
     const BoxRuns& runs = box_runs();
     BOX_ERRORS_INFO(runs);
-    CHECK(runs.coarse.top < 0.03);
-    CHECK(runs.coarse.bottom < 0.03);
-    CHECK(runs.subdivided.top < 0.03);
+    // Measured under grace 0.5-1.6% per box, under the synthetic sun (no
+    // shared assets) 2.8-3.6%.
+    const double box_limit = std::filesystem::exists(kGrace) ? 0.03 : 0.045;
+    CHECK(runs.coarse.top < box_limit);
+    CHECK(runs.coarse.bottom < box_limit);
+    CHECK(runs.subdivided.top < box_limit);
     // Measured 6.8%, over vertices on the bottom box's top face a few
     // centimetres from the top box's wall, where a window of grace is cut
     // off sharply. The square lights alone (the truth under the map the RSLs
@@ -95,8 +99,8 @@ TEST_CASE("Coarse stacked boxes vs the truth: each box within 5%, coarse and sub
     // K = 100: the goal of 5% is the light approximation's own floor here,
     // and the coarse box's 1.5% comes from having no vertices near that edge.
     CHECK(runs.subdivided.bottom < 0.08);
-    CHECK(runs.subdivided.all < 0.04);
-    CHECK(runs.coarse.all < 0.03);
+    CHECK(runs.subdivided.all < box_limit + 0.01);
+    CHECK(runs.coarse.all < box_limit);
 }
 
 TEST_CASE("Coarse stacked boxes: exact shapes beat the OVDFs near contacts", "[render][accuracy][subdivide]") {
