@@ -134,6 +134,10 @@ std::filesystem::path write_yard(const std::filesystem::path& dir, int instances
                        {"width", 640},
                        {"height", 480}};
     scene["animation"] = {{"start", 0}, {"end", kYardLoopSeconds}, {"fps", 24}};
+    // The meshes as made (500-900 vertices each): the yard measures how the
+    // frame grows with the part count, and scene files subdivide by default
+    // (a cup would become 5,000 vertices).
+    scene["subdivision"] = false;
     // The bench field settings (bench/render_bench_cases.cpp bench_precompute), but the yard's reach.
     scene["precompute"] = {
         {"svdf", {{"resolution", 16}, {"clusters", 64}, {"vectors", 6}, {"supersampling", 2}}},
