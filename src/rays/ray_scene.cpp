@@ -81,11 +81,12 @@ struct RayScene::Impl {
 
     // Up to which t a leaving hit of the ray (origin, dir) is ignored: a few
     // ray offsets (the truth's origins sit one offset off their surface).
+    // Only for a scene made with origins_outside_surfaces (the others, the
+    // OVDF bake's among them, skip it: their filter is not even set).
     void set_exit(ExitContext& context, int lane, const Vec3& origin, const Vec3& dir) const {
-        context.enabled = origins_outside_surfaces;
+        context.enabled = true;
         const float length = glm::length(dir);
-        context.exit_t[size_t(lane)] =
-            origins_outside_surfaces && length > 0.0f ? 4.0f * RayOffset{world_diagonal}.distance(origin) / length : 0.0f;
+        context.exit_t[size_t(lane)] = length > 0.0f ? 4.0f * RayOffset{world_diagonal}.distance(origin) / length : 0.0f;
     }
 
     Impl() {
@@ -145,7 +146,8 @@ struct RayScene::Impl {
         // never return (reproduced: ~50% of runs of a 2-instance scene under
         // TBB hung inside rtcOccluded16; the default flag never did in 30).
         rtcInitIntersectContext(&context.embree);
-        for (int k = 0; k < count; ++k) set_exit(context, k, origins ? origins[k] : o, dirs[k]);
+        if (origins_outside_surfaces)
+            for (int k = 0; k < count; ++k) set_exit(context, k, origins ? origins[k] : o, dirs[k]);
         rtcOccluded16(valid.data(), top, &context.embree, &ray);
         // Embree marks an occluded ray by setting tfar to −∞.
         for (int k = 0; k < count; ++k) visible[k] = ray.tfar[k] >= 0.0f ? 1 : 0;
@@ -261,7 +263,7 @@ bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float t_near, float
     Impl::init_ray(ray, origin, dir, t_near, t_far);
     ExitContext context;
     rtcInitIntersectContext(&context.embree);
-    impl_->set_exit(context, 0, origin, dir);
+    if (impl_->origins_outside_surfaces) impl_->set_exit(context, 0, origin, dir);
     rtcOccluded1(impl_->top, &context.embree, &ray);
     return ray.tfar < 0.0f;
 }
