@@ -163,8 +163,7 @@ std::vector<float> trace_vertex_vdts(const RayScene& scene, const TriangleMesh& 
         for (size_t k = range.begin(); k != range.end(); ++k) {
             const size_t v = subset ? (*subset)[k] : k;
             const Frame frame = vertex_frame(mesh, v);
-            const Vec3 p = mesh.positions[v];
-            trace_coverage(scene, sampling, offset.origin(p + inward[v] * offset.distance(p), frame.z), frame,
+            trace_coverage(scene, sampling, offset.origin(mesh.positions[v], frame.z, inward[v]), frame,
                            options.below_horizon, scratch, scratch.coverage.data());
             compute_vdt(n, scratch.coverage.data(), vdts.data() + k * nn, options.mode, scratch.vdt);
         }

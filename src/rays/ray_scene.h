@@ -35,6 +35,9 @@ struct RayOffset {
         return kRelativeToScene * scene_scale + kRelativeToPosition * coord;
     }
     Vec3 origin(const Vec3& p, const Vec3& n) const { return p + n * distance(p); }
+    // A vertex's: first one offset along `inward` (border_inward_directions:
+    // into its own triangles, or 0), then along its normal.
+    Vec3 origin(const Vec3& p, const Vec3& n, const Vec3& inward) const { return origin(p + inward * distance(p), n); }
 };
 
 // Per vertex of `mesh`, the unit direction into its own triangles within its

@@ -67,8 +67,7 @@ TEST_CASE("SVDF of a plane with a box matches ray-traced visible fractions", "[s
     for (int k = 0; k < 600; ++k) {
         const int v = int(u(rng) * 289);  // ground vertices come first
         const Frame frame = vertex_frame(mesh, size_t(v));
-        const Vec3 p = mesh.positions[v];
-        const Vec3 origin = offset.origin(p + inward[size_t(v)] * offset.distance(p), frame.z);
+        const Vec3 origin = offset.origin(mesh.positions[v], frame.z, inward[size_t(v)]);
         const float h = 0.05f + 0.15f * u(rng);
         const float reach = 0.95f - h * std::sqrt(2.0f);  // keep the square above the horizon
         // Squares around the box's image, so that most straddle its outline.
