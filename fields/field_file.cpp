@@ -204,6 +204,36 @@ void check_all_finite(const fs::path& path, const std::vector<float>& values, co
         if (!std::isfinite(values[k])) throw_file_error(path, "non-finite {} {} at index {}", what, values[k], k);
 }
 
+// Finite numbers can still overflow: μ + Σ w·b with w near 1e38 is infinite.
+// No lookup (a convex blend of texels and of samples) can exceed, per
+// cluster, max|μ| + Σ_m max|b_m|·max|w_m|; a baked field's bound is a few
+// thousand plane units (|distance| ≤ 2√2, unit basis vectors).
+void check_reconstruction_bound(const fs::path& path, const CpcaModel& m) {
+    constexpr double kLimit = 1e6;
+    const int rows = m.vectors + 1;
+    std::vector<double> table_max(size_t(m.clusters) * rows, 0.0), weight_max(size_t(m.clusters) * rows, 0.0);
+    for (int c = 0; c < m.clusters; ++c)
+        for (int t = 0; t < m.dims; ++t) {
+            const float* row = m.row(c, t);
+            for (int k = 0; k < rows; ++k)
+                table_max[size_t(c) * rows + k] = std::max(table_max[size_t(c) * rows + k], double(std::abs(row[k])));
+        }
+    for (int s = 0; s < m.samples(); ++s) {
+        const float* w = m.coefficients_of(s);
+        double* out = &weight_max[size_t(m.assignment[s]) * rows];
+        out[0] = 1.0;  // the mean's weight
+        for (int k = 0; k < m.vectors; ++k) out[k + 1] = std::max(out[k + 1], double(std::abs(w[k])));
+    }
+    for (int c = 0; c < m.clusters; ++c) {
+        double bound = 0;
+        for (int k = 0; k < rows; ++k) bound += table_max[size_t(c) * rows + k] * weight_max[size_t(c) * rows + k];
+        if (!(bound <= kLimit))
+            throw_file_error(path, "implausible field: cluster {} reconstructs distances up to {:g} (a baked field "
+                                   "stays within {:g})",
+                             c, bound, kLimit);
+    }
+}
+
 CpcaModel get_model(const fs::path& path, BinaryReader& r, FieldHeader& h) {
     CpcaModel m;
     m.dims = h.dims = r.get<int32_t>();
@@ -247,6 +277,7 @@ CpcaModel get_model(const fs::path& path, BinaryReader& r, FieldHeader& h) {
     // wrote numbers: NaN or infinity would shade every vertex that uses them.
     check_all_finite(path, m.tables, "table value");
     check_all_finite(path, m.coefficients, "PCA coefficient");
+    check_reconstruction_bound(path, m);
     return m;
 }
 

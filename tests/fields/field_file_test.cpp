@@ -121,6 +121,25 @@ TEST_CASE("A field file with a right checksum but NaN or infinite numbers is ref
     write_file_atomically(dir / "inf.rslf", bytes);
     CHECK(error_of([&] { read_svdf(dir / "inf.rslf"); }).find("non-finite PCA coefficient inf at index 2") !=
           std::string::npos);
+    // Finite but overflowing (found by fuzz_rslf: a lookup gave -inf): 1e30 ×
+    // 0.25 is finite, and so is the sum here, but 1e38 would not be; any
+    // reconstruction past 1e6 plane units is refused, a baked one passes.
+    for (const float huge : {1e30f, 3e38f, 8e6f}) {
+        std::memcpy(bytes.data() + at, &huge, 4);
+        const uint64_t fixed = fnv1a64(bytes.data(), bytes.size() - 8);
+        std::memcpy(bytes.data() + bytes.size() - 8, &fixed, 8);
+        write_file_atomically(dir / "huge.rslf", bytes);
+        const std::string message = error_of([&] { read_svdf(dir / "huge.rslf"); });
+        INFO(message);
+        CHECK(message.find("huge.rslf") != std::string::npos);
+        CHECK(message.find("implausible field: cluster 0 reconstructs distances up to") != std::string::npos);
+    }
+    const float plausible = 1e5f;  // 0.25 + 0.25·1e5: within the limit
+    std::memcpy(bytes.data() + at, &plausible, 4);
+    const uint64_t fixed = fnv1a64(bytes.data(), bytes.size() - 8);
+    std::memcpy(bytes.data() + bytes.size() - 8, &fixed, 8);
+    write_file_atomically(dir / "huge.rslf", bytes);
+    CHECK(error_of([&] { read_svdf(dir / "huge.rslf"); }).empty());
 }
 
 TEST_CASE("Field files with parameters or a bounding sphere the lookups cannot use are refused", "[field_file][bad-input][fuzz]") {
