@@ -6,7 +6,9 @@
 // view is above the horizon and whose square reaches the upper hemisphere are
 // compacted into query arrays, looked up in one BRDF batch, multiplied by the
 // self and occluder visibility, and scattered back into the colour sums.
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "src/core/error.h"
 #include "src/render/exact_visibility.h"
@@ -74,7 +76,14 @@ struct Renderer::BlockScratch {
     alignas(64) float qvx[kBlock], qvy[kBlock], qvz[kBlock];
     alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
     alignas(64) float spr[kBlock], spg[kBlock], spb[kBlock];  // the specular table's averages
-    alignas(64) bool needed[kBlock];  // per vertex: the current (light, occluder) needs a lookup
+    // Per vertex: whether the current light has a query for it, and which
+    // (valid where queried); whether the current (light, occluder) needs a
+    // lookup, 0 or 1 (32-bit: GCC 12 vectorizes no loop that computes a
+    // byte from floats), and the same packed in bytes for the lookup loop.
+    alignas(64) int32_t queried[kBlock];
+    int query_of[kBlock];
+    alignas(64) int32_t needed[kBlock];
+    alignas(64) uint8_t needed_bytes[kBlock];
     // Ray-traced visibility (options.exact_visibility): per query, whether it
     // needs no rays, and its visible fraction.
     alignas(64) bool skip[kBlock];
@@ -157,7 +166,7 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
     const Vec3 center = fast ? fast->field().center : Vec3(0);
     const float radius = fast ? fast->field().radius : 0.0f;
     const float outer = fast ? fast->field().shell_radius(fast->field().params.shells - 1) : 0.0f;
-    const Mat4& m = poses_[o].inverse;
+    const Mat4 m = poses_[o].inverse;  // a copy: the scratch's float stores could alias a reference
     for (int k = 0; k < n; ++k) {
         const float x = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0];
         const float y = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1];
@@ -207,17 +216,17 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
     // Which vertices' squares reach into the part's bounding cone (the
     // lookup gives exactly 1 for the others).
     if (is_environment) {
-        for (int k = 0; k < n; ++k) {
-            const float c = light_local.x * v.pole_x[k] + light_local.y * v.pole_y[k] + light_local.z * v.pole_z[k];
-            s.needed[k] = !OvdfLookup::unshadowed(c, v.cone[k], s.half[k]);
-        }
-        // The slab rule (square_lights.h): part of the factor itself, so it
-        // applies with and without culling. clears_box_face's world form,
-        // its division hoisted out of the loop.
+        // With the slab rule (square_lights.h): part of the factor itself, so
+        // it applies with and without culling. clears_box_face's world form,
+        // its division hoisted out of the loop; `&`, not `&&`, so that the
+        // loop stays branch-free and vectorizes.
         const float sin_beta = square_cone_sine(environment_squares_[size_t(l)].half_edge);
         const Vec3 light = occluder.inverse_linear * environment_squares_[size_t(l)].direction / occluder.face_scale;
-        for (int k = 0; k < n; ++k)
-            s.needed[k] = s.needed[k] && !clears_box_face(Vec3(v.side_x[k], v.side_y[k], v.side_z[k]), light, sin_beta);
+        for (int k = 0; k < n; ++k) {
+            const float c = light_local.x * v.pole_x[k] + light_local.y * v.pole_y[k] + light_local.z * v.pole_z[k];
+            s.needed[k] = s.queried[k] & int32_t(!OvdfLookup::unshadowed(c, v.cone[k], s.half[k])) &
+                          int32_t(!clears_box_face(Vec3(v.side_x[k], v.side_y[k], v.side_z[k]), light, sin_beta));
+        }
     } else {  // each vertex's light direction, moved into the part's frame
         const Mat3& il = occluder.inverse_linear;
         for (int k = 0; k < n; ++k) {
@@ -225,12 +234,21 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
             const float y = il[0][1] * s.dx[k] + il[1][1] * s.dy[k] + il[2][1] * s.dz[k];
             const float z = il[0][2] * s.dx[k] + il[1][2] * s.dy[k] + il[2][2] * s.dz[k];
             const float c = (x * v.pole_x[k] + y * v.pole_y[k] + z * v.pole_z[k]) / std::sqrt(x * x + y * y + z * z);
-            s.needed[k] = !OvdfLookup::unshadowed(c, v.cone[k], s.half[k]);
+            s.needed[k] = s.queried[k] & int32_t(!OvdfLookup::unshadowed(c, v.cone[k], s.half[k]));
         }
     }
-    for (int i = 0; i < m; ++i) {
-        const int k = s.index[i];
-        if (!s.needed[k] || !(s.vis[i] > 0.0f)) continue;  // black already: later occluders cannot change it
+    // A block's (light, occluder) pair usually needs a few of its ~200
+    // queries: the loop visits those alone, eight flags at a time, rather
+    // than testing every query (a branch per query, which mispredicts).
+    for (int k = 0; k < n; ++k) s.needed_bytes[k] = uint8_t(s.needed[k]);
+    for (int k = n; k < kBlock && k % 8 != 0; ++k) s.needed_bytes[k] = 0;
+    for (int first = 0; first < n; first += 8) {
+        uint64_t flags;  // needed[first .. first + 8), one byte (0 or 1) each
+        std::memcpy(&flags, s.needed_bytes + first, 8);
+        for (; flags != 0; flags &= flags - 1) {
+            const int k = first + std::countr_zero(flags) / 8;
+            const int i = s.query_of[k];
+            if (!(s.vis[i] > 0.0f)) continue;  // black already: later occluders cannot change it
         const Vec3 dir = is_environment ? light_local
                                         : glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
         if (!is_environment) {  // the slab rule for a local light's own direction
@@ -259,6 +277,7 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
         } else {
             const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
             s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
+        }
         }
     }
 }
@@ -381,8 +400,11 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         // Compaction: the view must be above the horizon (ρ = 0 otherwise, as
         // the truth) and the square must reach the upper hemisphere.
         int m = 0;
+        for (int k = 0; k < n; ++k) s.queried[k] = 0;
         for (int k = 0; k < n; ++k) {
             if (!(s.vz[k] > 0.0f) || !(s.half[k] > 0.0f) || !square_reaches_hemisphere(s.lz[k], s.half[k])) continue;
+            s.queried[k] = 1;
+            s.query_of[k] = m;
             s.index[m] = k;
             s.qx[m] = s.lpx[k], s.qy[m] = s.lpy[k], s.qh[m] = s.half[k];
             if (isotropic) {  // view-aligned frame: rotate about the normal (to_view_aligned)
