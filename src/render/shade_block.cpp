@@ -161,12 +161,16 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
     // vectorizes: the box sides (the slab rule), and as OvdfLookup::prepare
     // the pole and the cone (ratios d/R are the same in the world).
     const OvdfLookup* fast = fast_lookups_[o].get();
-    const Bounds& box = local_boxes_[o];
+    const Bounds box = local_boxes_[o];  // copies, as m below
     const bool cones = fast && culling;
     const Vec3 center = fast ? fast->field().center : Vec3(0);
     const float radius = fast ? fast->field().radius : 0.0f;
     const float outer = fast ? fast->field().shell_radius(fast->field().params.shells - 1) : 0.0f;
     const Mat4 m = poses_[o].inverse;  // a copy: the scratch's float stores could alias a reference
+    // The block's and the occluder's scratch never overlap; without saying
+    // so GCC would need more run-time alias checks than it makes, and not
+    // vectorize.
+#pragma GCC ivdep
     for (int k = 0; k < n; ++k) {
         const float x = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0];
         const float y = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1];
@@ -179,10 +183,11 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
         const bool inside = d < outer;
         const float inv = inside && d > 0.0f ? -1.0f / d : 0.0f;  // the pole points towards the center
         v.pole_x[k] = vx * inv, v.pole_y[k] = vy * inv, v.pole_z[k] = vz * inv;
-        const float cone = ovdf_zoom(d, radius).cone;
-        // No cone (no culling, or not an OVDF): every light is looked up.
-        v.cone[k] = !cones ? kOvdfNoCone : inside ? cone : -1.0f;
+        const float cone = d <= radius ? kOvdfNoCone : shading::ovdf_cone_radius(d, radius);  // ovdf_zoom's, branch-free
+        v.cone[k] = inside ? cone : -1.0f;
     }
+    if (!cones)  // no culling, or not an OVDF: every light is looked up
+        for (int k = 0; k < n; ++k) v.cone[k] = kOvdfNoCone;
     const OccluderShape& shape = shapes_[size_t(o)];
     if (shape.kind != shading::kShapeNone) {
         const BoundingSphere& reach = local_reach_[size_t(o)];

@@ -525,27 +525,42 @@ RSL_SHARED bool planar_blocks(vec3 point, vec3 dir, vec2 half_extent) {
     float across = max(abs(s) - half_extent.x, abs(u) - half_extent.y);  // ≤ 0: inside the rectangle
     return toward > 0.0f && across <= 0.0f;
 }
+// The box as the slab test sees it from one point: its bounds shrunk by the
+// contact margin, and per axis the entry of a ray parallel to that slab (0
+// inside it; outside it, past any exit: the ray misses). Computed once per
+// point, so that the per-tap test below has no branch and vectorizes.
+struct BoxSlabs {
+    vec3 low;
+    vec3 high;
+    vec3 parallel_entry;
+};
+RSL_SHARED BoxSlabs box_slabs(vec3 point, vec3 lo, vec3 hi) {
+    float margin = kShapeContactMargin * length(hi - lo);
+    BoxSlabs s;
+    s.low = lo + vec3(margin);
+    s.high = hi - vec3(margin);
+    for (int a = 0; a < 3; ++a) s.parallel_entry[a] = point[a] < s.low[a] || point[a] > s.high[a] ? 3.0e38f : 0.0f;
+    return s;
+}
+RSL_SHARED bool slabs_block(vec3 point, vec3 dir, BoxSlabs s) {
+    float entry = 0.0f;
+    float exit = 3.0e38f;
+    for (int a = 0; a < 3; ++a) {
+        bool parallel = dir[a] == 0.0f;
+        float along = parallel ? 1.0f : dir[a];
+        float t0 = (s.low[a] - point[a]) / along;
+        float t1 = (s.high[a] - point[a]) / along;
+        entry = max(entry, parallel ? s.parallel_entry[a] : min(t0, t1));
+        exit = parallel ? exit : min(exit, max(t0, t1));
+    }
+    return exit > entry;
+}
 // Whether the ray from `point` along `dir` passes through the inside of the
 // box [lo, hi] (the slab test), the box shrunk by the contact margin: a ray
 // that starts on a face and leaves it is free, one that enters is blocked,
 // so a part resting on a box is shadowed by it only where it really is.
 RSL_SHARED bool box_blocks(vec3 point, vec3 dir, vec3 lo, vec3 hi) {
-    float margin = kShapeContactMargin * length(hi - lo);
-    float entry = 0.0f;
-    float exit = 3.0e38f;
-    for (int a = 0; a < 3; ++a) {
-        float low = lo[a] + margin;
-        float high = hi[a] - margin;
-        if (dir[a] == 0.0f) {
-            if (point[a] < low || point[a] > high) return false;
-            continue;
-        }
-        float t0 = (low - point[a]) / dir[a];
-        float t1 = (high - point[a]) / dir[a];
-        entry = max(entry, min(t0, t1));
-        exit = min(exit, max(t0, t1));
-    }
-    return exit > entry;
+    return slabs_block(point, dir, box_slabs(point, lo, hi));
 }
 // Interval arithmetic for the whole-square test below: the range of a·x
 // over x ∈ [lo, hi], and of x·y over two intervals.
@@ -694,8 +709,9 @@ RSL_SHARED float shape_visible_fraction(int shape, vec3 point, LocalFrame frame,
     int lit_above = 0;
     int lit_all = 0;
     if (shape == kShapeBox) {
+        BoxSlabs slabs = box_slabs(point, lo, hi);
         for (int i = 0; i < kShadowTaps; ++i) {
-            int lit = box_blocks(point, shape_tap_direction(frame, c, h, i), lo, hi) ? 0 : 1;
+            int lit = slabs_block(point, shape_tap_direction(frame, c, h, i), slabs) ? 0 : 1;
             lit_above += shape_tap_above(c, h, i) * lit;
             lit_all += lit;
         }
