@@ -157,6 +157,11 @@ struct RenderSettings {
     bool cross_face_lights = true;   // regions may cross cube-face borders (docs/LIGHTFIT.md)
     bool self_visibility = true;     // the SVDF factor
     bool occluders = true;           // the other parts' shadows (OVDF)
+    // Which parts' images take the other parts' shadows per pixel where a
+    // shadow edge crosses a triangle, as `rsl render --pixel-shadows`:
+    // "planes" (flat rectangles: grounds, floors), "all" or "off". The cpu
+    // backend's render_image(); form_image() draws the colours it is given.
+    std::string pixel_shadows = "planes";
     // "cpu"; "gl": the GPU renderer in an offscreen context of its own;
     // "gl-current": the GPU renderer in the OpenGL ≥ 3.3 core context current
     // on the calling thread (the engine's), see gl_color_buffer(); that
@@ -254,10 +259,12 @@ public:
     VertexColors shade();
     // The image of vertex colours, formed by primary rays as `rsl render`
     // does (the scene posed at the current frame). Colours carry no texture
-    // layers: a textured part is formed at unit texture.
+    // layers: a textured part is formed at unit texture; and no per-pixel
+    // shadows: every part is its colours' blend.
     Image form_image(const VertexColors& colors, const ImageSettings& settings = {}) const;
     // Shades and forms the image as `rsl render` does, textured parts with
-    // their base colour texture per pixel.
+    // their base colour texture per pixel, and the per-pixel shadows of
+    // RenderSettings::pixel_shadows.
     Image render_image(const ImageSettings& settings = {});
     // The ground truth (`rsl truth`) of the current frame: every environment
     // texel and light with shadow rays.

@@ -33,6 +33,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : state_(
     s.options.cross_face_lights = settings.cross_face_lights;
     s.options.self_visibility = settings.self_visibility;
     s.options.occluders = settings.occluders;
+    s.options.pixel_shadows = parse_pixel_shadows(settings.pixel_shadows);
     s.options.material_override = settings.part_materials;
     SetupOptions how;
     how.progress = throttled(settings.progress);
@@ -187,7 +188,8 @@ VertexColors Renderer::shade() {
     return to_api(s.output.at_unit_texture());
 }
 
-Image Renderer::State::form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings) const {
+Image Renderer::State::form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings,
+                                  const PartShaders& part_shaders) const {
     const State& s = *this;
     const rsl::Scene& scene = s.scene();
     if (settings.samples < 1) throw_error("samples {}: expected at least 1", settings.samples);
@@ -201,7 +203,7 @@ Image Renderer::State::form_image(const ::rsl::VertexColors& colors, const Image
     ImageFormationOptions formation;
     formation.samples_per_side = settings.samples;
     return to_api(::rsl::form_image(*s.posed, PinholeCamera::at_time(scene.camera, s.time, width, height), colors,
-                                    formation));
+                                    formation, part_shaders));
 }
 
 Image Renderer::form_image(const VertexColors& colors, const ImageSettings& settings) const {
@@ -212,7 +214,8 @@ Image Renderer::render_image(const ImageSettings& settings) {
     State& s = *state_;
     s.update_frame();
     s.renderer->shade(s.output);
-    return s.form_image(s.output, settings);  // with the layers: textures per pixel
+    // With the layers (textures per pixel) and the renderer's per-pixel shadows, as `rsl render`.
+    return s.form_image(s.output, settings, s.renderer->pixel_shading(s.output));
 }
 
 VertexColors Renderer::truth(const TruthSettings& settings) const {

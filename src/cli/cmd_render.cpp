@@ -25,6 +25,7 @@ struct RenderArgs {
     bool same_face = false;
     std::string backend = "cpu";
     bool no_self = false, no_occluders = false, no_culling = false, exact_shapes = true;
+    std::string pixel_shadows = "planes";
     std::vector<std::string> materials;
     std::string output;
     std::string vertex_output;
@@ -72,6 +73,7 @@ void run_render(const RenderArgs& args) {
     options.occluders = !args.no_occluders;
     options.occluder_culling = !args.no_culling;
     options.exact_shapes = args.exact_shapes;
+    options.pixel_shadows = parse_pixel_shadows(args.pixel_shadows);
     options.material_override = parse_material_overrides(args.materials);
     if (args.shadow_maps != 0) {  // before the fit and the bake: a bad value costs nothing
         if (args.shadow_maps < ShadowMapOptions::kMinResolution || args.shadow_maps > ShadowMapOptions::kMaxResolution)
@@ -116,7 +118,8 @@ void run_render(const RenderArgs& args) {
         renderer->shade(colors);
         const auto shaded = std::chrono::steady_clock::now();
         posed.set_time(t);
-        const Image image = form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, formation);
+        const Image image = form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, formation,
+                                       renderer->pixel_shading(colors));
         const auto formed = std::chrono::steady_clock::now();
         const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
         write_exr_and_png(exr, image, tone);
@@ -154,6 +157,11 @@ RegisterCommand render_command({"render",
         app.add_flag("--exact-shapes,!--no-exact-shapes", args->exact_shapes,
                      "Parts that are one flat rectangle (a ground) or one box shadow the others from their shape, "
                      "not their OVDF: exact near contacts, about 5% slower (default on; docs/RENDERER.md)");
+        app.add_option("--pixel-shadows", args->pixel_shadows,
+                       "Which parts take the other parts' shadows per pixel in the image, where a shadow edge "
+                       "crosses a triangle (sharp shadows on coarse receivers; per-vertex colours unchanged; "
+                       "cpu backend): planes (flat rectangles: grounds, floors), all, or off")
+            ->check(CLI::IsMember({"planes", "all", "off"}))->capture_default_str();
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
         app.add_option("-o,--output", args->output, "Image to write (.exr; a .png preview beside it)")->required();
         app.add_option("--vertex-out", args->vertex_output, "Per-vertex colours (.rslv) for `rsl compare`");

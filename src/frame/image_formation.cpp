@@ -213,7 +213,7 @@ Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, 
 }
 
 Image form_image(const PosedScene& scene, const PinholeCamera& camera, const VertexColors& colors,
-                 const ImageFormationOptions& options) {
+                 const ImageFormationOptions& options, const PartShaders& part_shaders) {
     const Scene& s = scene.scene();
     if (colors.parts.size() != s.parts.size())
         throw_error("vertex colours of '{}' have {} parts, scene '{}' has {}", colors.scene_name,
@@ -238,12 +238,17 @@ Image form_image(const PosedScene& scene, const PinholeCamera& camera, const Ver
                         "texture coordinates", colors.scene_name, s.parts[p].name);
         any_layered = true;
     }
+    auto shader_of = [&](const RayHit& hit) -> const HitShader* {
+        const size_t p = size_t(hit.instance);
+        return p < part_shaders.size() && part_shaders[p] ? &part_shaders[p] : nullptr;
+    };
     // Barycentric interpolation needs no geometric normal.
-    if (!any_layered)
+    if (!any_layered && part_shaders.empty())
         return trace_tiles<false>(scene, camera, options, [&](const RayHit& hit, const Vec3&) {
             return blend_vertex_colors(s, colors, hit);
         }, {});
-    return trace_tiles<false>(scene, camera, options, [&](const RayHit& hit, const Vec3&) {
+    return trace_tiles<false>(scene, camera, options, [&](const RayHit& hit, const Vec3& direction) {
+        if (const HitShader* shader = shader_of(hit)) return (*shader)(hit, direction);
         if (const Texture* texture = textures[hit.instance]) return blend_layered_colors(s, colors, *texture, hit);
         return blend_vertex_colors(s, colors, hit);
     }, {});

@@ -7,6 +7,7 @@
 // background is given) and alpha is the covered fraction. EXR convention:
 // colour is premultiplied by coverage.
 #include <functional>
+#include <vector>
 
 #include "src/core/image.h"
 #include "src/core/scene.h"
@@ -48,6 +49,11 @@ struct ImageFormationOptions {
 // Colour of a primary-ray hit (called from worker threads).
 using HitShader = std::function<Color(const RayHit& hit, const Vec3& ray_direction)>;
 
+// Per part, a shader that colours its hits in place of the vertex colours'
+// blend (an empty function, or a part past the end: the blend). What a
+// renderer shades per pixel (VertexRenderer::pixel_shading).
+using PartShaders = std::vector<HitShader>;
+
 // Traces the image; every hit is coloured by `shade`. RGBA, all cores. Rays
 // are traced in coherent packets over square tiles of pixels, and each pixel
 // sums its samples in the order a ray at a time would (same hits, same sums).
@@ -66,8 +72,9 @@ Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, 
 // The image of per-vertex colours (the like-for-like image of a vertex result).
 // `colors` must describe `scene`'s parts (checked). A layered (textured) part
 // is diffuse × texture(uv) + specular at each sample, the texture sampled at
-// the interpolated texture coordinates (Texture::sample).
+// the interpolated texture coordinates (Texture::sample). Parts with a shader
+// in `part_shaders` take their colour from it.
 Image form_image(const PosedScene& scene, const PinholeCamera& camera, const VertexColors& colors,
-                 const ImageFormationOptions& options = {});
+                 const ImageFormationOptions& options = {}, const PartShaders& part_shaders = {});
 
 }  // namespace rsl

@@ -29,6 +29,10 @@ struct ShadowMapOptions {
     float pcf_distance = 0.1f;  // Pcf only: the occluder distance the kernel assumes, × the bounding radius
 };
 
+enum class PixelShadows { Off, Planes, All };
+// "off", "planes" or "all" (the command line's and the API's words); others throw rsl::Error.
+PixelShadows parse_pixel_shadows(const std::string& name);
+
 struct RenderOptions {
     int environment_lights = 30;     // K: RSLs fitted to the environment map
     bool cross_face_lights = true;   // fit regions across cube-face borders (docs/LIGHTFIT.md)
@@ -47,6 +51,13 @@ struct RenderOptions {
     // box resting on the ground); the taps cost the bunny and the robot about
     // 5% of their frame (docs/RENDERER.md).
     bool exact_shapes = true;
+    // Sharp shadows on coarse receivers (docs/RENDERER.md "Per-pixel
+    // shadows"): in images, the parts shaded per pixel take the other parts'
+    // occluder factor at each pixel's point, on the triangles where it
+    // differs between the corners (elsewhere, and per vertex, nothing
+    // changes). Planes: the parts that are one flat rectangle (grounds,
+    // floors, walls); All: every part. CPU backend; untextured parts.
+    PixelShadows pixel_shadows = PixelShadows::Planes;
     // Per-part material override: part name → material name (scene materials).
     std::map<std::string, std::string> material_override;
     BrdfTableOptions brdf_table;     // resolution of the BRDF summed-area tables

@@ -8,14 +8,12 @@
 
 #include "lightfit/decompose.h"
 #include "src/core/error.h"
+#include "src/render/occluder_shape.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/core/sphere_light.h"
+#include "src/render/block_scratch.h"
 
 namespace rsl {
-
-namespace {
-constexpr int kBlockSize = 256;  // must match shade_block.cpp's scratch size
-}
 
 RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face) {
     lightfit::DecomposeOptions options;
@@ -62,8 +60,8 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
         if (part.mesh.normals.size() != n)
             throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
                              part.mesh.normals.size(), n);
-        for (size_t begin = 0; begin < n; begin += kBlockSize)
-            blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kBlockSize))});
+        for (size_t begin = 0; begin < n; begin += kShadeBlock)
+            blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kShadeBlock))});
         local_bounds_.push_back(part.mesh.bounding_sphere());
         local_boxes_.push_back(part.mesh.bounds());
         shapes_.push_back(options_.exact_shapes ? find_occluder_shape(part.mesh) : OccluderShape{});
@@ -73,7 +71,14 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
         const bool fast = options_.fast_occluder_lookups && ovdf && ovdf->blend() == OvdfBlend::AlignedCoefficients;
         fast_lookups_.push_back(fast ? std::make_unique<const OvdfLookup>(ovdf->field()) : nullptr);
         if (fast_lookups_.back() && !fast_lookups_.back()->usable()) fast_lookups_.back().reset();
+        // Per pixel only with the fields' occluder factor (not the
+        // ray-traced diagnostics), and only where there is one.
+        const bool per_pixel = options_.occluders && !options_.exact_visibility &&
+                               (options_.pixel_shadows == PixelShadows::All ||
+                                (options_.pixel_shadows == PixelShadows::Planes && find_rectangle(part.mesh)));
+        pixel_parts_.push_back(per_pixel ? 1 : 0);
     }
+    pixel_terms_.resize(parts);
     part_tables_.assign(parts, nullptr);
     part_specular_tables_.assign(parts, nullptr);
     synced_material_.assign(parts, -1);
@@ -151,6 +156,13 @@ void Renderer::shade(VertexColors& out) {
     sync_materials();
     match_layers(library_, scene_, out);
     out.time = time_;
+    const size_t lights = environment_squares_.size() + light_positions_.size();
+    for (size_t p = 0; p < scene_.parts.size(); ++p)
+        if (pixel_parts_[p]) {  // sized once (again when the light count changes)
+            const size_t terms = scene_.parts[p].mesh.vertex_count() * lights;
+            pixel_terms_[p].unshadowed.resize(terms);
+            pixel_terms_[p].occlusion.resize(terms);
+        }
     std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0}, shadow_rays{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
         RenderStats counts;

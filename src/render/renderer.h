@@ -20,6 +20,7 @@
 // tables from a MaterialLibrary that can be edited between frames.
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "lightfit/rsl.h"
@@ -75,6 +76,10 @@ public:
     VertexColors make_output() const override;
 
     const RenderStats& stats() const override { return stats_; }
+    // The parts shaded per pixel (RenderOptions::pixel_shadows) that `colors`,
+    // this renderer's last shade(), holds untextured: their image takes the
+    // other parts' shadows at each pixel's point (pixel_shading.cpp).
+    PartShaders pixel_shading(const VertexColors& colors) const override;
     const RenderOptions& options() const { return options_; }
     // Square lights of the environment at the current time (world space, blend-weighted).
     const std::vector<SquareLight>& environment_squares() const { return environment_squares_; }
@@ -88,7 +93,15 @@ private:
     struct BlockScratch;  // shade_block.cpp
     void update_frame();
     void sync_materials();
-    void shade_block(const Block& block, VertexColors& out, RenderStats& counts) const;
+    void shade_block(const Block& block, VertexColors& out, RenderStats& counts);
+    void set_light(BlockScratch& s, size_t light, int n) const;
+    void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, int part, size_t light, int n,
+                             int m, RenderStats& counts) const;
+    void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
+                             const float* growth, size_t light, int n, int m, RenderStats& counts) const;
+    struct TriangleLights;  // pixel_shading.cpp
+    Color shade_pixel(const VertexColors& colors, TriangleLights& cache, const RayHit& hit) const;
+    void triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
     OccluderVertexScratch& prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
     void occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int light, int occluder, int n, int m,
@@ -134,6 +147,16 @@ private:
     const std::vector<size_t>& offsets_ = frame_.occluder_lists().offsets;
     const std::vector<float>& occluder_growth_ = frame_.occluder_lists().growth;
     RenderStats stats_;
+    // Sharp shadows on coarse receivers (RenderOptions::pixel_shadows): per
+    // part shaded per pixel, the last shade()'s terms of every (vertex,
+    // light), vertex-major: the light's share before the other parts'
+    // shadows, and their factor. Empty for the parts shaded per vertex.
+    struct PixelTerms {
+        std::vector<Color> unshadowed;
+        std::vector<float> occlusion;
+    };
+    std::vector<char> pixel_parts_;  // per part: shaded per pixel
+    std::vector<PixelTerms> pixel_terms_;
 };
 
 // Checks `fields` against the scene's parts (an SVDF must have the mesh's

@@ -6,108 +6,18 @@
 // view is above the horizon and whose square reaches the upper hemisphere are
 // compacted into query arrays, looked up in one BRDF batch, multiplied by the
 // self and occluder visibility, and scattered back into the colour sums.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
 
 #include "src/core/error.h"
 #include "src/render/exact_visibility.h"
+#include "src/render/block_scratch.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/renderer.h"
 
 namespace rsl {
-
-namespace {
-
-constexpr int kBlock = 256;
-
-}  // namespace
-
-// One occluder part's per-vertex scratch for the current block: its bounding
-// cone seen from each vertex, the slab rule's box sides and the prepared
-// OVDF points. Taken from a per-thread pool when a block first needs the
-// occluder at vertex level, so the memory follows the occluders that
-// survive block culling, not the scene's part count.
-struct OccluderVertexScratch {
-    // Per vertex: the part's bounding cone seen from the vertex — the unit
-    // direction to its center (in the part's frame, where the lookup
-    // measures the light) and the cone's plane radius
-    // (OvdfLookup::unshadowed) — which alone decides most lights. Vertices
-    // beyond the field's outer shell get a zero direction and radius −1,
-    // which every square (h < 1) clears.
-    alignas(64) float pole_x[kBlock], pole_y[kBlock], pole_z[kBlock], cone[kBlock];
-    // Which side of the part's bounding box the vertex lies on along each
-    // axis of the part's frame (box_sides, the slab rule).
-    alignas(64) float side_x[kBlock], side_y[kBlock], side_z[kBlock];
-    bool prepared[kBlock];
-    // The light-independent half of the OVDF lookup, prepared on first need,
-    // and the terms the prepared points use (their own, so that a pool that
-    // grows never moves them).
-    OvdfPoint points[kBlock];
-    OvdfTerm terms[kBlock * OvdfPoint::kMaxTerms];
-    int terms_used = 0;
-    // An occluder of exact shape (occluder_shape.h): each vertex's point and
-    // shading frame in the shape's coordinates, and whether it lies within
-    // the field's reach (beyond it the part shadows nothing, as its OVDF).
-    Vec3 shape_point[kBlock];
-    shading::LocalFrame shape_frame[kBlock];
-    bool in_reach[kBlock];
-};
-
-// Per-thread scratch of one block (about 40 KB plus the occluder pool, never
-// on the heap once warm).
-struct Renderer::BlockScratch {
-    // World positions and shading frames (x = tangent, y = bitangent, z = normal).
-    alignas(64) float px[kBlock], py[kBlock], pz[kBlock];
-    alignas(64) float xx[kBlock], xy[kBlock], xz[kBlock];
-    alignas(64) float yx[kBlock], yy[kBlock], yz[kBlock];
-    alignas(64) float zx[kBlock], zy[kBlock], zz[kBlock];
-    // View in the local frame, and the view-aligned rotation (cos φ_o, sin φ_o).
-    alignas(64) float vx[kBlock], vy[kBlock], vz[kBlock], view_cos[kBlock], view_sin[kBlock];
-    alignas(64) float r[kBlock], g[kBlock], b[kBlock];  // colour sums (textured parts: the diffuse layer)
-    alignas(64) float sr[kBlock], sg[kBlock], sb[kBlock];  // textured parts: the specular layer's sums
-    // The current light per vertex (local lights vary per vertex).
-    alignas(64) float dx[kBlock], dy[kBlock], dz[kBlock], half[kBlock], ir[kBlock], ig[kBlock], ib[kBlock];
-    // Local plane point of the light's center and the light's local z.
-    alignas(64) float lpx[kBlock], lpy[kBlock], lz[kBlock];
-    // Compacted queries.
-    int index[kBlock];
-    alignas(64) float qx[kBlock], qy[kBlock], tx[kBlock], ty[kBlock], qh[kBlock];
-    alignas(64) float qvx[kBlock], qvy[kBlock], qvz[kBlock];
-    alignas(64) float br[kBlock], bg[kBlock], bb[kBlock], vis[kBlock];
-    alignas(64) float spr[kBlock], spg[kBlock], spb[kBlock];  // the specular table's averages
-    // Per vertex: whether the current light has a query for it, and which
-    // (valid where queried); whether the current (light, occluder) needs a
-    // lookup, 0 or 1 (32-bit: GCC 12 vectorizes no loop that computes a
-    // byte from floats), and the same packed in bytes for the lookup loop.
-    alignas(64) int32_t queried[kBlock];
-    int query_of[kBlock];
-    alignas(64) int32_t needed[kBlock];
-    alignas(64) uint8_t needed_bytes[kBlock];
-    // Ray-traced visibility (options.exact_visibility): per query, whether it
-    // needs no rays, and its visible fraction.
-    alignas(64) bool skip[kBlock];
-    alignas(64) float exact[kBlock];
-
-    // Per occluder part (sized to the scene on first use): what the block
-    // knows of it, valid while `stamp` equals the block's. The bounding cone
-    // as the whole block sees it: the direction from the block's center to
-    // the part's, how far any vertex's pole can turn from it (radians), and
-    // the largest cone plane radius of any vertex (negative: some vertex may
-    // lie in the bounding sphere).
-    struct BlockOccluder {
-        uint64_t stamp = 0;
-        bool outside = false;  // the whole block lies beyond the occluder's outer shell
-        Vec3 pole{0};
-        float spread = 0, cone = -1;
-        OccluderVertexScratch* vertices = nullptr;  // null until the block needs it at vertex level
-    };
-    std::vector<BlockOccluder> occluders;
-    uint64_t stamp = 0;  // the current block's
-    std::vector<std::unique_ptr<OccluderVertexScratch>> pool;
-    size_t pool_used = 0;  // of the pool, by the current block
-};
-
 
 // Per block and occluder, before its first lookup: whether the block lies
 // beyond the field's outer shell, and the part's bounding cone as the whole
@@ -133,21 +43,11 @@ void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sph
     const float d = glm::length(to_part);
     if (!(d - block_sphere.radius > part.radius)) return;  // a vertex may lie in the bounding sphere: no cone
     b.pole = to_part / d;
-    b.spread = std::asin(std::min(1.0f, block_sphere.radius / d));
+    const float spread = std::asin(std::min(1.0f, block_sphere.radius / d)) + 1e-3f;
+    b.spread = BlockSpread{std::cos(spread), std::sin(spread)};
     b.cone = ovdf_zoom(d - block_sphere.radius, part.radius).cone;
 }
 
-// Whether an environment light (unit world direction, square half-edge h)
-// clears the part's bounding cone at every vertex of the block: then every
-// vertex's OvdfLookup::unshadowed test passes, with a margin for rounding.
-inline bool block_unshadowed(const Vec3& pole, float spread, float cone, const Vec3& light, float half_edge) {
-    if (cone < 0.0f) return false;
-    const float limit = half_edge + cone;
-    if (limit * limit >= 2.0f) return false;  // the cone and square cover every direction
-    const float needed = std::acos(1.0f - limit * limit);  // the angle to the pole each vertex needs
-    const float angle = std::acos(std::clamp(glm::dot(light, pole), -1.0f, 1.0f));
-    return angle - spread >= needed + 1e-3f;
-}
 
 // Each vertex's bounding cone of the part and its box sides, before the
 // first light that the block-level tests do not decide.
@@ -246,7 +146,7 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
     // queries: the loop visits those alone, eight flags at a time, rather
     // than testing every query (a branch per query, which mispredicts).
     for (int k = 0; k < n; ++k) s.needed_bytes[k] = uint8_t(s.needed[k]);
-    for (int k = n; k < kBlock && k % 8 != 0; ++k) s.needed_bytes[k] = 0;
+    for (int k = n; k < kShadeBlock && k % 8 != 0; ++k) s.needed_bytes[k] = 0;
     for (int first = 0; first < n; first += 8) {
         uint64_t flags;  // needed[first .. first + 8), one byte (0 or 1) each
         std::memcpy(&flags, s.needed_bytes + first, 8);
@@ -310,7 +210,93 @@ inline void add_light(int m, const int* index, const float* vis, const float* ir
 
 }  // namespace
 
-void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) const {
+// Light l as each of the block's n points sees it (direction, square, its
+// integral) and its square's center in each point's local plane.
+void Renderer::set_light(BlockScratch& s, size_t l, int n) const {
+    const size_t environment = environment_squares_.size();
+    // The light as each vertex sees it.
+    if (l < environment) {
+        const SquareLight& sq = environment_squares_[l];
+        for (int k = 0; k < n; ++k) {
+            s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
+            s.half[k] = sq.half_edge;
+            s.ir[k] = sq.integral.r, s.ig[k] = sq.integral.g, s.ib[k] = sq.integral.b;
+        }
+    } else {
+        const size_t i = l - environment;
+        const Vec3 center = light_positions_[i];
+        const float radius = lights_[i].radius;
+        const Color radiance = light_radiance_[i];
+        const Vec3 axis = light_axes_[i];
+        const Vec2 cone = light_cones_[i];
+        for (int k = 0; k < n; ++k) {
+            const SquareLight sq = sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), center, radius, radiance);
+            const float spot = shading::spot_cone_factor(axis, -sq.direction, cone.x, cone.y);
+            s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
+            s.half[k] = sq.half_edge;
+            s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
+        }
+    }
+    // Local direction → equal-area plane point p = (x, y) / √(1 + z).
+    for (int k = 0; k < n; ++k) {
+        const float lx = s.dx[k] * s.xx[k] + s.dy[k] * s.xy[k] + s.dz[k] * s.xz[k];
+        const float ly = s.dx[k] * s.yx[k] + s.dy[k] * s.yy[k] + s.dz[k] * s.yz[k];
+        const float z = s.dx[k] * s.zx[k] + s.dy[k] * s.zy[k] + s.dz[k] * s.zz[k];
+        const Vec2 p = hemisphere_to_plane(Vec3(lx, ly, z));
+        s.lpx[k] = p.x, s.lpy[k] = p.y, s.lz[k] = z;
+    }
+}
+
+// The other parts' shadows on the block's m queries of light l: each
+// occluder's factor (receiver point and light direction in the occluder's
+// frame) multiplied into s.vis. The occluders are the part's list for the
+// light (culling.h), or a given list: then `growth`, the lists' footprint
+// growth per entry, may be null, and the part-level light test is skipped
+// (it only saves time).
+void Renderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, int part_index, size_t l,
+                                   int n, int m, RenderStats& counts) const {
+    const size_t slot = size_t(part_index) * (environment_squares_.size() + light_positions_.size()) + l;
+    const size_t first = offsets_[slot];
+    shadow_by_occluders(s, block_sphere, std::span<const int>(occluders_).subspan(first, offsets_[slot + 1] - first),
+                        occluder_growth_.data() + first, l, n, m, counts);
+}
+
+void Renderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
+                                   const float* growth, size_t l, int n, int m, RenderStats& counts) const {
+    const bool is_environment = l < environment_squares_.size();
+    const bool vertex_culling = options_.occluder_culling;
+    for (size_t e = 0; e < occluders.size(); ++e) {
+        const int o = occluders[e];
+        const PartPose& occluder = poses_[o];
+        BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
+        if (b.stamp != s.stamp) prepare_occluder(s, block_sphere, o, vertex_culling);
+        if (b.outside) {
+            ++counts.block_occluders_culled;
+            continue;
+        }
+        if (vertex_culling && is_environment) {
+            // The whole block against the light's square: the part's
+            // bounding cone seen from the block, then (as the per-part
+            // test) the light's cone against the part's grown sphere.
+            const SquareLight& sq = environment_squares_[l];
+            if (occluder.uniform_scale &&
+                block_unshadowed(b.pole, b.spread, b.cone, sq.direction, sq.half_edge)) {
+                ++counts.block_occluders_culled;
+                continue;
+            }
+            const BoundingSphere grown{block_sphere.center, block_sphere.radius + (growth ? growth[e] : 0.0f)};
+            if (growth && !may_shadow_direction(grown, occluder.world_bounds, sq.direction,
+                                                square_cone_half_angle(sq.half_edge))) {
+                ++counts.block_occluders_culled;
+                continue;
+            }
+        }
+        OccluderVertexScratch& v = b.vertices ? *b.vertices : prepare_occluder_vertices(s, o, n, vertex_culling);
+        occluder_factors(s, v, int(l), o, n, m, counts);
+    }
+}
+
+void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) {
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
     const int part_index = block.part;
@@ -366,42 +352,19 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
 
     const size_t environment = environment_squares_.size();
     const size_t lights = environment + light_positions_.size();
-    const size_t slot_base = size_t(part_index) * lights;
+    // A part shaded per pixel keeps each light's terms for image formation
+    // (pixel_shading.cpp); a textured one stays per vertex.
+    PixelTerms* pixel = pixel_terms_[size_t(part_index)].occlusion.empty() || specular
+                            ? nullptr
+                            : &pixel_terms_[size_t(part_index)];
+    if (pixel) {
+        const size_t first = size_t(block.begin) * lights, last = size_t(block.end) * lights;
+        std::fill(pixel->unshadowed.begin() + first, pixel->unshadowed.begin() + last, Color(0));
+        std::fill(pixel->occlusion.begin() + first, pixel->occlusion.begin() + last, 1.0f);
+    }
     for (size_t l = 0; l < lights; ++l) {
-        const bool is_environment = l < environment;
-        if (is_environment ? !options_.environment : !options_.local_lights) continue;
-
-        // The light as each vertex sees it.
-        if (is_environment) {
-            const SquareLight& sq = environment_squares_[l];
-            for (int k = 0; k < n; ++k) {
-                s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
-                s.half[k] = sq.half_edge;
-                s.ir[k] = sq.integral.r, s.ig[k] = sq.integral.g, s.ib[k] = sq.integral.b;
-            }
-        } else {
-            const size_t i = l - environment;
-            const Vec3 center = light_positions_[i];
-            const float radius = lights_[i].radius;
-            const Color radiance = light_radiance_[i];
-            const Vec3 axis = light_axes_[i];
-            const Vec2 cone = light_cones_[i];
-            for (int k = 0; k < n; ++k) {
-                const SquareLight sq = sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), center, radius, radiance);
-                const float spot = shading::spot_cone_factor(axis, -sq.direction, cone.x, cone.y);
-                s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
-                s.half[k] = sq.half_edge;
-                s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
-            }
-        }
-        // Local direction → equal-area plane point p = (x, y) / √(1 + z).
-        for (int k = 0; k < n; ++k) {
-            const float lx = s.dx[k] * s.xx[k] + s.dy[k] * s.xy[k] + s.dz[k] * s.xz[k];
-            const float ly = s.dx[k] * s.yx[k] + s.dy[k] * s.yy[k] + s.dz[k] * s.yz[k];
-            const float z = s.dx[k] * s.zx[k] + s.dy[k] * s.zy[k] + s.dz[k] * s.zz[k];
-            const Vec2 p = hemisphere_to_plane(Vec3(lx, ly, z));
-            s.lpx[k] = p.x, s.lpy[k] = p.y, s.lz[k] = z;
-        }
+        if (l < environment ? !options_.environment : !options_.local_lights) continue;
+        set_light(s, l, n);
         // Compaction: the view must be above the horizon (ρ = 0 otherwise, as
         // the truth) and the square must reach the upper hemisphere.
         int m = 0;
@@ -463,35 +426,17 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         }
         const bool field_occluders = !exact || exact_mode == ExactVisibilityMode::Self;
 
-        // Other parts' shadows: receiver point and light direction in the occluder's frame.
-        for (size_t e = offsets_[slot_base + l]; field_occluders && e < offsets_[slot_base + l + 1]; ++e) {
-            const int o = occluders_[e];
-            const PartPose& occluder = poses_[o];
-            BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
-            if (b.stamp != s.stamp) prepare_occluder(s, block_sphere, o, vertex_culling);
-            if (b.outside) {
-                ++counts.block_occluders_culled;
-                continue;
+        if (pixel)
+            for (int i = 0; i < m; ++i) s.unshadowed_vis[i] = s.vis[i];
+        if (field_occluders) shadow_by_occluders(s, block_sphere, part_index, l, n, m, counts);
+        if (pixel) {  // the light's share without the others' shadows, and their factor
+            for (int i = 0; i < m; ++i) {
+                const int k = s.index[i];
+                const size_t at = size_t(block.begin + k) * lights + l;
+                const float before = s.unshadowed_vis[i];
+                pixel->unshadowed[at] = before * Color(s.ir[k] * s.br[i], s.ig[k] * s.bg[i], s.ib[k] * s.bb[i]);
+                pixel->occlusion[at] = before > 0.0f ? s.vis[i] / before : 1.0f;
             }
-            if (vertex_culling && is_environment) {
-                // The whole block against the light's square: the part's
-                // bounding cone seen from the block, then (as the per-part
-                // test) the light's cone against the part's grown sphere.
-                const SquareLight& sq = environment_squares_[l];
-                if (occluder.uniform_scale &&
-                    block_unshadowed(b.pole, b.spread, b.cone, sq.direction, sq.half_edge)) {
-                    ++counts.block_occluders_culled;
-                    continue;
-                }
-                const BoundingSphere grown{block_sphere.center,
-                                           block_sphere.radius + occluder_growth_[e]};
-                if (!may_shadow_direction(grown, occluder.world_bounds, sq.direction, square_cone_half_angle(sq.half_edge))) {
-                    ++counts.block_occluders_culled;
-                    continue;
-                }
-            }
-            OccluderVertexScratch& v = b.vertices ? *b.vertices : prepare_occluder_vertices(s, o, n, vertex_culling);
-            occluder_factors(s, v, int(l), o, n, m, counts);
         }
 
         add_light(m, s.index, s.vis, s.ir, s.ig, s.ib, ColorInputs{s.br, s.bg, s.bb}, ColorOutputs{s.r, s.g, s.b});

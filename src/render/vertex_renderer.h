@@ -19,6 +19,7 @@
 #include "src/core/scene.h"
 #include "src/render/frame_setup.h"
 #include "src/render/render_options.h"
+#include "src/frame/image_formation.h"
 #include "src/frame/vertex_colors.h"
 
 namespace rsl {
@@ -67,6 +68,11 @@ public:
     }
     // Counters of the last frame (what a backend does not count stays 0).
     virtual const RenderStats& stats() const = 0;
+    // The parts this renderer shades per pixel in an image of `colors`, its
+    // last shade()'s output, for form_image (RenderOptions::pixel_shadows);
+    // valid until the next shade() or set_time(). Empty: every part is its
+    // vertex colours' blend (the default, and the GL backend's today).
+    virtual PartShaders pixel_shading(const VertexColors& colors) const { return {}; }
     // The backend's own pass times of the last measured frame, as one line
     // for printing (`rsl render`); empty where it has none (the CPU).
     virtual std::string pass_times() const { return {}; }

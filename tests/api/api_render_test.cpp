@@ -60,11 +60,17 @@ TEST_CASE("the API's frame, image and truth are rsl render's and rsl truth's, bi
     CHECK(colors.producer == "rsl-cpu");
     require_same_colors(colors, api::read_vertex_colors(out + "/cli.rslv"));
     REQUIRE(max_value(colors) > 0.01);  // lit: the comparison is not of two black frames
-    const api::Image image = renderer.form_image(colors);
+    // The renderer's image (its floor with per-pixel shadows) is rsl render's.
+    const api::Image image = renderer.render_image();
     const api::Image cli_image = api::read_image(out + "/cli.exr");
     REQUIRE(image.width == 96);
     REQUIRE(image.height == 72);
     REQUIRE(image.rgba == cli_image.rgba);
+    // form_image draws the colours alone: the blend, as rsl render --pixel-shadows off.
+    REQUIRE(test::run_rsl(fmt::format("render {} --time 0.25 --lights 12 -q --pixel-shadows off -o {}/blend.exr",
+                                      scene_file.string(), out))
+                .first == 0);
+    CHECK(renderer.form_image(colors).rgba == api::read_image(out + "/blend.exr").rgba);
 
     const api::VertexColors truth = renderer.truth();
     require_same_colors(truth, api::read_vertex_colors(out + "/truth.rslv"));

@@ -1,0 +1,131 @@
+#pragma once
+// The CPU renderer's per-thread scratch (shade_block.cpp, pixel_shading.cpp):
+// a block of up to kShadeBlock points (a part's vertices, or the points its
+// pixels see), structure of arrays, never on the heap once warm. Private to
+// src/render.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "src/render/ovdf_lookup.h"
+#include "src/render/renderer.h"
+
+namespace rsl {
+
+inline constexpr int kShadeBlock = 256;  // points per block (renderer.cpp splits the parts so)
+
+// One occluder part's per-vertex scratch for the current block: its bounding
+// cone seen from each vertex, the slab rule's box sides and the prepared
+// OVDF points. Taken from a per-thread pool when a block first needs the
+// occluder at vertex level, so the memory follows the occluders that
+// survive block culling, not the scene's part count.
+struct OccluderVertexScratch {
+    // Per vertex: the part's bounding cone seen from the vertex — the unit
+    // direction to its center (in the part's frame, where the lookup
+    // measures the light) and the cone's plane radius
+    // (OvdfLookup::unshadowed) — which alone decides most lights. Vertices
+    // beyond the field's outer shell get a zero direction and radius −1,
+    // which every square (h < 1) clears.
+    alignas(64) float pole_x[kShadeBlock], pole_y[kShadeBlock], pole_z[kShadeBlock], cone[kShadeBlock];
+    // Which side of the part's bounding box the vertex lies on along each
+    // axis of the part's frame (box_sides, the slab rule).
+    alignas(64) float side_x[kShadeBlock], side_y[kShadeBlock], side_z[kShadeBlock];
+    bool prepared[kShadeBlock];
+    // The light-independent half of the OVDF lookup, prepared on first need,
+    // and the terms the prepared points use (their own, so that a pool that
+    // grows never moves them).
+    OvdfPoint points[kShadeBlock];
+    OvdfTerm terms[kShadeBlock * OvdfPoint::kMaxTerms];
+    int terms_used = 0;
+    // An occluder of exact shape (occluder_shape.h): each vertex's point and
+    // shading frame in the shape's coordinates, and whether it lies within
+    // the field's reach (beyond it the part shadows nothing, as its OVDF).
+    Vec3 shape_point[kShadeBlock];
+    shading::LocalFrame shape_frame[kShadeBlock];
+    bool in_reach[kShadeBlock];
+};
+
+// How far any point's direction to a part can turn from the block center's
+// (asin(r / d)), plus a margin of 1e-3 rad for rounding, as cosine and sine.
+struct BlockSpread {
+    float cos = 1, sin = 0;
+};
+
+// Per-thread scratch of one block (about 40 KB plus the occluder pool, never
+// on the heap once warm).
+struct Renderer::BlockScratch {
+    // World positions and shading frames (x = tangent, y = bitangent, z = normal).
+    alignas(64) float px[kShadeBlock], py[kShadeBlock], pz[kShadeBlock];
+    alignas(64) float xx[kShadeBlock], xy[kShadeBlock], xz[kShadeBlock];
+    alignas(64) float yx[kShadeBlock], yy[kShadeBlock], yz[kShadeBlock];
+    alignas(64) float zx[kShadeBlock], zy[kShadeBlock], zz[kShadeBlock];
+    // View in the local frame, and the view-aligned rotation (cos φ_o, sin φ_o).
+    alignas(64) float vx[kShadeBlock], vy[kShadeBlock], vz[kShadeBlock], view_cos[kShadeBlock], view_sin[kShadeBlock];
+    alignas(64) float r[kShadeBlock], g[kShadeBlock], b[kShadeBlock];  // colour sums (textured parts: the diffuse layer)
+    alignas(64) float sr[kShadeBlock], sg[kShadeBlock], sb[kShadeBlock];  // textured parts: the specular layer's sums
+    // The current light per vertex (local lights vary per vertex).
+    alignas(64) float dx[kShadeBlock], dy[kShadeBlock], dz[kShadeBlock], half[kShadeBlock], ir[kShadeBlock], ig[kShadeBlock], ib[kShadeBlock];
+    // Local plane point of the light's center and the light's local z.
+    alignas(64) float lpx[kShadeBlock], lpy[kShadeBlock], lz[kShadeBlock];
+    // Compacted queries.
+    int index[kShadeBlock];
+    alignas(64) float qx[kShadeBlock], qy[kShadeBlock], tx[kShadeBlock], ty[kShadeBlock], qh[kShadeBlock];
+    alignas(64) float qvx[kShadeBlock], qvy[kShadeBlock], qvz[kShadeBlock];
+    alignas(64) float br[kShadeBlock], bg[kShadeBlock], bb[kShadeBlock], vis[kShadeBlock];
+    alignas(64) float unshadowed_vis[kShadeBlock];  // parts shaded per pixel: vis before the other parts' shadows
+    alignas(64) float spr[kShadeBlock], spg[kShadeBlock], spb[kShadeBlock];  // the specular table's averages
+    // Per vertex: whether the current light has a query for it, and which
+    // (valid where queried); whether the current (light, occluder) needs a
+    // lookup, 0 or 1 (32-bit: GCC 12 vectorizes no loop that computes a
+    // byte from floats), and the same packed in bytes for the lookup loop.
+    alignas(64) int32_t queried[kShadeBlock];
+    int query_of[kShadeBlock];
+    alignas(64) int32_t needed[kShadeBlock];
+    alignas(64) uint8_t needed_bytes[kShadeBlock];
+    // Ray-traced visibility (options.exact_visibility): per query, whether it
+    // needs no rays, and its visible fraction.
+    alignas(64) bool skip[kShadeBlock];
+    alignas(64) float exact[kShadeBlock];
+
+    // Per occluder part (sized to the scene on first use): what the block
+    // knows of it, valid while `stamp` equals the block's. The bounding cone
+    // as the whole block sees it: the direction from the block's center to
+    // the part's, how far any vertex's pole can turn from it (with a margin), and
+    // the largest cone plane radius of any vertex (negative: some vertex may
+    // lie in the bounding sphere).
+    struct BlockOccluder {
+        uint64_t stamp = 0;
+        bool outside = false;  // the whole block lies beyond the occluder's outer shell
+        Vec3 pole{0};
+        BlockSpread spread;
+        float cone = -1;
+        OccluderVertexScratch* vertices = nullptr;  // null until the block needs it at vertex level
+    };
+    std::vector<BlockOccluder> occluders;
+    uint64_t stamp = 0;  // the current block's
+    std::vector<std::unique_ptr<OccluderVertexScratch>> pool;
+    size_t pool_used = 0;  // of the pool, by the current block
+};
+
+// Whether an environment light (unit world direction, square half-edge h)
+// clears the part's bounding cone at every vertex of the block: then every
+// vertex's OvdfLookup::unshadowed test passes, with a margin for rounding.
+//
+// The angle test angle(light, pole) ≥ needed + spread' (spread' = spread +
+// 1e-3, cos_needed = 1 − (h + cone)²) in cosines, without acos: a
+// rotation by more than π − spread' is none (needed ≥ π − spread' ⟺
+// cos_needed ≤ −cos spread'), else the light's cosine must be at most
+// cos(needed + spread').
+inline bool block_unshadowed(const Vec3& pole, const BlockSpread& spread, float cone, const Vec3& light,
+                             float half_edge) {
+    if (cone < 0.0f) return false;
+    const float limit = half_edge + cone;
+    const float cos_needed = 1.0f - limit * limit;  // the angle to the pole each vertex needs, as a cosine
+    if (cos_needed <= -spread.cos) return false;     // the cone and square cover every direction
+    const float sin_needed = std::sqrt(std::max(0.0f, 1.0f - cos_needed * cos_needed));
+    return glm::dot(light, pole) <= cos_needed * spread.cos - sin_needed * spread.sin;
+}
+
+}  // namespace rsl
