@@ -20,8 +20,8 @@ echo "== visibility fields (baked once, then cached in assets/scenes/.rsl-cache)
 echo "== RSL renderer (CPU), 30 lights, t=$time"
 "$rsl" render "$scene" --time "$time" --lights 30 -o out/default.exr --vertex-out out/default.rslv
 
-echo "== Embree ground truth, same frame"
-"$rsl" truth "$scene" --time "$time" -o out/default_truth.exr --vertex-out out/default_truth.rslv
+echo "== Embree ground truth, same frame (per pixel for the image, per vertex for the .rslv)"
+"$rsl" truth "$scene" --time "$time" --per-pixel -o out/default_truth.exr --vertex-out out/default_truth.rslv
 
 echo "== error of the RSL frame against the truth"
 "$rsl" compare out/default.rslv out/default_truth.rslv
