@@ -61,6 +61,9 @@ PixelShadows parse_pixel_shadows(const std::string& name) {
 PartShaders Renderer::pixel_shading(const VertexColors& colors) const {
     RSL_CHECK_EQ(colors.parts.size(), scene_.parts.size());
     PartShaders shaders(scene_.parts.size());
+    // The triangles and the pixels' occluders come from the culling's
+    // conservative tests and its sphere tree: without culling, per vertex.
+    if (!options_.occluder_culling) return shaders;
     const size_t lights = environment_squares_.size() + light_positions_.size();
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
         const PixelTerms& terms = pixel_terms_[p];
@@ -118,7 +121,6 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights& cache, c
     const float w[3] = {1.0f - hit.u - hit.v, hit.u, hit.v};
     const size_t lights = environment_squares_.size() + light_positions_.size();
     const Color blend = interpolate_vertex_colors(scene_, colors, hit);
-    if (!options_.occluder_culling) return blend;  // no conservative tests to find the triangles: per vertex
 
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
