@@ -41,7 +41,8 @@ struct PyRenderer {
 std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, const std::string& backend,
                                           const py::object& field_cache, bool cross_face, bool self_visibility,
                                           bool occluders, const std::map<std::string, std::string>& part_materials,
-                                          const py::object& progress, const std::string& pixel_shadows) {
+                                          const py::object& progress, const std::string& pixel_shadows,
+                                          bool pixel_highlights) {
     api::RenderSettings settings;
     settings.lights = lights;
     settings.backend = backend;
@@ -50,6 +51,7 @@ std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, c
     settings.self_visibility = self_visibility;
     settings.occluders = occluders;
     settings.pixel_shadows = pixel_shadows;
+    settings.pixel_highlights = pixel_highlights;
     settings.part_materials = part_materials;
     settings.progress = progress_callback(progress);
     py::gil_scoped_release release;
@@ -93,11 +95,12 @@ void bind_renderer(py::module_& m) {
              py::arg("field_cache") = py::none(), py::arg("cross_face_lights") = true,
              py::arg("self_visibility") = true, py::arg("occluders") = true,
              py::arg("part_materials") = std::map<std::string, std::string>{}, py::arg("progress") = py::none(),
-             py::arg("pixel_shadows") = "planes",
+             py::arg("pixel_shadows") = "planes", py::arg("pixel_highlights") = true,
              "Fits `lights` square lights to the environment and loads or bakes the fields (field_cache: a "
              "folder; None: beside the scene file). progress(what, fraction) hears the fit and the bakes. "
              "pixel_shadows: which parts' render_image() takes the other parts' shadows per pixel (planes, "
-             "all, off), as `rsl render --pixel-shadows`.")
+             "all, off), as `rsl render --pixel-shadows`; pixel_highlights: glossy parts take the BRDF per "
+             "pixel there.")
         .def_property_readonly("backend", [](const PyRenderer& r) { return r.renderer.backend(); })
         .def_property_readonly("device", [](const PyRenderer& r) { return r.renderer.device(); })
         .def_property_readonly("part_names", [](const PyRenderer& r) { return r.part_names; })

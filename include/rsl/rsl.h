@@ -162,6 +162,9 @@ struct RenderSettings {
     // "planes" (flat rectangles: grounds, floors), "all" or "off". The cpu
     // backend's render_image(); form_image() draws the colours it is given.
     std::string pixel_shadows = "planes";
+    // Glossy parts' images take the BRDF at each pixel's own normal and view
+    // (highlights between vertices), as `rsl render --pixel-highlights`.
+    bool pixel_highlights = true;
     // "cpu"; "gl": the GPU renderer in an offscreen context of its own;
     // "gl-current": the GPU renderer in the OpenGL ≥ 3.3 core context current
     // on the calling thread (the engine's), see gl_color_buffer(); that
@@ -260,11 +263,11 @@ public:
     // The image of vertex colours, formed by primary rays as `rsl render`
     // does (the scene posed at the current frame). Colours carry no texture
     // layers: a textured part is formed at unit texture; and no per-pixel
-    // shadows: every part is its colours' blend.
+    // shadows or highlights: every part is its colours' blend.
     Image form_image(const VertexColors& colors, const ImageSettings& settings = {}) const;
     // Shades and forms the image as `rsl render` does, textured parts with
-    // their base colour texture per pixel, and the per-pixel shadows of
-    // RenderSettings::pixel_shadows.
+    // their base colour texture per pixel, and the per-pixel shadows and
+    // highlights of RenderSettings::pixel_shadows and pixel_highlights.
     Image render_image(const ImageSettings& settings = {});
     // The ground truth (`rsl truth`) of the current frame: every environment
     // texel and light with shadow rays.

@@ -34,6 +34,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : state_(
     s.options.self_visibility = settings.self_visibility;
     s.options.occluders = settings.occluders;
     s.options.pixel_shadows = parse_pixel_shadows(settings.pixel_shadows);
+    s.options.pixel_highlights = settings.pixel_highlights;
     s.options.material_override = settings.part_materials;
     SetupOptions how;
     how.progress = throttled(settings.progress);

@@ -26,6 +26,7 @@ struct RenderArgs {
     std::string backend = "cpu";
     bool no_self = false, no_occluders = false, no_culling = false, exact_shapes = true;
     std::string pixel_shadows = "planes";
+    bool pixel_highlights = true;
     std::vector<std::string> materials;
     std::string output;
     std::string vertex_output;
@@ -74,6 +75,7 @@ void run_render(const RenderArgs& args) {
     options.occluder_culling = !args.no_culling;
     options.exact_shapes = args.exact_shapes;
     options.pixel_shadows = parse_pixel_shadows(args.pixel_shadows);
+    options.pixel_highlights = args.pixel_highlights;
     options.material_override = parse_material_overrides(args.materials);
     if (args.shadow_maps != 0) {  // before the fit and the bake: a bad value costs nothing
         if (args.shadow_maps < ShadowMapOptions::kMinResolution || args.shadow_maps > ShadowMapOptions::kMaxResolution)
@@ -162,6 +164,10 @@ RegisterCommand render_command({"render",
                        "crosses a triangle (sharp shadows on coarse receivers; per-vertex colours unchanged; "
                        "cpu backend): planes (flat rectangles: grounds, floors), all, or off")
             ->check(CLI::IsMember({"planes", "all", "off"}))->capture_default_str();
+        app.add_flag("--pixel-highlights,!--no-pixel-highlights", args->pixel_highlights,
+                     "Glossy parts take each light's BRDF average at every pixel's own normal and view in the "
+                     "image, so that highlights between vertices show (default on; per-vertex colours unchanged; "
+                     "cpu backend)");
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
         app.add_option("-o,--output", args->output, "Image to write (.exr; a .png preview beside it)")->required();
         app.add_option("--vertex-out", args->vertex_output, "Per-vertex colours (.rslv) for `rsl compare`");

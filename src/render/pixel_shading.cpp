@@ -61,20 +61,25 @@ PixelShadows parse_pixel_shadows(const std::string& name) {
 PartShaders Renderer::pixel_shading(const VertexColors& colors) const {
     RSL_CHECK_EQ(colors.parts.size(), scene_.parts.size());
     PartShaders shaders(scene_.parts.size());
-    // The triangles and the pixels' occluders come from the culling's
-    // conservative tests and its sphere tree: without culling, per vertex.
-    if (!options_.occluder_culling) return shaders;
     const size_t lights = environment_squares_.size() + light_positions_.size();
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
         const PixelTerms& terms = pixel_terms_[p];
-        if (!pixel_parts_[p] || colors.layered(p) || terms.occlusion.size() != scene_.parts[p].mesh.vertex_count() * lights)
-            continue;
-        const size_t triangles = scene_.parts[p].mesh.triangle_count();
-        auto cache = std::make_shared<TriangleLights>();
-        cache->words = (lights + 63) / 64;
-        cache->ready = std::make_unique<std::atomic<uint8_t>[]>(triangles);
-        cache->masks = std::make_unique<std::atomic<uint64_t>[]>(triangles * cache->words);
-        shaders[p] = [this, &colors, cache](const RayHit& hit, const Vec3&) { return shade_pixel(colors, *cache, hit); };
+        const size_t pairs = scene_.parts[p].mesh.vertex_count() * lights;
+        if (colors.layered(p) || terms.occlusion.size() != pairs) continue;  // not shaded per pixel in the last frame
+        // Shadows per pixel need the culling's conservative tests and its
+        // sphere tree (to find the triangles and the occluders).
+        std::shared_ptr<TriangleLights> cache;
+        if (terms.unshadowed.size() == pairs && options_.occluder_culling) {
+            const size_t triangles = scene_.parts[p].mesh.triangle_count();
+            cache = std::make_shared<TriangleLights>();
+            cache->words = (lights + 63) / 64;
+            cache->ready = std::make_unique<std::atomic<uint8_t>[]>(triangles);
+            cache->masks = std::make_unique<std::atomic<uint64_t>[]>(triangles * cache->words);
+        }
+        if (!cache && terms.self_visibility.size() != pairs) continue;
+        shaders[p] = [this, &colors, cache](const RayHit& hit, const Vec3&) {
+            return shade_pixel(colors, cache.get(), hit);
+        };
     }
     return shaders;
 }
@@ -114,32 +119,54 @@ void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* cor
     }
 }
 
-Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights& cache, const RayHit& hit) const {
+Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights* cache, const RayHit& hit) const {
     const size_t part = size_t(hit.instance);
     const TriangleMesh& mesh = scene_.parts[part].mesh;
     const uint32_t* corner = &mesh.indices[3 * size_t(hit.triangle)];
     const float w[3] = {1.0f - hit.u - hit.v, hit.u, hit.v};
     const size_t lights = environment_squares_.size() + light_positions_.size();
+    const PixelTerms& terms = pixel_terms_[part];
+    const bool highlights = !terms.self_visibility.empty();
     const Color blend = interpolate_vertex_colors(scene_, colors, hit);
 
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
     if (s.occluders.size() != scene_.parts.size()) s.occluders.assign(scene_.parts.size(), {});
-    // The triangle's lights, from the cache or computed now.
+    // Shadows per pixel: the triangle's lights, from the cache or computed now.
     thread_local std::vector<uint64_t> mask;
-    mask.resize(cache.words);
-    const size_t triangle = size_t(hit.triangle);
-    std::atomic<uint64_t>* cached = &cache.masks[triangle * cache.words];
-    if (cache.ready[triangle].load(std::memory_order_acquire)) {
-        for (size_t word = 0; word < cache.words; ++word) mask[word] = cached[word].load(std::memory_order_relaxed);
-    } else {
-        triangle_lights(s, part, corner, mask.data());
-        for (size_t word = 0; word < cache.words; ++word) cached[word].store(mask[word], std::memory_order_relaxed);
-        cache.ready[triangle].store(1, std::memory_order_release);
+    mask.assign((lights + 63) / 64, 0);
+    if (cache) {
+        const size_t triangle = size_t(hit.triangle);
+        std::atomic<uint64_t>* cached = &cache->masks[triangle * cache->words];
+        if (cache->ready[triangle].load(std::memory_order_acquire)) {
+            for (size_t word = 0; word < cache->words; ++word) mask[word] = cached[word].load(std::memory_order_relaxed);
+        } else {
+            triangle_lights(s, part, corner, mask.data());
+            for (size_t word = 0; word < cache->words; ++word) cached[word].store(mask[word], std::memory_order_relaxed);
+            cache->ready[triangle].store(1, std::memory_order_release);
+        }
+        // The dimmest of the triangle's shadowed lights, as many as together
+        // hold at most kBlendedShare of the pixel's colour, are blended too.
+        auto share_of = [&](size_t l) {
+            return std::max({sum_of(terms.unshadowed[corner[0] * lights + l]),
+                             sum_of(terms.unshadowed[corner[1] * lights + l]),
+                             sum_of(terms.unshadowed[corner[2] * lights + l])});
+        };
+        thread_local std::vector<std::pair<float, size_t>> by_share;
+        by_share.clear();
+        for (size_t l = 0; l < lights; ++l)
+            if ((mask[l / 64] >> (l % 64)) & 1) by_share.emplace_back(share_of(l), l);
+        std::sort(by_share.begin(), by_share.end());
+        float blended = 0.0f;
+        for (const auto& [share, l] : by_share) {
+            blended += share;
+            if (!(blended <= kBlendedShare * sum_of(blend))) break;
+            mask[l / 64] &= ~(uint64_t(1) << (l % 64));
+        }
     }
     bool any = false;
     for (const uint64_t word : mask) any = any || word != 0;
-    if (!any) return blend;
+    if (!any && !highlights) return blend;
 
     ++s.stamp;
     s.pool_used = 0;
@@ -152,11 +179,7 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights& cache, c
         normal += w[c] * glm::normalize(pose.normal * mesh.normals[corner[c]]);
         if (!mesh.tangents.empty()) tangent += w[c] * (pose.linear * Vec3(mesh.tangents[corner[c]]));
     }
-    const Frame frame = Frame::from_normal_tangent(glm::normalize(normal), tangent);
-    s.px[0] = point.x, s.py[0] = point.y, s.pz[0] = point.z;
-    s.xx[0] = frame.x.x, s.xy[0] = frame.x.y, s.xz[0] = frame.x.z;
-    s.yx[0] = frame.y.x, s.yy[0] = frame.y.y, s.yz[0] = frame.y.z;
-    s.zx[0] = frame.z.x, s.zy[0] = frame.z.y, s.zz[0] = frame.z.z;
+    set_point(s, 0, point, Frame::from_normal_tangent(glm::normalize(normal), tangent));
     const BoundingSphere block_sphere{point, 1e-6f * (1.0f + glm::length(point))};
     // The occluders whose reach holds the point, found once (a ground's
     // lists hold every part over it; a pixel is in few reaches).
@@ -164,31 +187,52 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights& cache, c
     thread_local std::vector<int> found, near;
     found.clear();
     near.clear();
-    lists.reach_tree.overlapping(BoundingSphere{point, 0.0f}, found);
-    for (const int index : found)
-        if (const int o = lists.field_parts[size_t(index)]; size_t(o) != part) near.push_back(o);
-
-    // The dimmest of the triangle's shadowed lights, as many as together
-    // hold at most kBlendedShare of the pixel's colour, are blended too.
-    const PixelTerms& terms = pixel_terms_[part];
-    auto share_of = [&](size_t l) {
-        return std::max({sum_of(terms.unshadowed[corner[0] * lights + l]),
-                         sum_of(terms.unshadowed[corner[1] * lights + l]),
-                         sum_of(terms.unshadowed[corner[2] * lights + l])});
-    };
-    thread_local std::vector<std::pair<float, size_t>> by_share;
-    by_share.clear();
-    for (size_t l = 0; l < lights; ++l)
-        if ((mask[l / 64] >> (l % 64)) & 1) by_share.emplace_back(share_of(l), l);
-    std::sort(by_share.begin(), by_share.end());
-    float blended = 0.0f;
-    for (const auto& [share, l] : by_share) {
-        blended += share;
-        if (!(blended <= kBlendedShare * sum_of(blend))) break;
-        mask[l / 64] &= ~(uint64_t(1) << (l % 64));
+    if (any) {
+        lists.reach_tree.overlapping(BoundingSphere{point, 0.0f}, found);
+        for (const int index : found)
+            if (const int o = lists.field_parts[size_t(index)]; size_t(o) != part) near.push_back(o);
     }
+    // The other parts' factor of light l at the point (after set_light).
     RenderStats counts;  // not reported: the frame's counters are the vertices'
+    auto occlusion_here = [&](size_t l) {
+        s.queried[0] = 1;
+        s.query_of[0] = 0;
+        s.index[0] = 0;
+        s.qx[0] = s.lpx[0], s.qy[0] = s.lpy[0], s.qh[0] = s.half[0];
+        s.vis[0] = 1.0f;
+        shadow_by_occluders(s, block_sphere, near, nullptr, l, 1, 1, counts);
+        return s.vis[0];
+    };
+
     Color sum(0);
+    if (highlights) {
+        RSL_CHECK(lights <= size_t(kShadeBlock));  // Renderer::shade keeps no highlight terms for more
+        // The BRDF at the point: Σ I_l · B_l(x) · SVDF_l blended · F_l, all
+        // the lights' BRDF averages in one batch (slot l = light l).
+        set_lights_at_point(s, lights);
+        const int m = brdf_queries(s, *part_tables_[part], nullptr, int(lights));
+        thread_local std::vector<std::pair<size_t, Color>> shadowed_lights;
+        shadowed_lights.clear();
+        for (int i = 0; i < m; ++i) {
+            const size_t l = size_t(s.index[i]);
+            const size_t at[3] = {corner[0] * lights + l, corner[1] * lights + l, corner[2] * lights + l};
+            const float self = w[0] * terms.self_visibility[at[0]] + w[1] * terms.self_visibility[at[1]] +
+                               w[2] * terms.self_visibility[at[2]];
+            if (!(self > 0.0f)) continue;  // no share at any corner, or a light switched off
+            const Color unshadowed = self * Color(s.ir[l] * s.br[i], s.ig[l] * s.bg[i], s.ib[l] * s.bb[i]);
+            if ((mask[l / 64] >> (l % 64)) & 1) {
+                shadowed_lights.emplace_back(l, unshadowed);
+                continue;
+            }
+            sum += (w[0] * terms.occlusion[at[0]] + w[1] * terms.occlusion[at[1]] + w[2] * terms.occlusion[at[2]]) *
+                   unshadowed;
+        }
+        for (const auto& [l, unshadowed] : shadowed_lights) {  // they reuse slot 0
+            set_light(s, l, 1);
+            sum += occlusion_here(l) * unshadowed;
+        }
+        return sum;
+    }
     for (size_t l = 0; l < lights; ++l) {
         const size_t at[3] = {corner[0] * lights + l, corner[1] * lights + l, corner[2] * lights + l};
         const Color u[3] = {terms.unshadowed[at[0]], terms.unshadowed[at[1]], terms.unshadowed[at[2]]};
@@ -199,13 +243,7 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights& cache, c
             continue;
         }
         set_light(s, l, 1);
-        s.queried[0] = 1;
-        s.query_of[0] = 0;
-        s.index[0] = 0;
-        s.qx[0] = s.lpx[0], s.qy[0] = s.lpy[0], s.qh[0] = s.half[0];
-        s.vis[0] = 1.0f;
-        shadow_by_occluders(s, block_sphere, near, nullptr, l, 1, 1, counts);
-        sum += (w[0] * u[0] + w[1] * u[1] + w[2] * u[2]) * s.vis[0];
+        sum += (w[0] * u[0] + w[1] * u[1] + w[2] * u[2]) * occlusion_here(l);
     }
     return sum;
 }

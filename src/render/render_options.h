@@ -58,6 +58,11 @@ struct RenderOptions {
     // changes). Planes: the parts that are one flat rectangle (grounds,
     // floors, walls); All: every part. CPU backend; untextured parts.
     PixelShadows pixel_shadows = PixelShadows::Planes;
+    // View-dependent highlights between vertices: in images, glossy parts
+    // (every material but Lambert; untextured) take the BRDF average of each
+    // light at each pixel's own normal and view, with the vertices' SVDF and
+    // occluder factors blended (docs/RENDERER.md "Per-pixel highlights").
+    bool pixel_highlights = true;
     // Per-part material override: part name → material name (scene materials).
     std::map<std::string, std::string> material_override;
     BrdfTableOptions brdf_table;     // resolution of the BRDF summed-area tables

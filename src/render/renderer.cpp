@@ -156,13 +156,19 @@ void Renderer::shade(VertexColors& out) {
     sync_materials();
     match_layers(library_, scene_, out);
     out.time = time_;
+    // The terms image formation takes per pixel (pixel_shading.cpp), sized
+    // once (again when the light count or a part's material changes).
     const size_t lights = environment_squares_.size() + light_positions_.size();
-    for (size_t p = 0; p < scene_.parts.size(); ++p)
-        if (pixel_parts_[p]) {  // sized once (again when the light count changes)
-            const size_t terms = scene_.parts[p].mesh.vertex_count() * lights;
-            pixel_terms_[p].unshadowed.resize(terms);
-            pixel_terms_[p].occlusion.resize(terms);
-        }
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        const bool glossy = library_.desc(library_.part_material(int(p))).model != "lambert";
+        const bool highlights = options_.pixel_highlights && !options_.exact_visibility && glossy &&
+                                !part_specular_tables_[p] && lights <= size_t(kShadeBlock);
+        const size_t terms = scene_.parts[p].mesh.vertex_count() * lights;
+        PixelTerms& t = pixel_terms_[p];
+        t.unshadowed.resize(pixel_parts_[p] ? terms : 0);
+        t.occlusion.resize(pixel_parts_[p] || highlights ? terms : 0);
+        t.self_visibility.resize(highlights ? terms : 0);
+    }
     std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0}, shadow_rays{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
         RenderStats counts;

@@ -94,13 +94,17 @@ private:
     void update_frame();
     void sync_materials();
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts);
+    void set_point(BlockScratch& s, int k, const Vec3& position, const Frame& frame) const;
     void set_light(BlockScratch& s, size_t light, int n) const;
+    void project_lights(BlockScratch& s, int n) const;
+    void set_lights_at_point(BlockScratch& s, size_t lights) const;
+    int brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n) const;
     void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, int part, size_t light, int n,
                              int m, RenderStats& counts) const;
     void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
                              const float* growth, size_t light, int n, int m, RenderStats& counts) const;
     struct TriangleLights;  // pixel_shading.cpp
-    Color shade_pixel(const VertexColors& colors, TriangleLights& cache, const RayHit& hit) const;
+    Color shade_pixel(const VertexColors& colors, TriangleLights* cache, const RayHit& hit) const;
     void triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
     OccluderVertexScratch& prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
@@ -151,11 +155,15 @@ private:
     // part shaded per pixel, the last shade()'s terms of every (vertex,
     // light), vertex-major: the light's share before the other parts'
     // shadows, and their factor. Empty for the parts shaded per vertex.
+    // Parts with highlights per pixel (RenderOptions::pixel_highlights) keep
+    // the SVDF factor (the visibility before the others' shadows) instead:
+    // a pixel takes the BRDF at its own point.
     struct PixelTerms {
-        std::vector<Color> unshadowed;
-        std::vector<float> occlusion;
+        std::vector<Color> unshadowed;      // shadows per pixel
+        std::vector<float> occlusion;       // either
+        std::vector<float> self_visibility; // highlights per pixel
     };
-    std::vector<char> pixel_parts_;  // per part: shaded per pixel
+    std::vector<char> pixel_parts_;  // per part: shadows per pixel
     std::vector<PixelTerms> pixel_terms_;
 };
 

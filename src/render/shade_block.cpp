@@ -70,7 +70,11 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
     // The block's and the occluder's scratch never overlap; without saying
     // so GCC would need more run-time alias checks than it makes, and not
     // vectorize.
+#if defined(__clang__)
+#pragma clang loop vectorize(assume_safety)
+#else
 #pragma GCC ivdep
+#endif
     for (int k = 0; k < n; ++k) {
         const float x = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0];
         const float y = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1];
@@ -210,6 +214,19 @@ inline void add_light(int m, const int* index, const float* vis, const float* ir
 
 }  // namespace
 
+// Point k of the block: its world position, shading frame and the view in
+// that frame (towards the camera).
+void Renderer::set_point(BlockScratch& s, int k, const Vec3& p, const Frame& f) const {
+    s.px[k] = p.x, s.py[k] = p.y, s.pz[k] = p.z;
+    s.xx[k] = f.x.x, s.xy[k] = f.x.y, s.xz[k] = f.x.z;
+    s.yx[k] = f.y.x, s.yy[k] = f.y.y, s.yz[k] = f.y.z;
+    s.zx[k] = f.z.x, s.zy[k] = f.z.y, s.zz[k] = f.z.z;
+    const Vec3 wo = f.to_local(glm::normalize(camera_ - p));
+    s.vx[k] = wo.x, s.vy[k] = wo.y, s.vz[k] = wo.z;
+    const Vec2 alignment = shading::view_alignment(wo);
+    s.view_cos[k] = alignment.x, s.view_sin[k] = alignment.y;
+}
+
 // Light l as each of the block's n points sees it (direction, square, its
 // integral) and its square's center in each point's local plane.
 void Renderer::set_light(BlockScratch& s, size_t l, int n) const {
@@ -237,7 +254,12 @@ void Renderer::set_light(BlockScratch& s, size_t l, int n) const {
             s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
         }
     }
-    // Local direction → equal-area plane point p = (x, y) / √(1 + z).
+    project_lights(s, n);
+}
+
+// Each point's light direction in its local frame → the equal-area plane
+// point p = (x, y) / √(1 + z) of the square's center, and the local z.
+void Renderer::project_lights(BlockScratch& s, int n) const {
     for (int k = 0; k < n; ++k) {
         const float lx = s.dx[k] * s.xx[k] + s.dy[k] * s.xy[k] + s.dz[k] * s.xz[k];
         const float ly = s.dx[k] * s.yx[k] + s.dy[k] * s.yy[k] + s.dz[k] * s.yz[k];
@@ -245,6 +267,76 @@ void Renderer::set_light(BlockScratch& s, size_t l, int n) const {
         const Vec2 p = hemisphere_to_plane(Vec3(lx, ly, z));
         s.lpx[k] = p.x, s.lpy[k] = p.y, s.lz[k] = z;
     }
+}
+
+// Every light at the block's point 0: slot l holds light l (the point, its
+// frame and view copied), so that one BRDF batch serves all the lights of a
+// pixel. At most kShadeBlock lights.
+void Renderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
+    const size_t environment = environment_squares_.size();
+    const Vec3 point(s.px[0], s.py[0], s.pz[0]);
+    for (size_t l = 0; l < lights; ++l) {
+        const int k = int(l);
+        s.px[k] = s.px[0], s.py[k] = s.py[0], s.pz[k] = s.pz[0];
+        s.xx[k] = s.xx[0], s.xy[k] = s.xy[0], s.xz[k] = s.xz[0];
+        s.yx[k] = s.yx[0], s.yy[k] = s.yy[0], s.yz[k] = s.yz[0];
+        s.zx[k] = s.zx[0], s.zy[k] = s.zy[0], s.zz[k] = s.zz[0];
+        s.vx[k] = s.vx[0], s.vy[k] = s.vy[0], s.vz[k] = s.vz[0];
+        s.view_cos[k] = s.view_cos[0], s.view_sin[k] = s.view_sin[0];
+        SquareLight sq;
+        float spot = 1.0f;
+        if (l < environment) {
+            sq = environment_squares_[l];
+        } else {
+            const size_t i = l - environment;
+            sq = sphere_light_square(point, light_positions_[i], lights_[i].radius, light_radiance_[i]);
+            spot = shading::spot_cone_factor(light_axes_[i], -sq.direction, light_cones_[i].x, light_cones_[i].y);
+        }
+        s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
+        s.half[k] = sq.half_edge;
+        s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
+    }
+    project_lights(s, int(lights));
+}
+
+// Light l's queries among the block's n points (after set_light), compacted
+// into s.index, s.qx/qy/qh (the square in the point's frame) and s.tx/ty
+// (in the table's frame), with their BRDF averages in s.br/bg/bb (and the
+// specular table's in s.spr/spg/spb). Returns their count m.
+int Renderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n) const {
+    const bool isotropic = table.isotropic();
+    // Compaction: the view must be above the horizon (ρ = 0 otherwise, as
+    // the truth) and the square must reach the upper hemisphere.
+    int m = 0;
+    for (int k = 0; k < n; ++k) s.queried[k] = 0;
+    for (int k = 0; k < n; ++k) {
+        if (!(s.vz[k] > 0.0f) || !(s.half[k] > 0.0f) || !square_reaches_hemisphere(s.lz[k], s.half[k])) continue;
+        s.queried[k] = 1;
+        s.query_of[k] = m;
+        s.index[m] = k;
+        s.qx[m] = s.lpx[k], s.qy[m] = s.lpy[k], s.qh[m] = s.half[k];
+        if (isotropic) {  // view-aligned frame: rotate about the normal (to_view_aligned)
+            const Vec2 t = shading::to_view_aligned(Vec2(s.lpx[k], s.lpy[k]), Vec2(s.view_cos[k], s.view_sin[k]));
+            s.tx[m] = t.x, s.ty[m] = t.y;
+        } else {
+            s.tx[m] = s.lpx[k], s.ty[m] = s.lpy[k];
+            s.qvx[m] = s.vx[k], s.qvy[m] = s.vy[k];
+        }
+        s.qvz[m] = s.vz[k];
+        ++m;
+    }
+    if (m == 0) return 0;
+
+    SquareQueries queries;
+    queries.center_x = s.tx, queries.center_y = s.ty;
+    queries.half_edge = s.qh;
+    queries.view_x = isotropic ? nullptr : s.qvx;
+    queries.view_y = isotropic ? nullptr : s.qvy;
+    queries.view_z = s.qvz;
+    queries.count = size_t(m);
+    table.square_average_batch(queries, ColorOutputs{s.br, s.bg, s.bb});
+    if (specular) specular->square_average_batch(queries, ColorOutputs{s.spr, s.spg, s.spb});
+    return m;
 }
 
 // The other parts' shadows on the block's m queries of light l: each
@@ -318,18 +410,9 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     // World position, shading frame (as PosedScene::vertex) and local view.
     for (int k = 0; k < n; ++k) {
         const int v = block.begin + k;
-        const Vec3 p = Vec3(pose.transform * Vec4(mesh.positions[v], 1.0f));
         const Vec3 normal = glm::normalize(pose.normal * mesh.normals[v]);
         const Vec3 tangent = has_tangents ? pose.linear * Vec3(mesh.tangents[v]) : Vec3(0);
-        const Frame f = Frame::from_normal_tangent(normal, tangent);
-        s.px[k] = p.x, s.py[k] = p.y, s.pz[k] = p.z;
-        s.xx[k] = f.x.x, s.xy[k] = f.x.y, s.xz[k] = f.x.z;
-        s.yx[k] = f.y.x, s.yy[k] = f.y.y, s.yz[k] = f.y.z;
-        s.zx[k] = f.z.x, s.zy[k] = f.z.y, s.zz[k] = f.z.z;
-        const Vec3 wo = f.to_local(glm::normalize(camera_ - p));
-        s.vx[k] = wo.x, s.vy[k] = wo.y, s.vz[k] = wo.z;
-        const Vec2 alignment = shading::view_alignment(wo);
-        s.view_cos[k] = alignment.x, s.view_sin[k] = alignment.y;
+        set_point(s, k, Vec3(pose.transform * Vec4(mesh.positions[v], 1.0f)), Frame::from_normal_tangent(normal, tangent));
         s.r[k] = s.g[k] = s.b[k] = 0.0f;
         s.sr[k] = s.sg[k] = s.sb[k] = 0.0f;
     }
@@ -357,46 +440,20 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     PixelTerms* pixel = pixel_terms_[size_t(part_index)].occlusion.empty() || specular
                             ? nullptr
                             : &pixel_terms_[size_t(part_index)];
+    const bool keep_unshadowed = pixel && !pixel->unshadowed.empty();
+    const bool keep_self = pixel && !pixel->self_visibility.empty();
     if (pixel) {
         const size_t first = size_t(block.begin) * lights, last = size_t(block.end) * lights;
-        std::fill(pixel->unshadowed.begin() + first, pixel->unshadowed.begin() + last, Color(0));
         std::fill(pixel->occlusion.begin() + first, pixel->occlusion.begin() + last, 1.0f);
+        if (keep_unshadowed) std::fill(pixel->unshadowed.begin() + first, pixel->unshadowed.begin() + last, Color(0));
+        if (keep_self) std::fill(pixel->self_visibility.begin() + first, pixel->self_visibility.begin() + last, 0.0f);
     }
     for (size_t l = 0; l < lights; ++l) {
         if (l < environment ? !options_.environment : !options_.local_lights) continue;
         set_light(s, l, n);
-        // Compaction: the view must be above the horizon (ρ = 0 otherwise, as
-        // the truth) and the square must reach the upper hemisphere.
-        int m = 0;
-        for (int k = 0; k < n; ++k) s.queried[k] = 0;
-        for (int k = 0; k < n; ++k) {
-            if (!(s.vz[k] > 0.0f) || !(s.half[k] > 0.0f) || !square_reaches_hemisphere(s.lz[k], s.half[k])) continue;
-            s.queried[k] = 1;
-            s.query_of[k] = m;
-            s.index[m] = k;
-            s.qx[m] = s.lpx[k], s.qy[m] = s.lpy[k], s.qh[m] = s.half[k];
-            if (isotropic) {  // view-aligned frame: rotate about the normal (to_view_aligned)
-                const Vec2 t = shading::to_view_aligned(Vec2(s.lpx[k], s.lpy[k]), Vec2(s.view_cos[k], s.view_sin[k]));
-                s.tx[m] = t.x, s.ty[m] = t.y;
-            } else {
-                s.tx[m] = s.lpx[k], s.ty[m] = s.lpy[k];
-                s.qvx[m] = s.vx[k], s.qvy[m] = s.vy[k];
-            }
-            s.qvz[m] = s.vz[k];
-            ++m;
-        }
+        const int m = brdf_queries(s, table, specular, n);
         if (m == 0) continue;
         counts.lookups += size_t(m);
-
-        SquareQueries queries;
-        queries.center_x = s.tx, queries.center_y = s.ty;
-        queries.half_edge = s.qh;
-        queries.view_x = isotropic ? nullptr : s.qvx;
-        queries.view_y = isotropic ? nullptr : s.qvy;
-        queries.view_z = s.qvz;
-        queries.count = size_t(m);
-        table.square_average_batch(queries, ColorOutputs{s.br, s.bg, s.bb});
-        if (specular) specular->square_average_batch(queries, ColorOutputs{s.spr, s.spg, s.spb});
 
         // A square whose BRDF average is 0 (clipped away below the horizon)
         // adds nothing whatever its visibility: no visibility lookups (nor rays) for it.
@@ -429,13 +486,15 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         if (pixel)
             for (int i = 0; i < m; ++i) s.unshadowed_vis[i] = s.vis[i];
         if (field_occluders) shadow_by_occluders(s, block_sphere, part_index, l, n, m, counts);
-        if (pixel) {  // the light's share without the others' shadows, and their factor
+        if (pixel) {  // the others' shadows' factor, and the light's share or the SVDF's without it
             for (int i = 0; i < m; ++i) {
                 const int k = s.index[i];
                 const size_t at = size_t(block.begin + k) * lights + l;
                 const float before = s.unshadowed_vis[i];
-                pixel->unshadowed[at] = before * Color(s.ir[k] * s.br[i], s.ig[k] * s.bg[i], s.ib[k] * s.bb[i]);
                 pixel->occlusion[at] = before > 0.0f ? s.vis[i] / before : 1.0f;
+                if (keep_unshadowed)
+                    pixel->unshadowed[at] = before * Color(s.ir[k] * s.br[i], s.ig[k] * s.bg[i], s.ib[k] * s.bb[i]);
+                if (keep_self) pixel->self_visibility[at] = before;
             }
         }
 

@@ -66,8 +66,9 @@ TEST_CASE("the API's frame, image and truth are rsl render's and rsl truth's, bi
     REQUIRE(image.width == 96);
     REQUIRE(image.height == 72);
     REQUIRE(image.rgba == cli_image.rgba);
-    // form_image draws the colours alone: the blend, as rsl render --pixel-shadows off.
-    REQUIRE(test::run_rsl(fmt::format("render {} --time 0.25 --lights 12 -q --pixel-shadows off -o {}/blend.exr",
+    // form_image draws the colours alone: the blend, as rsl render with neither per-pixel pass.
+    REQUIRE(test::run_rsl(fmt::format("render {} --time 0.25 --lights 12 -q --pixel-shadows off "
+                                      "--no-pixel-highlights -o {}/blend.exr",
                                       scene_file.string(), out))
                 .first == 0);
     CHECK(renderer.form_image(colors).rgba == api::read_image(out + "/blend.exr").rgba);

@@ -71,6 +71,7 @@ TEST_CASE("the API's gl backend renders the CPU's image; gl-current without a co
     api::RenderSettings settings;
     settings.lights = 8;
     settings.pixel_shadows = "off";  // the gl backend has no per-pixel pass: compare the vertex pipelines' images
+    settings.pixel_highlights = false;
     api::Renderer cpu(scene, settings);
     settings.backend = "gl";
     api::Renderer gpu(scene, settings);
