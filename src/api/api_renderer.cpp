@@ -183,6 +183,7 @@ void Renderer::set_material_parameter(const std::string& material, const std::st
 VertexColors Renderer::shade() {
     State& s = *state_;
     s.update_frame();
+    s.renderer->keep_pixel_terms(false);  // colours alone: no image's terms to keep
     s.renderer->shade(s.output);
     // A textured part's colour at unit texture: its diffuse and specular
     // layers summed (render_image applies the texture per pixel).
@@ -214,6 +215,7 @@ Image Renderer::form_image(const VertexColors& colors, const ImageSettings& sett
 Image Renderer::render_image(const ImageSettings& settings) {
     State& s = *state_;
     s.update_frame();
+    s.renderer->keep_pixel_terms(true);
     s.renderer->shade(s.output);
     // With the layers (textures per pixel) and the renderer's per-pixel shadows, as `rsl render`.
     return s.form_image(s.output, settings, s.renderer->pixel_shading(s.output));

@@ -107,6 +107,7 @@ void run_render(const RenderArgs& args) {
     const int height = args.height > 0 ? args.height : scene.camera.height;
     PosedScene posed(scene, times.front());
     VertexColors colors = renderer->make_output();
+    renderer->keep_pixel_terms(true);  // every frame forms an image
     ImageFormationOptions formation;
     formation.samples_per_side = args.samples;
     // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,

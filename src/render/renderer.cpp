@@ -161,12 +161,13 @@ void Renderer::shade(VertexColors& out) {
     const size_t lights = environment_squares_.size() + light_positions_.size();
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
         const bool glossy = library_.desc(library_.part_material(int(p))).model != "lambert";
-        const bool highlights = options_.pixel_highlights && !options_.exact_visibility && glossy &&
-                                !part_specular_tables_[p] && lights <= size_t(kShadeBlock);
+        const bool highlights = keep_pixel_terms_ && options_.pixel_highlights && !options_.exact_visibility &&
+                                glossy && !part_specular_tables_[p] && lights <= size_t(kShadeBlock);
+        const bool shadows = keep_pixel_terms_ && pixel_parts_[p];
         const size_t terms = scene_.parts[p].mesh.vertex_count() * lights;
         PixelTerms& t = pixel_terms_[p];
-        t.unshadowed.resize(pixel_parts_[p] ? terms : 0);
-        t.occlusion.resize(pixel_parts_[p] || highlights ? terms : 0);
+        t.unshadowed.resize(shadows ? terms : 0);
+        t.occlusion.resize(shadows || highlights ? terms : 0);
         t.self_visibility.resize(highlights ? terms : 0);
     }
     std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0}, shadow_rays{0};

@@ -80,6 +80,7 @@ public:
     // this renderer's last shade(), holds untextured: their image takes the
     // other parts' shadows at each pixel's point (pixel_shading.cpp).
     PartShaders pixel_shading(const VertexColors& colors) const override;
+    void keep_pixel_terms(bool keep) override { keep_pixel_terms_ = keep; }
     const RenderOptions& options() const { return options_; }
     // Square lights of the environment at the current time (world space, blend-weighted).
     const std::vector<SquareLight>& environment_squares() const { return environment_squares_; }
@@ -163,6 +164,7 @@ private:
         std::vector<float> occlusion;       // either
         std::vector<float> self_visibility; // highlights per pixel
     };
+    bool keep_pixel_terms_ = false;
     std::vector<char> pixel_parts_;  // per part: shadows per pixel
     std::vector<PixelTerms> pixel_terms_;
 };

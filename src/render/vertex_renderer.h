@@ -69,10 +69,15 @@ public:
     // Counters of the last frame (what a backend does not count stays 0).
     virtual const RenderStats& stats() const = 0;
     // The parts this renderer shades per pixel in an image of `colors`, its
-    // last shade()'s output, for form_image (RenderOptions::pixel_shadows);
-    // valid until the next shade() or set_time(). Empty: every part is its
-    // vertex colours' blend (the default, and the GL backend's today).
+    // last shade()'s output, for form_image (RenderOptions::pixel_shadows,
+    // pixel_highlights; that shade() must have kept the terms, below); valid
+    // until the next shade() or set_time(). Empty: every part is its vertex
+    // colours' blend (the GL backend's today).
     virtual PartShaders pixel_shading(const VertexColors& colors) const { return {}; }
+    // Whether shade() keeps what pixel_shading needs (per (vertex, light)
+    // terms of the parts shaded per pixel: 3–8% of the CPU's shading time).
+    // Off by default: callers that form images with it switch it on.
+    virtual void keep_pixel_terms(bool keep) {}
     // The backend's own pass times of the last measured frame, as one line
     // for printing (`rsl render`); empty where it has none (the CPU).
     virtual std::string pass_times() const { return {}; }

@@ -48,6 +48,7 @@ Images render_images(bool exact_shapes) {
         options.exact_shapes = exact_shapes;
         options.pixel_shadows = mode;
         Renderer renderer(scene, lights, fields, options);
+        renderer.keep_pixel_terms(true);
         VertexColors colors = renderer.shade();
         const PartShaders shaders = renderer.pixel_shading(colors);
         CHECK(shaders.size() == 2);
@@ -113,6 +114,7 @@ TEST_CASE("A pixel at a receiver's vertex takes that vertex's colour", "[render]
     const CubeMap environment = test::sky_with_sun(16);
     Renderer renderer(scene, fit_environment_lights(environment, 30), bake_part_fields(scene, FieldBakeOptions{}),
                       RenderOptions{});
+    renderer.keep_pixel_terms(true);
     const VertexColors colors = renderer.shade();
     const PartShaders shaders = renderer.pixel_shading(colors);
     REQUIRE(shaders.size() == 2);
@@ -166,7 +168,8 @@ TEST_CASE("Per-pixel highlights on a coarse glossy plane follow the per-pixel tr
         options.pixel_highlights = per_pixel;
         options.pixel_shadows = PixelShadows::Off;  // nothing casts a shadow: the highlights alone
         Renderer renderer(scene, lights, PartFields{}, options);
-        const VertexColors colors = renderer.shade();
+        renderer.keep_pixel_terms(true);
+    const VertexColors colors = renderer.shade();
         const PartShaders shaders = renderer.pixel_shading(colors);
         REQUIRE(shaders.size() == 1);
         CHECK(bool(shaders[0]) == per_pixel);
