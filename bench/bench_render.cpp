@@ -59,6 +59,19 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     const PinholeCamera camera = PinholeCamera::at_time(scene->camera, c.time, width, height);
     Image image;
     const double image_seconds = median_seconds(repeats, [&] { image = form_image(posed, camera, colors); });
+    // `rsl render`'s image: shading that keeps the per-pixel terms, then the
+    // image with per-pixel shadows and highlights (docs/RENDERER.md).
+    renderer->keep_pixel_terms(true);
+    renderer->shade(colors);
+    const double shade_pixel_terms_seconds = median_seconds(repeats, [&] {
+        renderer->set_time(c.time);
+        renderer->shade(colors);
+    });
+    const double image_per_pixel_seconds = median_seconds(repeats, [&] {
+        form_image(posed, camera, colors, {}, renderer->pixel_shading(colors));
+    });
+    renderer->keep_pixel_terms(false);
+    renderer->shade(colors);  // the colours and stats of the frame as measured first
 
     // The same frame with parts of the work switched off or done the slower
     // way, in the same run: where the time goes, and the split OVDF lookup's
@@ -107,6 +120,8 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
                 {"image_seconds", image_seconds},
                 {"image", fmt::format("{}x{}", width, height)},
                 {"fps_with_image", 1.0 / (shade_seconds + image_seconds)},
+                {"shade_seconds_pixel_terms", shade_pixel_terms_seconds},
+                {"image_seconds_per_pixel", image_per_pixel_seconds},
                 {"truth_seconds", truth_seconds},
                 {"speedup_shading", truth_seconds / shade_seconds},
                 {"speedup_with_image", (truth_seconds + image_seconds) / (shade_seconds + image_seconds)},
