@@ -189,19 +189,30 @@ Image trace_tiles(const PosedScene& scene, const PinholeCamera& camera, const Im
     return (1.0f - hit.u - hit.v) * part[tri[0]] + hit.u * part[tri[1]] + hit.v * part[tri[2]];
 }
 
-// A layered (textured) part at a hit: the diffuse sum times the texture at
-// the interpolated texture coordinates, plus the specular sum.
-Color blend_layered_colors(const Scene& scene, const VertexColors& colors, const Texture& texture, const RayHit& hit) {
+}  // namespace
+
+Vec2 interpolate_texcoords(const Scene& scene, const RayHit& hit) {
+    const TriangleMesh& mesh = scene.parts[hit.instance].mesh;
+    const uint32_t* tri = &mesh.indices[3 * size_t(hit.triangle)];
+    return (1.0f - hit.u - hit.v) * mesh.texcoords[tri[0]] + hit.u * mesh.texcoords[tri[1]] +
+           hit.v * mesh.texcoords[tri[2]];
+}
+
+Color interpolate_layered_colors(const Scene& scene, const VertexColors& colors, const Texture& texture,
+                                 const RayHit& hit) {
     const TriangleMesh& mesh = scene.parts[hit.instance].mesh;
     const uint32_t* tri = &mesh.indices[3 * size_t(hit.triangle)];
     const float w0 = 1.0f - hit.u - hit.v;
     const Color* specular = colors.specular[hit.instance].data();
-    const Vec2 uv = w0 * mesh.texcoords[tri[0]] + hit.u * mesh.texcoords[tri[1]] + hit.v * mesh.texcoords[tri[2]];
-    return blend_vertex_colors(scene, colors, hit) * texture.sample(uv) +
+    return blend_vertex_colors(scene, colors, hit) * texture.sample(interpolate_texcoords(scene, hit)) +
            (w0 * specular[tri[0]] + hit.u * specular[tri[1]] + hit.v * specular[tri[2]]);
 }
 
-}  // namespace
+const Texture* layer_texture(const Scene& scene, const VertexColors& colors, size_t part) {
+    return part < colors.textures.size() && colors.textures[part]
+               ? colors.textures[part].get()
+               : scene.materials[size_t(scene.parts[part].material)].base_color_texture.get();
+}
 
 Image trace_image(const PosedScene& scene, const PinholeCamera& camera, const ImageFormationOptions& options,
                   const HitShader& shade, const ProgressCallback& progress) {
@@ -230,9 +241,7 @@ Image form_image(const PosedScene& scene, const PinholeCamera& camera, const Ver
         if (colors.specular[p].size() != colors.parts[p].size())
             throw_error("vertex colours of '{}': part '{}' has {} specular values for {} vertices", colors.scene_name,
                         s.parts[p].name, colors.specular[p].size(), colors.parts[p].size());
-        textures[p] = p < colors.textures.size() && colors.textures[p]
-                          ? colors.textures[p].get()
-                          : s.materials[size_t(s.parts[p].material)].base_color_texture.get();
+        textures[p] = layer_texture(s, colors, p);
         if (!textures[p] || s.parts[p].mesh.texcoords.size() != s.parts[p].mesh.vertex_count())
             throw_error("vertex colours of '{}': part '{}' is textured, the scene's part has no texture or no "
                         "texture coordinates", colors.scene_name, s.parts[p].name);
@@ -249,7 +258,7 @@ Image form_image(const PosedScene& scene, const PinholeCamera& camera, const Ver
         }, {});
     return trace_tiles<false>(scene, camera, options, [&](const RayHit& hit, const Vec3& direction) {
         if (const HitShader* shader = shader_of(hit)) return (*shader)(hit, direction);
-        if (const Texture* texture = textures[hit.instance]) return blend_layered_colors(s, colors, *texture, hit);
+        if (const Texture* texture = textures[hit.instance]) return interpolate_layered_colors(s, colors, *texture, hit);
         return blend_vertex_colors(s, colors, hit);
     }, {});
 }

@@ -68,6 +68,15 @@ Image trace_image_one_ray_at_a_time(const PosedScene& scene, const PinholeCamera
 
 // Per-vertex colours interpolated with the hit's barycentrics.
 Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, const RayHit& hit);
+// The texture coordinates at a hit (the part must have them).
+Vec2 interpolate_texcoords(const Scene& scene, const RayHit& hit);
+// A layered (textured) part at a hit: the diffuse sum times the texture at
+// the interpolated texture coordinates, plus the specular sum.
+Color interpolate_layered_colors(const Scene& scene, const VertexColors& colors, const Texture& texture,
+                                 const RayHit& hit);
+// The texture a layered part is formed with: the colours', else the scene
+// material's (null: neither).
+const Texture* layer_texture(const Scene& scene, const VertexColors& colors, size_t part);
 
 // The image of per-vertex colours (the like-for-like image of a vertex result).
 // `colors` must describe `scene`'s parts (checked). A layered (textured) part

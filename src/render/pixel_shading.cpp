@@ -65,7 +65,10 @@ PartShaders Renderer::pixel_shading(const VertexColors& colors) const {
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
         const PixelTerms& terms = pixel_terms_[p];
         const size_t pairs = scene_.parts[p].mesh.vertex_count() * lights;
-        if (colors.layered(p) || terms.occlusion.size() != pairs) continue;  // not shaded per pixel in the last frame
+        if (terms.occlusion.size() != pairs) continue;  // not shaded per pixel in the last frame
+        // A textured part: per-pixel shadows with both layers kept, and its texture.
+        const bool layered = colors.layered(p);
+        if (layered && (terms.unshadowed_specular.size() != pairs || !layer_texture(scene_, colors, p))) continue;
         // Shadows per pixel need the culling's conservative tests and its
         // sphere tree (to find the triangles and the occluders).
         std::shared_ptr<TriangleLights> cache;
@@ -76,7 +79,7 @@ PartShaders Renderer::pixel_shading(const VertexColors& colors) const {
             cache->ready = std::make_unique<std::atomic<uint8_t>[]>(triangles);
             cache->masks = std::make_unique<std::atomic<uint64_t>[]>(triangles * cache->words);
         }
-        if (!cache && terms.self_visibility.size() != pairs) continue;
+        if (!cache && (layered || terms.self_visibility.size() != pairs)) continue;
         shaders[p] = [this, &colors, cache](const RayHit& hit, const Vec3&) {
             return shade_pixel(colors, cache.get(), hit);
         };
@@ -127,7 +130,10 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights* cache, c
     const size_t lights = environment_squares_.size() + light_positions_.size();
     const PixelTerms& terms = pixel_terms_[part];
     const bool highlights = !terms.self_visibility.empty();
-    const Color blend = interpolate_vertex_colors(scene_, colors, hit);
+    // A textured part: the diffuse layer times the texture, plus the specular layer.
+    const Texture* texture = colors.layered(part) ? layer_texture(scene_, colors, part) : nullptr;
+    const Color blend = texture ? interpolate_layered_colors(scene_, colors, *texture, hit)
+                                : interpolate_vertex_colors(scene_, colors, hit);
 
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
@@ -148,9 +154,13 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights* cache, c
         // The dimmest of the triangle's shadowed lights, as many as together
         // hold at most kBlendedShare of the pixel's colour, are blended too.
         auto share_of = [&](size_t l) {
-            return std::max({sum_of(terms.unshadowed[corner[0] * lights + l]),
-                             sum_of(terms.unshadowed[corner[1] * lights + l]),
-                             sum_of(terms.unshadowed[corner[2] * lights + l])});
+            float share = 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                const size_t at = corner[c] * lights + l;
+                share = std::max(share, sum_of(terms.unshadowed[at]) +
+                                            (texture ? sum_of(terms.unshadowed_specular[at]) : 0.0f));
+            }
+            return share;
         };
         thread_local std::vector<std::pair<float, size_t>> by_share;
         by_share.clear();
@@ -233,18 +243,28 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights* cache, c
         }
         return sum;
     }
+    Color specular_sum(0);  // a textured part's specular layer
     for (size_t l = 0; l < lights; ++l) {
         const size_t at[3] = {corner[0] * lights + l, corner[1] * lights + l, corner[2] * lights + l};
         const Color u[3] = {terms.unshadowed[at[0]], terms.unshadowed[at[1]], terms.unshadowed[at[2]]};
+        const Color v[3] = {texture ? terms.unshadowed_specular[at[0]] : Color(0),
+                            texture ? terms.unshadowed_specular[at[1]] : Color(0),
+                            texture ? terms.unshadowed_specular[at[2]] : Color(0)};
         const bool shadowed = (mask[l / 64] >> (l % 64)) & 1;
-        if (!shadowed || u[0] + u[1] + u[2] == Color(0)) {
+        if (!shadowed || u[0] + u[1] + u[2] + v[0] + v[1] + v[2] == Color(0)) {
             // No shadow on the triangle, or too dim to see: the corners' blend.
-            for (int c = 0; c < 3; ++c) sum += w[c] * terms.occlusion[at[c]] * u[c];
+            for (int c = 0; c < 3; ++c) {
+                sum += w[c] * terms.occlusion[at[c]] * u[c];
+                specular_sum += w[c] * terms.occlusion[at[c]] * v[c];
+            }
             continue;
         }
         set_light(s, l, 1);
-        sum += (w[0] * u[0] + w[1] * u[1] + w[2] * u[2]) * occlusion_here(l);
+        const float occlusion = occlusion_here(l);
+        sum += (w[0] * u[0] + w[1] * u[1] + w[2] * u[2]) * occlusion;
+        specular_sum += (w[0] * v[0] + w[1] * v[1] + w[2] * v[2]) * occlusion;
     }
+    if (texture) return sum * texture->sample(interpolate_texcoords(scene_, hit)) + specular_sum;
     return sum;
 }
 

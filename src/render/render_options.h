@@ -56,7 +56,7 @@ struct RenderOptions {
     // occluder factor at each pixel's point, on the triangles where it
     // differs between the corners (elsewhere, and per vertex, nothing
     // changes). Planes: the parts that are one flat rectangle (grounds,
-    // floors, walls); All: every part. CPU backend; untextured parts.
+    // floors, walls); All: every part. CPU backend.
     PixelShadows pixel_shadows = PixelShadows::Planes;
     // View-dependent highlights between vertices: in images, glossy parts
     // (every material but Lambert; untextured) take the BRDF average of each

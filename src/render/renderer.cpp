@@ -167,6 +167,7 @@ void Renderer::shade(VertexColors& out) {
         const size_t terms = scene_.parts[p].mesh.vertex_count() * lights;
         PixelTerms& t = pixel_terms_[p];
         t.unshadowed.resize(shadows ? terms : 0);
+        t.unshadowed_specular.resize(shadows && part_specular_tables_[p] ? terms : 0);
         t.occlusion.resize(shadows || highlights ? terms : 0);
         t.self_visibility.resize(highlights ? terms : 0);
     }

@@ -160,9 +160,10 @@ private:
     // the SVDF factor (the visibility before the others' shadows) instead:
     // a pixel takes the BRDF at its own point.
     struct PixelTerms {
-        std::vector<Color> unshadowed;      // shadows per pixel
-        std::vector<float> occlusion;       // either
-        std::vector<float> self_visibility; // highlights per pixel
+        std::vector<Color> unshadowed;          // shadows per pixel (a textured part: its diffuse layer)
+        std::vector<Color> unshadowed_specular; // ... a textured part's specular layer
+        std::vector<float> occlusion;           // either
+        std::vector<float> self_visibility;     // highlights per pixel
     };
     bool keep_pixel_terms_ = false;
     std::vector<char> pixel_parts_;  // per part: shadows per pixel

@@ -436,16 +436,20 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const size_t environment = environment_squares_.size();
     const size_t lights = environment + light_positions_.size();
     // A part shaded per pixel keeps each light's terms for image formation
-    // (pixel_shading.cpp); a textured one stays per vertex.
-    PixelTerms* pixel = pixel_terms_[size_t(part_index)].occlusion.empty() || specular
+    // (pixel_shading.cpp; a textured one both layers', Renderer::shade sizes them).
+    PixelTerms* pixel = pixel_terms_[size_t(part_index)].occlusion.empty() ||
+                                (specular && pixel_terms_[size_t(part_index)].unshadowed_specular.empty())
                             ? nullptr
                             : &pixel_terms_[size_t(part_index)];
     const bool keep_unshadowed = pixel && !pixel->unshadowed.empty();
+    const bool keep_specular = keep_unshadowed && specular;
     const bool keep_self = pixel && !pixel->self_visibility.empty();
     if (pixel) {
         const size_t first = size_t(block.begin) * lights, last = size_t(block.end) * lights;
         std::fill(pixel->occlusion.begin() + first, pixel->occlusion.begin() + last, 1.0f);
         if (keep_unshadowed) std::fill(pixel->unshadowed.begin() + first, pixel->unshadowed.begin() + last, Color(0));
+        if (keep_specular)
+            std::fill(pixel->unshadowed_specular.begin() + first, pixel->unshadowed_specular.begin() + last, Color(0));
         if (keep_self) std::fill(pixel->self_visibility.begin() + first, pixel->self_visibility.begin() + last, 0.0f);
     }
     for (size_t l = 0; l < lights; ++l) {
@@ -494,6 +498,9 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                 pixel->occlusion[at] = before > 0.0f ? s.vis[i] / before : 1.0f;
                 if (keep_unshadowed)
                     pixel->unshadowed[at] = before * Color(s.ir[k] * s.br[i], s.ig[k] * s.bg[i], s.ib[k] * s.bb[i]);
+                if (keep_specular)
+                    pixel->unshadowed_specular[at] =
+                        before * Color(s.ir[k] * s.spr[i], s.ig[k] * s.spg[i], s.ib[k] * s.spb[i]);
                 if (keep_self) pixel->self_visibility[at] = before;
             }
         }

@@ -5,6 +5,7 @@
 // truth.
 #include <catch2/catch.hpp>
 
+#include "assets/generate/pbr_scene.h"
 #include "src/frame/error_metrics.h"
 #include "src/frame/image_formation.h"
 #include "src/render/renderer.h"
@@ -14,9 +15,21 @@
 namespace rsl {
 namespace {
 
-Scene box_over_coarse_ground() {
+// `textured`: the ground is a glTF material with a tiled base colour
+// texture (a layered part: diffuse × texture + specular per pixel).
+Scene box_over_coarse_ground(bool textured = false) {
     Scene scene = test::make_scene("pixel_shadows", Color(0.7f));
-    test::add_part(scene, test::make_plane(6.0f, 6, "ground"));  // 1 m cells
+    TriangleMesh ground = test::make_plane(6.0f, 6, "ground");  // 1 m cells
+    int ground_material = 0;
+    if (textured) {
+        MaterialDesc tiles = assets::gltf_pbr_material("tiles", Color(0.9f), 0.0f, 0.6f);
+        tiles.base_color_texture = assets::make_tile_texture(4, 4);
+        scene.materials.push_back(tiles);
+        ground_material = 1;
+        ground.texcoords.clear();
+        for (const Vec3& p : ground.positions) ground.texcoords.emplace_back(p.x / 6.0f + 0.5f, p.z / 6.0f + 0.5f);
+    }
+    test::add_part(scene, ground, {}, ground_material);
     Transform lift;
     lift.translation = Vec3(0.2f, 0.6f, -0.3f);
     test::add_part(scene, test::make_flat_box(Vec3(0.35f, 0.3f, 0.25f), 4, "box"), lift);
@@ -32,8 +45,8 @@ struct Images {
     VertexColors vertex_colors_off, vertex_colors_planes;
 };
 
-Images render_images(bool exact_shapes) {
-    const Scene scene = box_over_coarse_ground();
+Images render_images(bool exact_shapes, bool textured = false) {
+    const Scene scene = box_over_coarse_ground(textured);
     const CubeMap environment = test::sky_with_sun(16);
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     const GroundTruth truth(scene, environment, 0.0f);
@@ -82,6 +95,11 @@ TEST_CASE("Per-pixel shadows on a coarse ground follow the per-pixel truth (box 
 TEST_CASE("Per-pixel shadows on a coarse ground follow the per-pixel truth (box as OVDF)",
           "[render][pixel-shadows][accuracy]") {
     check_against_truth(render_images(false));
+}
+
+TEST_CASE("Per-pixel shadows on a textured coarse ground follow the per-pixel truth",
+          "[render][pixel-shadows][accuracy]") {
+    check_against_truth(render_images(true, true));
 }
 
 // Checks that a part's pixel shader gives, at each corner of each triangle
