@@ -97,6 +97,9 @@ void run_render(const RenderArgs& args) {
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(backend, scene, setup.environment_lights, setup.fields, options);
     if (!args.quiet && backend != Backend::Cpu) fmt::print(stderr, "{}\n", renderer->device());
+    if (!args.quiet && backend != Backend::Cpu && (options.pixel_shadows != PixelShadows::Off || options.pixel_highlights))
+        fmt::print(stderr, "images: the vertex colours' blend (per-pixel shadows and highlights are the cpu "
+                           "backend's; docs/RENDERER.md)\n");
     if (!args.quiet && setup.environment_lights.blends())
         fmt::print(stderr, "environment: {} blended with {} over a {} s period (docs/SCENE_FORMAT.md)\n",
                    scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
