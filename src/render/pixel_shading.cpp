@@ -88,12 +88,11 @@ PartShaders Renderer::pixel_shading(const VertexColors& colors) const {
 }
 
 // The lights some occluder may shadow somewhere on the triangle: the block
-// culling's tests (prepare_occluder, block_unshadowed) with the triangle's
-// bounding sphere as the block. Conservative: a light left out has F_l = 1
-// at every point of the triangle.
+// culling's tests (block_may_be_shadowed) with the triangle's bounding
+// sphere as the block. Conservative: a light left out has F_l = 1 at every
+// point of the triangle.
 void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask) const {
-    const size_t environment = environment_squares_.size();
-    const size_t lights = environment + light_positions_.size();
+    const size_t lights = environment_squares_.size() + light_positions_.size();
     for (size_t word = 0; word < (lights + 63) / 64; ++word) mask[word] = 0;
     const PartPose& pose = poses_[part];
     const TriangleMesh& mesh = scene_.parts[part].mesh;
@@ -107,17 +106,8 @@ void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* cor
     const size_t slot_base = part * lights;
     for (size_t l = 0; l < lights; ++l) {
         bool may = false;
-        for (size_t e = offsets_[slot_base + l]; e < offsets_[slot_base + l + 1] && !may; ++e) {
-            const int o = occluders_[e];
-            BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
-            if (b.stamp != s.stamp) prepare_occluder(s, sphere, o, true);
-            if (b.outside) continue;
-            if (l < environment && poses_[o].uniform_scale) {
-                const SquareLight& sq = environment_squares_[l];
-                if (block_unshadowed(b.pole, b.spread, b.cone, sq.direction, sq.half_edge)) continue;
-            }
-            may = true;
-        }
+        for (size_t e = offsets_[slot_base + l]; e < offsets_[slot_base + l + 1] && !may; ++e)
+            may = block_may_be_shadowed(s, sphere, occluders_[e], occluder_growth_[e], l);
         if (may) mask[l / 64] |= uint64_t(1) << (l % 64);
     }
 }

@@ -104,6 +104,8 @@ private:
                              int m, RenderStats& counts) const;
     void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
                              const float* growth, size_t light, int n, int m, RenderStats& counts) const;
+    bool block_may_be_shadowed(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, float growth,
+                               size_t light) const;
     struct TriangleLights;  // pixel_shading.cpp
     Color shade_pixel(const VertexColors& colors, TriangleLights* cache, const RayHit& hit) const;
     void triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask) const;

@@ -355,37 +355,37 @@ void Renderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_
 
 void Renderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
                                    const float* growth, size_t l, int n, int m, RenderStats& counts) const {
-    const bool is_environment = l < environment_squares_.size();
     const bool vertex_culling = options_.occluder_culling;
     for (size_t e = 0; e < occluders.size(); ++e) {
         const int o = occluders[e];
-        const PartPose& occluder = poses_[o];
-        BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
-        if (b.stamp != s.stamp) prepare_occluder(s, block_sphere, o, vertex_culling);
-        if (b.outside) {
+        if (!block_may_be_shadowed(s, block_sphere, o, growth ? growth[e] : -1.0f, l)) {
             ++counts.block_occluders_culled;
             continue;
         }
-        if (vertex_culling && is_environment) {
-            // The whole block against the light's square: the part's
-            // bounding cone seen from the block, then (as the per-part
-            // test) the light's cone against the part's grown sphere.
-            const SquareLight& sq = environment_squares_[l];
-            if (occluder.uniform_scale &&
-                block_unshadowed(b.pole, b.spread, b.cone, sq.direction, sq.half_edge)) {
-                ++counts.block_occluders_culled;
-                continue;
-            }
-            const BoundingSphere grown{block_sphere.center, block_sphere.radius + (growth ? growth[e] : 0.0f)};
-            if (growth && !may_shadow_direction(grown, occluder.world_bounds, sq.direction,
-                                                square_cone_half_angle(sq.half_edge))) {
-                ++counts.block_occluders_culled;
-                continue;
-            }
-        }
+        BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
         OccluderVertexScratch& v = b.vertices ? *b.vertices : prepare_occluder_vertices(s, o, n, vertex_culling);
         occluder_factors(s, v, int(l), o, n, m, counts);
     }
+}
+
+// Whether occluder o may shadow some point of the block from light l (false
+// only when certain). The block-level tests: beyond the field's reach; for
+// an environment light, the part's bounding cone seen from the block, then
+// (as the per-part test; growth < 0: skipped) the light's cone against the
+// part's sphere, the block grown by `growth`.
+bool Renderer::block_may_be_shadowed(BlockScratch& s, const BoundingSphere& block_sphere, int o, float growth,
+                                     size_t l) const {
+    const bool vertex_culling = options_.occluder_culling;
+    BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
+    if (b.stamp != s.stamp) prepare_occluder(s, block_sphere, o, vertex_culling);
+    if (b.outside) return false;
+    if (!vertex_culling || l >= environment_squares_.size()) return true;
+    const PartPose& occluder = poses_[o];
+    const SquareLight& sq = environment_squares_[l];
+    if (occluder.uniform_scale && block_unshadowed(b.pole, b.spread, b.cone, sq.direction, sq.half_edge)) return false;
+    const BoundingSphere grown{block_sphere.center, block_sphere.radius + std::max(growth, 0.0f)};
+    return growth < 0.0f ||
+           may_shadow_direction(grown, occluder.world_bounds, sq.direction, square_cone_half_angle(sq.half_edge));
 }
 
 void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) {
