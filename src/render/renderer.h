@@ -97,6 +97,8 @@ private:
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts);
     void set_point(BlockScratch& s, int k, const Vec3& position, const Frame& frame) const;
     void set_light(BlockScratch& s, size_t light, int n) const;
+    void put_light(BlockScratch& s, int k, const SquareLight& square, float spot) const;
+    void put_local_light(BlockScratch& s, int k, size_t local_light) const;
     void project_lights(BlockScratch& s, int n) const;
     void set_lights_at_point(BlockScratch& s, size_t lights) const;
     int brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n) const;

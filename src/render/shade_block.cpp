@@ -234,27 +234,25 @@ void Renderer::set_light(BlockScratch& s, size_t l, int n) const {
     // The light as each vertex sees it.
     if (l < environment) {
         const SquareLight& sq = environment_squares_[l];
-        for (int k = 0; k < n; ++k) {
-            s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
-            s.half[k] = sq.half_edge;
-            s.ir[k] = sq.integral.r, s.ig[k] = sq.integral.g, s.ib[k] = sq.integral.b;
-        }
+        for (int k = 0; k < n; ++k) put_light(s, k, sq, 1.0f);
     } else {
-        const size_t i = l - environment;
-        const Vec3 center = light_positions_[i];
-        const float radius = lights_[i].radius;
-        const Color radiance = light_radiance_[i];
-        const Vec3 axis = light_axes_[i];
-        const Vec2 cone = light_cones_[i];
-        for (int k = 0; k < n; ++k) {
-            const SquareLight sq = sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), center, radius, radiance);
-            const float spot = shading::spot_cone_factor(axis, -sq.direction, cone.x, cone.y);
-            s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
-            s.half[k] = sq.half_edge;
-            s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
-        }
+        for (int k = 0; k < n; ++k) put_local_light(s, k, l - environment);
     }
     project_lights(s, n);
+}
+
+// Slot k's light: a square (world direction, half-edge) and its integral × spot.
+void Renderer::put_light(BlockScratch& s, int k, const SquareLight& sq, float spot) const {
+    s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
+    s.half[k] = sq.half_edge;
+    s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
+}
+
+// Slot k's light: local light i as the square its sphere makes at slot k's point, with the spot's cone.
+void Renderer::put_local_light(BlockScratch& s, int k, size_t i) const {
+    const SquareLight sq =
+        sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), light_positions_[i], lights_[i].radius, light_radiance_[i]);
+    put_light(s, k, sq, shading::spot_cone_factor(light_axes_[i], -sq.direction, light_cones_[i].x, light_cones_[i].y));
 }
 
 // Each point's light direction in its local frame → the equal-area plane
@@ -274,7 +272,6 @@ void Renderer::project_lights(BlockScratch& s, int n) const {
 // pixel. At most kShadeBlock lights.
 void Renderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
     const size_t environment = environment_squares_.size();
-    const Vec3 point(s.px[0], s.py[0], s.pz[0]);
     for (size_t l = 0; l < lights; ++l) {
         const int k = int(l);
         s.px[k] = s.px[0], s.py[k] = s.py[0], s.pz[k] = s.pz[0];
@@ -283,18 +280,10 @@ void Renderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
         s.zx[k] = s.zx[0], s.zy[k] = s.zy[0], s.zz[k] = s.zz[0];
         s.vx[k] = s.vx[0], s.vy[k] = s.vy[0], s.vz[k] = s.vz[0];
         s.view_cos[k] = s.view_cos[0], s.view_sin[k] = s.view_sin[0];
-        SquareLight sq;
-        float spot = 1.0f;
-        if (l < environment) {
-            sq = environment_squares_[l];
-        } else {
-            const size_t i = l - environment;
-            sq = sphere_light_square(point, light_positions_[i], lights_[i].radius, light_radiance_[i]);
-            spot = shading::spot_cone_factor(light_axes_[i], -sq.direction, light_cones_[i].x, light_cones_[i].y);
-        }
-        s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
-        s.half[k] = sq.half_edge;
-        s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
+        if (l < environment)
+            put_light(s, k, environment_squares_[l], 1.0f);
+        else
+            put_local_light(s, k, l - environment);
     }
     project_lights(s, int(lights));
 }
