@@ -87,6 +87,19 @@ PartShaders Renderer::pixel_shading(const VertexColors& colors) const {
     return shaders;
 }
 
+// The other parts whose occluder field reaches `sphere` (from the frame's
+// sphere tree over the reaches): a ground's per-light lists hold every part
+// over it, a triangle or a pixel lies in few reaches.
+void Renderer::occluders_near(const BoundingSphere& sphere, size_t part, std::vector<int>& out) const {
+    const OccluderLists& lists = frame_.occluder_lists();
+    thread_local std::vector<int> found;
+    found.clear();
+    out.clear();
+    lists.reach_tree.overlapping(sphere, found);
+    for (const int index : found)
+        if (const int o = lists.field_parts[size_t(index)]; size_t(o) != part) out.push_back(o);
+}
+
 // The lights some occluder may shadow somewhere on the triangle: the block
 // culling's tests (block_may_be_shadowed) with the triangle's bounding
 // sphere as the block. Conservative: a light left out has F_l = 1 at every
@@ -103,11 +116,19 @@ void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* cor
     const BoundingSphere sphere{center, radius * (1.0f + 1e-5f) + 1e-6f * (1.0f + glm::length(center))};
     ++s.stamp;
     s.pool_used = 0;
+    // The part's per-light lists (their part-level light test prunes the
+    // most), each entry looked at only when its reach meets the triangle.
+    thread_local std::vector<int> near;
+    thread_local std::vector<uint64_t> near_stamp;
+    occluders_near(sphere, part, near);
+    near_stamp.resize(scene_.parts.size(), 0);
+    for (const int o : near) near_stamp[size_t(o)] = s.stamp;
     const size_t slot_base = part * lights;
     for (size_t l = 0; l < lights; ++l) {
         bool may = false;
         for (size_t e = offsets_[slot_base + l]; e < offsets_[slot_base + l + 1] && !may; ++e)
-            may = block_may_be_shadowed(s, sphere, occluders_[e], occluder_growth_[e], l);
+            may = near_stamp[size_t(occluders_[e])] == s.stamp &&
+                  block_may_be_shadowed(s, sphere, occluders_[e], occluder_growth_[e], l);
         if (may) mask[l / 64] |= uint64_t(1) << (l % 64);
     }
 }
@@ -181,17 +202,9 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights* cache, c
     }
     set_point(s, 0, point, Frame::from_normal_tangent(glm::normalize(normal), tangent));
     const BoundingSphere block_sphere{point, 1e-6f * (1.0f + glm::length(point))};
-    // The occluders whose reach holds the point, found once (a ground's
-    // lists hold every part over it; a pixel is in few reaches).
-    const OccluderLists& lists = frame_.occluder_lists();
-    thread_local std::vector<int> found, near;
-    found.clear();
+    thread_local std::vector<int> near;
     near.clear();
-    if (any) {
-        lists.reach_tree.overlapping(BoundingSphere{point, 0.0f}, found);
-        for (const int index : found)
-            if (const int o = lists.field_parts[size_t(index)]; size_t(o) != part) near.push_back(o);
-    }
+    if (any) occluders_near(BoundingSphere{point, 0.0f}, part, near);
     // The other parts' factor of light l at the point (after set_light).
     RenderStats counts;  // not reported: the frame's counters are the vertices'
     auto occlusion_here = [&](size_t l) {

@@ -111,6 +111,7 @@ private:
     struct TriangleLights;  // pixel_shading.cpp
     Color shade_pixel(const VertexColors& colors, TriangleLights* cache, const RayHit& hit) const;
     void triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask) const;
+    void occluders_near(const BoundingSphere& sphere, size_t part, std::vector<int>& out) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
     OccluderVertexScratch& prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
     void occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int light, int occluder, int n, int m,
