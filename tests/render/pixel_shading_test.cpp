@@ -11,6 +11,7 @@
 #include "src/render/renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
+#include "tests/test_support.h"
 
 namespace rsl {
 namespace {
@@ -201,6 +202,20 @@ TEST_CASE("Per-pixel highlights on a coarse glossy plane follow the per-pixel tr
     // Measured 17.4% and 2.1%.
     CHECK(error[1] < 0.3 * error[0]);
     CHECK(error[1] < 0.05);
+}
+
+}  // namespace
+}  // namespace rsl
+
+namespace rsl {
+namespace {
+
+TEST_CASE("Per-pixel shadow modes are read by name; others are refused naming the choices", "[render][pixel-shadows][bad-input]") {
+    CHECK(parse_pixel_shadows("off") == PixelShadows::Off);
+    CHECK(parse_pixel_shadows("planes") == PixelShadows::Planes);
+    CHECK(parse_pixel_shadows("all") == PixelShadows::All);
+    const std::string message = test::error_of([] { parse_pixel_shadows("Planes"); });
+    CHECK(message.find("pixel shadows 'Planes': expected planes, all or off") != std::string::npos);
 }
 
 }  // namespace
