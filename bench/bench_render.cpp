@@ -68,7 +68,7 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
         renderer->shade(colors);
     });
     const double image_per_pixel_seconds = median_seconds(repeats, [&] {
-        form_image(posed, camera, colors, {}, renderer->pixel_shading(colors));
+        form_image(posed, camera, colors, {}, renderer->pixel_shading(colors, posed));
     });
     renderer->keep_pixel_terms(false);
     renderer->shade(colors);  // the colours and stats of the frame as measured first

@@ -191,7 +191,7 @@ VertexColors Renderer::shade() {
 }
 
 Image Renderer::State::form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings,
-                                  const PartShaders& part_shaders) const {
+                                  bool per_pixel) const {
     const State& s = *this;
     const rsl::Scene& scene = s.scene();
     if (settings.samples < 1) throw_error("samples {}: expected at least 1", settings.samples);
@@ -204,6 +204,8 @@ Image Renderer::State::form_image(const ::rsl::VertexColors& colors, const Image
     s.posed->set_time(s.time);
     ImageFormationOptions formation;
     formation.samples_per_side = settings.samples;
+    // The renderer's per-pixel shadows and highlights need its own colours.
+    const PartShaders part_shaders = per_pixel ? s.renderer->pixel_shading(colors, *s.posed) : PartShaders{};
     return to_api(::rsl::form_image(*s.posed, PinholeCamera::at_time(scene.camera, s.time, width, height), colors,
                                     formation, part_shaders));
 }
@@ -218,7 +220,7 @@ Image Renderer::render_image(const ImageSettings& settings) {
     s.renderer->keep_pixel_terms(true);
     s.renderer->shade(s.output);
     // With the layers (textures per pixel) and the renderer's per-pixel shadows, as `rsl render`.
-    return s.form_image(s.output, settings, s.renderer->pixel_shading(s.output));
+    return s.form_image(s.output, settings, true);
 }
 
 VertexColors Renderer::truth(const TruthSettings& settings) const {

@@ -35,8 +35,8 @@ struct Renderer::State {
     }
     // The image of internal vertex colours, layered parts' textures applied
     // per pixel, as `rsl render` forms it (the scene posed at `time`).
-    Image form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings,
-                     const PartShaders& part_shaders = {}) const;
+    // per_pixel: `colors` are the renderer's last shade(), formed with its per-pixel passes.
+    Image form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings, bool per_pixel = false) const;
     int part_index(const std::string& part) const;  // throws naming the parts
     void check_part(int part) const;
 };

@@ -125,7 +125,7 @@ void run_render(const RenderArgs& args) {
         const auto shaded = std::chrono::steady_clock::now();
         posed.set_time(t);
         const Image image = form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, formation,
-                                       renderer->pixel_shading(colors));
+                                       renderer->pixel_shading(colors, posed));
         const auto formed = std::chrono::steady_clock::now();
         const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
         write_exr_and_png(exr, image, tone);

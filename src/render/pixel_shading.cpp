@@ -58,7 +58,7 @@ PixelShadows parse_pixel_shadows(const std::string& name) {
     throw_error("pixel shadows '{}': expected planes, all or off", name);
 }
 
-PartShaders Renderer::pixel_shading(const VertexColors& colors) const {
+PartShaders Renderer::pixel_shading(const VertexColors& colors, const PosedScene& posed) const {
     RSL_CHECK_EQ(colors.parts.size(), scene_.parts.size());
     PartShaders shaders(scene_.parts.size());
     const size_t lights = environment_squares_.size() + light_positions_.size();
@@ -80,8 +80,8 @@ PartShaders Renderer::pixel_shading(const VertexColors& colors) const {
             cache->masks = std::make_unique<std::atomic<uint64_t>[]>(triangles * cache->words);
         }
         if (!cache && (layered || terms.self_visibility.size() != pairs)) continue;
-        shaders[p] = [this, &colors, cache](const RayHit& hit, const Vec3&) {
-            return shade_pixel(colors, cache.get(), hit);
+        shaders[p] = [this, &colors, &posed, cache](const RayHit& hit, const Vec3& direction) {
+            return shade_pixel(colors, posed, cache.get(), hit, direction);
         };
     }
     return shaders;
@@ -133,7 +133,8 @@ void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* cor
     }
 }
 
-Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights* cache, const RayHit& hit) const {
+Color Renderer::shade_pixel(const VertexColors& colors, const PosedScene& posed, TriangleLights* cache,
+                            const RayHit& hit, const Vec3& ray_direction) const {
     const size_t part = size_t(hit.instance);
     const TriangleMesh& mesh = scene_.parts[part].mesh;
     const uint32_t* corner = &mesh.indices[3 * size_t(hit.triangle)];
@@ -191,16 +192,10 @@ Color Renderer::shade_pixel(const VertexColors& colors, TriangleLights* cache, c
 
     ++s.stamp;
     s.pool_used = 0;
-    // The point and its shading frame, blended from the corners as the
-    // vertices' own (shade_block).
-    const PartPose& pose = poses_[part];
-    Vec3 point(0), normal(0), tangent(0);
-    for (int c = 0; c < 3; ++c) {
-        point += w[c] * Vec3(pose.transform * Vec4(mesh.positions[corner[c]], 1.0f));
-        normal += w[c] * glm::normalize(pose.normal * mesh.normals[corner[c]]);
-        if (!mesh.tangents.empty()) tangent += w[c] * (pose.linear * Vec3(mesh.tangents[corner[c]]));
-    }
-    set_point(s, 0, point, Frame::from_normal_tangent(glm::normalize(normal), tangent));
+    // The point and its shading frame, as the per-pixel truth takes them.
+    const SurfacePoint x = posed.hit_point(hit, ray_direction);
+    const Vec3& point = x.position;
+    set_point(s, 0, point, x.frame);
     const BoundingSphere block_sphere{point, 1e-6f * (1.0f + glm::length(point))};
     thread_local std::vector<int> near;
     near.clear();

@@ -79,7 +79,7 @@ public:
     // The parts shaded per pixel (RenderOptions::pixel_shadows) that `colors`,
     // this renderer's last shade(), holds untextured: their image takes the
     // other parts' shadows at each pixel's point (pixel_shading.cpp).
-    PartShaders pixel_shading(const VertexColors& colors) const override;
+    PartShaders pixel_shading(const VertexColors& colors, const PosedScene& posed) const override;
     void keep_pixel_terms(bool keep) override { keep_pixel_terms_ = keep; }
     const RenderOptions& options() const { return options_; }
     // Square lights of the environment at the current time (world space, blend-weighted).
@@ -109,7 +109,8 @@ private:
     bool block_may_be_shadowed(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, float growth,
                                size_t light) const;
     struct TriangleLights;  // pixel_shading.cpp
-    Color shade_pixel(const VertexColors& colors, TriangleLights* cache, const RayHit& hit) const;
+    Color shade_pixel(const VertexColors& colors, const PosedScene& posed, TriangleLights* cache, const RayHit& hit,
+                      const Vec3& ray_direction) const;
     void triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask) const;
     void occluders_near(const BoundingSphere& sphere, size_t part, std::vector<int>& out) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;

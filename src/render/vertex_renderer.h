@@ -73,7 +73,8 @@ public:
     // pixel_highlights; that shade() must have kept the terms, below); valid
     // until the next shade() or set_time(). Empty: every part is its vertex
     // colours' blend (the GL backend's today).
-    virtual PartShaders pixel_shading(const VertexColors& colors) const { return {}; }
+    // `posed`: the scene posed at the frame's time, whose hits the shaders colour.
+    virtual PartShaders pixel_shading(const VertexColors& colors, const PosedScene& posed) const { return {}; }
     // Whether shade() keeps what pixel_shading needs (per (vertex, light)
     // terms of the parts shaded per pixel: 3–8% of the CPU's shading time).
     // Off by default: callers that form images with it switch it on.

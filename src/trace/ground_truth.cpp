@@ -2,6 +2,8 @@
 // shadow rays in coherent per-point batches (docs/TRUTH.md).
 #include "src/trace/ground_truth.h"
 
+#include "src/frame/image_formation.h"
+
 #include <array>
 #include <limits>
 
@@ -224,10 +226,7 @@ Color GroundTruth::shade_hit(const RayHit& hit, const Vec3& ray_direction) const
     const SurfacePoint x = posed_.hit_point(hit, ray_direction);
     const Brdf* specular = part_specular_brdf(hit.instance);
     if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance));
-    const TriangleMesh& mesh = scene_.parts[size_t(hit.instance)].mesh;
-    const uint32_t* tri = &mesh.indices[3 * size_t(hit.triangle)];
-    const Vec2 uv = (1.0f - hit.u - hit.v) * mesh.texcoords[tri[0]] + hit.u * mesh.texcoords[tri[1]] +
-                    hit.v * mesh.texcoords[tri[2]];
+    const Vec2 uv = interpolate_texcoords(scene_, hit);
     return shade(x, -ray_direction, part_brdf(hit.instance)) * part_texture(hit.instance)->sample(uv) +
            shade(x, -ray_direction, *specular);
 }

@@ -64,7 +64,7 @@ Images render_images(bool exact_shapes, bool textured = false) {
         Renderer renderer(scene, lights, fields, options);
         renderer.keep_pixel_terms(true);
         VertexColors colors = renderer.shade();
-        const PartShaders shaders = renderer.pixel_shading(colors);
+        const PartShaders shaders = renderer.pixel_shading(colors, truth.posed());
         CHECK(shaders.size() == 2);
         CHECK(bool(shaders[0]) == (mode == PixelShadows::Planes));  // the ground, a rectangle
         CHECK(!shaders[1]);                                           // the box: per vertex
@@ -115,6 +115,7 @@ int corners_take_vertex_colors(const HitShader& shader, const TriangleMesh& mesh
             hit.triangle = triangle;
             hit.u = corner == 1 ? 1.0f : 0.0f;
             hit.v = corner == 2 ? 1.0f : 0.0f;
+            hit.geometric_normal = Vec3(0, 1, 0);  // the ground's, seen from above
             const Color pixel = shader(hit, Vec3(0, -1, 0));
             const Color vertex = colors[mesh.indices[3 * size_t(triangle) + size_t(corner)]];
             INFO("triangle " << triangle << " corner " << corner << ": pixel " << pixel.r << ", " << pixel.g << ", "
@@ -135,7 +136,8 @@ TEST_CASE("A pixel at a receiver's vertex takes that vertex's colour", "[render]
                       RenderOptions{});
     renderer.keep_pixel_terms(true);
     const VertexColors colors = renderer.shade();
-    const PartShaders shaders = renderer.pixel_shading(colors);
+    const PosedScene posed(scene, 0.0f);
+    const PartShaders shaders = renderer.pixel_shading(colors, posed);
     REQUIRE(shaders.size() == 2);
     REQUIRE(shaders[0]);
     const TriangleMesh& ground = scene.parts[0].mesh;
@@ -148,6 +150,7 @@ TEST_CASE("A pixel at a receiver's vertex takes that vertex's colour", "[render]
         hit.instance = 0;
         hit.triangle = triangle;
         hit.u = hit.v = 1.0f / 3.0f;
+        hit.geometric_normal = Vec3(0, 1, 0);
         const Color blend = interpolate_vertex_colors(scene, colors, hit);
         per_pixel += glm::length(shaders[0](hit, Vec3(0, -1, 0)) - blend) > 0.01f * glm::length(blend) ? 1 : 0;
     }
@@ -189,7 +192,7 @@ TEST_CASE("Per-pixel highlights on a coarse glossy plane follow the per-pixel tr
         Renderer renderer(scene, lights, PartFields{}, options);
         renderer.keep_pixel_terms(true);
     const VertexColors colors = renderer.shade();
-        const PartShaders shaders = renderer.pixel_shading(colors);
+        const PartShaders shaders = renderer.pixel_shading(colors, truth.posed());
         REQUIRE(shaders.size() == 1);
         CHECK(bool(shaders[0]) == per_pixel);
         error[per_pixel] = compare_images(form_image(truth.posed(), camera, colors, {}, shaders), reference)
