@@ -34,8 +34,12 @@ namespace rsl {
 // 3: OVDF samples inside the part trace from the surface outside them.
 // Version 4: SVDF vertices on the part's own surface elsewhere (a box
 // standing on another box of one mesh) count as outside it
-// (RayScene's origins_outside_surfaces, as the truth).
-inline constexpr uint32_t kFieldFormatVersion = 4;
+// (RayScene's origins_outside_surfaces, as the truth). Version 5: an OVDF
+// sample is inside the part when it is inside one of the part's closed
+// pieces (fields/solid_pieces.h), so a sample inside overlapping pieces (a
+// waist sunk into a pelvis) or a clockwise-wound mesh is no longer traced
+// from inside them.
+inline constexpr uint32_t kFieldFormatVersion = 5;
 enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
 
 // Positions, normals, tangents and indices: everything the tables depend on.

@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "fields/solid_pieces.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/core/hemisphere.h"
@@ -249,28 +250,21 @@ void trace_zoomed_coverage(const RayScene& scene, const ZoomedSampling& z, const
     }
 }
 
-// Probes a point with 14 rays (axes and cube diagonals). It lies inside the
-// closed part when every probe meets it and nearly all meet a back face; an
-// open mesh (a ground plane seen from below) lets most probes escape, so it is
-// never "inside". `nearest` is the closest hit (an upper bound on the distance
-// to the surface).
+// Probes a point: inside the part (SolidPieces), and `nearest`, the closest
+// hit of SolidPieces' probe rays on the whole part (an upper bound on the
+// distance to the surface).
 struct Probe {
     bool inside = false;
     float nearest = 1e30f;
 };
-Probe probe_part(const RayScene& scene, const Vec3& point) {
+Probe probe_part(const RayScene& scene, const SolidPieces& pieces, const Vec3& point) {
     Probe probe;
-    int back_faces = 0, hits = 0;
-    for (int k = 0; k < 14; ++k) {
-        const Vec3 dir = k < 6 ? Vec3(k == 0 ? 1 : k == 1 ? -1 : 0, k == 2 ? 1 : k == 3 ? -1 : 0, k == 4 ? 1 : k == 5 ? -1 : 0)
-                               : glm::normalize(Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
-        const RayHit hit = scene.intersect(point, dir);
-        if (!hit.hit) continue;
-        ++hits;
-        probe.nearest = std::min(probe.nearest, hit.t);
-        back_faces += glm::dot(hit.geometric_normal, dir) > 0.0f;
+    const Vec3* directions = SolidPieces::probe_directions();
+    for (int k = 0; k < SolidPieces::kProbes; ++k) {
+        const RayHit hit = scene.intersect(point, directions[k]);
+        if (hit.hit) probe.nearest = std::min(probe.nearest, hit.t);
     }
-    probe.inside = hits == 14 && back_faces >= 12;
+    probe.inside = pieces.inside(point);
     return probe;
 }
 
@@ -285,9 +279,10 @@ struct SampleOrigin {
     Vec3 position;
     float surface_distance;
 };
-SampleOrigin sample_origin(const RayScene& scene, const Vec3& position, const Vec3& outward, float radius) {
+SampleOrigin sample_origin(const RayScene& scene, const SolidPieces& pieces, const Vec3& position, const Vec3& outward,
+                           float radius) {
     SampleOrigin origin{position, radius};
-    Probe probe = probe_part(scene, position);
+    Probe probe = probe_part(scene, pieces, position);
     if (!probe.inside) {
         origin.surface_distance = std::min(probe.nearest, radius);
         return origin;
@@ -297,7 +292,7 @@ SampleOrigin sample_origin(const RayScene& scene, const Vec3& position, const Ve
         const RayHit exit = scene.intersect(origin.position, outward);
         if (!exit.hit) break;
         origin.position += (exit.t + 1e-3f * radius) * outward;
-        probe = probe_part(scene, origin.position);
+        probe = probe_part(scene, pieces, origin.position);
     }
     return origin;
 }
@@ -318,6 +313,7 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats
     RayScene scene;
     scene.add_instance(scene.add_mesh(mesh), Mat4(1.0f));
     scene.commit();
+    const SolidPieces pieces(mesh);
 
     // One sampling pattern per shell, over its zoomed table: rays only
     // towards the part's bounding cone (plus a texel and a half of margin);
@@ -352,7 +348,7 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats
             const Frame& frame = ovdf.sample_frame(face, i, j);
             SampleOrigin origin{ovdf.sample_position(shell, face, i, j), ovdf.shell_radius(shell) - ovdf.radius};
             if (ovdf.shell_radius(shell) < ovdf.radius)  // beyond the bounding sphere nothing is inside
-                origin = sample_origin(scene, origin.position, -frame.z, ovdf.radius);
+                origin = sample_origin(scene, pieces, origin.position, -frame.z, ovdf.radius);
             ovdf.surface_distance[ovdf.sample_index(shell, face, i, j)] = origin.surface_distance;
             trace_zoomed_coverage(scene, samplings[shell], origin.position, frame, scratch);
             compute_vdt(nv, scratch.coverage.data(), tables.data() + k * dims, params.mode, scratch.vdt);
