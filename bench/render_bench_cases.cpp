@@ -51,7 +51,7 @@ std::vector<NamedEnvironment> table_environments(const bench::BenchOptions& asse
 PrecomputeSettings bench_precompute() {
     PrecomputeSettings p;
     p.svdf_resolution = 16, p.svdf_clusters = 64, p.svdf_vectors = 6, p.svdf_supersampling = 2;
-    p.ovdf_shells = 13, p.ovdf_inner_radius = 0.4f, p.ovdf_outer_radius = 20.0f;
+    p.ovdf_shells = 13, p.ovdf_inner_radius = 0.0f, p.ovdf_outer_radius = 20.0f;  // inner: per mesh, the default
     p.ovdf_cube_resolution = 16, p.ovdf_vdt_resolution = 16, p.ovdf_vectors = 6;
     return p;
 }

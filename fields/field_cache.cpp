@@ -187,7 +187,11 @@ SceneFields plan_fields(const Scene& scene, const FieldCacheOptions& given) {
         UniqueFields& u = result.unique.emplace_back();
         u.mesh = std::move(group);
         u.svdf_outcome.file = svdf_cache_file(options.directory, u.mesh.mesh_hash, options.svdf);
-        if (!options.svdf_only) u.ovdf_outcome.file = ovdf_cache_file(options.directory, u.mesh.mesh_hash, options.ovdf);
+        if (!options.svdf_only) {
+            // The name and the file hold the radius used, so a stale one is refused as any other.
+            u.ovdf_params = ovdf_params_for_mesh(options.ovdf, scene.parts[size_t(u.mesh.parts.front())].mesh);
+            u.ovdf_outcome.file = ovdf_cache_file(options.directory, u.mesh.mesh_hash, u.ovdf_params);
+        }
     }
     for (UniqueFields& u : result.unique)
         for (FieldOutcome* o : {&u.svdf_outcome, &u.ovdf_outcome})
@@ -204,7 +208,7 @@ SceneFields plan_fields(const Scene& scene, const FieldCacheOptions& given) {
 
 SceneFields bake_or_load_fields(const Scene& scene, const FieldCacheOptions& options) {
     SceneFields result = plan_fields(scene, options);
-    const std::string svdf_params = params_json(options.svdf), ovdf_params = params_json(options.ovdf);
+    const std::string svdf_params = params_json(options.svdf);
     for (size_t m = 0; m < result.unique.size(); ++m) {
         UniqueFields& u = result.unique[m];
         const Part& first = scene.parts[size_t(u.mesh.parts.front())];
@@ -216,7 +220,7 @@ SceneFields bake_or_load_fields(const Scene& scene, const FieldCacheOptions& opt
             u.svdf = load_or_bake({hash, svdf_params}, "SVDF " + label, first.mesh, options.svdf, options,
                                   u.svdf_outcome, read_svdf, bake_svdf, write_svdf);
         if (u.ovdf_outcome.wanted)
-            u.ovdf = load_or_bake({hash, ovdf_params}, "OVDF " + label, first.mesh, options.ovdf, options,
+            u.ovdf = load_or_bake({hash, params_json(u.ovdf_params)}, "OVDF " + label, first.mesh, u.ovdf_params, options,
                                   u.ovdf_outcome, read_ovdf, bake_ovdf, write_ovdf);
     }
     return result;

@@ -58,6 +58,7 @@ struct UniqueFields {
     MeshInstances mesh;
     std::shared_ptr<const Svdf> svdf;  // null where skipped
     std::shared_ptr<const Ovdf> ovdf;
+    OvdfParams ovdf_params;  // the options' own, an automatic inner radius resolved for this mesh
     FieldOutcome svdf_outcome, ovdf_outcome;
 };
 

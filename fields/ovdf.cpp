@@ -117,7 +117,7 @@ float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) cons
     const float d = glm::length(v);
     if (d >= shell_radii_.back()) return kVdtNoBoundaryDistance;  // no shadow beyond the outer shell
     const OvdfLocation at = locate(point, d);
-    if (d < radius && surface_distance_at(at) < 0.0f) return -kVdtNoBoundaryDistance;  // inside the part
+    if (shading::ovdf_inside_part(d, radius, surface_distance_at(at))) return -kVdtNoBoundaryDistance;
     const int s0 = at.s0, face = at.face;
     const float fs = at.fs;
     const glm::ivec4& ii = at.ii;
@@ -299,8 +299,27 @@ SampleOrigin sample_origin(const RayScene& scene, const SolidPieces& pieces, con
 
 }  // namespace
 
-Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats* stats,
+OvdfParams ovdf_params_for_mesh(OvdfParams params, const TriangleMesh& mesh) {
+    constexpr float kSolidCentre = 0.4f, kOpenCentre = 0.03f;
+    if (params.inner_radius != 0.0f) return params;
+    params.inner_radius = kSolidCentre;
+    if (mesh.triangle_count() == 0 || SolidPieces(mesh).inside(mesh.bounding_sphere().center)) return params;
+    if (params.spacing != ShellSpacing::Geometric || params.shells < 2 || !(params.outer_radius > kSolidCentre)) {
+        params.inner_radius = kOpenCentre;
+        return params;
+    }
+    const double ratio = std::pow(double(params.outer_radius) / kSolidCentre, 1.0 / double(params.shells - 1));
+    constexpr int kMostShells = 256;  // what a field file holds
+    const int inward = std::min(kMostShells - params.shells,
+                                int(std::ceil(std::log(double(kSolidCentre) / kOpenCentre) / std::log(ratio) - 1e-9)));
+    params.shells += inward;
+    params.inner_radius = float(kSolidCentre / std::pow(ratio, double(inward)));
+    return params;
+}
+
+Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& requested, OvdfBakeStats* stats,
                const std::function<void(double)>& progress) {
+    const OvdfParams params = ovdf_params_for_mesh(requested, mesh);
     const auto start = std::chrono::steady_clock::now();
     if (stats) *stats = OvdfBakeStats{};
     Ovdf ovdf;

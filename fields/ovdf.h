@@ -58,7 +58,10 @@ enum class ShellSpacing : uint8_t { Geometric = 0, Linear = 1, InverseRadius = 2
 
 struct OvdfParams {
     int shells = 16;
-    float inner_radius = 0.4f;  // × bounding radius
+    // × bounding radius; 0: chosen per mesh (ovdf_params_for_mesh, which
+    // may add shells), resolved by a bake and the field cache before
+    // anything else sees it.
+    float inner_radius = 0.4f;
     float outer_radius = 6.0f;
     ShellSpacing spacing = ShellSpacing::Geometric;
     int cube_resolution = 32;  // sample points per cube-face side
@@ -172,7 +175,22 @@ private:
     std::array<Vec3, 6> face_normal_{}, face_s_{}, face_t_{};
 };
 
-// Traces and compresses the OVDF of one part.
+// The shells of a mesh whose parameters leave the inner radius to the bake
+// (inner_radius 0, "auto"). Where the bounding sphere's centre lies inside
+// the part's solid (a limb, a teapot: fields/solid_pieces.h), no receiver
+// comes nearer to it than the surface: `shells` shells from 0.4 R (the
+// paper's choice) to the outer radius. Where it lies in open space — a
+// room's floor and counter, a chair (under its seat), a bowl, a ring —
+// receivers can stand anywhere inside the sphere, and a lookup inside the
+// inner shell is clamped to it: a chair 0.03–0.2 R from a room's centre was
+// looked up on shells 0.4 R away, 98% of its error (docs/FIELDS.md). There
+// the same shells continue inwards at the same ratio down to 0.03 R or
+// below (geometric spacing; the others stop at 0.03 R), so that the part's
+// field is as fine near its surface as a solid part's.
+OvdfParams ovdf_params_for_mesh(OvdfParams params, const TriangleMesh& mesh);
+
+// Traces and compresses the OVDF of one part (an inner_radius of 0 is
+// resolved for the mesh first: the field's params hold the radius used).
 Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& params, OvdfBakeStats* stats = nullptr,
                const std::function<void(double)>& progress = {});
 

@@ -93,7 +93,10 @@ struct Camera {
 struct Precompute {
     int svdf_resolution = 32, svdf_clusters = 256, svdf_vectors = 8, svdf_supersampling = 4;
     int ovdf_shells = 16;
-    float ovdf_inner_radius = 0.4f, ovdf_outer_radius = 6.0f;  // × the part's bounding radius
+    // × the part's bounding radius; inner 0: chosen per mesh (0.4 where its
+    // bounding sphere's centre lies inside it, else shells added inwards at
+    // the same spacing down to 0.03: rooms, chairs, bowls).
+    float ovdf_inner_radius = 0.0f, ovdf_outer_radius = 6.0f;
     int ovdf_cube_resolution = 32, ovdf_vdt_resolution = 32, ovdf_vectors = 8;
 };
 

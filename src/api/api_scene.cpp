@@ -117,8 +117,8 @@ void Scene::set_precompute(const Precompute& s) {
     for (int value : {s.svdf_resolution, s.svdf_clusters, s.svdf_vectors, s.svdf_supersampling, s.ovdf_shells,
                       s.ovdf_cube_resolution, s.ovdf_vdt_resolution, s.ovdf_vectors})
         if (value < 1) throw_error("precompute: {} where every count must be at least 1", value);
-    if (!(s.ovdf_inner_radius > 0 && s.ovdf_outer_radius > s.ovdf_inner_radius))
-        throw_error("precompute: OVDF shells from {} to {} bounding radii, expected 0 < inner < outer",
+    if (!(s.ovdf_inner_radius >= 0 && s.ovdf_outer_radius > s.ovdf_inner_radius))
+        throw_error("precompute: OVDF shells from {} to {} bounding radii, expected 0 ≤ inner < outer (0: per mesh)",
                     s.ovdf_inner_radius, s.ovdf_outer_radius);
     PrecomputeSettings& p = scene_->precompute;
     p.svdf_resolution = s.svdf_resolution, p.svdf_clusters = s.svdf_clusters, p.svdf_vectors = s.svdf_vectors;

@@ -207,7 +207,7 @@ void print_scene_file(const std::filesystem::path& path) {
     const PrecomputeSettings& p = scene.precompute;
     fmt::print("  precompute:        SVDF {}² x{} rays, {} clusters, {} vectors; OVDF {} shells {}..{} r, cube {}, VDT {}, {} vectors\n",
                p.svdf_resolution, p.svdf_supersampling * p.svdf_supersampling, p.svdf_clusters, p.svdf_vectors,
-               p.ovdf_shells, p.ovdf_inner_radius, p.ovdf_outer_radius, p.ovdf_cube_resolution, p.ovdf_vdt_resolution,
+               p.ovdf_shells, p.ovdf_inner_radius > 0 ? fmt::format("{}", p.ovdf_inner_radius) : "auto", p.ovdf_outer_radius, p.ovdf_cube_resolution, p.ovdf_vdt_resolution,
                p.ovdf_vectors);
 }
 

@@ -507,7 +507,12 @@ private:
             const std::string w = "precompute.ovdf";
             check_keys(o, w, {"shells", "inner_radius", "outer_radius", "cube_resolution", "vdt_resolution", "vectors"});
             if (o.contains("shells")) p.ovdf_shells = int_at(o, "shells", w, 2, 256);
-            if (o.contains("inner_radius")) p.ovdf_inner_radius = positive_number_at(o, "inner_radius", w);
+            // "auto" (the default): chosen per mesh (fields/ovdf.h ovdf_params_for_mesh).
+            if (o.contains("inner_radius")) {
+                if (o["inner_radius"].is_string() && o["inner_radius"] != "auto")
+                    fail("precompute.ovdf.inner_radius", "must be a positive number or \"auto\"");
+                p.ovdf_inner_radius = o["inner_radius"] == "auto" ? 0.0f : positive_number_at(o, "inner_radius", w);
+            }
             if (o.contains("outer_radius")) p.ovdf_outer_radius = positive_number_at(o, "outer_radius", w);
             if (o.contains("cube_resolution")) p.ovdf_cube_resolution = int_at(o, "cube_resolution", w, 2, 256);
             if (o.contains("vdt_resolution")) p.ovdf_vdt_resolution = int_at(o, "vdt_resolution", w, 2, 256);

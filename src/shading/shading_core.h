@@ -378,6 +378,22 @@ RSL_SHARED float ovdf_weighted_plane_distance(float weighted_table_distance, flo
 RSL_SHARED float ovdf_receiver_distance(float blended, float radial, float cone) {
     return max(blended, radial - cone);
 }
+// A receiver within the OVDF part's bounding sphere is inside the part (a
+// neighbour's vertex sunk into it at a joint, fully shadowed) where its
+// samples' blended surface distance is below −kOvdfContactTolerance·R. A
+// vertex on the surface counts as outside, as the ground truth counts a ray
+// origin a few ray offsets inside another part (RayScene's
+// origins_outside_surfaces); the blend near 0 is noise of a few mm either
+// way, and below this tolerance it decided whether the sun glinted on the
+// top of a shin standing in the thigh. Measured at the default frame
+// (robot, sunsky, t = 0.5) against the truth: tolerance 0 / 0.001 R /
+// 0.002 R / 0.005 R gave 13.7% / 7.1% / 7.8% / 10.4% over all vertices,
+// objects 22.7% / 11.2% / 12.5% / 17.0% (larger tolerances light the hip
+// balls sunk in the pelvis, which the truth leaves dark).
+RSL_CONST float kOvdfContactTolerance = 0.001f;
+RSL_SHARED bool ovdf_inside_part(float distance, float radius, float blended_surface_distance) {
+    return distance < radius && blended_surface_distance < -kOvdfContactTolerance * radius;
+}
 // The receiver's own bounding cone test: whether the lookup certainly gives 1
 // for a light at cosine cos_to_center from the pole (|p|² = 1 − cos) and a
 // square of half-edge h: the square lies beyond |p| − cone ≥ h. Branch-free,

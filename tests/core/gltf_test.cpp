@@ -295,6 +295,7 @@ TEST_CASE("The scene-file example of docs/SCENE_FORMAT.md loads", "[scene][gltf]
     CHECK(scene.animation.fps == 24);
     CHECK(scene.precompute.svdf_clusters == 256);
     CHECK(scene.precompute.ovdf_outer_radius == Approx(6.0f));
+    CHECK(scene.precompute.ovdf_inner_radius == 0.0f);  // "auto": per mesh
 
     // glTF parts entry with a transform: its nodes hang below the entry's node.
     const std::string with_gltf_part = std::regex_replace(

@@ -194,6 +194,10 @@ TEST_CASE("Scene files: OBJ parts, transforms, defaults and every kind of error"
                   "precompute.ovdf.cube_resolution: must be even");
     require_error("{" + part + R"(, "precompute": { "ovdf": { "vdt_resolution": 1 } }})",
                   "precompute.ovdf.vdt_resolution: must be an integer from 2 to 256");
+    require_error("{" + part + R"(, "precompute": { "ovdf": { "inner_radius": "small" } }})",
+                  "precompute.ovdf.inner_radius: must be a positive number or \"auto\"");
+    require_error("{" + part + R"(, "precompute": { "ovdf": { "inner_radius": 0 } }})",
+                  "precompute.ovdf.inner_radius: must be positive, got 0");
     require_error("{" + part + R"(, "precompute": { "svdf": { "resolution": 1 } }})",
                   "precompute.svdf.resolution: must be an integer from 2 to 256");
     // A light path without positions was an internal error (nlohmann's out_of_range, status 2).
