@@ -166,6 +166,24 @@ TriangleMesh thin_box(float a, float b) {
     return mesh;
 }
 
+// The small fields of these tests: 16² VDTs, 6 PCA vectors.
+OvdfParams small_params(int shells, int cube_resolution) {
+    OvdfParams params;
+    params.shells = shells;
+    params.cube_resolution = cube_resolution;
+    params.vdt_resolution = 16;
+    params.vectors = 6;
+    return params;
+}
+
+// The mesh alone, for rays.
+RayScene rays_of(const TriangleMesh& mesh) {
+    RayScene scene;
+    scene.add_instance(scene.add_mesh(mesh), Mat4(1.0f));
+    scene.commit();
+    return scene;
+}
+
 }  // namespace
 
 TEST_CASE("OVDF of a thin bar matches ray-traced visibility at every distance", "[ovdf]") {
@@ -176,15 +194,9 @@ TEST_CASE("OVDF of a thin bar matches ray-traced visibility at every distance", 
     // wide at every distance. (Narrower bars, width < R/8 at 16², still fall
     // between the center rays.)
     const TriangleMesh bar = thin_box(1.0f, 0.12f);
-    OvdfParams params;
-    params.shells = 8;
-    params.cube_resolution = 8;
-    params.vdt_resolution = 16;
-    params.vectors = 6;
+    const OvdfParams params = small_params(8, 8);
     const Ovdf ovdf = bake_ovdf(bar, params);
-    RayScene scene;
-    scene.add_instance(scene.add_mesh(bar), Mat4(1.0f));
-    scene.commit();
+    const RayScene scene = rays_of(bar);
 
     std::mt19937 rng(7);
     std::normal_distribution<float> g;
@@ -222,15 +234,9 @@ TEST_CASE("OVDF lights receivers just outside a part and darkens those inside it
     // surface distances tell receivers inside the box (a neighbouring part
     // sunk into it at a joint) from those just outside.
     const TriangleMesh box = thin_box(1.0f, 0.3f);
-    OvdfParams params;
-    params.shells = 10;
-    params.cube_resolution = 16;
-    params.vdt_resolution = 16;
-    params.vectors = 6;
+    const OvdfParams params = small_params(10, 16);
     const Ovdf ovdf = bake_ovdf(box, params);
-    RayScene scene;
-    scene.add_instance(scene.add_mesh(box), Mat4(1.0f));
-    scene.commit();
+    const RayScene scene = rays_of(box);
 
     std::mt19937 rng(3);
     std::normal_distribution<float> g;
@@ -276,11 +282,7 @@ TEST_CASE("OVDF counts a receiver on the part's surface as outside it", "[ovdf]"
     // samples' blended surface distance is noise of a few mm around 0 there;
     // below −kOvdfContactTolerance·R the receiver is inside, fully shadowed.
     const TriangleMesh box = thin_box(1.0f, 0.3f);
-    OvdfParams params;
-    params.shells = 10;
-    params.cube_resolution = 16;
-    params.vdt_resolution = 16;
-    params.vectors = 6;
+    const OvdfParams params = small_params(10, 16);
     const Ovdf ovdf = bake_ovdf(box, params);
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> u(0, 1);
@@ -316,11 +318,7 @@ TEST_CASE("OVDF tells inside from outside in a part made of overlapping closed p
     cross.positions.insert(cross.positions.end(), along_z.positions.begin(), along_z.positions.end());
     cross.normals.insert(cross.normals.end(), along_z.normals.begin(), along_z.normals.end());
     for (const uint32_t i : along_z.indices) cross.indices.push_back(base + i);
-    OvdfParams params;
-    params.shells = 10;
-    params.cube_resolution = 16;
-    params.vdt_resolution = 16;
-    params.vectors = 6;
+    const OvdfParams params = small_params(10, 16);
     const Ovdf ovdf = bake_ovdf(cross, params);
     // The union's signed distance (negative inside), exact for two boxes.
     const auto box_distance = [](const Vec3& p, const Vec3& half) {
@@ -353,9 +351,7 @@ TEST_CASE("OVDF tells inside from outside in a part made of overlapping closed p
 
     // Receivers just outside the cross, by up to 0.06 from a face, against
     // ray-traced single directions (as the box test above).
-    RayScene scene;
-    scene.add_instance(scene.add_mesh(cross), Mat4(1.0f));
-    scene.commit();
+    const RayScene scene = rays_of(cross);
     std::mt19937 rng(5);
     std::normal_distribution<float> g;
     std::uniform_real_distribution<float> u(0, 1);
@@ -409,9 +405,7 @@ TEST_CASE("OVDF shells reach receivers near the centre of an open part", "[ovdf]
     for (int shell = 0; shell < fixed.params.shells; ++shell)
         CHECK(open.shell_radius(shell + inward) == Approx(fixed.shell_radius(shell)).epsilon(1e-4));
 
-    RayScene scene;
-    scene.add_instance(scene.add_mesh(room), Mat4(1.0f));
-    scene.commit();
+    const RayScene scene = rays_of(room);
     std::mt19937 rng(13);
     std::uniform_real_distribution<float> u(-1, 1);
     std::normal_distribution<float> g;
