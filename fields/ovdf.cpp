@@ -303,7 +303,8 @@ OvdfParams ovdf_params_for_mesh(OvdfParams params, const TriangleMesh& mesh) {
     constexpr float kSolidCentre = 0.4f, kOpenCentre = 0.03f;
     if (params.inner_radius != 0.0f) return params;
     params.inner_radius = kSolidCentre;
-    if (mesh.triangle_count() == 0 || SolidPieces(mesh).inside(mesh.bounding_sphere().center)) return params;
+    const Vec3 centre = mesh.bounding_sphere().center;
+    if (mesh.triangle_count() == 0 || SolidPieces(mesh, centre).inside(centre)) return params;
     if (params.spacing != ShellSpacing::Geometric || params.shells < 2 || !(params.outer_radius > kSolidCentre)) {
         params.inner_radius = kOpenCentre;
         return params;

@@ -42,7 +42,7 @@ const Vec3* SolidPieces::probe_directions() {
     return directions.data();
 }
 
-SolidPieces::SolidPieces(const TriangleMesh& mesh) {
+SolidPieces::SolidPieces(const TriangleMesh& mesh, const std::optional<Vec3>& only_around) {
     whole_.add_instance(whole_.add_mesh(mesh), Mat4(1.0f));
     whole_.commit();
     // Vertices at one position are one vertex (a seam of the UVs or normals).
@@ -104,6 +104,9 @@ SolidPieces::SolidPieces(const TriangleMesh& mesh) {
         for (const Vec3& p : piece_mesh->positions) piece->lo = glm::min(piece->lo, p), piece->hi = glm::max(piece->hi, p);
         // Faces turned inwards: a room's walls seen from inside, not a solid.
         if (!(volume > 0.0)) continue;
+        if (only_around && (glm::any(glm::lessThan(*only_around, piece->lo)) ||
+                            glm::any(glm::greaterThan(*only_around, piece->hi))))
+            continue;
         piece->scene.add_instance(piece->scene.add_mesh(*piece_mesh), Mat4(1.0f));
         piece->scene.commit();
         pieces_.push_back(std::move(piece));

@@ -21,6 +21,7 @@
 // behind, for inside (as it always did), and a hollow ball's cavity counts
 // as solid, since its outer surface alone encloses it.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "src/core/mesh.h"
@@ -30,7 +31,9 @@ namespace rsl {
 
 class SolidPieces {
 public:
-    explicit SolidPieces(const TriangleMesh& mesh);
+    // With `only_around`, only the pieces whose box holds that point are kept
+    // (their ray scenes are the cost): inside() is then right for it alone.
+    explicit SolidPieces(const TriangleMesh& mesh, const std::optional<Vec3>& only_around = std::nullopt);
     ~SolidPieces();
     SolidPieces(const SolidPieces&) = delete;
     SolidPieces& operator=(const SolidPieces&) = delete;
