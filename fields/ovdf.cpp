@@ -117,7 +117,7 @@ float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) cons
     const float d = glm::length(v);
     if (d >= shell_radii_.back()) return kVdtNoBoundaryDistance;  // no shadow beyond the outer shell
     const OvdfLocation at = locate(point, d);
-    if (shading::ovdf_inside_part(d, radius, surface_distance_at(at))) return -kVdtNoBoundaryDistance;
+    if (d < radius && shading::ovdf_inside_part(radius, surface_distance_at(at))) return -kVdtNoBoundaryDistance;
     const int s0 = at.s0, face = at.face;
     const float fs = at.fs;
     const glm::ivec4& ii = at.ii;

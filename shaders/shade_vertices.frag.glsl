@@ -168,7 +168,7 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
         }
         surface += ws * value;
     }
-    if (ovdf_inside_part(d, center.w, surface)) return 0.0f;
+    if (d < center.w && ovdf_inside_part(center.w, surface)) return 0.0f;
     // The receiver's own pole frame, twisted by the face rule like its
     // samples: one plane point for all eight samples.
     vec2 lp = lookup_plane_point(to_local(frame_rows(-dir, u_face_s[face.face]), light));

@@ -391,8 +391,9 @@ RSL_SHARED float ovdf_receiver_distance(float blended, float radial, float cone)
 // objects 22.7% / 11.2% / 12.5% / 17.0% (larger tolerances light the hip
 // balls sunk in the pelvis, which the truth leaves dark).
 RSL_CONST float kOvdfContactTolerance = 0.001f;
-RSL_SHARED bool ovdf_inside_part(float distance, float radius, float blended_surface_distance) {
-    return distance < radius && blended_surface_distance < -kOvdfContactTolerance * radius;
+// (Callers blend the surface distance only within the bounding sphere, d < R.)
+RSL_SHARED bool ovdf_inside_part(float radius, float blended_surface_distance) {
+    return blended_surface_distance < -kOvdfContactTolerance * radius;
 }
 // The receiver's own bounding cone test: whether the lookup certainly gives 1
 // for a light at cosine cos_to_center from the pole (|p|² = 1 − cos) and a
