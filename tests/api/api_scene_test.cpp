@@ -78,6 +78,10 @@ TEST_CASE("a scene built in code without a cache folder bakes in memory and shad
     CHECK(api::compare(colors, truth).relative_l2 < 0.02);
     CHECK(test::error_of([&] { scene.add_part("bad", {{{0, 0, 0}}, {0, 0, 1}, {}}, "grey"); }).find("part 'bad'") == 0);
     CHECK(test::error_of([&] { scene.add_part("x", quad, "gold"); }) == "part 'x': no material 'gold' (add_material first)");
+    // The OVDF's inner radius: 0 asks for the per-mesh choice; below 0 is refused.
+    CHECK_NOTHROW(scene.set_precompute({8, 4, 2, 1, 3, 0.0f, 6.0f, 4, 8, 2}));
+    CHECK(test::error_of([&] { scene.set_precompute({8, 4, 2, 1, 3, -0.1f, 6.0f, 4, 8, 2}); }).find("0 ≤ inner < outer") !=
+          std::string::npos);
     // Errors of a scene without a file name no file.
     api::RenderSettings overridden;
     overridden.part_materials = {{"nope", "grey"}};
