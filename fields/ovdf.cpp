@@ -250,24 +250,6 @@ void trace_zoomed_coverage(const RayScene& scene, const ZoomedSampling& z, const
     }
 }
 
-// Probes a point: inside the part (SolidPieces), and `nearest`, the closest
-// hit of SolidPieces' probe rays on the whole part (an upper bound on the
-// distance to the surface).
-struct Probe {
-    bool inside = false;
-    float nearest = 1e30f;
-};
-Probe probe_part(const RayScene& scene, const SolidPieces& pieces, const Vec3& point) {
-    Probe probe;
-    const Vec3* directions = SolidPieces::probe_directions();
-    for (int k = 0; k < SolidPieces::kProbes; ++k) {
-        const RayHit hit = scene.intersect(point, directions[k]);
-        if (hit.hit) probe.nearest = std::min(probe.nearest, hit.t);
-    }
-    probe.inside = pieces.inside(point);
-    return probe;
-}
-
 // Where a shell sample traces its table from, and its signed distance to the
 // surface. A sample inside the part would see nothing but the part's inside —
 // a fully shadowed table that, blended with its neighbours, blackens receivers
@@ -279,20 +261,19 @@ struct SampleOrigin {
     Vec3 position;
     float surface_distance;
 };
-SampleOrigin sample_origin(const RayScene& scene, const SolidPieces& pieces, const Vec3& position, const Vec3& outward,
-                           float radius) {
+SampleOrigin sample_origin(const SolidPieces& pieces, const Vec3& position, const Vec3& outward, float radius) {
     SampleOrigin origin{position, radius};
-    Probe probe = probe_part(scene, pieces, position);
+    SolidPieces::Probe probe = pieces.probe(position);
     if (!probe.inside) {
         origin.surface_distance = std::min(probe.nearest, radius);
         return origin;
     }
     origin.surface_distance = -std::min(probe.nearest, radius);
     for (int layer = 0; layer < 8 && probe.inside; ++layer) {
-        const RayHit exit = scene.intersect(origin.position, outward);
+        const RayHit exit = pieces.whole().intersect(origin.position, outward);
         if (!exit.hit) break;
         origin.position += (exit.t + 1e-3f * radius) * outward;
-        probe = probe_part(scene, pieces, origin.position);
+        probe = pieces.probe(origin.position);
     }
     return origin;
 }
@@ -330,10 +311,9 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& requested, OvdfBakeSt
     ovdf.radius = std::max(sphere.radius, 1e-6f);
     ovdf.prepare();
 
-    RayScene scene;
-    scene.add_instance(scene.add_mesh(mesh), Mat4(1.0f));
-    scene.commit();
+    // The mesh for rays, and its closed pieces for the samples' inside test.
     const SolidPieces pieces(mesh);
+    const RayScene& scene = pieces.whole();
 
     // One sampling pattern per shell, over its zoomed table: rays only
     // towards the part's bounding cone (plus a texel and a half of margin);
@@ -368,7 +348,7 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& requested, OvdfBakeSt
             const Frame& frame = ovdf.sample_frame(face, i, j);
             SampleOrigin origin{ovdf.sample_position(shell, face, i, j), ovdf.shell_radius(shell) - ovdf.radius};
             if (ovdf.shell_radius(shell) < ovdf.radius)  // beyond the bounding sphere nothing is inside
-                origin = sample_origin(scene, pieces, origin.position, -frame.z, ovdf.radius);
+                origin = sample_origin(pieces, origin.position, -frame.z, ovdf.radius);
             ovdf.surface_distance[ovdf.sample_index(shell, face, i, j)] = origin.surface_distance;
             trace_zoomed_coverage(scene, samplings[shell], origin.position, frame, scratch);
             compute_vdt(nv, scratch.coverage.data(), tables.data() + k * dims, params.mode, scratch.vdt);

@@ -131,13 +131,24 @@ bool probes_meet_from_behind(const RayScene& scene, const Vec3& point) {
 
 }  // namespace
 
-bool SolidPieces::inside(const Vec3& point) const {
-    if (probes_meet_from_behind(whole_, point)) return true;
-    for (const auto& piece : pieces_) {
-        if (glm::any(glm::lessThan(point, piece->lo)) || glm::any(glm::greaterThan(point, piece->hi))) continue;
-        if (probes_meet_from_behind(piece->scene, point)) return true;
+SolidPieces::Probe SolidPieces::probe(const Vec3& point) const {
+    Probe result;
+    const Vec3* directions = probe_directions();
+    int hits = 0, from_behind = 0;
+    for (int k = 0; k < kProbes; ++k) {
+        const RayHit hit = whole_.intersect(point, directions[k]);
+        if (!hit.hit) continue;
+        ++hits;
+        result.nearest = std::min(result.nearest, hit.t);
+        from_behind += glm::dot(hit.geometric_normal, directions[k]) > 0.0f;
     }
-    return false;
+    result.inside = hits == kProbes && from_behind >= kProbes - 2;
+    for (size_t p = 0; p < pieces_.size() && !result.inside; ++p) {
+        const Piece& piece = *pieces_[p];
+        if (glm::any(glm::lessThan(point, piece.lo)) || glm::any(glm::greaterThan(point, piece.hi))) continue;
+        result.inside = probes_meet_from_behind(piece.scene, point);
+    }
+    return result;
 }
 
 }  // namespace rsl

@@ -40,8 +40,16 @@ public:
 
     // The closed pieces turned outwards.
     int piece_count() const { return int(pieces_.size()); }
-    // Inside the part (thread-safe).
-    bool inside(const Vec3& point) const;
+    // Inside the part, and the nearest hit of the probe rays on the whole
+    // mesh (an upper bound on the distance to the surface). Thread-safe.
+    struct Probe {
+        bool inside = false;
+        float nearest = 1e30f;
+    };
+    Probe probe(const Vec3& point) const;
+    bool inside(const Vec3& point) const { return probe(point).inside; }
+    // The whole mesh, for rays (the OVDF bake traces its tables in it).
+    const RayScene& whole() const { return whole_; }
 
     // The probe directions: the axes and cube diagonals turned a little, so
     // that they do not run along the faces and through the edges of
