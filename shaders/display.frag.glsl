@@ -8,10 +8,11 @@ in vec3 v_color;
 in vec3 v_specular;
 in vec2 v_texcoord;
 uniform float u_exposure;
+uniform bool u_linear;  // linear radiance (images read back); else exposure and sRGB (the screen)
 uniform bool u_textured;
 uniform sampler2D u_base_color;
 layout(location = 0) out vec4 o_color;
 void main() {
     vec3 color = u_textured ? v_color * texture(u_base_color, v_texcoord).rgb + v_specular : v_color;
-    o_color = vec4(srgb(color * u_exposure), 1.0);
+    o_color = u_linear ? vec4(color, 1.0) : vec4(srgb(color * u_exposure), 1.0);
 }

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include <fmt/core.h>
 
@@ -36,6 +37,7 @@ struct RenderArgs {
     bool quiet = false;
     int shadow_maps = 0;  // 0: off; else the resolution (GL only)
     std::string shadow_filter = "pcss";
+    bool gpu_image = false;  // images formed on the GPU (the display and per-pixel passes)
 };
 
 // "A:B:STEP" → the times A, A + STEP, … ≤ B (inclusive within rounding).
@@ -67,6 +69,11 @@ void run_render(const RenderArgs& args) {
     const std::filesystem::path output(args.output);
     if (output.extension() != ".exr") throw_error("-o {}: expected an .exr path (a .png preview is written beside it)", args.output);
 
+    if (args.gpu_image && backend == Backend::Cpu) throw_error("--gpu-image: images formed on the GPU need --backend gl");
+    if (args.gpu_image && args.samples != 1)
+        throw_error("--gpu-image: the GPU forms one sample per pixel (--samples {} needs the CPU's image formation)",
+                    args.samples);
+
     RenderOptions options;
     options.environment_lights = args.lights;
     options.cross_face_lights = !args.same_face;
@@ -97,9 +104,10 @@ void run_render(const RenderArgs& args) {
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(backend, scene, setup.environment_lights, setup.fields, options);
     if (!args.quiet && backend != Backend::Cpu) fmt::print(stderr, "{}\n", renderer->device());
-    if (!args.quiet && backend != Backend::Cpu && (options.pixel_shadows != PixelShadows::Off || options.pixel_highlights))
+    if (!args.quiet && backend != Backend::Cpu && !args.gpu_image &&
+        (options.pixel_shadows != PixelShadows::Off || options.pixel_highlights))
         fmt::print(stderr, "images: the vertex colours' blend (per-pixel shadows and highlights are the cpu "
-                           "backend's; docs/RENDERER.md)\n");
+                           "backend's and, with --gpu-image, the GPU's per-pixel pass; docs/GPU.md)\n");
     if (!args.quiet && setup.environment_lights.blends())
         fmt::print(stderr, "environment: {} blended with {} over a {} s period (docs/SCENE_FORMAT.md)\n",
                    scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
@@ -124,8 +132,11 @@ void run_render(const RenderArgs& args) {
         renderer->shade(colors);
         const auto shaded = std::chrono::steady_clock::now();
         posed.set_time(t);
-        const Image image = form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, formation,
-                                       renderer->pixel_shading(colors, posed));
+        const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, width, height);
+        std::optional<Image> device_image;
+        if (args.gpu_image) device_image = renderer->device_image(camera);
+        const Image image = device_image ? std::move(*device_image)
+                                         : form_image(posed, camera, colors, formation, renderer->pixel_shading(colors, posed));
         const auto formed = std::chrono::steady_clock::now();
         const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
         write_exr_and_png(exr, image, tone);
@@ -186,6 +197,10 @@ RegisterCommand render_command({"render",
                        "With --shadow-maps: pcss (blocker search; default) or pcf (fixed occluder distance, "
                        "0.1 x the scene's radius)")
             ->check(CLI::IsMember({"pcf", "pcss"}))->needs(shadow_maps)->capture_default_str();
+        app.add_flag("--gpu-image", args->gpu_image,
+                     "With --backend gl: form the images on the GPU, as `rsl view` shows them (the vertex colours "
+                     "rasterized, flat rectangles shaded per pixel by the GPU's per-pixel pass; one sample per "
+                     "pixel; docs/GPU.md)");
         app.add_flag("--quiet,-q", args->quiet, "No progress lines");
         app.callback([args] { run_render(*args); });
     }});

@@ -110,6 +110,8 @@ std::string shading_prelude() {
 
 std::string srgb_prelude() { return "#line 1 1\n" + shader_text("srgb.glsl") + "#line 2 0\n"; }
 
+std::string shade_point_prelude() { return "#line 1 2\n" + shader_text("shade_point.glsl") + "#line 2 0\n"; }
+
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines) {
     const GLuint vs = compile(GL_VERTEX_SHADER, vertex, defines);
     GLuint fs = 0;

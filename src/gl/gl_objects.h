@@ -79,6 +79,9 @@ std::string shading_prelude();
 // What the viewer's display passes get before their text: the sRGB curve
 // (shaders/srgb.glsl), then a #line for the shader's own line numbers.
 std::string srgb_prelude();
+// shaders/shade_point.glsl, the shading sum at a point, after shading_prelude():
+// the vertex pass and the per-pixel pass run it.
+std::string shade_point_prelude();
 
 // A flat array of vec4 (or half4) stored row-major in a 2D texture of fixed
 // width: element i is texel (i % width, i / width). Shaders read it with

@@ -1,33 +1,18 @@
 #include "src/gl/gl_renderer.h"
+#include "src/gl/gl_renderer_units.h"
 
 #include <algorithm>
 #include <chrono>
 
 #include "src/brdf/material_library.h"
 #include "src/core/error.h"
+#include "src/render/occluder_shape.h"
 #include "src/render/renderer.h"
 #include "src/core/sphere_light.h"
 
 namespace rsl::gl {
 
 namespace {
-
-// Texture units of the shading pass.
-enum Unit : int {
-    kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitOccluders, kUnitBrdf,
-    kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
-    kUnitOvdfFrames, kUnitShadowMaps, kUnitCount
-};
-
-// Timed passes (PassTimings), the index of their timer queries.
-enum Pass : int { kPassShade, kPassPack, kPassDisplay, kPassShadow, kPassCount };
-
-void bind_texture(int unit, GLenum target, GLuint texture) {
-    glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(target, texture);
-}
-
-GLint uniform(const Program& program, const char* name) { return glGetUniformLocation(program.id(), name); }
 
 // Mesa's software rasterizers run a pass on their own threads after the
 // commands were queued, and their GL_TIME_ELAPSED queries do not span that
@@ -70,18 +55,28 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
 
     const PackedGeometry geometry = pack_geometry(scene, fields_, options_.exact_shapes);
     const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride) + shading_prelude();
-    shade_program_ = build_program("fullscreen.vert.glsl", "shade_vertices.frag.glsl", defines);
+    shade_program_ = build_program("fullscreen.vert.glsl", "shade_vertices.frag.glsl", defines + shade_point_prelude());
     display_program_ = build_program("display.vert.glsl", "display.frag.glsl", srgb_prelude());
-    glUseProgram(shade_program_.id());
+    pixel_program_ = build_program("shade_pixels.vert.glsl", "shade_pixels.frag.glsl",
+                                   defines + shade_point_prelude() + srgb_prelude());
     const char* samplers[kUnitCount] = {"u_positions",       "u_normals",           "u_tangents",
                                         "u_parts",           "u_lights",            "u_occluder_lists",
                                         "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
                                         "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
-                                        "u_ovdf_frames",     "u_shadow_depths"};
-    for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(shade_program_, samplers[unit]), unit);
-    glUniform3fv(uniform(shade_program_, "u_face_normal"), 6, &geometry.face_normal[0].x);
-    glUniform3fv(uniform(shade_program_, "u_face_s"), 6, &geometry.face_s[0].x);
-    glUniform3fv(uniform(shade_program_, "u_face_t"), 6, &geometry.face_t[0].x);
+                                        "u_ovdf_frames",     "u_shadow_depths",     "u_base_color"};
+    for (const Program* program : {&shade_program_, &pixel_program_}) {
+        glUseProgram(program->id());
+        for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(*program, samplers[unit]), unit);
+        glUniform3fv(uniform(*program, "u_face_normal"), 6, &geometry.face_normal[0].x);
+        glUniform3fv(uniform(*program, "u_face_s"), 6, &geometry.face_s[0].x);
+        glUniform3fv(uniform(*program, "u_face_t"), 6, &geometry.face_t[0].x);
+    }
+    for (const Part& part : scene_.parts) {
+        rectangle_parts_.push_back(find_rectangle(part.mesh) ? 1 : 0);
+        Vec3 low(INFINITY), high(-INFINITY);
+        for (const Vec3& p : part.mesh.positions) low = glm::min(low, p), high = glm::max(high, p);
+        part_bounds_.emplace_back(low, high);
+    }
     upload_geometry(geometry);
     upload_all_tables();
     for (auto& frame : queries_)
@@ -308,6 +303,7 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
     options_.occluder_culling = options.occluder_culling;
     check_shadow_map_options(options.shadow_maps);
     options_.shadow_maps = options.shadow_maps;
+    options_.pixel_shadows = options.pixel_shadows;
     shadow_maps_stale_ = true;
 }
 
@@ -387,29 +383,8 @@ void GlRenderer::shade() {
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glUseProgram(shade_program_.id());
-    bind_texture(kUnitPositions, GL_TEXTURE_2D, positions_.id());
-    bind_texture(kUnitNormals, GL_TEXTURE_2D, normals_.id());
-    bind_texture(kUnitTangents, GL_TEXTURE_2D, tangents_.id());
-    bind_texture(kUnitParts, GL_TEXTURE_2D, parts_.texture.id());
-    bind_texture(kUnitLights, GL_TEXTURE_2D, lights_.texture.id());
-    bind_texture(kUnitOccluders, GL_TEXTURE_2D, occluder_lists_.texture.id());
-    bind_texture(kUnitBrdf, GL_TEXTURE_3D, brdf_.id());
-    bind_texture(kUnitBrdfOffsets, GL_TEXTURE_2D, brdf_offsets_.texture.id());
-    bind_texture(kUnitSvdfTables, GL_TEXTURE_2D, svdf_tables_.texture.id());
-    bind_texture(kUnitSvdfCoefficients, GL_TEXTURE_2D, svdf_coefficients_.texture.id());
-    bind_texture(kUnitOvdfTables, GL_TEXTURE_2D, ovdf_tables_.texture.id());
-    bind_texture(kUnitOvdfCoefficients, GL_TEXTURE_2D, ovdf_coefficients_.texture.id());
-    bind_texture(kUnitOvdfFrames, GL_TEXTURE_2D, ovdf_frames_.texture.id());
     glUniform1i(uniform(shade_program_, "u_vertex_count"), vertex_count_);
-    glUniform1i(uniform(shade_program_, "u_environment_lights"), int(frame_.environment_squares().size()));
-    glUniform1i(uniform(shade_program_, "u_light_count"), frame_.light_count());
-    glUniform1i(uniform(shade_program_, "u_environment_enabled"), options_.environment ? 1 : 0);
-    glUniform1i(uniform(shade_program_, "u_local_enabled"), options_.local_lights ? 1 : 0);
-    glUniform1i(uniform(shade_program_, "u_self_visibility"), options_.self_visibility ? 1 : 0);
-    glUniform1i(uniform(shade_program_, "u_brdf_resolution"), materials_.resolution);
-    const Vec3 camera = frame_.camera();
-    glUniform3f(uniform(shade_program_, "u_camera"), camera.x, camera.y, camera.z);
-    bind_shadow_uniforms();
+    bind_shading_inputs(shade_program_);
     glBindVertexArray(empty_vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     end_pass(kPassShade);
@@ -432,6 +407,31 @@ void GlRenderer::shade() {
     check_gl("the shading pass");
 }
 
+void GlRenderer::bind_shading_inputs(const Program& program) {
+    bind_texture(kUnitPositions, GL_TEXTURE_2D, positions_.id());
+    bind_texture(kUnitNormals, GL_TEXTURE_2D, normals_.id());
+    bind_texture(kUnitTangents, GL_TEXTURE_2D, tangents_.id());
+    bind_texture(kUnitParts, GL_TEXTURE_2D, parts_.texture.id());
+    bind_texture(kUnitLights, GL_TEXTURE_2D, lights_.texture.id());
+    bind_texture(kUnitOccluders, GL_TEXTURE_2D, occluder_lists_.texture.id());
+    bind_texture(kUnitBrdf, GL_TEXTURE_3D, brdf_.id());
+    bind_texture(kUnitBrdfOffsets, GL_TEXTURE_2D, brdf_offsets_.texture.id());
+    bind_texture(kUnitSvdfTables, GL_TEXTURE_2D, svdf_tables_.texture.id());
+    bind_texture(kUnitSvdfCoefficients, GL_TEXTURE_2D, svdf_coefficients_.texture.id());
+    bind_texture(kUnitOvdfTables, GL_TEXTURE_2D, ovdf_tables_.texture.id());
+    bind_texture(kUnitOvdfCoefficients, GL_TEXTURE_2D, ovdf_coefficients_.texture.id());
+    bind_texture(kUnitOvdfFrames, GL_TEXTURE_2D, ovdf_frames_.texture.id());
+    glUniform1i(uniform(program, "u_environment_lights"), int(frame_.environment_squares().size()));
+    glUniform1i(uniform(program, "u_light_count"), frame_.light_count());
+    glUniform1i(uniform(program, "u_environment_enabled"), options_.environment ? 1 : 0);
+    glUniform1i(uniform(program, "u_local_enabled"), options_.local_lights ? 1 : 0);
+    glUniform1i(uniform(program, "u_self_visibility"), options_.self_visibility ? 1 : 0);
+    glUniform1i(uniform(program, "u_brdf_resolution"), materials_.resolution);
+    const Vec3 camera = frame_.camera();
+    glUniform3f(uniform(program, "u_camera"), camera.x, camera.y, camera.z);
+    bind_shadow_uniforms(program);
+}
+
 void GlRenderer::render_shadow_maps() {
     shadowed_[frame_parity_] = false;
     if (clock_timing_) timings_.shadow_ms = 0;  // this frame's, unless drawn below
@@ -451,67 +451,10 @@ void GlRenderer::render_shadow_maps() {
 }
 
 // The shading pass's view of the maps; u_shadow_maps false leaves the RSL visibility.
-void GlRenderer::bind_shadow_uniforms() {
+void GlRenderer::bind_shadow_uniforms(const Program& program) {
     const bool on = options_.shadow_maps.enabled && shadow_maps_ && shadow_maps_->layers() > 0;
-    glUniform1i(uniform(shade_program_, "u_shadow_maps"), on ? 1 : 0);
-    if (on) shadow_maps_->bind_for_shading(shade_program_, options_.shadow_maps, kUnitShadowMaps);
-}
-
-void GlRenderer::draw(const Mat4& view_projection, float exposure) {
-    begin_pass(kPassDisplay);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glUseProgram(display_program_.id());
-    glUniformMatrix4fv(uniform(display_program_, "u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
-    glUniform1f(uniform(display_program_, "u_exposure"), exposure);
-    const GLint model = uniform(display_program_, "u_model");
-    const GLint textured = uniform(display_program_, "u_textured");
-    glUniform1i(uniform(display_program_, "u_base_color"), 0);
-    glBindVertexArray(display_vao_.id());
-    const auto& poses = frame_.poses();
-    const size_t parts = scene_.parts.size();
-    for (size_t p = 0; p < parts; ++p) {
-        glUniformMatrix4fv(model, 1, GL_FALSE, &poses[p].transform[0][0]);
-        // Layered as last shaded (the colour buffer's second rectangle holds its specular layer).
-        const std::shared_ptr<const rsl::Texture>& texture = library_.part_texture(int(p));
-        const bool layer = texture && part_tables_[parts + p] != nullptr;
-        glUniform1i(textured, layer ? 1 : 0);
-        if (layer) bind_texture(0, GL_TEXTURE_2D, base_color_texture(texture));
-        const size_t count = first_index_[p + 1] - first_index_[p];
-        glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
-                                 reinterpret_cast<const void*>(first_index_[p] * sizeof(uint32_t)),
-                                 first_vertex_[p]);
-    }
-    glBindVertexArray(0);
-    end_pass(kPassDisplay);
-    drew_[frame_parity_] = true;
-    check_gl("the display pass");
-}
-
-GLuint GlRenderer::base_color_texture(const std::shared_ptr<const rsl::Texture>& texture) {
-    for (const auto& [source, uploaded] : base_colors_)
-        if (source == texture) return uploaded.id();
-    // Linear RGB(A) floats, row 0 at v = 0 as GL's first row; GL_LINEAR
-    // without mipmaps is Texture::sample's bilinear between texel centers.
-    const Image& image = texture->image;
-    RSL_CHECK(image.channels == 3 || image.channels == 4);  // the glTF loader decodes to RGB
-    Texture uploaded = make_texture();
-    glBindTexture(GL_TEXTURE_2D, uploaded.id());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, image.channels == 4 ? GL_RGBA32F : GL_RGB32F, image.width, image.height, 0,
-                 image.channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT, image.pixels.data());
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    auto wrap = [](TextureWrap w) {
-        return w == TextureWrap::ClampToEdge ? GL_CLAMP_TO_EDGE
-               : w == TextureWrap::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
-    };
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap(texture->wrap_s));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap(texture->wrap_t));
-    check_gl("uploading a base colour texture");
-    base_colors_.emplace_back(texture, std::move(uploaded));
-    return base_colors_.back().second.id();
+    glUniform1i(uniform(program, "u_shadow_maps"), on ? 1 : 0);
+    if (on) shadow_maps_->bind_for_shading(program, options_.shadow_maps, kUnitShadowMaps);
 }
 
 void GlRenderer::begin_pass(int pass) {

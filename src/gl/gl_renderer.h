@@ -7,7 +7,11 @@
 //     RGB into an RGBA32F render target (shaders/shade_vertices.frag.glsl).
 //  2. The target is read into a pixel-pack buffer (GPU to GPU, no CPU copy),
 //     and that same buffer is bound as the vertex-colour array.
-//  3. Display pass: the parts drawn with those colours (shaders/display.*).
+//  3. Display pass: the parts drawn with those colours (shaders/display.*),
+//     and the parts shaded per pixel (RenderOptions::pixel_shadows: the
+//     flat rectangles, grounds and walls) drawn by the per-pixel pass, which
+//     takes the whole sum at the point each pixel sees (shaders/shade_pixels.*,
+//     gl_display.cpp).
 //
 // Everything static (meshes, SVDF, OVDF, BRDF tables) is uploaded once
 // (gpu_layout.h); every frame uploads part poses, lights and occluder lists
@@ -99,8 +103,22 @@ public:
     // Occluder pairs of the frame (the shader does not count lookups).
     const RenderStats& stats() const override { return stats_; }
 
-    // Display pass into the bound framebuffer (depth test on, caller clears).
+    // Display pass into the bound framebuffer (depth test on, caller clears):
+    // the vertex colours' blend, and the per-pixel pass for the parts shaded
+    // per pixel (per_pixel_part). sRGB at `exposure`.
     void draw(const Mat4& view_projection, float exposure);
+    // The image the display pass draws at `camera`, in linear radiance, read
+    // back: RGBA, alpha the coverage (0 or 1: one sample per pixel, at its
+    // centre, as form_image with samples_per_side = 1), row 0 at the top.
+    // After shade(); the camera's pose is the caller's (the vertex colours'
+    // view is the frame's camera).
+    Image form_image(const PinholeCamera& camera);
+    std::optional<Image> device_image(const PinholeCamera& camera) override { return form_image(camera); }
+    // Whether the display pass shades part p per pixel: the parts that are
+    // one flat rectangle (find_rectangle), unless options().pixel_shadows is
+    // Off. Others (PixelShadows::All's curved parts too) are their vertex
+    // colours' blend on the GPU.
+    bool per_pixel_part(size_t p) const;
 
     // Live changes (the viewer): visibility/light toggles of `options` and
     // its shadow maps (not material overrides or table options: materials()
@@ -135,7 +153,10 @@ private:
     // The depth maps of the frame's environment squares, when enabled and
     // the frame changed since the last ones (update_frame marks them stale).
     void render_shadow_maps();
-    void bind_shadow_uniforms();
+    // The shading textures and the frame's uniforms, for the vertex pass or the per-pixel pass.
+    void bind_shading_inputs(const Program& program);
+    void bind_shadow_uniforms(const Program& program);
+    void draw_parts(const Mat4& view_projection, float exposure, bool linear, GLenum depth_test);
     void collect_timings();
     // Time a pass (kPass*): a timer query, or the clock.
     void begin_pass(int pass);
@@ -170,7 +191,9 @@ private:
     PackedMaterials materials_;
     size_t gpu_bytes_ = 0;
 
-    Program shade_program_, display_program_;
+    Program shade_program_, display_program_, pixel_program_;
+    std::vector<char> rectangle_parts_;  // per part: one flat rectangle (find_rectangle)
+    std::vector<std::pair<Vec3, Vec3>> part_bounds_;  // per part: its mesh's box (part space)
     Texture positions_, normals_, tangents_;
     ArrayTexture parts_, lights_, brdf_offsets_;
     ArrayTexture occluder_lists_;  // FrameState::occluder_list_texels

@@ -45,6 +45,10 @@ public:
         renderer_.shade(out);
     }
     using VertexRenderer::shade;
+    std::optional<Image> device_image(const PinholeCamera& camera) override {
+        context_.make_current();
+        return renderer_.form_image(camera);
+    }
     const RenderStats& stats() const override { return renderer_.stats(); }
     std::string pass_times() const override { return renderer_.pass_times(); }
 

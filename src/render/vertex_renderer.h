@@ -79,6 +79,12 @@ public:
     // terms of the parts shaded per pixel: 3–8% of the CPU's shading time).
     // Off by default: callers that form images with it switch it on.
     virtual void keep_pixel_terms(bool keep) {}
+    // The image of the last shade() at `camera`, formed by the backend on its
+    // device (the GL backend: the vertex colours rasterized and its per-pixel
+    // pass, what the viewer shows; src/gl/gl_renderer.h form_image), RGBA in
+    // linear radiance with one sample per pixel; nullopt where the backend
+    // forms none (the CPU: form_image with pixel_shading).
+    virtual std::optional<Image> device_image(const PinholeCamera& camera) { return std::nullopt; }
     // The backend's own pass times of the last measured frame, as one line
     // for printing (`rsl render`); empty where it has none (the CPU).
     virtual std::string pass_times() const { return {}; }

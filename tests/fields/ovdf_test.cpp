@@ -422,7 +422,7 @@ TEST_CASE("OVDF shells reach receivers near the centre of an open part", "[ovdf]
 
 TEST_CASE("OVDF segment table agrees with the shading core's segment formula", "[ovdf]") {
     // The CPU reads i·m / n from a table; the GPU divides (shading_core.h).
-    for (const auto [n, m] : {std::pair{16, 1}, {16, 2}, {12, 3}, {13, 1}, {32, 4}, {6, 2}}) {
+    for (const auto& [n, m] : {std::pair{16, 1}, {16, 2}, {12, 3}, {13, 1}, {32, 4}, {6, 2}}) {
         Ovdf field;
         field.params.shells = 3;
         field.params.cube_resolution = n;

@@ -5,7 +5,6 @@
 // truth.
 #include <catch2/catch.hpp>
 
-#include "assets/generate/pbr_scene.h"
 #include "src/frame/error_metrics.h"
 #include "src/frame/image_formation.h"
 #include "src/render/renderer.h"
@@ -16,38 +15,13 @@
 namespace rsl {
 namespace {
 
-// `textured`: the ground is a glTF material with a tiled base colour
-// texture (a layered part: diffuse × texture + specular per pixel).
-Scene box_over_coarse_ground(bool textured = false) {
-    Scene scene = test::make_scene("pixel_shadows", Color(0.7f));
-    TriangleMesh ground = test::make_plane(6.0f, 6, "ground");  // 1 m cells
-    int ground_material = 0;
-    if (textured) {
-        MaterialDesc tiles = assets::gltf_pbr_material("tiles", Color(0.9f), 0.0f, 0.6f);
-        tiles.base_color_texture = assets::make_tile_texture(4, 4);
-        scene.materials.push_back(tiles);
-        ground_material = 1;
-        ground.texcoords.clear();
-        for (const Vec3& p : ground.positions) ground.texcoords.emplace_back(p.x / 6.0f + 0.5f, p.z / 6.0f + 0.5f);
-    }
-    test::add_part(scene, ground, {}, ground_material);
-    Transform lift;
-    lift.translation = Vec3(0.2f, 0.6f, -0.3f);
-    test::add_part(scene, test::make_flat_box(Vec3(0.35f, 0.3f, 0.25f), 4, "box"), lift);
-    scene.camera.position = Vec3(0.0f, 4.5f, -3.5f);  // looking down at the shadow (the sun is high on +Z)
-    scene.camera.target = Vec3(0.2f, 0.0f, -1.0f);
-    scene.camera.width = 160, scene.camera.height = 120;
-    scene.precompute = test::small_accuracy_precompute();
-    return scene;
-}
-
 struct Images {
     Image truth, per_vertex, per_pixel;
     VertexColors vertex_colors_off, vertex_colors_planes;
 };
 
 Images render_images(bool exact_shapes, bool textured = false) {
-    const Scene scene = box_over_coarse_ground(textured);
+    const Scene scene = test::box_over_coarse_ground(textured);
     const CubeMap environment = test::sky_with_sun(16);
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     const GroundTruth truth(scene, environment, 0.0f);
@@ -130,7 +104,7 @@ TEST_CASE("A pixel at a receiver's vertex takes that vertex's colour", "[render]
     // The pixel path evaluates the occluders at the pixel's point with the
     // vertices' own machinery: at a corner it must give the corner's colour
     // (and elsewhere on a triangle the blend's colour where no edge crosses it).
-    const Scene scene = box_over_coarse_ground();
+    const Scene scene = test::box_over_coarse_ground();
     const CubeMap environment = test::sky_with_sun(16);
     Renderer renderer(scene, fit_environment_lights(environment, 30), bake_part_fields(scene, FieldBakeOptions{}),
                       RenderOptions{});

@@ -3,6 +3,7 @@
 #include <memory>
 #include <random>
 
+#include "assets/generate/pbr_scene.h"
 #include "fields/svdf.h"
 #include "lightfit/rsl.h"
 #include "src/render/part_fields.h"
@@ -74,6 +75,34 @@ inline PrecomputeSettings small_accuracy_precompute() {
     pre.svdf_resolution = 32, pre.svdf_clusters = 16, pre.svdf_vectors = 6, pre.svdf_supersampling = 2;
     pre.ovdf_shells = 8, pre.ovdf_cube_resolution = 16, pre.ovdf_vdt_resolution = 32, pre.ovdf_vectors = 6;
     return pre;
+}
+
+// A box over a ground of 1 m cells, the camera looking down at its shadow
+// under sky_with_sun (the sun high on +Z): the per-pixel shadow tests'
+// scene (tests/render/pixel_shading_test.cpp, tests/gl/gl_pixel_pass_test.cpp).
+// `textured`: the ground is a glTF material with a tiled base colour
+// texture (a layered part: diffuse × texture + specular per pixel).
+inline Scene box_over_coarse_ground(bool textured = false) {
+    Scene scene = make_scene("pixel_shadows", Color(0.7f));
+    TriangleMesh ground = make_plane(6.0f, 6, "ground");  // 1 m cells
+    int ground_material = 0;
+    if (textured) {
+        MaterialDesc tiles = assets::gltf_pbr_material("tiles", Color(0.9f), 0.0f, 0.6f);
+        tiles.base_color_texture = assets::make_tile_texture(4, 4);
+        scene.materials.push_back(tiles);
+        ground_material = 1;
+        ground.texcoords.clear();
+        for (const Vec3& p : ground.positions) ground.texcoords.emplace_back(p.x / 6.0f + 0.5f, p.z / 6.0f + 0.5f);
+    }
+    add_part(scene, ground, {}, ground_material);
+    Transform lift;
+    lift.translation = Vec3(0.2f, 0.6f, -0.3f);
+    add_part(scene, make_flat_box(Vec3(0.35f, 0.3f, 0.25f), 4, "box"), lift);
+    scene.camera.position = Vec3(0.0f, 4.5f, -3.5f);  // looking down at the shadow (the sun is high on +Z)
+    scene.camera.target = Vec3(0.2f, 0.0f, -1.0f);
+    scene.camera.width = 160, scene.camera.height = 120;
+    scene.precompute = small_accuracy_precompute();
+    return scene;
 }
 
 }  // namespace rsl::test

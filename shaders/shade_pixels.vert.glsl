@@ -1,0 +1,27 @@
+#version 330 core
+// The per-pixel pass (RenderOptions::pixel_shadows, docs/GPU.md "Per-pixel
+// shadows"): a part shaded per pixel drawn from the camera, its world
+// position, normal and tangent interpolated for shade_pixels.frag.glsl.
+// Normals and tangents come from the vertex rectangle (gl_VertexID counts
+// the draw's base vertex, so it is the vertex's texel), the pose from the
+// part's record, as in the vertex pass.
+layout(location = 0) in vec3 a_position;  // part space
+layout(location = 3) in vec2 a_texcoord;  // textured parts: glTF texture coordinates
+uniform int u_part;
+uniform mat4 u_view_projection;
+out vec3 v_position;
+out vec3 v_normal;
+out vec3 v_tangent;
+out vec2 v_texcoord;
+void main() {
+    ivec2 texel = ivec2(gl_VertexID & (kArrayWidth - 1), gl_VertexID >> kArrayShift);
+    mat4 transform = mat4(part_texel(u_part, kSlotTransform), part_texel(u_part, kSlotTransform + 1),
+                          part_texel(u_part, kSlotTransform + 2), part_texel(u_part, kSlotTransform + 3));
+    mat3 normal_matrix = mat3(part_texel(u_part, kSlotNormal).xyz, part_texel(u_part, kSlotNormal + 1).xyz,
+                              part_texel(u_part, kSlotNormal + 2).xyz);
+    v_position = (transform * vec4(a_position, 1.0)).xyz;
+    v_normal = normal_matrix * texelFetch(u_normals, texel, 0).xyz;
+    v_tangent = mat3(transform) * texelFetch(u_tangents, texel, 0).xyz;
+    v_texcoord = a_texcoord;
+    gl_Position = u_view_projection * vec4(v_position, 1.0);
+}

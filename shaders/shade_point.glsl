@@ -1,0 +1,404 @@
+// The shading sum at one point (RSL paper §5.2, Figure 8):
+//
+//   Σ_lights  2r²·I  ×  BRDF-SAT average  ×  SVDF average  ×  Π_occluders OVDF average
+//
+// with the same arithmetic as the CPU renderer (src/render/shade_block.cpp,
+// src/brdf/brdf_table.cpp, fields/svdf.h, fields/ovdf.cpp), so that the two
+// agree to float rounding. Layout of every texture: src/gl/gpu_layout.h.
+// Two passes run it (shade_point): the vertex pass (shade_vertices.frag.glsl,
+// one fragment per vertex) and the per-pixel pass (shade_pixels.*.glsl, the
+// parts shaded per pixel drawn from the camera). The host prepends, in
+// order (gl_objects.cpp shading_prelude, shade_point_prelude): MAX_STRIDE
+// (texels of a CPCA row), the layout constants of src/gl/gpu_layout.h
+// (kPartStride, kSlot*, kArrayWidth, kArrayShift, kLightTexels,
+// kSurfacesPerTexel, kPi, kSqrt2), the shading core
+// src/shading/shading_core.h, whose functions (frames, the equal-area map,
+// square taps, bilinear taps, the VDT rule, the OVDF's shells, faces, zoom
+// and cone bounds, the slab rule) are the CPU's own, then this file. What
+// stays here is data access: texelFetch and the loops over it.
+//
+// With u_shadow_maps (RenderOptions::shadow_maps, a competitor baseline;
+// docs/GPU.md "Shadow-mapped visibility") every environment light's
+// visibility comes from its depth map instead (shadow_visible_fraction).
+
+uniform sampler2D u_positions;     // vertex rectangle: part-space position, part
+uniform sampler2D u_normals;       // normal, SVDF cluster
+uniform sampler2D u_tangents;      // tangent
+uniform sampler2D u_parts;         // part records (kPartStride texels each)
+uniform sampler2D u_lights;        // kLightTexels per light
+uniform usampler2D u_occluder_lists;  // FrameState::occluder_list_texels: offsets, then part indices
+uniform sampler3D u_brdf;          // SAT corners, slices stacked
+uniform sampler2D u_brdf_offsets;  // per slice mean offset
+uniform sampler2D u_svdf_tables;
+uniform sampler2D u_svdf_coefficients;
+uniform sampler2D u_ovdf_tables;
+uniform sampler2D u_ovdf_coefficients;
+uniform sampler2D u_ovdf_frames;
+
+uniform int u_environment_lights;  // lights [0, E) are environment squares, [E, L) local sphere lights
+uniform int u_light_count;
+uniform bool u_environment_enabled;  // RenderOptions::environment
+uniform bool u_local_enabled;        // RenderOptions::local_lights
+uniform int u_brdf_resolution;     // N
+uniform vec3 u_camera;
+uniform bool u_self_visibility;
+uniform vec3 u_face_normal[kCubeFaces];  // the OVDF cube faces (as Ovdf::prepare)
+uniform vec3 u_face_s[kCubeFaces];
+uniform vec3 u_face_t[kCubeFaces];
+// The shadow-mapped baseline (src/gl/shadow_maps.h): layer l = environment light l.
+uniform bool u_shadow_maps;      // environment lights' visibility from the maps
+uniform bool u_shadow_pcss;      // PCSS (blocker search); else PCF at u_pcf_depth
+uniform sampler2DArray u_shadow_depths;  // the maps (read with texelFetch)
+uniform vec4 u_shadow_sphere;    // the maps' sphere: centre, radius
+uniform int u_shadow_resolution; // texels per side
+uniform float u_shadow_texel;    // 1 / resolution: a texel, across and in depth
+uniform float u_pcf_depth;       // PCF: the occluder distance assumed, in depth units
+
+
+vec4 fetch(sampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0); }
+vec4 part_texel(int part, int slot) { return fetch(u_parts, part * kPartStride + slot); }
+uint list_texel(int i) { return texelFetch(u_occluder_lists, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0).r; }
+
+// Frame::from_normal_tangent as a matrix: local = transpose(frame) * world.
+mat3 frame_rows(vec3 n, vec3 t) {
+    LocalFrame f = frame_from_normal_tangent(n, t);
+    return mat3(f.x, f.y, f.z);
+}
+vec3 to_local(mat3 frame, vec3 v) { return vec3(dot(v, frame[0]), dot(v, frame[1]), dot(v, frame[2])); }
+
+// ---- BRDF summed-area tables (brdf_table.cpp) ----
+
+vec3 slice_integral(int s, SquareTaps t) {
+    vec3 sum = vec3(0.0);
+    for (int n = 0; n < 4; ++n)
+        for (int m = 0; m < 4; ++m) sum += (t.wx[m] * t.wy[n]) * texelFetch(u_brdf, ivec3(t.ax[m], t.by[n], s), 0).rgb;
+    return sum + fetch(u_brdf_offsets, s).rgb * t.clipped_area;
+}
+
+// Average of ρ·cos over the square (table frame) for view `view`; material =
+// (first slice, isotropic, V, 0).
+vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
+    SquareTaps t = square_taps(c, h, u_brdf_resolution);
+    if (t.clipped_area <= 0.0f) return vec3(0.0f);
+    int first = int(material.x), v = int(material.z);
+    vec3 sum = vec3(0.0f);
+    if (material.y > 0.5f) {
+        SampleLerp k = sample_lerp(isotropic_view_coordinate(view.z, v), v);
+        sum += (1.0f - k.upper_weight) * slice_integral(first + k.lower, t);
+        sum += k.upper_weight * slice_integral(first + k.lower + 1, t);
+    } else {
+        vec2 p = anisotropic_view_point(view);
+        SampleLerp i = sample_lerp(view_grid_coordinate(p.x, v), v);
+        SampleLerp j = sample_lerp(view_grid_coordinate(p.y, v), v);
+        float wi = i.upper_weight, wj = j.upper_weight;
+        int s = first + j.lower * v + i.lower;
+        sum += ((1.0f - wi) * (1.0f - wj)) * slice_integral(s, t);
+        sum += (wi * (1.0f - wj)) * slice_integral(s + 1, t);
+        sum += ((1.0f - wi) * wj) * slice_integral(s + v, t);
+        sum += (wi * wj) * slice_integral(s + v + 1, t);
+    }
+    return sum * t.inv_full_area;
+}
+
+// ---- visibility distance tables (fields/vdt.h, svdf.h, ovdf.cpp) ----
+
+vec4 g_svdf_coefficients[MAX_STRIDE];
+
+// The vertex's reconstructed SVDF distance at plane point p.
+float svdf_distance(vec4 svdf, int cluster, vec2 p) {
+    int n = int(svdf.z), stride = int(svdf.w), dims = n * n;
+    BilinearTaps taps = bilinear_taps(n, p);
+    float d = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        int row = int(svdf.x) + (cluster * dims + taps.index[k]) * stride;
+        float value = 0.0f;
+        for (int t = 0; t < stride; ++t) value += dot(fetch(u_svdf_tables, row + t), g_svdf_coefficients[t]);
+        d += taps.weight[k] * value;
+    }
+    return d;
+}
+
+// An OVDF row reconstruction Σ_t dot(row_t, w_t) at table texel `texel`.
+float ovdf_row(int tables, int stride, int dims, int segment, int texel, vec4 w[MAX_STRIDE]) {
+    int row = tables + (segment * dims + texel) * stride;
+    float value = 0.0;
+    for (int t = 0; t < stride; ++t) value += dot(fetch(u_ovdf_tables, row + t), w[t]);
+    return value;
+}
+
+// Ovdf::visible_fraction (AlignedCoefficients) as OvdfLookup computes it:
+// point and unit light in the occluder's frame.
+float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
+    vec4 center = part_texel(part, kSlotOvdfCenter);
+    vec4 bases = part_texel(part, kSlotOvdfBases);
+    vec3 v = point - center.xyz;
+    float d = length(v);
+    if (d >= bases.w) return 1.0f;
+    vec3 dir = d > 0.0f ? v / d : vec3(0.0f, 0.0f, 1.0f);
+    // The receiver's own bounding cone (the CPU's per-vertex test,
+    // OvdfLookup::unshadowed): the lookup gives 1 beyond it.
+    float cone = ovdf_zoom(d, center.w).cone;
+    if (ovdf_unshadowed(dot(light, -dir), cone, h)) return 1.0f;
+    vec4 shells = part_texel(part, kSlotOvdfShells);
+    vec4 grid = part_texel(part, kSlotOvdfGrid);
+    vec4 records = part_texel(part, kSlotOvdfRecords);
+    int shell_count = int(shells.x), n = int(grid.x), vdt_n = int(grid.y), stride = int(grid.z), m = int(grid.w);
+    ShellPair pair = ovdf_shell_pair(
+        ovdf_shell_coordinate(int(shells.y), shell_count, shells.z, shells.w, d / center.w), shell_count);
+    int s0 = pair.lower;
+    float fs = pair.upper_weight;
+    CubeFace face = cube_face(dir, u_face_normal);
+    SampleTaps at = ovdf_sample_taps(dir, face.cosine, u_face_s[face.face], u_face_t[face.face], n);
+    int tables = int(bases.x), coefficients = int(bases.y), dims = vdt_n * vdt_n;
+    // A receiver inside the part (its samples' blended surface distance is
+    // negative; Ovdf::surface_distance_at) sees nothing.
+    int surface_base = int(records.y);
+    float surface = 0.0f;
+    for (int k = 0; k < 2 && d < center.w; ++k) {
+        float ws = k == 0 ? 1.0f - fs : fs;
+        if (ws == 0.0f) continue;
+        float value = 0.0f;
+        for (int q = 0; q < 4; ++q) {
+            int sample = ovdf_sample_index(s0 + k, face.face, at.i[q], at.j[q], n);
+            value += at.weight[q] *
+                     fetch(u_ovdf_frames, surface_base + sample / kSurfacesPerTexel)[sample % kSurfacesPerTexel];
+        }
+        surface += ws * value;
+    }
+    if (d < center.w && ovdf_inside_part(center.w, surface)) return 0.0f;
+    // The receiver's own pole frame, twisted by the face rule like its
+    // samples: one plane point for all eight samples.
+    vec2 lp = lookup_plane_point(to_local(frame_rows(-dir, u_face_s[face.face]), light));
+    float radial = length(lp);
+    float distance = 0.0f;
+    for (int k = 0; k < 2; ++k) {
+        int shell = s0 + k;
+        float ws = k == 0 ? 1.0f - fs : fs;
+        if (ws == 0.0f) continue;
+        // The shell's zoomed table (OvdfZoom), one record per shell.
+        vec4 record = fetch(u_ovdf_frames, int(records.x) + shell);
+        OvdfZoom zoom;
+        zoom.zoom = record.x;
+        zoom.cone = record.y;
+        BilinearTaps taps = bilinear_taps(vdt_n, zoom.zoom * lp);
+        int segment = ovdf_segment_of(shell, face.face, at.i[0], at.j[0], n, m);
+        float value = 0.0f;  // × ws, table units
+        if (segment == ovdf_segment_of(shell, face.face, at.i[3], at.j[3], n, m)) {
+            // Reconstruction is linear in the coefficients: blend them first.
+            vec4 c[MAX_STRIDE];
+            for (int t = 0; t < stride; ++t) c[t] = vec4(0.0f);
+            for (int q = 0; q < 4; ++q) {
+                int sample = ovdf_sample_index(shell, face.face, at.i[q], at.j[q], n);
+                for (int t = 0; t < stride; ++t) c[t] += at.weight[q] * fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
+            }
+            c[0].x = 1.0f;  // the mean's weight (the blend weights sum to 1)
+            for (int t = 0; t < 4; ++t) value += taps.weight[t] * ovdf_row(tables, stride, dims, segment, taps.index[t], c);
+        } else {  // the four samples straddle segments: four reconstructions
+            for (int q = 0; q < 4; ++q) {
+                if (at.weight[q] == 0.0f) continue;
+                int sample = ovdf_sample_index(shell, face.face, at.i[q], at.j[q], n);
+                int sample_segment = ovdf_segment_of(shell, face.face, at.i[q], at.j[q], n, m);
+                vec4 c[MAX_STRIDE];
+                for (int t = 0; t < stride; ++t) c[t] = fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
+                float reconstructed = 0.0f;
+                for (int t = 0; t < 4; ++t)
+                    reconstructed += taps.weight[t] * ovdf_row(tables, stride, dims, sample_segment, taps.index[t], c);
+                value += at.weight[q] * reconstructed;
+            }
+        }
+        distance += ovdf_weighted_plane_distance(ws * value, ws, zoom, radial);
+    }
+    return visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, cone), h);
+}
+
+// The exact shadow of a part that is a rectangle or a box
+// (shape_visible_fraction): shape = (center, kind), point in the part's
+// frame, `axes` the receiver's shading frame moved into it.
+float exact_shape_fraction(int part, vec4 shape, vec3 point, mat3 axes, vec2 lp, float h) {
+    // Within the field's reach only, as its lookup and the occluder lists.
+    vec4 field = part_texel(part, kSlotOvdfCenter);
+    if (!(length(point - field.xyz) < field.w * part_texel(part, kSlotOvdfShells).w)) return 1.0;
+    mat3 to_shape = transpose(mat3(part_texel(part, kSlotShapeS).xyz, part_texel(part, kSlotShapeT).xyz,
+                                   part_texel(part, kSlotShapeNormal).xyz));
+    LocalFrame frame;
+    frame.x = to_shape * axes[0];
+    frame.y = to_shape * axes[1];
+    frame.z = to_shape * axes[2];
+    return shape_visible_fraction(int(shape.w + 0.5), to_shape * (point - shape.xyz), frame, lp, h,
+                                  part_texel(part, kSlotShapeLow).xyz, part_texel(part, kSlotShapeHigh).xyz);
+}
+
+// The slab rule (clears_box_face_scaled): point in the part's frame, light =
+// inverse_linear·(world direction), not normalized; the face normals are the
+// rows of inverse_linear.
+bool clears_box(int part, vec3 point, vec3 light, mat3 inverse_linear, float h) {
+    vec3 sides = box_sides(part_texel(part, kSlotBoxLow).xyz, part_texel(part, kSlotBoxHigh).xyz, point);
+    mat3 rows = transpose(inverse_linear);
+    vec3 face_scale = vec3(length(rows[0]), length(rows[1]), length(rows[2]));
+    return clears_box_face_scaled(sides, light, face_scale, square_cone_sine(h));
+}
+
+// ---- the shadow-mapped baseline (shading_core.h "shadow maps") ----
+
+// Lit fraction of environment light `layer` (centre direction L) over its
+// square (plane centre lp, half-edge h) at world point p, shading frame
+// `frame` (columns x, y, z = normal). The taps are the square's own
+// directions (shadow_tap_point) above the horizon; a ray along one reaches
+// the blockers' depth at `distance` × its slope across the map. PCF assumes
+// the distance (u_pcf_depth); PCSS searches blockers and takes their mean
+// distance (blocker_distance). Each texel a tap reads is compared with the
+// receiver's own tangent plane at the texel's centre (the receiver-plane
+// depth bias), less a constant bias.
+struct ShadowReceiver {
+    vec3 q;         // the receiver in the map: (u, v, depth)
+    vec2 gradient;  // its tangent plane's depth per unit map offset
+    float bias;     // depth units
+    int layer;
+};
+vec2 g_shadow_slope[kShadowTaps];
+
+// Texel t of the receiver's map: 1 (nothing in front) outside it.
+float shadow_depth(ShadowReceiver r, ivec2 t) {
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(u_shadow_resolution)))) return 1.0;
+    return texelFetch(u_shadow_depths, ivec3(t, r.layer), 0).r;
+}
+// The receiver's tangent plane at texel t's centre: a texel nearer than
+// this less the bias blocks.
+float shadow_plane(ShadowReceiver r, ivec2 t) {
+    vec2 center = (vec2(t) + 0.5) * u_shadow_texel;
+    return r.q.z + dot(center - r.q.xy, r.gradient);
+}
+// Lit share at map point uv, bilinear over the four nearest texels.
+float shadow_lit(ShadowReceiver r, vec2 uv) {
+    vec2 t = uv * float(u_shadow_resolution) - 0.5;
+    vec2 base = floor(t);
+    vec2 f = t - base;
+    float lit = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 texel = ivec2(base) + ivec2(k & 1, k >> 1);
+        float weight = ((k & 1) == 0 ? 1.0 - f.x : f.x) * ((k >> 1) == 0 ? 1.0 - f.y : f.y);
+        if (shadow_depth(r, texel) >= shadow_plane(r, texel) - r.bias) lit += weight;
+    }
+    return lit;
+}
+
+// PCSS's blocker search: the mean distance (depth units) from the blockers
+// that the taps at `distance` × slope find down to the receiver's tangent
+// plane below each (not to the receiver itself: a blocker plane tilted
+// against the light, found far to the side, would read as near), or 0 when
+// they find none.
+float blocker_distance(ShadowReceiver r, int taps, float distance) {
+    float sum = 0.0;
+    int blockers = 0;
+    for (int k = 0; k < taps; ++k) {
+        ivec2 texel = ivec2(floor((r.q.xy + distance * g_shadow_slope[k]) * float(u_shadow_resolution)));
+        float depth = shadow_depth(r, texel), plane = shadow_plane(r, texel);
+        if (depth < plane - r.bias) {
+            sum += plane - depth;
+            ++blockers;
+        }
+    }
+    return blockers == 0 ? 0.0 : sum / float(blockers);
+}
+
+float shadow_visible_fraction(int layer, vec3 light, vec3 p, mat3 frame, vec2 lp, float h) {
+    LocalFrame m = shadow_map_frame(light);
+    ShadowReceiver r;
+    r.q = shadow_map_point(m, u_shadow_sphere.xyz, u_shadow_sphere.w, p);
+    r.gradient = shadow_receiver_gradient(m, frame[2]);
+    r.bias = kShadowDepthBiasTexels * u_shadow_texel;
+    r.layer = layer;
+    int taps = 0;
+    for (int i = 0; i < kShadowTaps; ++i) {
+        vec2 point = shadow_tap_point(lp, h, i);
+        if (dot(point, point) >= 1.0) continue;  // below the horizon: the BRDF average is 0 there
+        g_shadow_slope[taps++] = shadow_map_slope(m, frame * plane_to_hemisphere(point));
+    }
+    if (taps == 0) return 1.0;
+    float distance = u_pcf_depth;
+    if (u_shadow_pcss) {
+        // Over the widest footprint: rays up to the map's near face (depth 0).
+        distance = blocker_distance(r, taps, r.q.z);
+        if (distance == 0.0) return 1.0;
+    }
+    float lit = 0.0;
+    for (int k = 0; k < taps; ++k) lit += shadow_lit(r, r.q.xy + distance * g_shadow_slope[k]);
+    return lit / float(taps);
+}
+
+// ---- the sum ----
+
+struct PointShade {
+    vec3 color;     // the diffuse sum at unit texture (textured parts), else the whole sum
+    vec3 specular;  // textured parts (kSlotSpecular.w = 1): the specular table's sum
+};
+
+// The sum at world point p of `part`, shading frame `frame` (rows: tangent,
+// bitangent, normal), towards u_camera. self: the SVDF of the coefficients
+// in g_svdf_coefficients, cluster `cluster`, multiplies each light.
+PointShade shade_point(int part, vec3 p, mat3 frame, bool self, int cluster) {
+    vec4 material = part_texel(part, kSlotMaterial);
+    vec4 specular_material = part_texel(part, kSlotSpecular);
+    bool layered = specular_material.w > 0.5;
+    vec4 svdf = part_texel(part, kSlotSvdf);
+    bool isotropic = material.y > 0.5;
+    vec3 wo = to_local(frame, normalize(u_camera - p));
+    vec2 alignment = view_alignment(wo);
+
+    PointShade result;
+    result.color = vec3(0.0);
+    result.specular = vec3(0.0);
+    if (!(wo.z > 0.0)) return result;
+    int first = u_environment_enabled ? 0 : u_environment_lights;
+    int last = u_local_enabled ? u_light_count : u_environment_lights;
+    for (int l = first; l < last; ++l) {
+        vec4 a = fetch(u_lights, kLightTexels * l), b = fetch(u_lights, kLightTexels * l + 1);
+        vec3 direction;
+        float h;
+        vec3 integral;
+        if (l < u_environment_lights) {
+            direction = a.xyz;
+            h = a.w;
+            integral = b.rgb;
+        } else {  // sphere light: center a.xyz, radius a.w, radiance b.rgb; spot axis c.xyz, cone (b.w, c.w)
+            vec3 to_center = a.xyz - p;
+            float distance = length(to_center);
+            if (!(distance > a.w)) continue;
+            direction = to_center / distance;
+            float solid_angle = sphere_cap_solid_angle(a.w, distance);
+            h = half_edge_for_solid_angle(solid_angle);
+            vec4 c = fetch(u_lights, kLightTexels * l + 2);
+            integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -direction, b.w, c.w));
+        }
+        vec3 local = to_local(frame, direction);
+        vec2 lp = hemisphere_to_plane(local);
+        if (!(h > 0.0f) || !square_reaches_hemisphere(local.z, h)) continue;
+        vec2 square = isotropic ? to_view_aligned(lp, alignment) : lp;
+        vec3 brdf = brdf_average(material, square, h, wo);
+        vec3 specular_brdf = layered ? brdf_average(specular_material, square, h, wo) : vec3(0.0);
+        if (u_shadow_maps && l < u_environment_lights) {  // the baseline's visibility, in place of the fields'
+            float lit = shadow_visible_fraction(l, direction, p, frame, lp, h);
+            result.color += integral * brdf * lit;
+            result.specular += integral * specular_brdf * lit;
+            continue;
+        }
+        float visibility = self ? visible_fraction_from_distance(svdf_distance(svdf, cluster, lp), h) : 1.0;
+        int slot = part * u_light_count + l;
+        int list_end = int(list_texel(slot + 1));
+        for (int e = int(list_texel(slot)); e < list_end; ++e) {
+            if (!(visibility > 0.0)) break;
+            int o = int(list_texel(e));
+            mat4 inverse = mat4(part_texel(o, kSlotInverse), part_texel(o, kSlotInverse + 1),
+                                part_texel(o, kSlotInverse + 2), part_texel(o, kSlotInverse + 3));
+            vec3 point = (inverse * vec4(p, 1.0)).xyz;
+            vec3 dir = normalize(mat3(inverse) * direction);
+            if (clears_box(o, point, mat3(inverse) * direction, mat3(inverse), h)) continue;
+            vec4 shape = part_texel(o, kSlotShape);
+            visibility *= shape.w > 0.5 ? exact_shape_fraction(o, shape, point, mat3(inverse) * frame, lp, h)
+                                        : ovdf_visible_fraction(o, point, dir, h);
+        }
+        result.color += integral * brdf * visibility;
+        result.specular += integral * specular_brdf * visibility;
+    }
+    return result;
+}
