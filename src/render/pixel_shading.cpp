@@ -18,6 +18,7 @@
 // the same light squares, occluder lists, culling and lookups as the vertices.
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 
 #include "src/core/error.h"
 #include "src/render/block_scratch.h"
@@ -50,6 +51,31 @@ struct Renderer::TriangleLights {
     std::unique_ptr<std::atomic<uint8_t>[]> ready;
     std::unique_ptr<std::atomic<uint64_t>[]> masks;
 };
+
+// A vertex v whose normal is within δ_v of every normal it shares a
+// triangle with: when its view cosine is below −sin δ_v, every such
+// neighbour faces away too, and no pixel that sees the camera side blends
+// its terms. The margin covers the view's change from vertex to vertex
+// (perspective) and the interpolated normals' own spread.
+std::vector<float> Renderer::rim_view_floors(const TriangleMesh& mesh) {
+    constexpr float kMargin = 0.05f;
+    std::vector<float> min_cosine(mesh.vertex_count(), 1.0f);  // of the angle to the neighbours' normals
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const uint32_t* corner = &mesh.indices[3 * t];
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) {
+                const float c = glm::dot(mesh.normals[corner[a]], mesh.normals[corner[b]]);
+                min_cosine[corner[a]] = std::min(min_cosine[corner[a]], c);
+            }
+    }
+    std::vector<float> floors(mesh.vertex_count());
+    for (size_t v = 0; v < floors.size(); ++v) {
+        const float c = std::clamp(min_cosine[v], -1.0f, 1.0f);
+        const float sine = c > 0.0f ? std::sqrt(1.0f - c * c) : 1.0f;  // δ ≥ 90°: any view
+        floors[v] = -sine - kMargin;
+    }
+    return floors;
+}
 
 PixelShadows parse_pixel_shadows(const std::string& name) {
     if (name == "off") return PixelShadows::Off;

@@ -79,6 +79,7 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
         pixel_parts_.push_back(per_pixel ? 1 : 0);
     }
     pixel_terms_.resize(parts);
+    rim_view_floor_.resize(parts);
     part_tables_.assign(parts, nullptr);
     part_specular_tables_.assign(parts, nullptr);
     synced_material_.assign(parts, -1);
@@ -170,6 +171,7 @@ void Renderer::shade(VertexColors& out) {
         t.unshadowed_specular.resize(shadows && part_specular_tables_[p] ? terms : 0);
         t.occlusion.resize(shadows || highlights ? terms : 0);
         t.self_visibility.resize(highlights ? terms : 0);
+        if (highlights && rim_view_floor_[p].empty()) rim_view_floor_[p] = rim_view_floors(scene_.parts[p].mesh);
     }
     std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0}, shadow_rays{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {

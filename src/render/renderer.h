@@ -101,7 +101,13 @@ private:
     void put_local_light(BlockScratch& s, int k, size_t local_light) const;
     void project_lights(BlockScratch& s, int n) const;
     void set_lights_at_point(BlockScratch& s, size_t lights) const;
-    int brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n) const;
+    // view_floor (per point k): points that face away from the camera with a
+    // view cosine above view_floor[k] are queried too, with BRDF averages 0
+    // (a part shaded with highlights per pixel keeps their self-visibility
+    // and occluder factor: a pixel between a vertex beyond the silhouette and
+    // the ones in front blends them).
+    int brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n,
+                     const float* view_floor = nullptr) const;
     void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, int part, size_t light, int n,
                              int m, RenderStats& counts) const;
     void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
@@ -173,6 +179,12 @@ private:
     };
     bool keep_pixel_terms_ = false;
     std::vector<char> pixel_parts_;  // per part: shadows per pixel
+    // Per part and vertex, for highlights per pixel: a vertex that faces away
+    // from the camera by less than this view cosine still keeps its terms,
+    // since a triangle it shares with a vertex facing the camera can be seen
+    // (rim_view_floors; made at a part's first highlights).
+    std::vector<std::vector<float>> rim_view_floor_;
+    static std::vector<float> rim_view_floors(const TriangleMesh& mesh);
     std::vector<PixelTerms> pixel_terms_;
 };
 

@@ -292,14 +292,21 @@ void Renderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
 // into s.index, s.qx/qy/qh (the square in the point's frame) and s.tx/ty
 // (in the table's frame), with their BRDF averages in s.br/bg/bb (and the
 // specular table's in s.spr/spg/spb). Returns their count m.
-int Renderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n) const {
+int Renderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n,
+                           const float* view_floor) const {
     const bool isotropic = table.isotropic();
     // Compaction: the view must be above the horizon (ρ = 0 otherwise, as
-    // the truth) and the square must reach the upper hemisphere.
+    // the truth; above view_floor: queried with ρ = 0) and the square must reach
+    // the upper hemisphere.
     int m = 0;
+    bool away = false;  // a query whose view is below the horizon
     for (int k = 0; k < n; ++k) s.queried[k] = 0;
     for (int k = 0; k < n; ++k) {
-        if (!(s.vz[k] > 0.0f) || !(s.half[k] > 0.0f) || !square_reaches_hemisphere(s.lz[k], s.half[k])) continue;
+        if (!(s.half[k] > 0.0f) || !square_reaches_hemisphere(s.lz[k], s.half[k])) continue;
+        const bool faces_away = !(s.vz[k] > 0.0f);
+        if (faces_away && !(view_floor && s.vz[k] > view_floor[k])) continue;
+        away = away || faces_away;
+        s.skip[m] = faces_away;  // its averages are set to 0 below
         s.queried[k] = 1;
         s.query_of[k] = m;
         s.index[m] = k;
@@ -309,9 +316,9 @@ int Renderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTa
             s.tx[m] = t.x, s.ty[m] = t.y;
         } else {
             s.tx[m] = s.lpx[k], s.ty[m] = s.lpy[k];
-            s.qvx[m] = s.vx[k], s.qvy[m] = s.vy[k];
+            s.qvx[m] = faces_away ? 0.0f : s.vx[k], s.qvy[m] = faces_away ? 0.0f : s.vy[k];
         }
-        s.qvz[m] = s.vz[k];
+        s.qvz[m] = faces_away ? 1.0f : s.vz[k];  // any view the tables take: the averages are 0
         ++m;
     }
     if (m == 0) return 0;
@@ -325,6 +332,12 @@ int Renderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTa
     queries.count = size_t(m);
     table.square_average_batch(queries, ColorOutputs{s.br, s.bg, s.bb});
     if (specular) specular->square_average_batch(queries, ColorOutputs{s.spr, s.spg, s.spb});
+    if (away)
+        for (int i = 0; i < m; ++i)
+            if (s.skip[i]) {
+                s.br[i] = s.bg[i] = s.bb[i] = 0.0f;
+                if (specular) s.spr[i] = s.spg[i] = s.spb[i] = 0.0f;
+            }
     return m;
 }
 
@@ -433,6 +446,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const bool keep_unshadowed = pixel && !pixel->unshadowed.empty();
     const bool keep_specular = keep_unshadowed && specular;
     const bool keep_self = pixel && !pixel->self_visibility.empty();
+    const float* rim_floor = keep_self ? rim_view_floor_[size_t(part_index)].data() + block.begin : nullptr;
     if (pixel) {
         const size_t first = size_t(block.begin) * lights, last = size_t(block.end) * lights;
         std::fill(pixel->occlusion.begin() + first, pixel->occlusion.begin() + last, 1.0f);
@@ -444,7 +458,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     for (size_t l = 0; l < lights; ++l) {
         if (l < environment ? !options_.environment : !options_.local_lights) continue;
         set_light(s, l, n);
-        const int m = brdf_queries(s, table, specular, n);
+        const int m = brdf_queries(s, table, specular, n, rim_floor);
         if (m == 0) continue;
         counts.lookups += size_t(m);
 
@@ -466,8 +480,11 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         } else {
             for (int i = 0; i < m; ++i) s.vis[i] = 1.0f;
         }
-        for (int i = 0; i < m; ++i)
-            if (adds_nothing(i)) s.vis[i] = 0.0f;
+        // Highlights per pixel keep the SVDF of every square that reaches the
+        // vertex's hemisphere: a pixel near the vertex may see the light.
+        if (!keep_self)
+            for (int i = 0; i < m; ++i)
+                if (adds_nothing(i)) s.vis[i] = 0.0f;
         if (exact && exact_others) {
             for (int i = 0; i < m; ++i) s.skip[i] = !(s.vis[i] > 0.0f);
             exact->visible_fraction_batch(part_index, block.begin, s.index, s.qx, s.qy, s.qh, s.skip, m, s.exact,

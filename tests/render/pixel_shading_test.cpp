@@ -197,3 +197,62 @@ TEST_CASE("Per-pixel shadow modes are read by name; others are refused naming th
 
 }  // namespace
 }  // namespace rsl
+
+namespace rsl {
+namespace {
+
+// A coarse glossy ball's rim: a triangle on the silhouette has corners that
+// face away from the camera while its pixels face it. Their self-visibility
+// and occluder factor are kept all the same (brdf_queries every_view), or
+// the pixel's highlight would blend in their zeros and darken the rim.
+TEST_CASE("Per-pixel highlights on a coarse ball's rim follow the per-pixel truth", "[render][pixel-highlights][accuracy]") {
+    Scene scene = test::make_scene("pixel_rim", Color(0.7f));
+    MaterialDesc& glossy = scene.materials[0];
+    glossy.model = "blinn_phong";
+    glossy.params = {{"kd", {0.4f, 0.4f, 0.4f}}, {"ks", {0.4f, 0.4f, 0.4f}}, {"exponent", {30.0f}}};
+    test::add_part(scene, test::make_icosphere(0.5f, 1, "ball"));  // 80 triangles
+    scene.camera.position = Vec3(0.0f, 0.6f, -2.5f);  // the sun (near (0, 0.7, 0.7)) behind the ball: a lit rim
+    scene.camera.target = Vec3(0.0f);
+    scene.camera.width = 120, scene.camera.height = 90;
+    scene.precompute = test::small_accuracy_precompute();
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    const CubeMap environment = test::sky_with_sun(16);
+    const GroundTruth truth(scene, environment, 0.0f);
+    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, 0.0f, scene.camera.width, scene.camera.height);
+    const Image reference = trace_image(truth.posed(), camera, {}, [&](const RayHit& hit, const Vec3& direction) {
+        return truth.shade_hit(hit, direction);
+    });
+    Renderer renderer(scene, fit_environment_lights(environment, 30), fields, RenderOptions{});
+    renderer.keep_pixel_terms(true);
+    const VertexColors colors = renderer.shade();
+    const Image image = form_image(truth.posed(), camera, colors, {}, renderer.pixel_shading(colors, truth.posed()));
+    // The rim: pixels whose triangle has a corner facing away.
+    const TriangleMesh& mesh = scene.parts[0].mesh;
+    double rim_error2 = 0, rim_norm2 = 0;
+    int rim = 0;
+    for (int y = 0; y < camera.height; ++y)
+        for (int x = 0; x < camera.width; ++x) {
+            const RayHit hit = truth.posed().rays().intersect(camera.eye, camera.direction(x + 0.5f, y + 0.5f));
+            if (!hit.hit) continue;
+            bool away = false;
+            for (int c = 0; c < 3; ++c) {
+                const SurfacePoint v = truth.posed().vertex(0, int(mesh.indices[3 * size_t(hit.triangle) + c]));
+                away = away || glm::dot(v.frame.z, camera.eye - v.position) <= 0.0f;
+            }
+            if (!away) continue;
+            ++rim;
+            const Color d = image.rgb(x, y) - reference.rgb(x, y), r = reference.rgb(x, y);
+            rim_error2 += glm::dot(d, d), rim_norm2 += glm::dot(r, r);
+        }
+    const double rim_error = std::sqrt(rim_error2 / rim_norm2);
+    const double whole = compare_images(image, reference).pixels.relative_l2();
+    INFO(rim << " rim pixels: relative L2 " << rim_error << "; the whole image " << whole);
+    // Measured: rim 2.8%, whole 1.8%; with the away-facing corners' terms
+    // left at 0, 33% and 3.6%.
+    REQUIRE(rim > 100);
+    CHECK(rim_error < 0.1);
+    CHECK(whole < 0.03);
+}
+
+}  // namespace
+}  // namespace rsl
