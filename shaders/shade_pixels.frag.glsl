@@ -1,27 +1,86 @@
 #version 330 core
-// The per-pixel pass (RenderOptions::pixel_shadows; docs/GPU.md "Per-pixel
-// shadows"): each pixel of a part shaded per pixel — one flat rectangle (a
-// ground, a floor, a wall), whose vertices are often coarser than the
-// shadows that fall on it — takes the whole sum at the point it sees
-// (shade_point.glsl): the other parts' occluder factor, the BRDF averages at
-// its own view, local lights from its own position. A flat rectangle cannot
-// shadow itself, so its self-visibility is 1 and no SVDF is read. The CPU
-// forms the same pixels from the vertices' terms (src/render/pixel_shading.cpp).
+// The per-pixel pass (docs/GPU.md "Per-pixel pass"): each pixel of a part
+// shaded per pixel takes the whole sum at the point it sees (shade_point.glsl):
+// every light's square in the pixel's own frame, the BRDF averages at its own
+// view, sphere lights from its own position, and the other parts' occluder
+// factor at the point. Two kinds of parts come here:
+//  * one flat rectangle (a ground, a floor, a wall; RenderOptions::
+//    pixel_shadows), whose vertices are often coarser than the shadows on
+//    it. It cannot shadow itself: no SVDF is read.
+//  * a glossy part (RenderOptions::pixel_highlights), whose highlights are
+//    narrower than its triangles. Its self-visibility is the blend of the
+//    triangle's corners' SVDFs, each in its corner's frame (u_corners).
+// The CPU forms the same pixels from the vertices' kept terms
+// (src/render/pixel_shading.cpp).
 in vec3 v_position;
+in vec3 v_local;
 in vec3 v_normal;
 in vec3 v_tangent;
 in vec2 v_texcoord;
 uniform int u_part;
+uniform bool u_corners;     // the corners' SVDF blend (glossy parts)
+uniform int u_first_index;  // the part's first entry of u_indices
+uniform usampler2D u_indices;  // every part's triangle indices (part-local vertices)
 uniform float u_exposure;
 uniform bool u_linear;    // linear radiance (images read back); else exposure and sRGB (the screen)
 uniform bool u_textured;  // the diffuse sum times the base colour texture, plus the specular sum
 uniform sampler2D u_base_color;
 layout(location = 0) out vec4 o_color;
+
+uint index_texel(int i) { return texelFetch(u_indices, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0).r; }
+
+// The triangle's corners for self_visibility (g_self_corners = 3).
+void set_corners() {
+    int first_vertex = int(part_texel(u_part, kSlotVertices).x);
+    vec4 svdf = part_texel(u_part, kSlotSvdf);
+    mat4 transform = mat4(part_texel(u_part, kSlotTransform), part_texel(u_part, kSlotTransform + 1),
+                          part_texel(u_part, kSlotTransform + 2), part_texel(u_part, kSlotTransform + 3));
+    mat3 normal_matrix = mat3(part_texel(u_part, kSlotNormal).xyz, part_texel(u_part, kSlotNormal + 1).xyz,
+                              part_texel(u_part, kSlotNormal + 2).xyz);
+    bool self = u_self_visibility && svdf.z > 0.0;
+    int stride = int(svdf.w);
+    vec3 corner_position[3];
+    for (int c = 0; c < 3; ++c) {
+        int local = int(index_texel(u_first_index + 3 * gl_PrimitiveID + c));
+        int vertex = first_vertex + local;
+        ivec2 texel = ivec2(vertex & (kArrayWidth - 1), vertex >> kArrayShift);
+        corner_position[c] = texelFetch(u_positions, texel, 0).xyz;
+        vec4 normal = texelFetch(u_normals, texel, 0);
+        g_corner_frame[c] = frame_rows(normalize(normal_matrix * normal.xyz),
+                                       mat3(transform) * texelFetch(u_tangents, texel, 0).xyz);
+        g_corner_cluster[c] = self && normal.w >= 0.0 ? int(normal.w) : -1;
+        if (g_corner_cluster[c] >= 0)
+            for (int t = 0; t < stride; ++t)
+                g_svdf_coefficients[c * MAX_STRIDE + t] = fetch(u_svdf_coefficients, int(svdf.y) + local * stride + t);
+    }
+    // Barycentric weights of the pixel's point, in the part's space.
+    vec3 e0 = corner_position[1] - corner_position[0], e1 = corner_position[2] - corner_position[0];
+    vec3 q = v_local - corner_position[0];
+    float d00 = dot(e0, e0), d01 = dot(e0, e1), d11 = dot(e1, e1), d20 = dot(q, e0), d21 = dot(q, e1);
+    float denominator = d00 * d11 - d01 * d01;
+    float u = denominator > 0.0 ? clamp((d11 * d20 - d01 * d21) / denominator, 0.0, 1.0) : 1.0 / 3.0;
+    float v = denominator > 0.0 ? clamp((d00 * d21 - d01 * d20) / denominator, 0.0, 1.0) : 1.0 / 3.0;
+    float sum = u + v;
+    if (sum > 1.0) u /= sum, v /= sum;
+    g_corner_weight[0] = 1.0 - u - v;
+    g_corner_weight[1] = u;
+    g_corner_weight[2] = v;
+    g_self_corners = 3;
+}
+
 void main() {
-    // The side the camera sees, as the CPU's hit point (PosedScene::hit_point).
+    // The side the camera sees, as the CPU's hit point (PosedScene::hit_point):
+    // the shading normal turned to the side of the triangle's face that
+    // faces the camera (a back face seen through a hole). Near a coarse
+    // ball's rim the shading normal itself may face away: the view is then
+    // below its horizon and the pixel black, as the CPU's and the truth's.
+    vec3 face = cross(dFdx(v_position), dFdy(v_position));
+    if (dot(face, u_camera - v_position) < 0.0) face = -face;
     vec3 n = normalize(v_normal);
-    if (dot(n, u_camera - v_position) < 0.0) n = -n;
-    PointShade shaded = shade_point(u_part, v_position, frame_rows(n, v_tangent), false, 0);
+    if (dot(n, face) < 0.0) n = -n;
+    g_self_corners = 0;
+    if (u_corners) set_corners();
+    PointShade shaded = shade_point(u_part, v_position, frame_rows(n, v_tangent));
     vec3 color = u_textured ? shaded.color * texture(u_base_color, v_texcoord).rgb + shaded.specular : shaded.color;
     o_color = u_linear ? vec4(color, 1.0) : vec4(srgb(color * u_exposure), 1.0);
 }

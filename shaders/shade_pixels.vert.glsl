@@ -1,6 +1,6 @@
 #version 330 core
-// The per-pixel pass (RenderOptions::pixel_shadows, docs/GPU.md "Per-pixel
-// shadows"): a part shaded per pixel drawn from the camera, its world
+// The per-pixel pass (RenderOptions::pixel_shadows and pixel_highlights,
+// docs/GPU.md "Per-pixel pass"): a part shaded per pixel drawn from the camera, its world
 // position, normal and tangent interpolated for shade_pixels.frag.glsl.
 // Normals and tangents come from the vertex rectangle (gl_VertexID counts
 // the draw's base vertex, so it is the vertex's texel), the pose from the
@@ -10,6 +10,7 @@ layout(location = 3) in vec2 a_texcoord;  // textured parts: glTF texture coordi
 uniform int u_part;
 uniform mat4 u_view_projection;
 out vec3 v_position;
+out vec3 v_local;  // part space: the barycentrics of the triangle's corners (glossy parts)
 out vec3 v_normal;
 out vec3 v_tangent;
 out vec2 v_texcoord;
@@ -20,6 +21,7 @@ void main() {
     mat3 normal_matrix = mat3(part_texel(u_part, kSlotNormal).xyz, part_texel(u_part, kSlotNormal + 1).xyz,
                               part_texel(u_part, kSlotNormal + 2).xyz);
     v_position = (transform * vec4(a_position, 1.0)).xyz;
+    v_local = a_position;
     v_normal = normal_matrix * texelFetch(u_normals, texel, 0).xyz;
     v_tangent = mat3(transform) * texelFetch(u_tangents, texel, 0).xyz;
     v_texcoord = a_texcoord;

@@ -102,17 +102,29 @@ vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
 
 // ---- visibility distance tables (fields/vdt.h, svdf.h, ovdf.cpp) ----
 
-vec4 g_svdf_coefficients[MAX_STRIDE];
+// The self-visibility shade_point multiplies each light by: g_self_corners
+// = 0: none (a flat rectangle, or the SVDF switched off); 1: the vertex's
+// own SVDF (the vertex pass); 3: the blend of a triangle's corners' SVDFs,
+// each in its corner's own frame (the per-pixel pass on glossy parts, as
+// the CPU blends the corners' kept terms). Corner c: its CPCA
+// coefficients at g_svdf_coefficients[c·MAX_STRIDE …], its cluster (< 0:
+// no SVDF), barycentric weight and shading frame.
+int g_self_corners = 0;
+vec4 g_svdf_coefficients[3 * MAX_STRIDE];
+int g_corner_cluster[3];
+float g_corner_weight[3];
+mat3 g_corner_frame[3];
 
-// The vertex's reconstructed SVDF distance at plane point p.
-float svdf_distance(vec4 svdf, int cluster, vec2 p) {
+// Corner `corner`'s reconstructed SVDF distance at plane point p.
+float svdf_distance(vec4 svdf, int cluster, vec2 p, int corner) {
     int n = int(svdf.z), stride = int(svdf.w), dims = n * n;
     BilinearTaps taps = bilinear_taps(n, p);
     float d = 0.0f;
     for (int k = 0; k < 4; ++k) {
         int row = int(svdf.x) + (cluster * dims + taps.index[k]) * stride;
         float value = 0.0f;
-        for (int t = 0; t < stride; ++t) value += dot(fetch(u_svdf_tables, row + t), g_svdf_coefficients[t]);
+        for (int t = 0; t < stride; ++t)
+            value += dot(fetch(u_svdf_tables, row + t), g_svdf_coefficients[corner * MAX_STRIDE + t]);
         d += taps.weight[k] * value;
     }
     return d;
@@ -333,10 +345,29 @@ struct PointShade {
     vec3 specular;  // textured parts (kSlotSpecular.w = 1): the specular table's sum
 };
 
+// Self-visibility of the light with direction `direction`, plane point lp in
+// the point's frame and half-edge h (g_self_corners).
+float self_visibility(vec4 svdf, vec3 direction, vec2 lp, float h) {
+    if (g_self_corners == 0) return 1.0;
+    if (g_self_corners == 1) return visible_fraction_from_distance(svdf_distance(svdf, g_corner_cluster[0], lp, 0), h);
+    float blend = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        // A corner whose hemisphere the square misses has no share (the
+        // CPU's vertex pass queries no such square).
+        vec3 local = to_local(g_corner_frame[c], direction);
+        if (!square_reaches_hemisphere(local.z, h)) continue;
+        float corner = g_corner_cluster[c] < 0
+                           ? 1.0
+                           : visible_fraction_from_distance(
+                                 svdf_distance(svdf, g_corner_cluster[c], hemisphere_to_plane(local), c), h);
+        blend += g_corner_weight[c] * corner;
+    }
+    return blend;
+}
+
 // The sum at world point p of `part`, shading frame `frame` (rows: tangent,
-// bitangent, normal), towards u_camera. self: the SVDF of the coefficients
-// in g_svdf_coefficients, cluster `cluster`, multiplies each light.
-PointShade shade_point(int part, vec3 p, mat3 frame, bool self, int cluster) {
+// bitangent, normal), towards u_camera, with self_visibility's factor.
+PointShade shade_point(int part, vec3 p, mat3 frame) {
     vec4 material = part_texel(part, kSlotMaterial);
     vec4 specular_material = part_texel(part, kSlotSpecular);
     bool layered = specular_material.w > 0.5;
@@ -382,7 +413,7 @@ PointShade shade_point(int part, vec3 p, mat3 frame, bool self, int cluster) {
             result.specular += integral * specular_brdf * lit;
             continue;
         }
-        float visibility = self ? visible_fraction_from_distance(svdf_distance(svdf, cluster, lp), h) : 1.0;
+        float visibility = self_visibility(svdf, direction, lp, h);
         int slot = part * u_light_count + l;
         int list_end = int(list_texel(slot + 1));
         for (int e = int(list_texel(slot)); e < list_end; ++e) {

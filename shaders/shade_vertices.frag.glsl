@@ -33,12 +33,14 @@ void main() {
     vec3 p = (transform * vec4(position.xyz, 1.0)).xyz;
     mat3 frame = frame_rows(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent);
     bool self = u_self_visibility && svdf.z > 0.0 && normal.w >= 0.0;
+    g_self_corners = self ? 1 : 0;
     if (self) {
+        g_corner_cluster[0] = int(normal.w);
         int stride = int(svdf.w);
         for (int t = 0; t < stride; ++t)
             g_svdf_coefficients[t] = fetch(u_svdf_coefficients, int(svdf.y) + local_vertex * stride + t);
     }
-    PointShade shaded = shade_point(part, p, frame, self, int(normal.w));
+    PointShade shaded = shade_point(part, p, frame);
     o_color = vec4(shaded.color, 1.0);
     o_specular = vec4(shaded.specular, 1.0);
 }

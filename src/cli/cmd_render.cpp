@@ -177,12 +177,13 @@ RegisterCommand render_command({"render",
         app.add_option("--pixel-shadows", args->pixel_shadows,
                        "Which parts take the other parts' shadows per pixel in the image, where a shadow edge "
                        "crosses a triangle (sharp shadows on coarse receivers; per-vertex colours unchanged; "
-                       "cpu backend): planes (flat rectangles: grounds, floors), all, or off")
+                       "cpu backend, and gl with --gpu-image): planes (flat rectangles: grounds, floors), all "
+                       "(the gl backend: as planes), or off")
             ->check(CLI::IsMember({"planes", "all", "off"}))->capture_default_str();
         app.add_flag("--pixel-highlights,!--no-pixel-highlights", args->pixel_highlights,
                      "Glossy parts take each light's BRDF average at every pixel's own normal and view in the "
                      "image, so that highlights between vertices show (default on; per-vertex colours unchanged; "
-                     "cpu backend)");
+                     "cpu backend, and gl with --gpu-image)");
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
         app.add_option("-o,--output", args->output, "Image to write (.exr; a .png preview beside it)")->required();
         app.add_option("--vertex-out", args->vertex_output, "Per-vertex colours (.rslv) for `rsl compare`");

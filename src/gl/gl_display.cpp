@@ -10,8 +10,14 @@
 
 namespace rsl::gl {
 
+bool GlRenderer::highlight_part(size_t p) const {
+    const size_t parts = scene_.parts.size();
+    return options_.pixel_highlights && part_tables_[parts + p] == nullptr &&
+           library_.desc(library_.part_material(int(p))).model != "lambert";
+}
+
 bool GlRenderer::per_pixel_part(size_t p) const {
-    return options_.pixel_shadows != PixelShadows::Off && rectangle_parts_[p];
+    return (options_.pixel_shadows != PixelShadows::Off && rectangle_parts_[p]) || highlight_part(p);
 }
 
 void GlRenderer::draw(const Mat4& view_projection, float exposure) {
@@ -66,11 +72,17 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
         glUniformMatrix4fv(uniform(pixel_program_, "u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
         glUniform1f(uniform(pixel_program_, "u_exposure"), exposure);
         glUniform1i(uniform(pixel_program_, "u_linear"), linear ? 1 : 0);
+        bind_texture(kUnitIndices, GL_TEXTURE_2D, indices_.texture.id());
         const GLint part = uniform(pixel_program_, "u_part");
         const GLint pixel_textured = uniform(pixel_program_, "u_textured");
+        const GLint corners = uniform(pixel_program_, "u_corners");
+        const GLint first_index = uniform(pixel_program_, "u_first_index");
         for (size_t p = 0; p < parts; ++p) {
             if (!per_pixel_part(p)) continue;
             glUniform1i(part, int(p));
+            // A rectangle cannot shadow itself; a glossy curved part blends its corners' SVDFs.
+            glUniform1i(corners, rectangle_parts_[p] ? 0 : 1);
+            glUniform1i(first_index, int(first_index_[p]));
             const GLuint texture = layered_texture(p);
             glUniform1i(pixel_textured, texture ? 1 : 0);
             if (texture) bind_texture(kUnitBaseColor, GL_TEXTURE_2D, texture);

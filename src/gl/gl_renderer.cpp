@@ -63,7 +63,8 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
                                         "u_parts",           "u_lights",            "u_occluder_lists",
                                         "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
                                         "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
-                                        "u_ovdf_frames",     "u_shadow_depths",     "u_base_color"};
+                                        "u_ovdf_frames",     "u_shadow_depths",     "u_base_color",
+                                        "u_indices"};
     for (const Program* program : {&shade_program_, &pixel_program_}) {
         glUseProgram(program->id());
         for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(*program, samplers[unit]), unit);
@@ -172,13 +173,14 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(texcoords.size() * sizeof(Vec2)), texcoords.data(), GL_STATIC_DRAW);
     glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, sizeof(Vec2), nullptr);
     glEnableVertexAttribArray(3);
+    upload_uint_array(indices_, indices);  // the per-pixel pass's corners (gl_PrimitiveID)
     display_indices_ = make_buffer();
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, display_indices_.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
                  GL_STATIC_DRAW);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    gpu_bytes_ += positions3.size() * (sizeof(Vec3) + sizeof(Vec2)) + indices.size() * sizeof(uint32_t);
+    gpu_bytes_ += positions3.size() * (sizeof(Vec3) + sizeof(Vec2)) + 2 * indices.size() * sizeof(uint32_t);
     check_gl("uploading the scene");
 }
 
@@ -304,6 +306,7 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
     check_shadow_map_options(options.shadow_maps);
     options_.shadow_maps = options.shadow_maps;
     options_.pixel_shadows = options.pixel_shadows;
+    options_.pixel_highlights = options.pixel_highlights;
     shadow_maps_stale_ = true;
 }
 

@@ -9,9 +9,9 @@
 //     and that same buffer is bound as the vertex-colour array.
 //  3. Display pass: the parts drawn with those colours (shaders/display.*),
 //     and the parts shaded per pixel (RenderOptions::pixel_shadows: the
-//     flat rectangles, grounds and walls) drawn by the per-pixel pass, which
-//     takes the whole sum at the point each pixel sees (shaders/shade_pixels.*,
-//     gl_display.cpp).
+//     flat rectangles, grounds and walls; pixel_highlights: glossy parts)
+//     drawn by the per-pixel pass, which takes the whole sum at the point
+//     each pixel sees (shaders/shade_pixels.*, gl_display.cpp).
 //
 // Everything static (meshes, SVDF, OVDF, BRDF tables) is uploaded once
 // (gpu_layout.h); every frame uploads part poses, lights and occluder lists
@@ -116,9 +116,12 @@ public:
     std::optional<Image> device_image(const PinholeCamera& camera) override { return form_image(camera); }
     // Whether the display pass shades part p per pixel: the parts that are
     // one flat rectangle (find_rectangle), unless options().pixel_shadows is
-    // Off. Others (PixelShadows::All's curved parts too) are their vertex
+    // Off, and the glossy ones (material not Lambert, untextured) while
+    // options().pixel_highlights is on, as the CPU's. Others
+    // (PixelShadows::All's Lambert curved parts too) are their vertex
     // colours' blend on the GPU.
     bool per_pixel_part(size_t p) const;
+    bool highlight_part(size_t p) const;
 
     // Live changes (the viewer): visibility/light toggles of `options` and
     // its shadow maps (not material overrides or table options: materials()
@@ -197,6 +200,7 @@ private:
     Texture positions_, normals_, tangents_;
     ArrayTexture parts_, lights_, brdf_offsets_;
     ArrayTexture occluder_lists_;  // FrameState::occluder_list_texels
+    ArrayTexture indices_;         // every part's triangle indices (part-local), first_index_ order
     ArrayTexture svdf_tables_, svdf_coefficients_, ovdf_tables_, ovdf_coefficients_, ovdf_frames_;
     Texture brdf_;
     Texture target_, specular_target_;  // colour attachments 0 (diffuse or only layer) and 1 (specular)

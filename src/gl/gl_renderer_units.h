@@ -7,11 +7,12 @@
 namespace rsl::gl {
 
 // Texture units of the shading inputs (the vertex pass and the per-pixel
-// pass bind the same); the per-pixel pass's base colour texture last.
+// pass bind the same); the per-pixel pass's base colour texture and
+// triangle indices last.
 enum Unit : int {
     kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitOccluders, kUnitBrdf,
     kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
-    kUnitOvdfFrames, kUnitShadowMaps, kUnitBaseColor, kUnitCount
+    kUnitOvdfFrames, kUnitShadowMaps, kUnitBaseColor, kUnitIndices, kUnitCount
 };
 
 // Timed passes (PassTimings), the index of their timer queries.

@@ -110,6 +110,13 @@ void viewer_panel(ViewerState& state) {
         changed |= ImGui::Checkbox("self-visibility (SVDF)", &o.self_visibility);
         changed |= ImGui::Checkbox("other parts' shadows (OVDF)", &o.occluders);
         changed |= ImGui::Checkbox("occluder culling", &o.occluder_culling);
+        // The per-pixel pass (docs/GPU.md): grounds' sharp shadows, glossy parts' highlights.
+        bool ground_pixels = o.pixel_shadows != PixelShadows::Off;
+        if (ImGui::Checkbox("shadows per pixel on grounds", &ground_pixels)) {
+            o.pixel_shadows = ground_pixels ? PixelShadows::Planes : PixelShadows::Off;
+            changed = true;
+        }
+        changed |= ImGui::Checkbox("highlights per pixel", &o.pixel_highlights);
         if (changed) state.renderer->set_toggles(o);
     }
     if (ImGui::CollapsingHeader("Materials")) {

@@ -206,15 +206,7 @@ namespace {
 // and occluder factor are kept all the same (brdf_queries every_view), or
 // the pixel's highlight would blend in their zeros and darken the rim.
 TEST_CASE("Per-pixel highlights on a coarse ball's rim follow the per-pixel truth", "[render][pixel-highlights][accuracy]") {
-    Scene scene = test::make_scene("pixel_rim", Color(0.7f));
-    MaterialDesc& glossy = scene.materials[0];
-    glossy.model = "blinn_phong";
-    glossy.params = {{"kd", {0.4f, 0.4f, 0.4f}}, {"ks", {0.4f, 0.4f, 0.4f}}, {"exponent", {30.0f}}};
-    test::add_part(scene, test::make_icosphere(0.5f, 1, "ball"));  // 80 triangles
-    scene.camera.position = Vec3(0.0f, 0.6f, -2.5f);  // the sun (near (0, 0.7, 0.7)) behind the ball: a lit rim
-    scene.camera.target = Vec3(0.0f);
-    scene.camera.width = 120, scene.camera.height = 90;
-    scene.precompute = test::small_accuracy_precompute();
+    const Scene scene = test::coarse_glossy_ball();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     const CubeMap environment = test::sky_with_sun(16);
     const GroundTruth truth(scene, environment, 0.0f);

@@ -105,4 +105,20 @@ inline Scene box_over_coarse_ground(bool textured = false) {
     return scene;
 }
 
+// A coarse glossy ball (80 triangles) under sky_with_sun, seen with the sun
+// behind it: its highlights and lit rim are narrower than its triangles
+// (the per-pixel highlight tests, CPU and GPU).
+inline Scene coarse_glossy_ball() {
+    Scene scene = make_scene("pixel_rim", Color(0.7f));
+    MaterialDesc& glossy = scene.materials[0];
+    glossy.model = "blinn_phong";
+    glossy.params = {{"kd", {0.4f, 0.4f, 0.4f}}, {"ks", {0.4f, 0.4f, 0.4f}}, {"exponent", {30.0f}}};
+    add_part(scene, make_icosphere(0.5f, 1, "ball"));
+    scene.camera.position = Vec3(0.0f, 0.6f, -2.5f);  // the sun (near (0, 0.7, 0.7)) behind the ball
+    scene.camera.target = Vec3(0.0f);
+    scene.camera.width = 120, scene.camera.height = 90;
+    scene.precompute = small_accuracy_precompute();
+    return scene;
+}
+
 }  // namespace rsl::test
