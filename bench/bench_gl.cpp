@@ -1,8 +1,9 @@
 // `rsl bench gl`: the GPU renderer (headless EGL context) on the robot and
 // kitchen scenes at 30 RSLs: frames per second of the shading pass alone
 // (render-to-vertex-array + pack into the vertex buffer) and of the full frame
-// (plus the display pass into a 640×480 target), and why the BRDF tables are
-// stored in 32-bit rather than 16-bit float.
+// (plus the display pass into a 640×480 target, with and without the
+// per-pixel pass), and why the BRDF tables are stored in 32-bit rather than
+// 16-bit float.
 #ifdef RSL_HAVE_GL
 #include <algorithm>
 #include <chrono>
@@ -69,24 +70,37 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
     glFinish();
     const double shade_seconds = since(start) / frames;
 
+    // Full frames: the shading pass, then the display pass into a 640×480
+    // target, with the per-pixel pass (the default: grounds and glossy parts
+    // shaded per pixel, docs/GPU.md) and without it (every part the vertex
+    // colours' blend). Fewer frames: on a software rasterizer a frame with
+    // the per-pixel pass takes tens of seconds.
     const int width = 640, height = 480;
     DisplayTarget target(width, height);
     const Camera& camera = scene->camera;
-    start = Clock::now();
-    for (int f = 0; f < frames; ++f) {
-        const float t = time_of(f);
-        renderer.set_time(t);
-        renderer.shade();
-        glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.id());
-        glViewport(0, 0, width, height);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        const Mat4 view_projection =
-            glm::perspective(glm::radians(camera.fov_y_degrees), float(width) / height, 0.05f, 100.0f) *
-            glm::lookAt(camera.position_at(t), camera.target_at(t), camera.up);
-        renderer.draw(view_projection, 1.0f);
-    }
-    glFinish();
-    const double frame_seconds = since(start) / frames;
+    const int display_frames = options.quick ? 1 : 4;
+    auto time_frames = [&](bool per_pixel) {
+        RenderOptions toggles = render;
+        if (!per_pixel) toggles.pixel_shadows = PixelShadows::Off, toggles.pixel_highlights = false;
+        renderer.set_toggles(toggles);
+        const auto begin = Clock::now();
+        for (int f = 0; f < display_frames; ++f) {
+            const float t = time_of(f * frames / display_frames);
+            renderer.set_time(t);
+            renderer.shade();
+            glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.id());
+            glViewport(0, 0, width, height);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            const Mat4 view_projection =
+                glm::perspective(glm::radians(camera.fov_y_degrees), float(width) / height, 0.05f, 100.0f) *
+                glm::lookAt(camera.position_at(t), camera.target_at(t), camera.up);
+            renderer.draw(view_projection, 1.0f);
+        }
+        glFinish();
+        return since(begin) / display_frames;
+    };
+    const double blend_frame_seconds = time_frames(false);
+    const double frame_seconds = time_frames(true);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     bench_emit({{"bench", "gl"},
                 {"case", name + " 30 RSLs"},
@@ -97,8 +111,11 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
                 {"frames", frames},
                 {"shading_ms", 1e3 * shade_seconds},
                 {"shading_fps", 1.0 / shade_seconds},
+                {"display_frames", display_frames},
                 {"frame_ms", 1e3 * frame_seconds},
                 {"frame_fps", 1.0 / frame_seconds},
+                {"frame_vertex_blend_ms", 1e3 * blend_frame_seconds},
+                {"frame_vertex_blend_fps", 1.0 / blend_frame_seconds},
                 {"occluder_pairs", renderer.frame().occluder_pairs()},
                 {"occluder_pairs_culled", renderer.frame().occluder_pairs_culled()},
                 {"gpu_megabytes", double(renderer.gpu_bytes()) / (1 << 20)}});
