@@ -24,6 +24,7 @@ uniform usampler2D u_indices;  // every part's triangle indices (part-local vert
 uniform float u_exposure;
 uniform bool u_linear;    // linear radiance (images read back); else exposure and sRGB (the screen)
 uniform bool u_textured;  // the diffuse sum times the base colour texture, plus the specular sum
+uniform bool u_depth_only;  // the depth pre-pass: each pixel is then shaded once, by its nearest part
 uniform sampler2D u_base_color;
 layout(location = 0) out vec4 o_color;
 
@@ -69,6 +70,10 @@ void set_corners() {
 }
 
 void main() {
+    if (u_depth_only) {
+        o_color = vec4(0.0);
+        return;
+    }
     // The side the camera sees, as the CPU's hit point (PosedScene::hit_point):
     // the shading normal turned to the side of the triangle's face that
     // faces the camera (a back face seen through a hole). Near a coarse

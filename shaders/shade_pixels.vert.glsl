@@ -9,6 +9,8 @@ layout(location = 0) in vec3 a_position;  // part space
 layout(location = 3) in vec2 a_texcoord;  // textured parts: glTF texture coordinates
 uniform int u_part;
 uniform mat4 u_view_projection;
+// The depth pre-pass and the shading pass draw the same depths (GL_EQUAL-safe).
+invariant gl_Position;
 out vec3 v_position;
 out vec3 v_local;  // part space: the barycentrics of the triangle's corners (glossy parts)
 out vec3 v_normal;

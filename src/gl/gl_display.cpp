@@ -77,6 +77,19 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
         const GLint pixel_textured = uniform(pixel_program_, "u_textured");
         const GLint corners = uniform(pixel_program_, "u_corners");
         const GLint first_index = uniform(pixel_program_, "u_first_index");
+        // A depth pre-pass first, so that the costly shading runs once per
+        // pixel, for the nearest part (the robot's parts overlap on screen).
+        const GLint depth_only = uniform(pixel_program_, "u_depth_only");
+        glUniform1i(depth_only, 1);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        for (size_t p = 0; p < parts; ++p) {
+            if (!per_pixel_part(p)) continue;
+            glUniform1i(part, int(p));
+            draw_elements(p);
+        }
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glUniform1i(depth_only, 0);
+        glDepthFunc(GL_EQUAL);
         for (size_t p = 0; p < parts; ++p) {
             if (!per_pixel_part(p)) continue;
             glUniform1i(part, int(p));
@@ -88,6 +101,7 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
             if (texture) bind_texture(kUnitBaseColor, GL_TEXTURE_2D, texture);
             draw_elements(p);
         }
+        glDepthFunc(depth_test);
     }
     glBindVertexArray(0);
     end_pass(kPassDisplay);
