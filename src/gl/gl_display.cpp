@@ -158,6 +158,7 @@ Image GlRenderer::form_image(const PinholeCamera& camera) {
     glGetIntegerv(GL_VIEWPORT, previous_viewport);
     const Framebuffer framebuffer = make_framebuffer();
     const Texture color = make_texture();
+    glActiveTexture(GL_TEXTURE0);  // not a unit the shading passes bind
     const Renderbuffer depth = make_renderbuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
     glBindTexture(GL_TEXTURE_2D, color.id());
@@ -181,6 +182,7 @@ Image GlRenderer::form_image(const PinholeCamera& camera) {
     draw_parts(projection * view, 1.0f, true, reversed_z ? GL_GREATER : GL_LESS);
     if (reversed_z) glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     glClearDepth(1.0);
+    glDepthFunc(GL_LESS);
 
     Image image(camera.width, camera.height, 4);
     std::vector<float> rows(image.pixels.size());

@@ -461,6 +461,8 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         const int m = brdf_queries(s, table, specular, n, rim_floor);
         if (m == 0) continue;
         counts.lookups += size_t(m);
+        if (rim_floor)  // the rim's queries kept for the pixels are not the frame's lookups
+            for (int i = 0; i < m; ++i) counts.lookups -= s.skip[i] ? 1 : 0;
 
         // A square whose BRDF average is 0 (clipped away below the horizon)
         // adds nothing whatever its visibility: no visibility lookups (nor rays) for it.

@@ -70,7 +70,7 @@ TEST_CASE("the API's gl backend renders the CPU's image; gl-current without a co
     const api::Scene scene = api_scene("api-gl-own");
     api::RenderSettings settings;
     settings.lights = 8;
-    settings.pixel_shadows = "off";  // the gl backend has no per-pixel pass: compare the vertex pipelines' images
+    settings.pixel_shadows = "off";  // render_image forms the gl backend's image on the CPU: compare the vertex pipelines' images
     settings.pixel_highlights = false;
     api::Renderer cpu(scene, settings);
     settings.backend = "gl";

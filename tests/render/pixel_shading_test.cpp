@@ -21,16 +21,10 @@ struct Images {
 };
 
 Images render_images(bool exact_shapes, bool textured = false) {
-    const Scene scene = test::box_over_coarse_ground(textured);
-    const CubeMap environment = test::sky_with_sun(16);
-    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    const GroundTruth truth(scene, environment, 0.0f);
-    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, 0.0f, scene.camera.width, scene.camera.height);
+    const test::PixelTestSetting setting(test::box_over_coarse_ground(textured));
+    const auto& [scene, environment, fields, truth, camera, reference, lights] = setting;
     Images images;
-    images.truth = trace_image(truth.posed(), camera, {}, [&](const RayHit& hit, const Vec3& direction) {
-        return truth.shade_hit(hit, direction);
-    });
-    const RslSet lights = fit_environment_lights(environment, 30);
+    images.truth = reference;
     for (const PixelShadows mode : {PixelShadows::Off, PixelShadows::Planes}) {
         RenderOptions options;
         options.exact_shapes = exact_shapes;
@@ -154,9 +148,7 @@ TEST_CASE("Per-pixel highlights on a coarse glossy plane follow the per-pixel tr
     const CubeMap environment = test::sky_with_sun(16);
     const GroundTruth truth(scene, environment, 0.0f);
     const PinholeCamera camera = PinholeCamera::at_time(scene.camera, 0.0f, scene.camera.width, scene.camera.height);
-    const Image reference = trace_image(truth.posed(), camera, {}, [&](const RayHit& hit, const Vec3& direction) {
-        return truth.shade_hit(hit, direction);
-    });
+    const Image reference = test::per_pixel_truth_image(truth, camera);
     const RslSet lights = fit_environment_lights(environment, 30);
     double error[2] = {0, 0};
     for (const bool per_pixel : {false, true}) {
@@ -206,29 +198,27 @@ namespace {
 // and occluder factor are kept all the same (brdf_queries every_view), or
 // the pixel's highlight would blend in their zeros and darken the rim.
 TEST_CASE("Per-pixel highlights on a coarse ball's rim follow the per-pixel truth", "[render][pixel-highlights][accuracy]") {
-    const Scene scene = test::coarse_glossy_ball();
-    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    const CubeMap environment = test::sky_with_sun(16);
-    const GroundTruth truth(scene, environment, 0.0f);
-    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, 0.0f, scene.camera.width, scene.camera.height);
-    const Image reference = trace_image(truth.posed(), camera, {}, [&](const RayHit& hit, const Vec3& direction) {
-        return truth.shade_hit(hit, direction);
-    });
-    Renderer renderer(scene, fit_environment_lights(environment, 30), fields, RenderOptions{});
+    const test::PixelTestSetting setting(test::coarse_glossy_ball());
+    const auto& [scene, environment, fields, truth, camera, reference, lights] = setting;
+    Renderer renderer(scene, lights, fields, RenderOptions{});
+    const VertexColors without_terms = renderer.shade();
     renderer.keep_pixel_terms(true);
     const VertexColors colors = renderer.shade();
+    // Keeping the rim's terms changes no vertex colour (their BRDF averages are 0).
+    CHECK(compare_vertex_colors(colors, without_terms).total.relative_l2() == 0.0);
     const Image image = form_image(truth.posed(), camera, colors, {}, renderer.pixel_shading(colors, truth.posed()));
     // The rim: pixels whose triangle has a corner facing away.
-    const TriangleMesh& mesh = scene.parts[0].mesh;
+    const size_t ball = 1;
+    const TriangleMesh& mesh = scene.parts[ball].mesh;
     double rim_error2 = 0, rim_norm2 = 0;
     int rim = 0;
     for (int y = 0; y < camera.height; ++y)
         for (int x = 0; x < camera.width; ++x) {
             const RayHit hit = truth.posed().rays().intersect(camera.eye, camera.direction(x + 0.5f, y + 0.5f));
-            if (!hit.hit) continue;
+            if (!hit.hit || size_t(hit.instance) != ball) continue;
             bool away = false;
             for (int c = 0; c < 3; ++c) {
-                const SurfacePoint v = truth.posed().vertex(0, int(mesh.indices[3 * size_t(hit.triangle) + c]));
+                const SurfacePoint v = truth.posed().vertex(int(ball), int(mesh.indices[3 * size_t(hit.triangle) + c]));
                 away = away || glm::dot(v.frame.z, camera.eye - v.position) <= 0.0f;
             }
             if (!away) continue;

@@ -6,7 +6,10 @@
 #include "assets/generate/pbr_scene.h"
 #include "fields/svdf.h"
 #include "lightfit/rsl.h"
+#include "src/frame/image_formation.h"
 #include "src/render/part_fields.h"
+#include "src/render/renderer.h"
+#include "src/trace/ground_truth.h"
 #include "tests/trace/trace_test_scenes.h"
 
 namespace rsl::test {
@@ -77,6 +80,27 @@ inline PrecomputeSettings small_accuracy_precompute() {
     return pre;
 }
 
+// The per-pixel truth's image (every pixel's hit point shaded exactly).
+inline Image per_pixel_truth_image(const GroundTruth& truth, const PinholeCamera& camera) {
+    return trace_image(truth.posed(), camera, {}, [&](const RayHit& hit, const Vec3& direction) {
+        return truth.shade_hit(hit, direction);
+    });
+}
+
+// A per-pixel test's setting: the scene at t = 0 under sky_with_sun(16),
+// its baked fields, 30 RSLs, the truth, the scene camera and the truth's
+// image (the pixel tests of the CPU and the GPU).
+struct PixelTestSetting {
+    Scene scene;
+    CubeMap environment = sky_with_sun(16);
+    PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    GroundTruth truth{scene, environment, 0.0f};
+    PinholeCamera camera = PinholeCamera::at_time(scene.camera, 0.0f, scene.camera.width, scene.camera.height);
+    Image reference = per_pixel_truth_image(truth, camera);
+    RslSet lights = fit_environment_lights(environment, 30);
+    explicit PixelTestSetting(Scene s) : scene(std::move(s)) {}
+};
+
 // A box over a ground of 1 m cells, the camera looking down at its shadow
 // under sky_with_sun (the sun high on +Z): the per-pixel shadow tests'
 // scene (tests/render/pixel_shading_test.cpp, tests/gl/gl_pixel_pass_test.cpp).
@@ -107,13 +131,20 @@ inline Scene box_over_coarse_ground(bool textured = false) {
 
 // A coarse glossy ball (80 triangles) under sky_with_sun, seen with the sun
 // behind it: its highlights and lit rim are narrower than its triangles
-// (the per-pixel highlight tests, CPU and GPU).
+// (the per-pixel highlight tests, CPU and GPU). The ball is part 1: part 0,
+// a small Lambert cube behind the camera and out of the ball's reach, puts
+// the ball's vertices and indices after another part's.
 inline Scene coarse_glossy_ball() {
     Scene scene = make_scene("pixel_rim", Color(0.7f));
-    MaterialDesc& glossy = scene.materials[0];
+    MaterialDesc glossy;
+    glossy.name = "glossy";
     glossy.model = "blinn_phong";
     glossy.params = {{"kd", {0.4f, 0.4f, 0.4f}}, {"ks", {0.4f, 0.4f, 0.4f}}, {"exponent", {30.0f}}};
-    add_part(scene, make_icosphere(0.5f, 1, "ball"));
+    scene.materials.push_back(glossy);
+    Transform behind;
+    behind.translation = Vec3(0.0f, 0.0f, -8.0f);
+    add_part(scene, make_flat_box(Vec3(0.05f), 1, "cube"), behind);
+    add_part(scene, make_icosphere(0.5f, 1, "ball"), {}, 1);
     scene.camera.position = Vec3(0.0f, 0.6f, -2.5f);  // the sun (near (0, 0.7, 0.7)) behind the ball
     scene.camera.target = Vec3(0.0f);
     scene.camera.width = 120, scene.camera.height = 90;
