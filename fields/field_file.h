@@ -38,8 +38,11 @@ namespace rsl {
 // sample is inside the part when it is inside one of the part's closed
 // pieces (fields/solid_pieces.h), so a sample inside overlapping pieces (a
 // waist sunk into a pelvis) or a clockwise-wound mesh is no longer traced
-// from inside them.
-inline constexpr uint32_t kFieldFormatVersion = 5;
+// from inside them. Version 6: OVDF shells inside the bounding sphere hold
+// the whole sphere of directions (zoom 1/√2, shading_core.h ovdf_zoom), so
+// that directions away from the part's centre are traced, not the horizon's
+// edge texels.
+inline constexpr uint32_t kFieldFormatVersion = 6;
 enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
 
 // Positions, normals, tangents and indices: everything the tables depend on.

@@ -348,15 +348,22 @@ RSL_SHARED float ovdf_cone_radius(float distance, float radius) {
     return x / sqrt(1.0f + sqrt(1.0f - x * x));
 }
 // A shell's zoomed table: table point = zoom × plane point, so that the
-// bounding cone's edge maps to kOvdfZoomEdge (fields/ovdf.h); no cone and no
-// zoom inside the bounding sphere.
+// bounding cone's edge maps to kOvdfZoomEdge (fields/ovdf.h). Inside the
+// bounding sphere there is no cone: the part may lie in any direction, the
+// ones away from its centre too (|p| up to √2, the antipode), so the table
+// is zoomed out by 1/√2 to hold the whole sphere of directions in its
+// inscribed disk. (At zoom 1 only the square's corners reached past |p| = 1,
+// and every other direction away from the centre read the edge texel, the
+// horizon: a chair in the middle of a room read the room's walls when it
+// looked out of the room's open side.)
 struct OvdfZoom {
     float zoom;
     float cone;  // plane radius of the bounding cone's edge
 };
+RSL_CONST float kOvdfInsideZoom = 0.70710678f;
 RSL_SHARED OvdfZoom ovdf_zoom(float distance, float radius) {
     OvdfZoom z;
-    z.zoom = 1.0f;
+    z.zoom = kOvdfInsideZoom;
     z.cone = kOvdfNoCone;
     if (distance <= radius) return z;
     z.cone = ovdf_cone_radius(distance, radius);
