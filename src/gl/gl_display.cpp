@@ -206,6 +206,9 @@ GLuint GlRenderer::base_color_texture(const std::shared_ptr<const rsl::Texture>&
     // without mipmaps is Texture::sample's bilinear between texel centers.
     const Image& image = texture->image;
     RSL_CHECK(image.channels == 3 || image.channels == 4);  // the glTF loader decodes to RGB
+    // Uploaded on the base colour's own unit: binding it on whichever unit is
+    // active would replace that unit's texture (the per-pixel pass's inputs).
+    glActiveTexture(GL_TEXTURE0 + kUnitBaseColor);
     Texture uploaded = make_texture();
     glBindTexture(GL_TEXTURE_2D, uploaded.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);

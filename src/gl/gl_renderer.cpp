@@ -180,7 +180,8 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
                  GL_STATIC_DRAW);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    gpu_bytes_ += positions3.size() * (sizeof(Vec3) + sizeof(Vec2)) + 2 * indices.size() * sizeof(uint32_t);
+    gpu_bytes_ += positions3.size() * (sizeof(Vec3) + sizeof(Vec2)) + indices.size() * sizeof(uint32_t) +
+                  texel_bytes(indices_, 4);
     check_gl("uploading the scene");
 }
 
