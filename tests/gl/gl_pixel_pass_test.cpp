@@ -127,11 +127,7 @@ TEST_CASE("The GPU's per-pixel pass draws a coarse glossy ball's highlights as t
 TEST_CASE("The GPU's per-pixel pass with a textured ground and a glossy part matches the CPU's", "[gl-renderer]") {
     test::gl_context();
     Scene scene = test::box_over_coarse_ground(true);
-    MaterialDesc glossy;
-    glossy.name = "glossy";
-    glossy.model = "blinn_phong";
-    glossy.params = {{"kd", {0.4f, 0.4f, 0.4f}}, {"ks", {0.4f, 0.4f, 0.4f}}, {"exponent", {30.0f}}};
-    scene.materials.push_back(glossy);
+    scene.materials.push_back(test::blinn_phong(0.4f, 0.4f, 30.0f));
     scene.parts[1].material = int(scene.materials.size()) - 1;
     const test::PixelTestSetting setting(std::move(scene));
     const auto& [posed_scene, environment, fields, truth, camera, reference, lights] = setting;

@@ -33,11 +33,7 @@ Scene moving_scene() {
     Scene scene = make_scene("gl", Color(0.7f));
     scene.materials[0].model = "gltf_pbr";
     scene.materials[0].params = {{"base_color", {0.7f, 0.6f, 0.5f}}, {"metallic", {0.2f}}, {"roughness", {0.5f}}};
-    MaterialDesc glossy;
-    glossy.name = "glossy";
-    glossy.model = "blinn_phong";
-    glossy.params = {{"kd", {0.4f, 0.4f, 0.4f}}, {"ks", {0.3f, 0.3f, 0.3f}}, {"exponent", {30.0f}}};
-    scene.materials.push_back(glossy);
+    scene.materials.push_back(test::blinn_phong(0.4f, 0.3f, 30.0f));
     MaterialDesc brushed;
     brushed.name = "brushed";
     brushed.model = "ward_anisotropic";

@@ -136,11 +136,7 @@ inline Scene box_over_coarse_ground(bool textured = false) {
 // the ball's vertices and indices after another part's.
 inline Scene coarse_glossy_ball() {
     Scene scene = make_scene("pixel_rim", Color(0.7f));
-    MaterialDesc glossy;
-    glossy.name = "glossy";
-    glossy.model = "blinn_phong";
-    glossy.params = {{"kd", {0.4f, 0.4f, 0.4f}}, {"ks", {0.4f, 0.4f, 0.4f}}, {"exponent", {30.0f}}};
-    scene.materials.push_back(glossy);
+    scene.materials.push_back(blinn_phong(0.4f, 0.4f, 30.0f));
     Transform behind;
     behind.translation = Vec3(0.0f, 0.0f, -8.0f);
     add_part(scene, make_flat_box(Vec3(0.05f), 1, "cube"), behind);

@@ -194,11 +194,7 @@ TEST_CASE("a spot light's cone: the renderer's per-vertex sum against the ground
 // glossy), a few RSLs and a sphere light.
 Scene fields_scene() {
     Scene scene = make_scene("fields", Color(0.7f));
-    MaterialDesc glossy;
-    glossy.name = "glossy";
-    glossy.model = "blinn_phong";
-    glossy.params = {{"kd", {0.4f, 0.4f, 0.4f}}, {"ks", {0.3f, 0.3f, 0.3f}}, {"exponent", {30.0f}}};
-    scene.materials.push_back(glossy);
+    scene.materials.push_back(test::blinn_phong(0.4f, 0.3f, 30.0f));
     add_part(scene, make_plane(3.0f, 12, "ground"));
     Transform big, small;
     big.translation = Vec3(0, 0.45f, 0);

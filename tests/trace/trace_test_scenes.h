@@ -108,6 +108,15 @@ inline MaterialDesc lambert(Color albedo, const std::string& name = "white") {
     return m;
 }
 
+// "glossy": Blinn-Phong with grey kd and ks.
+inline MaterialDesc blinn_phong(float kd, float ks, float exponent, const std::string& name = "glossy") {
+    MaterialDesc m;
+    m.name = name;
+    m.model = "blinn_phong";
+    m.params = {{"kd", {kd, kd, kd}}, {"ks", {ks, ks, ks}}, {"exponent", {exponent}}};
+    return m;
+}
+
 // Adds a part with its own node (rest transform) and returns the part index.
 inline int add_part(Scene& scene, TriangleMesh mesh, const Transform& rest = {}, int material = 0) {
     SceneNode node;
