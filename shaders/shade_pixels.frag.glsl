@@ -28,31 +28,22 @@ uniform bool u_depth_only;  // the depth pre-pass: each pixel is then shaded onc
 uniform sampler2D u_base_color;
 layout(location = 0) out vec4 o_color;
 
-uint index_texel(int i) { return texelFetch(u_indices, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0).r; }
-
 // The triangle's corners for self_visibility (g_self_corners = 3).
 void set_corners() {
     int first_vertex = int(part_texel(u_part, kSlotVertices).x);
     vec4 svdf = part_texel(u_part, kSlotSvdf);
-    mat4 transform = mat4(part_texel(u_part, kSlotTransform), part_texel(u_part, kSlotTransform + 1),
-                          part_texel(u_part, kSlotTransform + 2), part_texel(u_part, kSlotTransform + 3));
-    mat3 normal_matrix = mat3(part_texel(u_part, kSlotNormal).xyz, part_texel(u_part, kSlotNormal + 1).xyz,
-                              part_texel(u_part, kSlotNormal + 2).xyz);
+    mat4 transform = part_transform(u_part);
+    mat3 normal_matrix = part_normal_matrix(u_part);
     bool self = u_self_visibility && svdf.z > 0.0;
-    int stride = int(svdf.w);
     vec3 corner_position[3];
     for (int c = 0; c < 3; ++c) {
-        int local = int(index_texel(u_first_index + 3 * gl_PrimitiveID + c));
+        int local = int(uint_fetch(u_indices, u_first_index + 3 * gl_PrimitiveID + c));
         int vertex = first_vertex + local;
-        ivec2 texel = ivec2(vertex & (kArrayWidth - 1), vertex >> kArrayShift);
-        corner_position[c] = texelFetch(u_positions, texel, 0).xyz;
-        vec4 normal = texelFetch(u_normals, texel, 0);
-        g_corner_frame[c] = frame_rows(normalize(normal_matrix * normal.xyz),
-                                       mat3(transform) * texelFetch(u_tangents, texel, 0).xyz);
+        corner_position[c] = fetch(u_positions, vertex).xyz;
+        vec4 normal = fetch(u_normals, vertex);
+        g_corner_frame[c] = frame_rows(normalize(normal_matrix * normal.xyz), mat3(transform) * fetch(u_tangents, vertex).xyz);
         g_corner_cluster[c] = self && normal.w >= 0.0 ? int(normal.w) : -1;
-        if (g_corner_cluster[c] >= 0)
-            for (int t = 0; t < stride; ++t)
-                g_svdf_coefficients[c * MAX_STRIDE + t] = fetch(u_svdf_coefficients, int(svdf.y) + local * stride + t);
+        if (g_corner_cluster[c] >= 0) load_svdf_coefficients(svdf, local, c);
     }
     // Barycentric weights of the pixel's point, in the part's space.
     vec3 e0 = corner_position[1] - corner_position[0], e1 = corner_position[2] - corner_position[0];

@@ -17,15 +17,12 @@ out vec3 v_normal;
 out vec3 v_tangent;
 out vec2 v_texcoord;
 void main() {
-    ivec2 texel = ivec2(gl_VertexID & (kArrayWidth - 1), gl_VertexID >> kArrayShift);
-    mat4 transform = mat4(part_texel(u_part, kSlotTransform), part_texel(u_part, kSlotTransform + 1),
-                          part_texel(u_part, kSlotTransform + 2), part_texel(u_part, kSlotTransform + 3));
-    mat3 normal_matrix = mat3(part_texel(u_part, kSlotNormal).xyz, part_texel(u_part, kSlotNormal + 1).xyz,
-                              part_texel(u_part, kSlotNormal + 2).xyz);
+    mat4 transform = part_transform(u_part);
+    mat3 normal_matrix = part_normal_matrix(u_part);
     v_position = (transform * vec4(a_position, 1.0)).xyz;
     v_local = a_position;
-    v_normal = normal_matrix * texelFetch(u_normals, texel, 0).xyz;
-    v_tangent = mat3(transform) * texelFetch(u_tangents, texel, 0).xyz;
+    v_normal = normal_matrix * fetch(u_normals, gl_VertexID).xyz;
+    v_tangent = mat3(transform) * fetch(u_tangents, gl_VertexID).xyz;
     v_texcoord = a_texcoord;
     gl_Position = u_view_projection * vec4(v_position, 1.0);
 }

@@ -57,7 +57,17 @@ uniform float u_pcf_depth;       // PCF: the occluder distance assumed, in depth
 
 vec4 fetch(sampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0); }
 vec4 part_texel(int part, int slot) { return fetch(u_parts, part * kPartStride + slot); }
-uint list_texel(int i) { return texelFetch(u_occluder_lists, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0).r; }
+// A part's pose (its record): the transform, and the normals' matrix.
+mat4 part_transform(int part) {
+    return mat4(part_texel(part, kSlotTransform), part_texel(part, kSlotTransform + 1),
+                part_texel(part, kSlotTransform + 2), part_texel(part, kSlotTransform + 3));
+}
+mat3 part_normal_matrix(int part) {
+    return mat3(part_texel(part, kSlotNormal).xyz, part_texel(part, kSlotNormal + 1).xyz,
+                part_texel(part, kSlotNormal + 2).xyz);
+}
+uint uint_fetch(usampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0).r; }
+uint list_texel(int i) { return uint_fetch(u_occluder_lists, i); }
 
 // Frame::from_normal_tangent as a matrix: local = transpose(frame) * world.
 mat3 frame_rows(vec3 n, vec3 t) {
@@ -114,6 +124,13 @@ vec4 g_svdf_coefficients[3 * MAX_STRIDE];
 int g_corner_cluster[3];
 float g_corner_weight[3];
 mat3 g_corner_frame[3];
+
+// Corner `corner`'s CPCA coefficients: those of the part's vertex `local_vertex`.
+void load_svdf_coefficients(vec4 svdf, int local_vertex, int corner) {
+    int stride = int(svdf.w);
+    for (int t = 0; t < stride; ++t)
+        g_svdf_coefficients[corner * MAX_STRIDE + t] = fetch(u_svdf_coefficients, int(svdf.y) + local_vertex * stride + t);
+}
 
 // Corner `corner`'s reconstructed SVDF distance at plane point p.
 float svdf_distance(vec4 svdf, int cluster, vec2 p, int corner) {

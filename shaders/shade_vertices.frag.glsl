@@ -23,10 +23,8 @@ void main() {
     vec4 normal = texelFetch(u_normals, texel, 0);
     vec3 tangent = texelFetch(u_tangents, texel, 0).xyz;
     int part = int(position.w);
-    mat4 transform = mat4(part_texel(part, kSlotTransform), part_texel(part, kSlotTransform + 1),
-                          part_texel(part, kSlotTransform + 2), part_texel(part, kSlotTransform + 3));
-    mat3 normal_matrix = mat3(part_texel(part, kSlotNormal).xyz, part_texel(part, kSlotNormal + 1).xyz,
-                              part_texel(part, kSlotNormal + 2).xyz);
+    mat4 transform = part_transform(part);
+    mat3 normal_matrix = part_normal_matrix(part);
     vec4 svdf = part_texel(part, kSlotSvdf);
     int local_vertex = vertex - int(part_texel(part, kSlotVertices).x);
 
@@ -36,9 +34,7 @@ void main() {
     g_self_corners = self ? 1 : 0;
     if (self) {
         g_corner_cluster[0] = int(normal.w);
-        int stride = int(svdf.w);
-        for (int t = 0; t < stride; ++t)
-            g_svdf_coefficients[t] = fetch(u_svdf_coefficients, int(svdf.y) + local_vertex * stride + t);
+        load_svdf_coefficients(svdf, local_vertex, 0);
     }
     PointShade shaded = shade_point(part, p, frame);
     o_color = vec4(shaded.color, 1.0);

@@ -125,8 +125,9 @@ Image GlRenderer::form_image(const PinholeCamera& camera) {
     float nearest = INFINITY, farthest = 0.0f;
     const auto& poses = frame_.poses();
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
-        const auto& [low, high] = part_bounds_[p];
-        if (!(low.x <= high.x)) continue;  // no vertices
+        const Bounds& box = part_bounds_[p];
+        if (box.empty()) continue;  // no vertices
+        const Vec3 &low = box.lo, &high = box.hi;
         for (int corner = 0; corner < 8; ++corner) {
             const Vec3 local((corner & 1) ? high.x : low.x, (corner & 2) ? high.y : low.y, (corner & 4) ? high.z : low.z);
             const float depth = glm::dot(Vec3(poses[p].transform * Vec4(local, 1.0f)) - camera.eye, camera.forward);

@@ -74,9 +74,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     }
     for (const Part& part : scene_.parts) {
         rectangle_parts_.push_back(find_rectangle(part.mesh) ? 1 : 0);
-        Vec3 low(INFINITY), high(-INFINITY);
-        for (const Vec3& p : part.mesh.positions) low = glm::min(low, p), high = glm::max(high, p);
-        part_bounds_.emplace_back(low, high);
+        part_bounds_.push_back(part.mesh.bounds());
     }
     upload_geometry(geometry);
     upload_all_tables();

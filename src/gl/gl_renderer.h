@@ -196,7 +196,7 @@ private:
 
     Program shade_program_, display_program_, pixel_program_;
     std::vector<char> rectangle_parts_;  // per part: one flat rectangle (find_rectangle)
-    std::vector<std::pair<Vec3, Vec3>> part_bounds_;  // per part: its mesh's box (part space)
+    std::vector<Bounds> part_bounds_;  // per part: its mesh's box (part space)
     Texture positions_, normals_, tangents_;
     ArrayTexture parts_, lights_, brdf_offsets_;
     ArrayTexture occluder_lists_;  // FrameState::occluder_list_texels
