@@ -601,27 +601,27 @@ RSL_SHARED vec2 square_range(vec2 r) {  // of x² over x ∈ r
     float b = r.y * r.y;
     return vec2(r.x <= 0.0f && r.y >= 0.0f ? 0.0f : min(a, b), max(a, b));
 }
-// Bounds on the directions (in the shape's coordinates) of the part of a
-// square (plane centre c, half-edge h) above the receiver's horizon: each
-// coordinate's least and greatest value, by interval arithmetic over the
-// square (plane_to_hemisphere of each coordinate range), widened by a
-// relative margin for the taps' own rounding. So a whole-square answer
-// drawn from them is the one every tap would give.
+// Bounds on the directions (in the shape's coordinates) of the square's
+// taps that count: those above the receiver's horizon, whose plane radius²
+// is at most reach2 (< 1). Each coordinate's least and greatest value, by
+// interval arithmetic over the square (plane_to_hemisphere of each
+// coordinate range) cut at radius² reach2, widened by a relative margin for
+// the taps' own rounding. So a whole-square answer drawn from them is the one
+// every tap would give. The cut matters: bounded at the horizon itself (1),
+// a square straddling the horizon of an upward-facing receiver reached
+// "down" by the margin, and 30% of the yard's ground lookups ran every tap
+// to find them all lit.
 struct SquareDirections {
     vec3 lo;
     vec3 hi;
-    bool reaches_hemisphere;  // some of the square is above the horizon
-    bool inside_hemisphere;   // all of it is: every tap is above the horizon
 };
-RSL_SHARED SquareDirections square_directions(LocalFrame frame, vec2 c, float h) {
+RSL_SHARED SquareDirections square_directions(LocalFrame frame, vec2 c, float h, float reach2) {
     SquareDirections d;
     vec2 qx = vec2(c.x - h, c.x + h);
     vec2 qy = vec2(c.y - h, c.y + h);
     vec2 r2 = square_range(qx) + square_range(qy);
-    d.reaches_hemisphere = r2.x < 1.0f;
-    d.inside_hemisphere = r2.y < 1.0f - 1e-5f;  // a margin for the taps' rounding
-    r2.y = min(r2.y, 1.0f);  // only taps above the horizon count
-    r2.x = min(r2.x, 1.0f);
+    r2.y = min(r2.y, reach2);
+    r2.x = min(r2.x, r2.y);
     vec2 root = vec2(sqrt(2.0f - r2.y), sqrt(2.0f - r2.x));
     vec2 wx = product_range(qx, root);
     vec2 wy = product_range(qy, root);
@@ -639,7 +639,6 @@ RSL_SHARED SquareDirections square_directions(LocalFrame frame, vec2 c, float h)
 // every one reaches it inside the rectangle, −1 when the taps must decide.
 // A ground under an object decides most (vertex, light) pairs with no tap at all.
 RSL_SHARED float rectangle_decides_square(vec3 point, SquareDirections d, vec2 half_extent) {
-    if (!d.reaches_hemisphere) return -1.0f;
     bool above = above_rectangle(point, half_extent);
     // Towards the plane: down from above it, up from below.
     vec2 toward = above ? vec2(-d.hi.z, -d.lo.z) : vec2(d.lo.z, d.hi.z);
@@ -658,7 +657,6 @@ RSL_SHARED float rectangle_decides_square(vec3 point, SquareDirections d, vec2 h
 // the receiver is on or beyond a face that every direction leaves; 0 when
 // every direction enters the box through the inside of one face; else −1.
 RSL_SHARED float box_decides_square(vec3 point, SquareDirections d, vec3 lo, vec3 hi) {
-    if (!d.reaches_hemisphere) return -1.0f;
     float margin = kShapeContactMargin * length(hi - lo);
     vec3 low = lo + vec3(margin);
     vec3 high = hi - vec3(margin);
@@ -714,15 +712,22 @@ RSL_SHARED vec3 shape_tap_direction(LocalFrame frame, vec2 c, float h, int i) {
 // (a sandwiched vertex lit by the one light low on its horizon was the
 // bug): then every tap counts, pulled in to just above the horizon.
 RSL_SHARED float shape_visible_fraction(int shape, vec3 point, LocalFrame frame, vec2 c, float h, vec3 lo, vec3 hi) {
-    SquareDirections d = square_directions(frame, c, h);
-    int above = d.inside_hemisphere ? kShadowTaps : 0;
-    if (!d.inside_hemisphere) {
+    // The taps above the horizon, and the farthest one's plane radius².
+    vec2 r2 = square_range(vec2(c.x - h, c.x + h)) + square_range(vec2(c.y - h, c.y + h));
+    int above = kShadowTaps;
+    float reach2 = r2.y;
+    if (!(r2.y < 1.0f - 1e-5f)) {  // some tap may be below the horizon (a margin for the taps' rounding)
+        above = 0;
+        reach2 = 0.0f;
         for (int i = 0; i < kShadowTaps; ++i) {
             vec2 tap = shadow_tap_point(c, h, i);
-            if (dot(tap, tap) < 1.0f) ++above;
+            float t2 = dot(tap, tap);
+            above += t2 < 1.0f ? 1 : 0;
+            reach2 = max(reach2, t2 < 1.0f ? t2 : 0.0f);
         }
     }
     if (above > 0) {
+        SquareDirections d = square_directions(frame, c, h, reach2);
         float whole = shape == kShapeBox ? box_decides_square(point, d, lo, hi)
                                          : rectangle_decides_square(point, d, vec2(hi.x, hi.y));
         if (whole >= 0.0f) return whole;

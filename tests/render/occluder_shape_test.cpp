@@ -203,15 +203,17 @@ WholeSquareCount check_whole_square(uint32_t seed, Vec3 lo, Vec3 hi, Whole whole
         const Vec2 c(1.2f * uniform(rng), 1.2f * uniform(rng));
         const float h = 0.01f + 0.4f * std::abs(uniform(rng));
         int above = 0, lit = 0;
+        float reach2 = 0.0f;  // the farthest counted tap's plane radius²
         for (int i = 0; i < shading::kShadowTaps; ++i) {
             const Vec2 tap = shading::shadow_tap_point(c, h, i);
             if (glm::dot(tap, tap) >= 1.0f) continue;
             ++above;
+            reach2 = std::max(reach2, glm::dot(tap, tap));
             lit += !blocks(point, frame.to_world(plane_to_hemisphere(tap)));
         }
         if (above == 0) continue;
         ++count.checked;
-        const float answer = whole(point, shading::square_directions(f, c, h));
+        const float answer = whole(point, shading::square_directions(f, c, h, reach2));
         if (answer < 0.0f) continue;
         ++count.decided;
         count.shadowed += answer == 0.0f;
@@ -259,6 +261,41 @@ TEST_CASE("A box's whole-square answer is always the taps' own", "[render][shape
     INFO(count.decided << " of " << count.checked << " decided whole, " << count.shadowed << " of them shadowed");
     CHECK(count.decided > count.checked / 4);
     CHECK(count.shadowed > count.decided / 20);
+}
+
+}  // namespace rsl
+
+namespace rsl {
+
+// The yard's common case: a receiver facing up, above the ground, with a
+// light's square across its horizon. Every tap above the horizon points up,
+// and the whole-square test must see it without casting them (bounded at the
+// horizon itself, its margin reached "down" and sent every such query to the taps).
+TEST_CASE("An upward-facing receiver's squares across its horizon are decided whole", "[render][shape]") {
+    const Vec3 hi(3.0f, 2.0f, 0.0f);
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    int decided = 0, cases = 0;
+    for (int n = 0; n < 2000; ++n) {
+        const Frame frame = Frame::from_normal_tangent(Vec3(0, 0, 1), Vec3(std::cos(6.3f * uniform(rng)), std::sin(6.3f * uniform(rng)), 0));
+        shading::LocalFrame f;
+        f.x = frame.x, f.y = frame.y, f.z = frame.z;
+        const float angle = 6.2832f * uniform(rng);
+        const float h = 0.05f + 0.3f * uniform(rng);
+        const Vec2 c = (1.0f - 0.5f * h) * Vec2(std::cos(angle), std::sin(angle));  // across the horizon
+        const Vec3 point(0.5f, -0.3f, 0.05f + uniform(rng));
+        ++cases;
+        const float answer = shading::shape_visible_fraction(shading::kShapeRectangle, point, f, c, h, -hi, hi);
+        CHECK(answer == 1.0f);
+        float reach2 = 0.0f;
+        for (int i = 0; i < shading::kShadowTaps; ++i) {
+            const Vec2 tap = shading::shadow_tap_point(c, h, i);
+            if (glm::dot(tap, tap) < 1.0f) reach2 = std::max(reach2, glm::dot(tap, tap));
+        }
+        decided += shading::rectangle_decides_square(point, shading::square_directions(f, c, h, reach2), Vec2(hi)) == 1.0f;
+    }
+    INFO(decided << " of " << cases << " decided whole");
+    CHECK(decided > cases * 9 / 10);
 }
 
 }  // namespace rsl
