@@ -171,7 +171,8 @@ size_t memory_bytes(const Svdf& svdf) { return model_bytes(svdf.model); }
 size_t memory_bytes(const Ovdf& ovdf) {
     const OvdfParams& p = ovdf.params;
     const size_t frames = size_t(6) * size_t(p.cube_resolution) * size_t(p.cube_resolution);
-    return model_bytes(ovdf.model) + ovdf.surface_distance.size() * sizeof(float) + frames * sizeof(Frame) +
+    return model_bytes(ovdf.model) + (ovdf.surface_distance.size() + ovdf.radial_span.size()) * sizeof(float) +
+           frames * sizeof(Frame) +
            size_t(p.shells) * (sizeof(float) + sizeof(OvdfZoom));
 }
 

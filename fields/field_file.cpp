@@ -153,6 +153,9 @@ void write_field(const fs::path& path, FieldKind kind, uint64_t mesh, const std:
     if (ovdf) {
         RSL_CHECK_EQ(ovdf->surface_distance.size(), ovdf->params.sample_count());
         w.put_bytes(ovdf->surface_distance.data(), ovdf->surface_distance.size() * sizeof(float));
+        RSL_CHECK_EQ(ovdf->radial_span.size(), size_t(2 * shading::kCubeFaces) * ovdf->span_resolution * ovdf->span_resolution);
+        w.put(int32_t(ovdf->span_resolution));
+        w.put_bytes(ovdf->radial_span.data(), ovdf->radial_span.size() * sizeof(float));
     }
     write_file_atomically(path, w.finish_with_checksum());
 }
@@ -366,6 +369,13 @@ Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
     ovdf.surface_distance.resize(ovdf.params.sample_count());
     r.get_bytes(ovdf.surface_distance.data(), ovdf.surface_distance.size() * sizeof(float), "surface distances");
     check_all_finite(path, ovdf.surface_distance, "surface distance");
+    ovdf.span_resolution = r.get<int32_t>();
+    if (ovdf.span_resolution != 0 && (ovdf.span_resolution < 2 || ovdf.span_resolution > kMostSpanResolution))
+        throw_file_error(path, "implausible radial span resolution {} (0, or 2 to {})", ovdf.span_resolution,
+                         kMostSpanResolution);
+    ovdf.radial_span.resize(size_t(2 * shading::kCubeFaces) * ovdf.span_resolution * ovdf.span_resolution);
+    r.get_bytes(ovdf.radial_span.data(), ovdf.radial_span.size() * sizeof(float), "radial spans");
+    check_all_finite(path, ovdf.radial_span, "radial span");
     check_fully_read(path, r);
     ovdf.prepare();
     return ovdf;

@@ -12,6 +12,8 @@
 //   model: i32 dims, vectors, clusters, samples; u8 half tables;
 //          tables (half or float), assignment (u16 when clusters ≤ 65536, else
 //          i32), coefficients (f32)
+//   OVDF only: f32 surface distance per sample; i32 span resolution n (0:
+//          none), f32 (enter, exit) per radial line, 6·n² lines
 //   u64 FNV-1a 64 checksum of every byte before it
 // Readers refuse, naming the file: foreign files (magic), truncated or
 // corrupt ones (size, checksum), stale ones (version, kind, mesh hash or
@@ -41,8 +43,10 @@ namespace rsl {
 // from inside them. Version 6: OVDF shells inside the bounding sphere hold
 // the whole sphere of directions (zoom 1/√2, shading_core.h ovdf_zoom), so
 // that directions away from the part's centre are traced, not the horizon's
-// edge texels.
-inline constexpr uint32_t kFieldFormatVersion = 6;
+// edge texels. Version 7: OVDF files end with the radial spans
+// (fields/ovdf_spans.h), the receiver's inside test.
+inline constexpr uint32_t kFieldFormatVersion = 7;
+inline constexpr int kMostSpanResolution = 1024;
 enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
 
 // Positions, normals, tangents and indices: everything the tables depend on.

@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "fields/ovdf_spans.h"
 #include "fields/solid_pieces.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
@@ -112,12 +113,24 @@ float Ovdf::surface_distance_at(const OvdfLocation& at) const {
     return blended;
 }
 
+bool Ovdf::receiver_inside(const Vec3& point, float d, const OvdfLocation& at) const {
+    if (!radial_span.empty() && d > 0.0f) {
+        const shading::SpanTaps taps = shading::ovdf_span_taps(point - center, span_resolution);
+        Vec2 span(0.0f);
+        for (int q = 0; q < 4; ++q)
+            span += taps.weight[q] * Vec2(radial_span[size_t(2 * taps.index[q])], radial_span[size_t(2 * taps.index[q] + 1)]);
+        const int decided = shading::ovdf_span_inside(d, span, radius);
+        if (decided >= 0) return decided == 1;
+    }
+    return shading::ovdf_inside_part(radius, surface_distance_at(at));
+}
+
 float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) const {
     const Vec3 v = point - center;
     const float d = glm::length(v);
     if (d >= shell_radii_.back()) return kVdtNoBoundaryDistance;  // no shadow beyond the outer shell
     const OvdfLocation at = locate(point, d);
-    if (d < radius && shading::ovdf_inside_part(radius, surface_distance_at(at))) return -kVdtNoBoundaryDistance;
+    if (d < radius && receiver_inside(point, d, at)) return -kVdtNoBoundaryDistance;
     const int s0 = at.s0, face = at.face;
     const float fs = at.fs;
     const glm::ivec4& ii = at.ii;
@@ -314,6 +327,8 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& requested, OvdfBakeSt
     // The mesh for rays, and its closed pieces for the samples' inside test.
     const SolidPieces pieces(mesh);
     const RayScene& scene = pieces.whole();
+    ovdf.span_resolution = shading::kOvdfSpanResolution;
+    ovdf.radial_span = bake_radial_spans(pieces, ovdf.center, ovdf.radius, ovdf.span_resolution);
 
     // One sampling pattern per shell, over its zoomed table: rays only
     // towards the part's bounding cone (plus a texel and a half of margin);

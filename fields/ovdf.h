@@ -122,6 +122,11 @@ public:
     // like the tables, it tells a receiver that lies inside the part — a
     // neighbouring part sunk into this one at a joint — which sees nothing.
     std::vector<float> surface_distance;
+    // The radial spans (fields/ovdf_spans.h): (enter, exit) per radial line
+    // of a span_resolution² cube map, interleaved; empty: the surface
+    // distances alone decide.
+    int span_resolution = 0;
+    std::vector<float> radial_span;
 
     // Set up geometry (radii, frames) for params/center/radius.
     void prepare();
@@ -162,6 +167,11 @@ public:
     // the bounding sphere, the point is inside the part and every lookup is
     // fully shadowed.
     float surface_distance_at(const OvdfLocation& at) const;
+    // Whether a receiver within the bounding sphere (d = |point − center| <
+    // radius) lies inside the part: its radial span where that decides,
+    // else the blended surface distance (shading::ovdf_span_inside,
+    // ovdf_inside_part).
+    bool receiver_inside(const Vec3& point, float d, const OvdfLocation& at) const;
 
     // Distance (plane units) of sample `sample`'s reconstructed VDT at plane
     // point p (its shell's zoom and cone bound applied).

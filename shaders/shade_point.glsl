@@ -179,11 +179,25 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     CubeFace face = cube_face(dir, u_face_normal);
     SampleTaps at = ovdf_sample_taps(dir, face.cosine, u_face_s[face.face], u_face_t[face.face], n);
     int tables = int(bases.x), coefficients = int(bases.y), dims = vdt_n * vdt_n;
-    // A receiver inside the part (its samples' blended surface distance is
-    // negative; Ovdf::surface_distance_at) sees nothing.
+    // A receiver inside the part sees nothing (Ovdf::receiver_inside): its
+    // radial span decides where it can, else the samples' blended surface
+    // distance (Ovdf::surface_distance_at).
+    int span_inside = -1;
+    int span_resolution = int(records.w);
+    if (d < center.w && span_resolution > 0 && d > 0.0f) {
+        SpanTaps span_taps = ovdf_span_taps(v, span_resolution);
+        vec2 span = vec2(0.0f);
+        for (int q = 0; q < 4; ++q) {
+            int line = span_taps.index[q];
+            vec4 texel = fetch(u_ovdf_frames, int(records.z) + line / 2);
+            span += span_taps.weight[q] * ((line & 1) == 0 ? texel.xy : texel.zw);
+        }
+        span_inside = ovdf_span_inside(d, span, center.w);
+    }
+    if (span_inside == 1) return 0.0f;
     int surface_base = int(records.y);
     float surface = 0.0f;
-    for (int k = 0; k < 2 && d < center.w; ++k) {
+    for (int k = 0; k < 2 && d < center.w && span_inside < 0; ++k) {
         float ws = k == 0 ? 1.0f - fs : fs;
         if (ws == 0.0f) continue;
         float value = 0.0f;
@@ -194,7 +208,7 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
         }
         surface += ws * value;
     }
-    if (d < center.w && ovdf_inside_part(center.w, surface)) return 0.0f;
+    if (d < center.w && span_inside < 0 && ovdf_inside_part(center.w, surface)) return 0.0f;
     // The receiver's own pole frame, twisted by the face rule like its
     // samples: one plane point for all eight samples.
     vec2 lp = lookup_plane_point(to_local(frame_rows(-dir, u_face_s[face.face]), light));

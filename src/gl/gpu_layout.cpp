@@ -168,11 +168,19 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
                 texel[int(c)] = o.surface_distance.empty() ? 1.0f : o.surface_distance[s + c];
             g.ovdf_frames.push_back(texel);
         }
+        // Then the radial spans, two lines (enter, exit) to a texel.
+        const int spans = int(g.ovdf_frames.size());
+        for (size_t k = 0; k < o.radial_span.size(); k += 4) {
+            Vec4 texel(0.0f);
+            for (size_t c = 0; c < 4 && k + c < o.radial_span.size(); ++c) texel[int(c)] = o.radial_span[k + c];
+            g.ovdf_frames.push_back(texel);
+        }
         record[kSlotOvdfCenter] = Vec4(o.center, o.radius);
         record[kSlotOvdfBases] = Vec4(float(tables), float(coefficients), float(frames), o.shell_radius(op.shells - 1));
         record[kSlotOvdfShells] = Vec4(float(op.shells), float(int(op.spacing)), op.inner_radius, op.outer_radius);
         record[kSlotOvdfGrid] = Vec4(float(n), float(op.vdt_resolution), float(stride), float(op.segments_per_side));
-        record[kSlotOvdfRecords] = Vec4(float(zoom_records), float(surfaces), 0.0f, 0.0f);
+        record[kSlotOvdfRecords] = Vec4(float(zoom_records), float(surfaces), float(spans),
+                                        o.radial_span.empty() ? 0.0f : float(o.span_resolution));
         for (int k = 0; k < 5; ++k) ovdf_records[&o][size_t(k)] = record[kOvdfSlots[k]];
     }
     g.first_vertex.push_back(int(g.positions.size()));

@@ -18,8 +18,9 @@
 //    so a reconstruction is Σ_t dot(table_t, coefficients_t)
 //  OVDF sample frames: per (face, i, j) two texels, x and z (y = z × x); then
 //    per shell one texel (table zoom, cone radius, 0, 0) (fields/ovdf.h OvdfZoom);
-//    then the samples' surface distances, kSurfacesPerTexel to a texel. The
-//    part record's kSlotOvdfRecords holds where the last two start.
+//    then the samples' surface distances, kSurfacesPerTexel to a texel;
+//    then the radial spans, (enter, exit) of two lines to a texel. The
+//    part record's kSlotOvdfRecords holds where the last three start.
 //
 // The shader writes none of these numbers: shader_layout_constants() turns
 // kShaderIntConstants (and π, √2) into GLSL constants that the host prepends
@@ -58,7 +59,7 @@ enum PartSlot : int {
     kSlotOvdfGrid = 17,   // (cube resolution, VDT resolution, stride, segments per side)
     kSlotBoxLow = 18,     // (the mesh's bounding box low corner, 0): the slab rule (square_lights.h)
     kSlotBoxHigh = 19,    // (high corner, 0)
-    kSlotOvdfRecords = 20, // (first shell zoom record, first surface-distance texel, 0, 0), in the frames texture
+    kSlotOvdfRecords = 20, // (first shell zoom record, first surface-distance texel, first span texel, span resolution (0: none)), in the frames texture
     kSlotSpecular = 21,    // textured part: its specular table as kSlotMaterial, w = 1; else all 0
     // A part of exact shape (src/render/occluder_shape.h): (center, kind), (s, 0), (t, 0), (normal, 0)
     // and the shape's (lo, hi) in those coordinates; kind 0 (shading::kShapeNone) for other parts.

@@ -23,7 +23,7 @@ int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) cons
     // The same sample location as the field's own lookup.
     const OvdfLocation at = f.locate(point, d);
     out.x = at.aligned.x, out.y = at.aligned.y, out.z = at.aligned.z;
-    if (d < f.radius && shading::ovdf_inside_part(f.radius, f.surface_distance_at(at))) {
+    if (d < f.radius && f.receiver_inside(point, d, at)) {
         out.kind = OvdfPoint::Inside;
         return 0;
     }

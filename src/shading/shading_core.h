@@ -402,6 +402,57 @@ RSL_CONST float kOvdfContactTolerance = 0.001f;
 RSL_SHARED bool ovdf_inside_part(float radius, float blended_surface_distance) {
     return blended_surface_distance < -kOvdfContactTolerance * radius;
 }
+// The radial spans (fields/ovdf_spans.h) decide that test first where they
+// can. Along each radial line, coming in from outside the bounding sphere,
+// the bake records where the line first enters the part (`enter`, a
+// distance from the centre) and where it leaves that first solid span
+// (`exit`). A receiver between the sphere and `enter` is outside; one within
+// the span is inside; only one deeper than the span (a cup's cavity, a second
+// span) is left to the surface distances. The lines lie on a cube map of
+// n×n directions per face (axis-major: face 2a + (negative), the other two
+// axes in order), bilinear between direction centres. Measured at the
+// robot's own field settings, the blended surface distance had put the
+// pelvis's surface 8 mm too far out at the hip crease and missed knees sunk
+// into thighs (issue 17; docs/RESULTS.md, "Radial spans").
+RSL_CONST int kOvdfSpanResolution = 64;
+// How far (× R) a receiver must be beyond a span's ends to be decided: a
+// vertex on a contact seam counts as outside, as in ovdf_inside_part (the
+// truth counts origins a few ray offsets inside another part as outside).
+// At the robot's default frame 0 (no margin) blackened the knees (shin_l
+// 54%), 0.003 R gave the least error (docs/RESULTS.md).
+RSL_CONST float kOvdfSpanTolerance = 0.003f;
+struct SpanTaps {
+    ivec4 index;  // direction (face·n + j)·n + i
+    vec4 weight;
+};
+// The four radial lines around offset v (point − centre, non-zero).
+RSL_SHARED SpanTaps ovdf_span_taps(vec3 v, int n) {
+    vec3 a = abs(v);
+    int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    int ua = (axis + 1) % 3;
+    int va = (axis + 2) % 3;
+    int face = 2 * axis + (v[axis] < 0.0f ? 1 : 0);
+    float hi = float(n - 1);
+    float x = clamp((v[ua] / a[axis] + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
+    float y = clamp((v[va] / a[axis] + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
+    int i0 = min(int(x), n - 2);
+    int j0 = min(int(y), n - 2);
+    float fx = x - float(i0);
+    float fy = y - float(j0);
+    int base = (face * n + j0) * n + i0;
+    SpanTaps taps;
+    taps.index = ivec4(base, base + 1, base + n, base + n + 1);
+    taps.weight = vec4((1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy);
+    return taps;
+}
+// A receiver at distance d from the centre against its blended span (enter,
+// exit): 0 outside, 1 inside, −1 deeper than the span (undecided).
+RSL_SHARED int ovdf_span_inside(float d, vec2 span, float radius) {
+    float margin = kOvdfSpanTolerance * radius;
+    if (d > span.x - margin) return 0;
+    if (d > span.y + margin) return 1;
+    return -1;
+}
 // The receiver's own bounding cone test: whether the lookup certainly gives 1
 // for a light at cosine cos_to_center from the pole (|p|² = 1 − cos) and a
 // square of half-edge h: the square lies beyond |p| − cone ≥ h. Branch-free,

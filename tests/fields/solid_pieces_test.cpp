@@ -6,7 +6,9 @@
 #include <catch2/catch.hpp>
 
 #include "assets/generate/primitives.h"
+#include "fields/ovdf.h"
 #include "fields/solid_pieces.h"
+#include "src/shading/shading_core.h"
 
 using namespace rsl;
 using rsl::assets::append_mesh;
@@ -157,3 +159,105 @@ TEST_CASE("Solid pieces: open surfaces and glued pieces", "[solid_pieces]") {
     CHECK_FALSE(glued_pieces.inside(Vec3(0.2f, 0.3f, 0.1f)));
 }
 
+
+// ---- the OVDF's radial spans (fields/ovdf_spans.h): the receiver's inside test ----
+
+namespace {
+
+// The spans' own answer at `point` (part frame): 0 outside, 1 inside, −1
+// undecided (Ovdf::receiver_inside then asks the surface distances).
+int span_decision(const Ovdf& ovdf, const Vec3& point) {
+    const shading::SpanTaps taps = shading::ovdf_span_taps(point - ovdf.center, ovdf.span_resolution);
+    Vec2 span(0.0f);
+    for (int q = 0; q < 4; ++q)
+        span += taps.weight[q] * Vec2(ovdf.radial_span[size_t(2 * taps.index[q])], ovdf.radial_span[size_t(2 * taps.index[q] + 1)]);
+    return shading::ovdf_span_inside(glm::length(point - ovdf.center), span, ovdf.radius);
+}
+
+Ovdf small_ovdf(const TriangleMesh& mesh) {
+    OvdfParams params;
+    params.shells = 6;
+    params.cube_resolution = 8;
+    params.vdt_resolution = 8;
+    params.vectors = 4;
+    return bake_ovdf(mesh, params);
+}
+
+struct InsideErrors {
+    int points = 0, decided = 0, span_wrong = 0, surface_wrong = 0;
+};
+
+// Random points in the bounding sphere, farther than `margin` (× R) from the
+// surface: how often the spans decide, and how often they and the blended
+// surface distances alone (the test before the spans) are wrong.
+InsideErrors inside_errors(const Ovdf& ovdf, const std::function<float(const Vec3&)>& distance, float margin, int seed) {
+    std::mt19937 rng{uint32_t(seed)};
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    InsideErrors e;
+    while (e.points < 4000) {
+        const Vec3 p = ovdf.center + ovdf.radius * Vec3(u(rng), u(rng), u(rng));
+        const float d = glm::length(p - ovdf.center);
+        const float exact = distance(p);
+        if (!(d < ovdf.radius) || std::abs(exact) < margin * ovdf.radius) continue;
+        ++e.points;
+        const OvdfLocation at = ovdf.locate(p, d);
+        const int span = span_decision(ovdf, p);
+        e.decided += span >= 0;
+        e.span_wrong += span >= 0 && (span == 1) != (exact < 0.0f);
+        e.surface_wrong += shading::ovdf_inside_part(ovdf.radius, ovdf.surface_distance_at(at)) != (exact < 0.0f);
+        CHECK(ovdf.receiver_inside(p, d, at) == (span >= 0 ? span == 1 : shading::ovdf_inside_part(ovdf.radius, ovdf.surface_distance_at(at))));
+    }
+    return e;
+}
+
+}  // namespace
+
+TEST_CASE("Radial spans: inside and outside as the exact solid, near its surface", "[solid_pieces][ovdf]") {
+    // A waist sunk into a pelvis (two overlapping boxes) and two spheres sunk
+    // into each other: points 1–5% of R from the surface, where the shells'
+    // surface distances, blended over samples a shell apart, guess.
+    TriangleMesh cross = box(Vec3(1.0f, 0.3f, 0.3f));
+    append_mesh(cross, box(Vec3(0.3f, 0.3f, 1.0f)));
+    TriangleMesh spheres = sphere(0.5f, 0.05f);
+    append_mesh(spheres, moved(sphere(0.5f, 0.05f), Vec3(0.6f, 0.0f, 0.0f)));
+    const std::function<float(const Vec3&)> cross_distance = [](const Vec3& p) {
+        return std::min(box_distance(p, Vec3(1.0f, 0.3f, 0.3f)), box_distance(p, Vec3(0.3f, 0.3f, 1.0f)));
+    };
+    const std::function<float(const Vec3&)> spheres_distance = [](const Vec3& p) {
+        return std::min(glm::length(p) - 0.5f, glm::length(p - Vec3(0.6f, 0, 0)) - 0.5f);
+    };
+    int case_seed = 10;
+    for (const auto& [mesh, distance] : {std::pair{&cross, cross_distance}, std::pair{&spheres, spheres_distance}}) {
+        const Ovdf ovdf = small_ovdf(*mesh);
+        REQUIRE(ovdf.span_resolution == shading::kOvdfSpanResolution);
+        const InsideErrors e = inside_errors(ovdf, distance, 0.01f, ++case_seed);
+        INFO("mesh " << case_seed << ": " << e.decided << " of " << e.points << " decided by the spans, " << e.span_wrong
+                     << " of them wrong; the surface distances alone: " << e.surface_wrong << " wrong");
+        CHECK(e.decided > e.points * 9 / 10);
+        CHECK(e.span_wrong * 200 < e.decided);  // under 0.5%: the lines' interpolation across a silhouette
+        CHECK(e.span_wrong * 4 < e.surface_wrong);
+    }
+}
+
+TEST_CASE("Radial spans: a room encloses nothing, a lidless box's cavity is left to the surface distances", "[solid_pieces][ovdf]") {
+    // Walls turned inwards: every line passes them, every point is outside.
+    const Ovdf room = small_ovdf(box(Vec3(2.0f, 1.0f, 2.0f), true));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-0.95f, 0.95f);
+    for (int k = 0; k < 500; ++k) {
+        const Vec3 p(2.0f * u(rng), u(rng), 2.0f * u(rng));
+        INFO("point (" << p.x << ", " << p.y << ", " << p.z << ")");
+        REQUIRE(span_decision(room, p) == 0);
+    }
+    // A box without its lid, one sheet thick: no line through a wall finds
+    // where it leaves the solid before the centre, so its cavity is never
+    // called inside by the spans.
+    TriangleMesh lidless = box(Vec3(0.5f));
+    lidless.indices.erase(lidless.indices.begin() + 18, lidless.indices.begin() + 24);  // the +y face
+    const Ovdf cup = small_ovdf(lidless);
+    for (int k = 0; k < 500; ++k) {
+        const Vec3 p = 0.45f * Vec3(u(rng), u(rng), u(rng));
+        INFO("point (" << p.x << ", " << p.y << ", " << p.z << ")");
+        REQUIRE(span_decision(cup, p) != 1);
+    }
+}

@@ -11,7 +11,7 @@ namespace rsl::shading {
 
 // RSL_GLSL_BEGIN
 
-RSL_CONST int kShadingCoreModes = 13;
+RSL_CONST int kShadingCoreModes = 14;
 
 struct CaseOutput {
     vec4 first;
@@ -125,6 +125,14 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
         vec2 tap = shadow_tap_point(vec2(a.x, a.y), ha, min(kShadowTaps - 1, int(float(kShadowTaps) * abs(b.z))));
         o.first = vec4(q.x, q.y, q.z, tap.x);
         o.second = vec4(slope.x, slope.y, gradient.y, tap.y);
+    } else if (mode == 13) {  // the radial spans: a point's four lines and the inside decision
+        vec3 v = 3.0f * vec3(a.x, a.y, a.z) + vec3(0.0f, 0.0f, 1e-3f);
+        SpanTaps taps = ovdf_span_taps(v, n);
+        vec2 span = vec2(0.5f + abs(b.x), 0.5f * abs(b.y));
+        o.first = vec4(taps.index);
+        o.second = vec4(taps.weight.x, taps.weight.w,
+                        float(ovdf_span_inside(length(v) / 3.0f, span, 1.0f + abs(b.w))),
+                        float(ovdf_span_inside(span.x - 0.002f * abs(a.w), span, 1.0f)));
     }
     return o;
 }
