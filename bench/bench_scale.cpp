@@ -15,6 +15,7 @@
 #include "assets/generate/yard.h"
 #include "baselines/raster.h"
 #include "bench/bench.h"
+#include "fields/field_cache.h"
 #include "src/backend/make_renderer.h"
 #include "src/core/image.h"
 #include "src/frame/error_metrics.h"
@@ -47,10 +48,10 @@ size_t field_ram_bytes(const PartFields& fields, size_t& unique, size_t& meshes)
     std::set<const void*> seen;
     size_t bytes = 0;
     for (const auto& svdf : fields.self)
-        if (svdf && seen.insert(svdf.get()).second) bytes += svdf->model.stored_bytes(false);
+        if (svdf && seen.insert(svdf.get()).second) bytes += memory_bytes(*svdf);
     for (const auto& occluder : fields.occluder) {
         const auto* ovdf = dynamic_cast<const OvdfOccluder*>(occluder.get());
-        if (ovdf && seen.insert(&ovdf->field()).second) bytes += ovdf->field().model.stored_bytes(false);
+        if (ovdf && seen.insert(&ovdf->field()).second) bytes += memory_bytes(ovdf->field());  // spans and frames too
     }
     unique = seen.size();
     return bytes;
