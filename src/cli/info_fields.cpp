@@ -13,8 +13,9 @@ void print_field_file(const std::filesystem::path& path) {
     const FieldHeader h = read_field_header(path);  // throws on a bad magic, size, checksum or version
     // ... and the whole field as the renderer reads it (parameters, bounding
     // sphere, values), so that "OK" below means it loads.
+    int span_resolution = 0;
     if (h.kind == FieldKind::Svdf) read_svdf(path);
-    else read_ovdf(path);
+    else span_resolution = read_ovdf(path).span_resolution;
     const size_t raw = size_t(h.samples) * h.dims * sizeof(float);
     fmt::print("{}: rsl field file, format version {}, {}\n", path.string(), h.version,
                h.kind == FieldKind::Svdf ? "SVDF (self-visibility, per vertex)" : "OVDF (occluder, shells of samples)");
@@ -24,6 +25,9 @@ void print_field_file(const std::filesystem::path& path) {
                int(std::lround(std::sqrt(h.dims))), int(std::lround(std::sqrt(h.dims))));
     fmt::print("  compression    {} {} x {} vectors, tables in {}\n", h.clusters,
                h.kind == FieldKind::Svdf ? "clusters" : "segments", h.vectors, h.half_tables ? "half" : "float");
+    if (h.kind == FieldKind::Ovdf)
+        fmt::print("  radial spans   {}x{} lines per cube face (the receivers' inside test, fields/ovdf_spans.h)\n",
+                   span_resolution, span_resolution);
     fmt::print("  size           {:.2f} MB on disk, {:.2f} MB as raw float (1:{:.1f})\n", h.file_bytes / 1e6,
                raw / 1e6, double(raw) / double(h.file_bytes));
     fmt::print("  checksum       {:016x} (FNV-1a 64) OK, contents OK\n", h.checksum);
