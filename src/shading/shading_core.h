@@ -418,8 +418,10 @@ RSL_CONST int kOvdfSpanResolution = 64;
 // How far (× R) a receiver must be beyond a span's ends to be decided: a
 // vertex on a contact seam counts as outside, as in ovdf_inside_part (the
 // truth counts origins a few ray offsets inside another part as outside).
-// At the robot's default frame 0 (no margin) blackened the knees (shin_l
-// 54%), 0.003 R gave the least error (docs/RESULTS.md).
+// Measured on the robot under the sun, ennis and grace: no margin blackened
+// the knees (sunsky t = 0.5: 13.4%, shin_l 54%); 0.006 R helped the sun and
+// ennis a little but doubled grace's worst part at t = 0.5; 0.012 R was worse
+// everywhere (docs/RESULTS.md, "Radial spans").
 RSL_CONST float kOvdfSpanTolerance = 0.003f;
 struct SpanTaps {
     ivec4 index;  // direction (face·n + j)·n + i
@@ -660,8 +662,8 @@ RSL_SHARED vec2 square_range(vec2 r) {  // of x² over x ∈ r
 // the taps' own rounding. So a whole-square answer drawn from them is the one
 // every tap would give. The cut matters: bounded at the horizon itself (1),
 // a square straddling the horizon of an upward-facing receiver reached
-// "down" by the margin, and 30% of the yard's ground lookups ran every tap
-// to find them all lit.
+// "down" by the margin and ran every tap to find them all lit (in the yard,
+// 57k of the 210k such ground lookups a frame).
 struct SquareDirections {
     vec3 lo;
     vec3 hi;
