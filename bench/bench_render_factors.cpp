@@ -44,6 +44,7 @@ std::vector<Variant> variants(bool quick) {
         {"exact self-visibility, OVDF", nullptr, exact(ExactVisibilityMode::Self)},
         {"SVDF, exact others' visibility", nullptr, exact(ExactVisibilityMode::Others)},
         {"SVDF, exact others' visibility per part, multiplied", nullptr, exact(ExactVisibilityMode::OthersProduct)},
+        {"exact self × exact others' visibility, averaged apart", nullptr, exact(ExactVisibilityMode::SelfTimesOthers)},
         {"OVDF outer 6R, 8 shells", [](PrecomputeSettings& p) { p.ovdf_outer_radius = 6.0f, p.ovdf_shells = 8; },
          nullptr},
         {"OVDF outer 12R, 11 shells", [](PrecomputeSettings& p) { p.ovdf_outer_radius = 12.0f, p.ovdf_shells = 11; },

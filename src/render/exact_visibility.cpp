@@ -53,15 +53,23 @@ ExactVisibility::ExactVisibility(const Scene& scene, float t, ExactVisibilityMod
                     kMaxSamplesPerSide);
     if (mode == ExactVisibilityMode::All) return;
     const int parts = int(scene.parts.size());
-    for (int receiver = 0; receiver < parts; ++receiver) {
+    // Per receiver the scene of itself alone (`alone`) or of every other part.
+    auto add_scene = [&](int receiver, bool alone) {
         auto rays = std::make_unique<RayScene>();
         for (int p = 0; p < parts; ++p) {
-            const bool alone = mode == ExactVisibilityMode::Self || mode == ExactVisibilityMode::OthersProduct;
             if (alone != (p == receiver)) continue;
             rays->add_instance(rays->add_mesh(scene.parts[p].mesh), posed_.part_transform(p));
         }
         rays->commit();
         per_part_.push_back(std::move(rays));
+    };
+    for (int receiver = 0; receiver < parts; ++receiver) {
+        if (mode == ExactVisibilityMode::SelfTimesOthers) {
+            add_scene(receiver, true);
+            add_scene(receiver, false);
+        } else {
+            add_scene(receiver, mode == ExactVisibilityMode::Self || mode == ExactVisibilityMode::OthersProduct);
+        }
     }
 }
 
@@ -79,6 +87,11 @@ float ExactVisibility::visible_fraction(int part, int vertex, const Vec2& center
     const SurfacePoint x = posed_.vertex(part, vertex);
     const Vec3 origin = posed_.offset().origin(x.position, x.offset_normal);
     const uint64_t bits = seed(part, vertex, center);
+    if (mode_ == ExactVisibilityMode::SelfTimesOthers) {
+        const float self = fraction(*per_part_[size_t(2 * part)], x, origin, center, half_edge, bits, rays);
+        return self > 0.0f ? self * fraction(*per_part_[size_t(2 * part + 1)], x, origin, center, half_edge, bits, rays)
+                           : 0.0f;
+    }
     if (mode_ != ExactVisibilityMode::OthersProduct)
         return fraction(occluders_of(part), x, origin, center, half_edge, bits, rays);
     float product = 1.0f;
@@ -90,7 +103,8 @@ float ExactVisibility::visible_fraction(int part, int vertex, const Vec2& center
 void ExactVisibility::visible_fraction_batch(int part, int first_vertex, const int* offset, const float* center_x,
                                              const float* center_y, const float* half_edge, const bool* skip, int m,
                                              float* out, size_t* rays) const {
-    if (mode_ == ExactVisibilityMode::OthersProduct) {  // a product over parts: one query at a time
+    if (mode_ == ExactVisibilityMode::OthersProduct || mode_ == ExactVisibilityMode::SelfTimesOthers) {
+        // a product of factors: one query at a time
         for (int i = 0; i < m; ++i)
             out[i] = skip && skip[i] ? 0.0f
                                      : visible_fraction(part, first_vertex + offset[i], Vec2(center_x[i], center_y[i]),

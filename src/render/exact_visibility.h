@@ -16,7 +16,11 @@
 //            split of the others' shadow into a product over parts);
 //   OthersProduct — Π over the other parts j of each one's exact average:
 //            the renderer's product split with exact factors (so Others vs
-//            OthersProduct is the error of the split alone).
+//            OthersProduct is the error of the split alone);
+//   SelfTimesOthers — the vertex's own part's exact average × the other
+//            parts' (at once): replaces SVDF × Π OVDF with both factors
+//            exact but averaged apart (so All vs SelfTimesOthers is the
+//            error of splitting self from others alone).
 // S² rays per vertex and light, in Embree packets from the vertex. With
 // `jitter` each grid cell's point is placed at random in its cell
 // (stratified sampling, seeded by the vertex and the square, so a frame is
@@ -32,7 +36,7 @@
 
 namespace rsl {
 
-enum class ExactVisibilityMode { All, Self, Others, OthersProduct };
+enum class ExactVisibilityMode { All, Self, Others, OthersProduct, SelfTimesOthers };
 
 class ExactVisibility {
 public:
@@ -75,7 +79,8 @@ private:
     uint64_t id_;  // tells this object's per-thread vertex cache from another's
     PosedScene posed_;                                // frames, offsets; the All mode's occluders
     std::vector<std::unique_ptr<RayScene>> per_part_;  // per receiver part: Self / Others: its occluders;
-                                                       // OthersProduct: the part alone
+                                                       // OthersProduct: the part alone; SelfTimesOthers:
+                                                       // two per part, [2p] itself and [2p + 1] the others
 };
 
 }  // namespace rsl

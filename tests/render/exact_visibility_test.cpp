@@ -40,6 +40,7 @@ TEST_CASE("exact visibility of squares under a sphere", "[render][exact]") {
     const ExactVisibility self(scene, 0.0f, ExactVisibilityMode::Self, grid);
     const ExactVisibility others(scene, 0.0f, ExactVisibilityMode::Others, grid);
     const ExactVisibility product(scene, 0.0f, ExactVisibilityMode::OthersProduct, grid);
+    const ExactVisibility split(scene, 0.0f, ExactVisibilityMode::SelfTimesOthers, grid);
     const ExactVisibility jittered(scene, 0.0f, ExactVisibilityMode::All, grid, true);
     // The ball (half-angle 30° from the vertex) in the plane: |p| < √2·sin(15°).
     const float cap = std::sqrt(2.0f) * std::sin(kPi / 12.0f);
@@ -67,6 +68,7 @@ TEST_CASE("exact visibility of squares under a sphere", "[render][exact]") {
         CHECK(all.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
         CHECK(others.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
         CHECK(product.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
+        CHECK(split.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));  // a flat ground shadows nothing of itself
         CHECK(jittered.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
         CHECK(self.visible_fraction(0, center, c.center, c.half_edge) == 1.0f);  // a plane never shadows itself
     }
@@ -118,7 +120,7 @@ TEST_CASE("ray-traced visibility: a batch equals its queries one at a time", "[r
     std::mt19937 rng(19);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (ExactVisibilityMode mode : {ExactVisibilityMode::All, ExactVisibilityMode::Self, ExactVisibilityMode::Others,
-                                     ExactVisibilityMode::OthersProduct})
+                                     ExactVisibilityMode::OthersProduct, ExactVisibilityMode::SelfTimesOthers})
         for (bool jitter : {false, true})
             for (int side : {1, 2, 4}) {
                 const ExactVisibility visibility(scene, 0.0f, mode, side, jitter);
