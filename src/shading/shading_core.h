@@ -431,20 +431,12 @@ struct SpanTaps {
 RSL_SHARED SpanTaps ovdf_span_taps(vec3 v, int n) {
     vec3 a = abs(v);
     int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-    int ua = (axis + 1) % 3;
-    int va = (axis + 2) % 3;
     int face = 2 * axis + (v[axis] < 0.0f ? 1 : 0);
-    float hi = float(n - 1);
-    float x = clamp((v[ua] / a[axis] + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
-    float y = clamp((v[va] / a[axis] + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
-    int i0 = min(int(x), n - 2);
-    int j0 = min(int(y), n - 2);
-    float fx = x - float(i0);
-    float fy = y - float(j0);
-    int base = (face * n + j0) * n + i0;
+    // The face's own table over [−1, 1]²: the other two axes over the major one.
+    BilinearTaps t = bilinear_taps(n, vec2(v[(axis + 1) % 3], v[(axis + 2) % 3]) / a[axis]);
     SpanTaps taps;
-    taps.index = ivec4(base, base + 1, base + n, base + n + 1);
-    taps.weight = vec4((1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy);
+    taps.index = t.index + ivec4(face * n * n);
+    taps.weight = t.weight;
     return taps;
 }
 // A receiver at distance d from the centre against its blended span (enter,
