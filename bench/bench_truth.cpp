@@ -103,7 +103,7 @@ void emit_packet_comparison(const std::string& case_name, const Scene& scene, in
                 std::vector<uint8_t> visible(dirs.size());
                 for (size_t i = range.begin(); i != range.end(); ++i) {
                     const SurfacePoint x = posed.vertex(vertices[i].first, vertices[i].second);
-                    const Vec3 origin = posed.offset().origin(x.position, x.offset_normal);
+                    const Vec3 origin = x.ray_origin();
                     int n = 0;
                     for (const Vec3& d : dirs)
                         if (glm::dot(d, x.offset_normal) > 0.0f) batch[n++] = d;

@@ -48,7 +48,6 @@ void PosedScene::set_time(float t) {
         rays_.set_transform(int(p), m);
     }
     rays_.commit();
-    offset_.scene_scale = rays_.world_diagonal();
     time_ = t;
 }
 
@@ -60,8 +59,9 @@ SurfacePoint PosedScene::vertex(int part, int v) const {
     const Vec3 t = mesh.tangents.empty() ? Vec3(0) : linear_[part] * Vec3(mesh.tangents[v]);
     x.frame = Frame::from_normal_tangent(n, t);
     x.offset_normal = x.frame.z;
+    x.offset = offset(part);
     const Vec3 inward = inward_[size_t(part)][size_t(v)];
-    if (inward != Vec3(0)) x.position += glm::normalize(linear_[part] * inward) * offset_.distance(x.position);
+    if (inward != Vec3(0)) x.position += glm::normalize(linear_[part] * inward) * x.offset.distance(x.position);
     return x;
 }
 
@@ -82,6 +82,7 @@ SurfacePoint PosedScene::hit_point(const RayHit& hit, const Vec3& ray_direction)
     // A back face seen through a hole or an open mesh: shade the side we see.
     if (glm::dot(n, x.offset_normal) < 0) n = -n;
     x.frame = Frame::from_normal_tangent(n, t);
+    x.offset = offset(hit.instance);
     return x;
 }
 

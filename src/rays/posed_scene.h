@@ -13,6 +13,9 @@ struct SurfacePoint {
     Vec3 position{0};
     Vec3 offset_normal{0, 0, 1};  // unit; rays leave on this side (see RayOffset)
     Frame frame;                  // shading frame: z = shading normal, x = tangent
+    RayOffset offset;             // its part's (PosedScene::offset)
+    // Where its shadow rays start: one offset along offset_normal.
+    Vec3 ray_origin() const { return offset.origin(position, offset_normal); }
 };
 
 class PosedScene {
@@ -23,7 +26,10 @@ public:
     float time() const { return time_; }
     const Scene& scene() const { return scene_; }
     const RayScene& rays() const { return rays_; }
-    const RayOffset& offset() const { return offset_; }
+    // A part's ray offset: scaled by its own posed size, not the scene's, as
+    // its SVDF's bake (which traces the part alone) scales it, so that no
+    // ground elsewhere changes where its rays start (docs/TRUTH.md, "Ray offsets").
+    RayOffset offset(int part) const { return RayOffset{rays_.instance_diagonal(part)}; }
 
     const Mat4& part_transform(int part) const { return transforms_[part]; }
     // World-space vertex: position by the part's transform, normal by its
@@ -42,7 +48,6 @@ public:
 private:
     const Scene& scene_;
     RayScene rays_;
-    RayOffset offset_;
     float time_ = 0;
     std::vector<Mat4> transforms_;
     std::vector<Mat3> linear_, normal_;

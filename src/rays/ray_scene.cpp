@@ -32,12 +32,16 @@ struct MeshTriangles {
     const uint32_t* indices = nullptr;
 };
 
-// An occlusion query's context: Embree's, then per ray (by its id, the lane)
-// up to which t a hit that leaves its triangle's front side is ignored.
+// An occlusion query's context: Embree's, then what tells up to which t a
+// hit that leaves its triangle's front side is ignored: 4 ray offsets of the
+// hit instance (RayOffset: its scale term, per instance) and of the origin
+// (its position term, per ray by its id, the lane), over the direction's length.
 struct ExitContext {
     RTCIntersectContext embree;
     bool enabled = false;
-    std::array<float, kPacketSize> exit_t{};
+    const float* instance_exit = nullptr;  // per instance: 4 · kRelativeToScene · its diagonal
+    std::array<float, kPacketSize> position_exit{};  // per lane: 4 · kRelativeToPosition · |origin|∞
+    std::array<float, kPacketSize> inverse_length{};
 };
 
 // rtcOccluded's filter (RayScene(origins_outside_surfaces = true)). Embree
@@ -51,7 +55,9 @@ void ignore_exits_near_origin(const RTCFilterFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         const unsigned lane = RTCRayN_id(args->ray, args->N, i) % unsigned(kPacketSize);
-        if (!(RTCRayN_tfar(args->ray, args->N, i) < context->exit_t[lane])) continue;
+        const unsigned instance = RTCHitN_instID(args->hit, args->N, i, 0);
+        const float exit_t = (context->instance_exit[instance] + context->position_exit[lane]) * context->inverse_length[lane];
+        if (!(RTCRayN_tfar(args->ray, args->N, i) < exit_t)) continue;
         const uint32_t* tri = mesh->indices + 3 * size_t(RTCHitN_primID(args->hit, args->N, i));
         const Vec3 p0 = glm::make_vec3(mesh->positions + 3 * size_t(tri[0]));
         const Vec3 p1 = glm::make_vec3(mesh->positions + 3 * size_t(tri[1]));
@@ -76,17 +82,23 @@ struct RayScene::Impl {
     std::vector<Mat3> normal_matrices;
     std::vector<std::unique_ptr<MeshTriangles>> mesh_triangles;  // the filter's user data, per mesh
     float world_diagonal = 0;
+    std::vector<float> instance_diagonal, instance_exit;  // per instance, after commit
     bool committed = false;
     bool origins_outside_surfaces = false;
 
     // Up to which t a leaving hit of the ray (origin, dir) is ignored: a few
-    // ray offsets (the truth's origins sit one offset off their surface).
-    // Only for a scene made with origins_outside_surfaces (the others, the
-    // OVDF bake's among them, skip it: their filter is not even set).
+    // ray offsets (the truth's origins sit one offset off their surface),
+    // the hit instance's (ExitContext). Only for a scene made with
+    // origins_outside_surfaces (the others, the OVDF bake's among them, skip
+    // it: their filter is not even set).
+    static constexpr float kExitOffsets = 4.0f;
     void set_exit(ExitContext& context, int lane, const Vec3& origin, const Vec3& dir) const {
         context.enabled = true;
+        context.instance_exit = instance_exit.data();
         const float length = glm::length(dir);
-        context.exit_t[size_t(lane)] = length > 0.0f ? 4.0f * RayOffset{world_diagonal}.distance(origin) / length : 0.0f;
+        const float position = RayOffset{0.0f}.distance(origin);  // the position term alone
+        context.position_exit[size_t(lane)] = kExitOffsets * position;
+        context.inverse_length[size_t(lane)] = length > 0.0f ? 1.0f / length : 0.0f;
     }
 
     Impl() {
@@ -239,13 +251,19 @@ void RayScene::commit() {
     rtcCommitScene(m.top);
     check_device(m.device, "top-level commit");
     Bounds world;
+    m.instance_diagonal.resize(m.instances.size());
+    m.instance_exit.resize(m.instances.size());
     for (size_t i = 0; i < m.instances.size(); ++i) {
         const Bounds& b = m.mesh_bounds[m.instance_mesh[i]];
+        Bounds instance;
         for (int corner = 0; corner < 8; ++corner) {
             const Vec3 p((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
                          (corner & 4) ? b.hi.z : b.lo.z);
-            world.extend(Vec3(m.transforms[i] * Vec4(p, 1.0f)));
+            instance.extend(Vec3(m.transforms[i] * Vec4(p, 1.0f)));
         }
+        world.extend(instance.lo), world.extend(instance.hi);
+        m.instance_diagonal[i] = glm::length(instance.hi - instance.lo);
+        m.instance_exit[i] = Impl::kExitOffsets * RayOffset::kRelativeToScene * m.instance_diagonal[i];
     }
     m.world_diagonal = world.empty() ? 0.0f : glm::length(world.hi - world.lo);
     m.committed = true;
@@ -256,6 +274,10 @@ int RayScene::instance_count() const { return int(impl_->instances.size()); }
 int RayScene::instance_mesh(int instance_id) const { return impl_->instance_mesh.at(instance_id); }
 const Mat4& RayScene::instance_transform(int instance_id) const { return impl_->transforms.at(instance_id); }
 float RayScene::world_diagonal() const { return impl_->world_diagonal; }
+float RayScene::instance_diagonal(int instance_id) const {
+    impl_->require_committed();
+    return impl_->instance_diagonal.at(size_t(instance_id));
+}
 
 bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float t_near, float t_far) const {
     impl_->require_committed();

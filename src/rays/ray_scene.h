@@ -53,7 +53,11 @@ class RayScene {
 public:
     // `origins_outside_surfaces`: occlusion queries ignore a hit within a few
     // ray offsets (RayOffset) of the origin where the ray leaves the hit
-    // triangle through its front (counter-clockwise, outward) side. An origin
+    // triangle through its front (counter-clockwise, outward) side, the
+    // offset scaled by the hit part's own size (instance_diagonal), not the
+    // scene's: a part's self-shadowing must not depend on how large a ground
+    // stands elsewhere in the scene, nor differ from its SVDF's bake, which
+    // traces the part alone (docs/TRUTH.md, "Ray offsets"). An origin
     // that lies on another part's surface — a vertex on the seam where two
     // parts touch — then counts as just outside that part, as the renderer's
     // exact shapes count it; a ray that enters the part there is still
@@ -79,6 +83,8 @@ public:
     const Mat4& instance_transform(int instance_id) const;
     // Diagonal of the world-space bounding box of every instance (after commit).
     float world_diagonal() const;
+    // Diagonal of one instance's world-space bounding box (after commit).
+    float instance_diagonal(int instance_id) const;
 
     // Thread-safe queries (after commit). Directions need not be unit for
     // occluded(); t ranges are in units of the direction's length.

@@ -55,7 +55,7 @@ ExactVisibility::ExactVisibility(const Scene& scene, float t, ExactVisibilityMod
     const int parts = int(scene.parts.size());
     // Per receiver the scene of itself alone (`alone`) or of every other part.
     auto add_scene = [&](int receiver, bool alone) {
-        auto rays = std::make_unique<RayScene>();
+        auto rays = std::make_unique<RayScene>(/*origins_outside_surfaces=*/true);
         for (int p = 0; p < parts; ++p) {
             if (alone != (p == receiver)) continue;
             rays->add_instance(rays->add_mesh(scene.parts[p].mesh), posed_.part_transform(p));
@@ -85,7 +85,7 @@ uint64_t ExactVisibility::seed(int part, int vertex, const Vec2& center) const {
 float ExactVisibility::visible_fraction(int part, int vertex, const Vec2& center, float half_edge,
                                         size_t* rays) const {
     const SurfacePoint x = posed_.vertex(part, vertex);
-    const Vec3 origin = posed_.offset().origin(x.position, x.offset_normal);
+    const Vec3 origin = x.ray_origin();
     const uint64_t bits = seed(part, vertex, center);
     if (mode_ == ExactVisibilityMode::SelfTimesOthers) {
         const float self = fraction(*per_part_[size_t(2 * part)], x, origin, center, half_edge, bits, rays);
@@ -128,7 +128,7 @@ void ExactVisibility::visible_fraction_batch(int part, int first_vertex, const i
         if (k >= s.cached.size()) s.points.resize(k + 1), s.origins.resize(k + 1), s.cached.resize(k + 1, false);
         if (!s.cached[k]) {
             s.points[k] = posed_.vertex(part, first_vertex + offset[i]);
-            s.origins[k] = posed_.offset().origin(s.points[k].position, s.points[k].offset_normal);
+            s.origins[k] = s.points[k].ray_origin();
             s.cached[k] = true;
         }
         const size_t first = s.ray_dirs.size();

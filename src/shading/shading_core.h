@@ -418,11 +418,18 @@ RSL_CONST int kOvdfSpanResolution = 64;
 // How far (× R) a receiver must be beyond a span's ends to be decided: a
 // vertex on a contact seam counts as outside, as in ovdf_inside_part (the
 // truth counts origins a few ray offsets inside another part as outside).
-// Measured on the robot under the sun, ennis and grace: no margin blackened
-// the knees (sunsky t = 0.5: 13.4%, shin_l 54%); 0.006 R helped the sun and
-// ennis a little but doubled grace's worst part at t = 0.5; 0.012 R was worse
-// everywhere (docs/RESULTS.md, "Radial spans").
-RSL_CONST float kOvdfSpanTolerance = 0.003f;
+// The spans are bilinear in the entry distance, which is convex along a flat
+// face: at grazing lines the blend lies outside the face, so the margin must
+// cover that too (at 0.001 R, 14% of the points 0.1 mm under a box's face
+// read inside; tests/fields/ovdf_test.cpp). Measured on the robot (scene
+// settings, K = 30; sun at t = 0, 0.5, 1, ennis at t = 0, 0.5, grace and
+// uffizi at t = 0.5) against the truth whose ray offsets scale with each part
+// (docs/TRUTH.md, "Ray offsets"): 0.001 R and 0.002 R within 0.2 points of
+// each other in every row; 0.003 R, chosen against the truth of scene-scaled
+// offsets, lit knees that the truth leaves dark (ennis t = 0: 5.4% against
+// 4.4%, shin_l 25% against 17%); 0 R darkened seams (docs/RESULTS.md, "Ray
+// offsets of the part").
+RSL_CONST float kOvdfSpanTolerance = 0.002f;
 struct SpanTaps {
     ivec4 index;  // direction (face·n + j)·n + i
     vec4 weight;

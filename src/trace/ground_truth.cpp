@@ -142,7 +142,7 @@ Color GroundTruth::shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf
     const Vec3 wo = x.frame.to_local(wo_world);
     // ρ is zero for a view below the shading horizon (Brdf contract): no rays.
     if (!(wo.z > 0.0f)) return Color(0);
-    const Vec3 origin = posed_.offset().origin(x.position, x.offset_normal);
+    const Vec3 origin = x.ray_origin();
     uint64_t rays = 0;
     Color result = shade_environment(x, origin, wo, brdf, rays);
     if (options_.local_lights)

@@ -222,6 +222,41 @@ TEST_CASE("Offset origins leave their own surface, also far from the origin", "[
     }
 }
 
+TEST_CASE("A leaving hit is ignored within the hit part's own ray offsets, however large the scene", "[trace][ray_scene]") {
+    // An origin a depth δ under the top face of a box, the ray straight up:
+    // the ray leaves the box at t = δ. Within 4 of the box's ray offsets
+    // (RayOffset of its own diagonal, about 8.5e-5 for the unit box) that hit
+    // is ignored; deeper it blocks. A second box 1000 away makes the scene's
+    // diagonal 1000: the answer must not change (with the scene's offset the
+    // margin was 0.04, and the truth lit points 0.4 mm inside a part that its
+    // SVDF, baked with the part alone, left dark). Scaling the box scales its margin.
+    const TriangleMesh box = test::make_flat_box(Vec3(0.5f), 2, "box");
+    for (const float scale : {1.0f, 10.0f}) {
+        for (const bool far_box : {false, true}) {
+            RayScene scene(/*origins_outside_surfaces=*/true);
+            const int mesh = scene.add_mesh(box);
+            scene.add_instance(mesh, glm::scale(Mat4(1.0f), Vec3(scale)));
+            if (far_box) scene.add_instance(mesh, glm::translate(Mat4(1.0f), Vec3(1000.0f, 0.0f, 0.0f)));
+            scene.commit();
+            REQUIRE(scene.instance_diagonal(0) == Approx(scale * std::sqrt(3.0f)).epsilon(1e-5));
+            const float top = 0.5f * scale;
+            const float margin = 4.0f * RayOffset{scene.instance_diagonal(0)}.distance(Vec3(0.1f, top, 0.2f));
+            for (const float depth : {0.5f * margin, 2.0f * margin}) {
+                const Vec3 origin(0.1f, top - depth, 0.2f);
+                const Vec3 up(0.0f, 1.0f, 0.0f);
+                const bool expected = depth > margin;  // blocked
+                INFO("scale " << scale << ", far box " << far_box << ", depth " << depth << ", margin " << margin);
+                CHECK(scene.occluded(origin, up, 0.0f, 1e30f) == expected);
+                uint8_t visible = 2;
+                scene.occluded_batch(origin, &up, 1, 0.0f, 1e30f, &visible);
+                CHECK(visible == (expected ? 0 : 1));
+                scene.occluded_batch(&origin, &up, 1, 0.0f, 1e30f, &visible);
+                CHECK(visible == (expected ? 0 : 1));
+            }
+        }
+    }
+}
+
 TEST_CASE("Origins on another part's surface count as outside it: a ray that leaves is free, one that enters is blocked",
           "[trace][ray_scene]") {
     // A box under random rotations and non-uniform scales; origins on its

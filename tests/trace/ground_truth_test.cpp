@@ -293,6 +293,45 @@ TEST_CASE("The ground under a box's edge: its vertices there see the open half, 
     CHECK(edge == 12);  // 4 edges × 3 inner vertices
 }
 
+TEST_CASE("A part's truth does not depend on how large the scene is around it", "[trace][truth]") {
+    // One part made of two overlapping boxes, as modelled parts often are:
+    // the inner box's top face lies 3e-4 under the outer one's, so its
+    // vertices there are inside the part, and every ray from them leaves the
+    // outer box (upwards at t = 3e-4, beyond the part's 4 ray offsets,
+    // about 1e-4). They are dark, as the part's SVDF bake, which traces the
+    // part alone, finds them. A small box 1000 away, which shadows nothing,
+    // made the scene's diagonal 1000: with ray offsets scaled by the scene
+    // the truth ignored those exits and lit them.
+    TriangleMesh part = test::make_flat_box(Vec3(0.5f), 4, "outer");
+    const TriangleMesh inner = test::make_flat_box(Vec3(0.3f, 0.5f - 3e-4f, 0.3f), 4, "inner");
+    const uint32_t base = uint32_t(part.positions.size());
+    part.positions.insert(part.positions.end(), inner.positions.begin(), inner.positions.end());
+    part.normals.insert(part.normals.end(), inner.normals.begin(), inner.normals.end());
+    part.tangents.insert(part.tangents.end(), inner.tangents.begin(), inner.tangents.end());
+    part.texcoords.insert(part.texcoords.end(), inner.texcoords.begin(), inner.texcoords.end());
+    for (uint32_t index : inner.indices) part.indices.push_back(base + index);
+    const CubeMap sky = test::constant_cube(16, Color(1));
+    Scene alone = test::make_scene("alone");
+    test::add_part(alone, part);
+    Scene with_far = alone;
+    Transform far;
+    far.translation = Vec3(1000.0f, 0.0f, 0.0f);
+    test::add_part(with_far, test::make_flat_box(Vec3(0.01f), 1, "far"), far);
+    const VertexColors a = GroundTruth(alone, sky, 0.0f).shade_vertices();
+    const VertexColors b = GroundTruth(with_far, sky, 0.0f).shade_vertices();
+    int inner_top = 0, lit_inner_top = 0, differ = 0;
+    for (size_t v = 0; v < part.vertex_count(); ++v) {
+        differ += a.parts[0][v].g == b.parts[0][v].g ? 0 : 1;
+        if (v >= base && part.normals[v].y > 0.5f) {
+            ++inner_top;
+            lit_inner_top += b.parts[0][v].g > 0.0f ? 1 : 0;
+        }
+    }
+    CHECK(inner_top == 25);
+    CHECK(lit_inner_top == 0);
+    CHECK(differ == 0);
+}
+
 TEST_CASE("Per-pixel truth against a known answer: a wall on a floor (a half-space occluder) under a uniform sky",
           "[trace][truth]") {
     // An infinite wall standing on an infinite floor: from any point of
