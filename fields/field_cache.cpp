@@ -11,6 +11,7 @@
 #include "fields/field_file.h"
 #include "src/core/error.h"
 #include "src/core/progress_report.h"
+#include "src/shading/shading_core.h"
 
 namespace rsl {
 namespace fs = std::filesystem;
@@ -163,7 +164,10 @@ fs::path svdf_cache_file(const fs::path& directory, uint64_t mesh_hash, const Sv
 }
 
 fs::path ovdf_cache_file(const fs::path& directory, uint64_t mesh_hash, const OvdfParams& params) {
-    return cache_file(directory, "ovdf", mesh_hash, params_json(params));
+    // The radial spans' resolution is the build's, not a parameter: a build
+    // that bakes finer spans looks for files of its own.
+    return cache_file(directory, "ovdf", mesh_hash,
+                      params_json(params) + fmt::format(";spans {}", shading::kOvdfSpanResolution));
 }
 
 size_t memory_bytes(const Svdf& svdf) { return model_bytes(svdf.model); }

@@ -413,23 +413,28 @@ RSL_SHARED bool ovdf_inside_part(float radius, float blended_surface_distance) {
 // axes in order), bilinear between direction centres. Measured at the
 // robot's own field settings, the blended surface distance had put the
 // pelvis's surface 8 mm too far out at the hip crease and missed knees sunk
-// into thighs (issue 17; docs/RESULTS.md, "Radial spans").
-RSL_CONST int kOvdfSpanResolution = 64;
+// into thighs (issue 17; docs/RESULTS.md, "Radial spans"). 256² lines per
+// face, not 64²: against the truth whose ray offsets scale with each part,
+// a seam vertex 0.1 mm inside a thigh is dark, and the blend between lines
+// 7 mm apart (64², at the knee) could not tell it from one on the surface
+// (robot, ennis t = 0: worst part shin_l 17% at 64², 6% at 256²;
+// docs/RESULTS.md, "Finer radial spans"). 3 MB per OVDF.
+RSL_CONST int kOvdfSpanResolution = 256;
 // How far (× R) a receiver must be beyond a span's ends to be decided: a
 // vertex on a contact seam counts as outside, as in ovdf_inside_part (the
 // truth counts origins a few ray offsets inside another part as outside).
 // The spans are bilinear in the entry distance, which is convex along a flat
 // face: at grazing lines the blend lies outside the face, so the margin must
-// cover that too (at 0.001 R, 14% of the points 0.1 mm under a box's face
-// read inside; tests/fields/ovdf_test.cpp). Measured on the robot (scene
-// settings, K = 30; sun at t = 0, 0.5, 1, ennis at t = 0, 0.5, grace and
-// uffizi at t = 0.5) against the truth whose ray offsets scale with each part
-// (docs/TRUTH.md, "Ray offsets"): 0.001 R and 0.002 R within 0.2 points of
-// each other in every row; 0.003 R, chosen against the truth of scene-scaled
-// offsets, lit knees that the truth leaves dark (ennis t = 0: 5.4% against
-// 4.4%, shin_l 25% against 17%); 0 R darkened seams (docs/RESULTS.md, "Ray
-// offsets of the part").
-RSL_CONST float kOvdfSpanTolerance = 0.002f;
+// cover that too (at 64² lines and 0.001 R, 14% of the points 0.1 mm under a
+// box's face read inside; tests/fields/ovdf_test.cpp). Measured on the robot
+// (scene settings, K = 30; sun at t = 0, 0.5, 1, ennis at t = 0, 0.5, grace
+// and uffizi at t = 0.5) against the truth whose ray offsets scale with each
+// part (docs/TRUTH.md, "Ray offsets"), with 256² lines: 0.0005 R and 0.001 R
+// within 0.3 points of each other over all vertices (0.0005 R better at the
+// knees under ennis), 0.0002 R, and 0.0005 R at 512² lines, called the
+// shins inside the thighs under the sun at t = 0.5 (11%, shin_l 50%); so
+// 0.001 R, twice the margin of that cliff (docs/RESULTS.md, "Finer radial spans").
+RSL_CONST float kOvdfSpanTolerance = 0.001f;
 struct SpanTaps {
     ivec4 index;  // direction (face·n + j)·n + i
     vec4 weight;
