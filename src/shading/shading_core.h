@@ -417,8 +417,8 @@ RSL_SHARED bool ovdf_inside_part(float radius, float blended_surface_distance) {
 // face, not 64²: against the truth whose ray offsets scale with each part,
 // a seam vertex 0.1 mm inside a thigh is dark, and the blend between lines
 // 7 mm apart (64², at the knee) could not tell it from one on the surface
-// (robot, ennis t = 0: worst part shin_l 17% at 64², 6% at 256²;
-// docs/RESULTS.md, "Finer radial spans"). 3 MB per OVDF.
+// (robot, ennis t = 0: worst part shin_l 17% at 64² and 0.002 R, 10% at
+// 256² and 0.001 R; docs/RESULTS.md, "Finer radial spans"). 3 MB per OVDF.
 RSL_CONST int kOvdfSpanResolution = 256;
 // How far (× R) a receiver must be beyond a span's ends to be decided: a
 // vertex on a contact seam counts as outside, as in ovdf_inside_part (the
