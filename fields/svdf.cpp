@@ -66,6 +66,19 @@ Svdf bake_svdf(const TriangleMesh& mesh, const SvdfParams& params, SvdfBakeStats
     return svdf;
 }
 
+std::vector<uint8_t> Svdf::enclosed_vertices() const {
+    constexpr float kEnclosedDistance = -2.0f;  // the plane's width: no square of it sees the texel
+    const int texels = params.resolution * params.resolution;
+    std::vector<uint8_t> enclosed(size_t(vertex_count()), 0);
+    for (int v = 0; v < vertex_count(); ++v) {
+        // Most vertices see the sky around their normal, the centre texel: test it first.
+        bool open = model.reconstruct(v, texels / 2 + params.resolution / 2) > kEnclosedDistance;
+        for (int t = 0; t < texels && !open; ++t) open = model.reconstruct(v, t) > kEnclosedDistance;
+        enclosed[size_t(v)] = open ? 0 : 1;
+    }
+    return enclosed;
+}
+
 void Svdf::visible_fraction_batch(int first_vertex, const int* vertex, const float* x, const float* y, const float* h,
                                   int count, float* out) const {
     for (int i = 0; i < count; ++i) out[i] = visible_fraction(first_vertex + vertex[i], Vec2(x[i], y[i]), h[i]);

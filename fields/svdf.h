@@ -60,6 +60,12 @@ public:
     float visible_fraction(int vertex, const Vec3& local_direction, float half_edge) const {
         return visible_fraction(vertex, lookup_plane_point(local_direction), half_edge);
     }
+    // Per vertex, 1 where the vertex is enclosed by its own part: every
+    // texel's distance is at most −2, so no square that fits the plane
+    // (half-edge ≤ 2) sees any of it. Such a vertex lies inside the part's
+    // other pieces (a lens set into a body); a pixel that sees its triangle
+    // lies outside them, and the vertex says nothing of its light.
+    std::vector<uint8_t> enclosed_vertices() const;
 };
 
 // Traces and compresses the SVDF of one part (self-shadowing only).

@@ -36,12 +36,15 @@ void set_corners() {
     mat3 normal_matrix = part_normal_matrix(u_part);
     bool self = u_self_visibility && svdf.z > 0.0;
     vec3 corner_position[3];
+    bool corner_enclosed[3];
     for (int c = 0; c < 3; ++c) {
         int local = int(uint_fetch(u_indices, u_first_index + 3 * gl_PrimitiveID + c));
         int vertex = first_vertex + local;
         corner_position[c] = fetch(u_positions, vertex).xyz;
         vec4 normal = fetch(u_normals, vertex);
-        g_corner_frame[c] = frame_rows(normalize(normal_matrix * normal.xyz), mat3(transform) * fetch(u_tangents, vertex).xyz);
+        vec4 tangent = fetch(u_tangents, vertex);
+        g_corner_frame[c] = frame_rows(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent.xyz);
+        corner_enclosed[c] = tangent.w > 0.5;
         g_corner_cluster[c] = self && normal.w >= 0.0 ? int(normal.w) : -1;
         if (g_corner_cluster[c] >= 0) load_svdf_coefficients(svdf, local, c);
     }
@@ -57,6 +60,12 @@ void set_corners() {
     g_corner_weight[0] = 1.0 - u - v;
     g_corner_weight[1] = u;
     g_corner_weight[2] = v;
+    // An enclosed corner (the tangent's w, Svdf::enclosed_vertices) gives its
+    // share to the others: its SVDF is the inside's, the pixel's point is outside.
+    float open = 0.0;
+    for (int c = 0; c < 3; ++c) open += corner_enclosed[c] ? 0.0 : g_corner_weight[c];
+    if (open > 0.0)
+        for (int c = 0; c < 3; ++c) g_corner_weight[c] = corner_enclosed[c] ? 0.0 : g_corner_weight[c] / open;
     g_self_corners = 3;
 }
 

@@ -84,6 +84,7 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
     // up once, and every part that uses it points at the same records.
     std::map<const Svdf*, Vec4> svdf_records;
     std::map<const Ovdf*, std::array<Vec4, 5>> ovdf_records;
+    std::map<const Svdf*, std::vector<uint8_t>> enclosed_of;
     for (size_t p = 0; p < parts; ++p) {
         const TriangleMesh& mesh = scene.parts[p].mesh;
         Vec4* record = &g.part_static[p * kPartStride];
@@ -115,11 +116,19 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
             record[kSlotSvdf] = Vec4(float(tables), float(coefficients), float(svdf->resolution()), float(stride));
             svdf_records[svdf] = record[kSlotSvdf];
         }
+        // The tangent's w: 1 where the SVDF finds the vertex enclosed (the per-pixel pass's corners).
+        const std::vector<uint8_t>* enclosed = nullptr;
+        if (svdf) {
+            auto [it, added] = enclosed_of.try_emplace(svdf);
+            if (added) it->second = svdf->enclosed_vertices();
+            enclosed = &it->second;
+        }
         for (size_t v = 0; v < mesh.vertex_count(); ++v) {
             g.positions.push_back(Vec4(mesh.positions[v], float(p)));
             const float cluster = svdf ? float(svdf->model.assignment[v]) : -1.0f;
             g.normals.push_back(Vec4(mesh.normals[v], cluster));
-            g.tangents.push_back(mesh.tangents.empty() ? Vec4(0.0f) : Vec4(Vec3(mesh.tangents[v]), 0.0f));
+            const float enclosed_flag = enclosed && (*enclosed)[v] ? 1.0f : 0.0f;
+            g.tangents.push_back(Vec4(mesh.tangents.empty() ? Vec3(0.0f) : Vec3(mesh.tangents[v]), enclosed_flag));
         }
 
         const OccluderField* field = p < fields.occluder.size() ? fields.occluder[p].get() : nullptr;

@@ -245,13 +245,21 @@ Color Renderer::shade_pixel(const VertexColors& colors, const PosedScene& posed,
         // the lights' BRDF averages in one batch (slot l = light l).
         set_lights_at_point(s, lights);
         const int m = brdf_queries(s, *part_tables_[part], nullptr, int(lights));
+        // An enclosed corner's self-visibility is the inside's: the seen point is outside.
+        float ws[3] = {w[0], w[1], w[2]};
+        if (const std::vector<uint8_t>& enclosed = enclosed_vertices_[part]; !enclosed.empty()) {
+            float open = 0.0f;
+            for (int c = 0; c < 3; ++c) open += enclosed[corner[c]] ? 0.0f : w[c];
+            if (open > 0.0f)
+                for (int c = 0; c < 3; ++c) ws[c] = enclosed[corner[c]] ? 0.0f : w[c] / open;
+        }
         thread_local std::vector<std::pair<size_t, Color>> shadowed_lights;
         shadowed_lights.clear();
         for (int i = 0; i < m; ++i) {
             const size_t l = size_t(s.index[i]);
             const size_t at[3] = {corner[0] * lights + l, corner[1] * lights + l, corner[2] * lights + l};
-            const float self = w[0] * terms.self_visibility[at[0]] + w[1] * terms.self_visibility[at[1]] +
-                               w[2] * terms.self_visibility[at[2]];
+            const float self = ws[0] * terms.self_visibility[at[0]] + ws[1] * terms.self_visibility[at[1]] +
+                               ws[2] * terms.self_visibility[at[2]];
             if (!(self > 0.0f)) continue;  // no share at any corner, or a light switched off
             const Color unshadowed = self * Color(s.ir[l] * s.br[i], s.ig[l] * s.bg[i], s.ib[l] * s.bb[i]);
             if ((mask[l / 64] >> (l % 64)) & 1) {

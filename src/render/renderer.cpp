@@ -80,6 +80,7 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
     }
     pixel_terms_.resize(parts);
     rim_view_floor_.resize(parts);
+    enclosed_vertices_.resize(parts);
     part_tables_.assign(parts, nullptr);
     part_specular_tables_.assign(parts, nullptr);
     synced_material_.assign(parts, -1);
@@ -172,6 +173,9 @@ void Renderer::shade(VertexColors& out) {
         t.occlusion.resize(shadows || highlights ? terms : 0);
         t.self_visibility.resize(highlights ? terms : 0);
         if (highlights && rim_view_floor_[p].empty()) rim_view_floor_[p] = rim_view_floors(scene_.parts[p].mesh);
+        const Svdf* svdf = options_.self_visibility && p < fields_.self.size() ? fields_.self[p].get() : nullptr;
+        if (highlights && svdf && enclosed_vertices_[p].empty()) enclosed_vertices_[p] = svdf->enclosed_vertices();
+        if (!svdf) enclosed_vertices_[p].clear();
     }
     std::atomic<size_t> lookups{0}, vertices{0}, occluder_lookups{0}, block_culled{0}, shadow_rays{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks_.size(), 1), [&](const tbb::blocked_range<size_t>& range) {

@@ -185,6 +185,10 @@ private:
     // (rim_view_floors; made at a part's first highlights).
     std::vector<std::vector<float>> rim_view_floor_;
     static std::vector<float> rim_view_floors(const TriangleMesh& mesh);
+    // Per part and vertex, for highlights per pixel: 1 where the SVDF finds
+    // the vertex enclosed by its own part (Svdf::enclosed_vertices), whose
+    // share of a pixel's self-visibility blend goes to the other corners.
+    std::vector<std::vector<uint8_t>> enclosed_vertices_;
     std::vector<PixelTerms> pixel_terms_;
 };
 

@@ -121,6 +121,34 @@ TEST_CASE("The GPU's per-pixel pass draws a coarse glossy ball's highlights as t
     CHECK(against_cpu < 1e-3);  // measured 4e-7 (llvmpipe): the same sum, float order aside
 }
 
+// The corners enclosed by their own part (a lens set into a body) give their
+// share of the pixel's self-visibility blend to the others, as on the CPU.
+TEST_CASE("The GPU's per-pixel pass leaves out the corners enclosed by their own part", "[gl-renderer]") {
+    test::gl_context();
+    const test::PixelTestSetting setting(test::lens_in_body());
+    const auto& [scene, environment, fields, truth, camera, reference, lights] = setting;
+    Renderer cpu(scene, lights, fields, RenderOptions{});
+    cpu.keep_pixel_terms(true);
+    const VertexColors colors = cpu.shade();
+    const Image cpu_image = form_image(truth.posed(), camera, colors, {}, cpu.pixel_shading(colors, truth.posed()));
+    gl::GlRenderer gpu(scene, lights, fields, RenderOptions{});
+    gpu.set_time(0.0f);
+    gpu.shade();
+    REQUIRE(gpu.per_pixel_part(0));
+    const Image gpu_image = gpu.form_image(camera);
+    const std::vector<uint8_t> enclosed = fields.self[0]->enclosed_vertices();
+    const TriangleMesh& mesh = scene.parts[0].mesh;
+    int band = 0;
+    const double band_error = test::band_relative_l2(truth, camera, gpu_image, reference,
+                                                     test::triangles_touching(mesh, enclosed), &band);
+    const double against_cpu = compare_images(gpu_image, cpu_image).pixels.relative_l2();
+    INFO(band << " pixels on the enclosed corners' triangles: GPU vs the per-pixel truth " << band_error
+              << "; GPU vs CPU, the whole image " << against_cpu);
+    REQUIRE(band > 30);
+    CHECK(band_error < 0.1);
+    CHECK(against_cpu < 1e-3);
+}
+
 // Both kinds of per-pixel part in one frame, as the pbr scene has them: a
 // textured ground (its base colour texture uploaded at its first draw) and a
 // glossy box whose corners the pass reads from the index texture.

@@ -1,5 +1,6 @@
 #pragma once
 // Helpers of the renderer tests: hand-made fields and small scenes.
+#include <functional>
 #include <memory>
 #include <random>
 
@@ -143,6 +144,63 @@ inline Scene coarse_glossy_ball() {
     add_part(scene, make_icosphere(0.5f, 1, "ball"), {}, 1);
     scene.camera.position = Vec3(0.0f, 0.6f, -2.5f);  // the sun (near (0, 0.7, 0.7)) behind the ball
     scene.camera.target = Vec3(0.0f);
+    scene.camera.width = 120, scene.camera.height = 90;
+    scene.precompute = small_accuracy_precompute();
+    return scene;
+}
+
+// Relative L2 of `image` against `reference` over the pixels whose camera ray
+// hits a triangle that `in_band` accepts; their count in *pixels.
+inline double band_relative_l2(const GroundTruth& truth, const PinholeCamera& camera, const Image& image,
+                               const Image& reference, const std::function<bool(const RayHit&)>& in_band,
+                               int* pixels) {
+    double error2 = 0, norm2 = 0;
+    *pixels = 0;
+    for (int y = 0; y < camera.height; ++y)
+        for (int x = 0; x < camera.width; ++x) {
+            const RayHit hit = truth.posed().rays().intersect(camera.eye, camera.direction(x + 0.5f, y + 0.5f));
+            if (!hit.hit || !in_band(hit)) continue;
+            ++*pixels;
+            const Color d = image.rgb(x, y) - reference.rgb(x, y), r = reference.rgb(x, y);
+            error2 += glm::dot(d, d), norm2 += glm::dot(r, r);
+        }
+    return norm2 > 0 ? std::sqrt(error2 / norm2) : 0.0;
+}
+
+// band_relative_l2's band: the triangles with a corner flagged in `vertex_flags`.
+inline std::function<bool(const RayHit&)> triangles_touching(const TriangleMesh& mesh,
+                                                            const std::vector<uint8_t>& vertex_flags) {
+    return [&mesh, &vertex_flags](const RayHit& hit) {
+        const uint32_t* corner = &mesh.indices[3 * size_t(hit.triangle)];
+        return vertex_flags[corner[0]] || vertex_flags[corner[1]] || vertex_flags[corner[2]];
+    };
+}
+
+// A glossy lens set into a body, one part as exporters often write one: an
+// icosphere whose centre lies just in front of a flat box's front face, so
+// that a band of its vertices lies inside the box, enclosed by the part itself
+// (Svdf::enclosed_vertices), while the pixels of their triangles that the
+// camera sees lie outside, lit by the sun (sky_with_sun, high on +Z). The
+// lens is the robot's chest light in small (the per-pixel highlight tests,
+// CPU and GPU).
+inline Scene lens_in_body() {
+    Scene scene = make_scene("pixel_lens", Color(0.7f));
+    scene.materials.push_back(blinn_phong(0.4f, 0.4f, 30.0f));
+    TriangleMesh body = make_flat_box(Vec3(0.4f, 0.3f, 0.15f), 4, "body");
+    const TriangleMesh lens = make_icosphere(0.15f, 2, "lens");
+    const Vec3 lens_center(0.0f, 0.0f, 0.17f);
+    const uint32_t first = uint32_t(body.positions.size());
+    for (size_t v = 0; v < lens.positions.size(); ++v) {
+        body.positions.push_back(lens.positions[v] + lens_center);
+        body.normals.push_back(lens.normals[v]);
+        body.tangents.push_back(lens.tangents[v]);
+        body.texcoords.emplace_back(0.0f);
+    }
+    for (const uint32_t index : lens.indices) body.indices.push_back(first + index);
+    body.name = "light";
+    add_part(scene, std::move(body), {}, 1);
+    scene.camera.position = Vec3(0.1f, 0.45f, 1.1f);  // in front, above: the lens's top rim, lit by the sun
+    scene.camera.target = Vec3(0.0f, 0.05f, 0.17f);
     scene.camera.width = 120, scene.camera.height = 90;
     scene.precompute = small_accuracy_precompute();
     return scene;
