@@ -3,9 +3,9 @@
 // a shell sample inside the part traces its table from the surface outside
 // it instead, and stores a negative surface distance.
 //
-// A point is inside when the 14 probe rays from it all meet the part and
-// nearly all (12) meet it from behind, leaving through a face that turns
-// outwards. That alone fails where a part is several closed pieces that
+// A point is inside when nearly all (12) of the 14 probe rays from it meet
+// the part from behind, leaving through a face that turns outwards; the
+// others may escape through a small hole. That alone fails where a part is several closed pieces that
 // overlap — a robot's waist cone sunk into its pelvis box, a chair's legs
 // into its seat, a glTF node whose primitives were joined: a ray from inside
 // one piece may first meet another piece's faces from outside. So the test
@@ -28,6 +28,11 @@
 #include "src/rays/ray_scene.h"
 
 namespace rsl {
+
+// The inside rule's revision, part of the OVDF cache key (field_cache.cpp):
+// fields baked under an earlier rule are baked again, not read. 2: probes
+// that escape no longer make a point outside (a solid with small holes).
+inline constexpr int kSolidInsideRule = 2;
 
 class SolidPieces {
 public:
