@@ -26,9 +26,9 @@ struct RenderBenchCase {
 std::vector<RenderBenchCase> render_speed_cases(bool quick);
 
 // The precomputation settings the benchmarks and the table use: the
-// resolutions of assets/scenes/default.json (SVDF 16², 64 clusters × 6
-// vectors; OVDF 13 shells 0.4R…20R × 6×16² samples, 16² VDTs, 6 vectors), so that the
-// fields bake in seconds on two cores. The scene files' full settings (the
+// resolutions of assets/scenes/default.json but for its 20 shells (SVDF 16²,
+// 64 clusters × 6 vectors; OVDF 13 shells 0.4R…20R × 6×16² samples, 16² VDTs,
+// 6 vectors), so that the fields bake in seconds on two cores. The scene files' full settings (the
 // paper's) only make the fields more exact.
 PrecomputeSettings bench_precompute();
 
