@@ -153,6 +153,8 @@ void write_field(const fs::path& path, FieldKind kind, uint64_t mesh, const std:
     if (ovdf) {
         RSL_CHECK_EQ(ovdf->surface_distance.size(), ovdf->params.sample_count());
         w.put_bytes(ovdf->surface_distance.data(), ovdf->surface_distance.size() * sizeof(float));
+        RSL_CHECK_EQ(ovdf->occluded_area.size(), ovdf->params.sample_count());
+        w.put_bytes(ovdf->occluded_area.data(), ovdf->occluded_area.size() * sizeof(float));
         RSL_CHECK_EQ(ovdf->radial_span.size(), size_t(2 * shading::kCubeFaces) * ovdf->span_resolution * ovdf->span_resolution);
         w.put(int32_t(ovdf->span_resolution));
         w.put_bytes(ovdf->radial_span.data(), ovdf->radial_span.size() * sizeof(float));
@@ -369,6 +371,12 @@ Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
     ovdf.surface_distance.resize(ovdf.params.sample_count());
     r.get_bytes(ovdf.surface_distance.data(), ovdf.surface_distance.size() * sizeof(float), "surface distances");
     check_all_finite(path, ovdf.surface_distance, "surface distance");
+    ovdf.occluded_area.resize(ovdf.params.sample_count());
+    r.get_bytes(ovdf.occluded_area.data(), ovdf.occluded_area.size() * sizeof(float), "occluded areas");
+    check_all_finite(path, ovdf.occluded_area, "occluded area");
+    for (const float area : ovdf.occluded_area)  // a table's whole plane at the smallest zoom (1/√2) is 8
+        if (!(area >= 0.0f && area <= 8.0f + 1e-3f))
+            throw_file_error(path, "implausible occluded area {} (0 to 8 plane units²)", area);
     ovdf.span_resolution = r.get<int32_t>();
     if (ovdf.span_resolution != 0 && (ovdf.span_resolution < 2 || ovdf.span_resolution > kMostSpanResolution))
         throw_file_error(path, "implausible radial span resolution {} (0, or 2 to {})", ovdf.span_resolution,

@@ -12,7 +12,8 @@
 //   model: i32 dims, vectors, clusters, samples; u8 half tables;
 //          tables (half or float), assignment (u16 when clusters ≤ 65536, else
 //          i32), coefficients (f32)
-//   OVDF only: f32 surface distance per sample; i32 span resolution n (0:
+//   OVDF only: f32 surface distance per sample; f32 occluded area per
+//          sample (plane units²); i32 span resolution n (0:
 //          none), f32 (enter, exit) per radial line, 6·n² lines
 //   u64 FNV-1a 64 checksum of every byte before it
 // Readers refuse, naming the file: foreign files (magic), truncated or
@@ -44,8 +45,11 @@ namespace rsl {
 // the whole sphere of directions (zoom 1/√2, shading_core.h ovdf_zoom), so
 // that directions away from the part's centre are traced, not the horizon's
 // edge texels. Version 7: OVDF files end with the radial spans
-// (fields/ovdf_spans.h), the receiver's inside test.
-inline constexpr uint32_t kFieldFormatVersion = 7;
+// (fields/ovdf_spans.h), the receiver's inside test. Version 8: OVDF files
+// hold each sample's occluded area (shading::ovdf_area_bound), and a sample
+// is inside the part when 12 of its 14 probes leave it from behind, whether
+// or not the others escape through a hole (fields/solid_pieces.h).
+inline constexpr uint32_t kFieldFormatVersion = 8;
 inline constexpr int kMostSpanResolution = 1024;
 enum class FieldKind : uint32_t { Svdf = 1, Ovdf = 2 };
 

@@ -78,7 +78,13 @@ float Ovdf::sample_distance(int sample, const Vec2& p) const {
 }
 
 float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_edge, OvdfBlend blend) const {
-    return visible_fraction_from_distance(distance(point, light, blend), half_edge);
+    const float fraction = visible_fraction_from_distance(distance(point, light, blend), half_edge);
+    if (!(fraction < 1.0f) || occluded_area.empty()) return fraction;
+    // Not inside the part (distance() gave it 0): bounded by the silhouette's area.
+    const float d = glm::length(point - center);
+    const OvdfLocation at = locate(point, d);
+    if (d < radius && receiver_inside(point, d, at)) return fraction;
+    return shading::ovdf_area_bound(fraction, occluded_area_at(at), half_edge);
 }
 
 OvdfLocation Ovdf::locate(const Vec3& point, float d) const {
@@ -98,19 +104,25 @@ OvdfLocation Ovdf::locate(const Vec3& point, float d) const {
     return at;
 }
 
-float Ovdf::surface_distance_at(const OvdfLocation& at) const {
-    if (surface_distance.empty()) return 1.0f;
-    const int n = params.cube_resolution;
+float Ovdf::blend_samples(const std::vector<float>& per_sample, const OvdfLocation& at) const {
     float blended = 0;
     for (int k = 0; k < 2; ++k) {
         const float ws = k == 0 ? 1.0f - at.fs : at.fs;
         if (ws == 0.0f) continue;
         float value = 0;
         for (int q = 0; q < 4; ++q)
-            value += at.w[q] * surface_distance[size_t(((at.s0 + k) * 6 + at.face) * n + at.jj[q]) * n + at.ii[q]];
+            value += at.w[q] * per_sample[size_t(sample_index(at.s0 + k, at.face, at.ii[q], at.jj[q]))];
         blended += ws * value;
     }
     return blended;
+}
+
+float Ovdf::occluded_area_at(const OvdfLocation& at) const {
+    return occluded_area.empty() ? shading::kOvdfNoAreaBound : blend_samples(occluded_area, at);
+}
+
+float Ovdf::surface_distance_at(const OvdfLocation& at) const {
+    return surface_distance.empty() ? 1.0f : blend_samples(surface_distance, at);
 }
 
 bool Ovdf::receiver_inside(const Vec3& point, float d, const OvdfLocation& at) const {
@@ -346,6 +358,7 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& requested, OvdfBakeSt
     ovdf.model.tables.assign(size_t(segments) * dims * (params.vectors + 1), 0.0f);
     ovdf.model.assignment.assign(params.sample_count(), 0);
     ovdf.surface_distance.assign(params.sample_count(), 0.0f);
+    ovdf.occluded_area.assign(params.sample_count(), 0.0f);
     ovdf.model.coefficients.assign(params.sample_count() * params.vectors, 0.0f);
     std::atomic<int> done{0};
     std::mutex stats_mutex;
@@ -367,6 +380,10 @@ Ovdf bake_ovdf(const TriangleMesh& mesh, const OvdfParams& requested, OvdfBakeSt
             ovdf.surface_distance[ovdf.sample_index(shell, face, i, j)] = origin.surface_distance;
             trace_zoomed_coverage(scene, samplings[shell], origin.position, frame, scratch);
             compute_vdt(nv, scratch.coverage.data(), tables.data() + k * dims, params.mode, scratch.vdt);
+            double shadowed = 0;  // texels' shadowed fractions: table units of (2/nv)² each
+            for (const float visible : scratch.coverage) shadowed += 1.0 - double(visible);
+            const float zoom = ovdf.shell_zoom(shell).zoom, texel = 2.0f / float(nv);
+            ovdf.occluded_area[ovdf.sample_index(shell, face, i, j)] = float(shadowed) * texel * texel / (zoom * zoom);
         }
         CpcaModel local;
         local.dims = dims;

@@ -122,6 +122,10 @@ public:
     // like the tables, it tells a receiver that lies inside the part — a
     // neighbouring part sunk into this one at a joint — which sees nothing.
     std::vector<float> surface_distance;
+    // Per sample: the area of its table that the part shadows, in plane
+    // units (table area / zoom²), from the traced coverage: the bound of
+    // shading::ovdf_area_bound. Empty: no bound.
+    std::vector<float> occluded_area;
     // The radial spans (fields/ovdf_spans.h): (enter, exit) per radial line
     // of a span_resolution² cube map, interleaved; empty: the surface
     // distances alone decide.
@@ -167,6 +171,9 @@ public:
     // the bounding sphere, the point is inside the part and every lookup is
     // fully shadowed.
     float surface_distance_at(const OvdfLocation& at) const;
+    // The samples' occluded areas blended with the lookup's eight weights
+    // (kOvdfNoAreaBound for a field without them).
+    float occluded_area_at(const OvdfLocation& at) const;
     // Whether a receiver within the bounding sphere (d = |point − center| <
     // radius) lies inside the part: its radial span where that decides,
     // else the blended surface distance (shading::ovdf_span_inside,
@@ -178,6 +185,9 @@ public:
     float sample_distance(int sample, const Vec2& p) const;
 
 private:
+    // A per-sample value blended with a lookup's eight weights.
+    float blend_samples(const std::vector<float>& per_sample, const OvdfLocation& at) const;
+
     std::vector<float> shell_radii_;
     std::vector<OvdfZoom> shell_zoom_;
     std::vector<Frame> frames_;                 // per (face, i, j)

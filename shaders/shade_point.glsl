@@ -11,7 +11,7 @@
 // order (gl_objects.cpp shading_prelude, shade_point_prelude): MAX_STRIDE
 // (texels of a CPCA row), the layout constants of src/gl/gpu_layout.h
 // (kPartStride, kSlot*, kArrayWidth, kArrayShift, kLightTexels,
-// kSurfacesPerTexel, kPi, kSqrt2), the shading core
+// kSamplesPerTexel, kPi, kSqrt2), the shading core
 // src/shading/shading_core.h, whose functions (frames, the equal-area map,
 // square taps, bilinear taps, the VDT rule, the OVDF's shells, faces, zoom
 // and cone bounds, the slab rule) are the CPU's own, then this file. What
@@ -195,18 +195,22 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
         span_inside = ovdf_span_inside(d, span, center.w);
     }
     if (span_inside == 1) return 0.0f;
+    // The samples' blended surface distance and occluded area
+    // (Ovdf::occluded_area_at: the bound of ovdf_area_bound).
     int surface_base = int(records.y);
     float surface = 0.0f;
-    for (int k = 0; k < 2 && d < center.w && span_inside < 0; ++k) {
+    float occluded_area = 0.0f;
+    for (int k = 0; k < 2; ++k) {
         float ws = k == 0 ? 1.0f - fs : fs;
         if (ws == 0.0f) continue;
-        float value = 0.0f;
+        vec2 value = vec2(0.0f);
         for (int q = 0; q < 4; ++q) {
             int sample = ovdf_sample_index(s0 + k, face.face, at.i[q], at.j[q], n);
-            value += at.weight[q] *
-                     fetch(u_ovdf_frames, surface_base + sample / kSurfacesPerTexel)[sample % kSurfacesPerTexel];
+            vec4 texel = fetch(u_ovdf_frames, surface_base + sample / kSamplesPerTexel);
+            value += at.weight[q] * ((sample % kSamplesPerTexel) == 0 ? texel.xy : texel.zw);
         }
-        surface += ws * value;
+        surface += ws * value.x;
+        occluded_area += ws * value.y;
     }
     if (d < center.w && span_inside < 0 && ovdf_inside_part(center.w, surface)) return 0.0f;
     // The receiver's own pole frame, twisted by the face rule like its
@@ -251,7 +255,8 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
         }
         distance += ovdf_weighted_plane_distance(ws * value, ws, zoom, radial);
     }
-    return visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, cone), h);
+    return ovdf_area_bound(visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, cone), h),
+                           occluded_area, h);
 }
 
 // The exact shadow of a part that is a rectangle or a box

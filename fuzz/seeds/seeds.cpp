@@ -17,6 +17,8 @@
 #include "assets/generate/model.h"
 #include "assets/generate/primitives.h"
 #include "fields/field_file.h"
+#include "fields/ovdf_spans.h"
+#include "fields/solid_pieces.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
@@ -288,7 +290,12 @@ std::vector<fs::path> write_seed_corpora(const fs::path& dir, const fs::path& so
     write_svdf(out.path("rslf", "svdf_float"), bake_svdf(ball, svdf), mesh_hash(ball));
     const OvdfParams ovdf{.shells = 2, .cube_resolution = 2, .vdt_resolution = 4, .vectors = 2,
                           .segments_per_side = 1, .supersampling = 1};
-    write_ovdf(out.path("rslf", "ovdf"), bake_ovdf(ball, ovdf), mesh_hash(ball));
+    // Its radial spans at 8² lines a face, not the build's 256² (3 MB): the
+    // file holds its own resolution, and the seed stays a few kilobytes.
+    Ovdf small = bake_ovdf(ball, ovdf);
+    small.span_resolution = 8;
+    small.radial_span = bake_radial_spans(SolidPieces(ball), small.center, small.radius, small.span_resolution);
+    write_ovdf(out.path("rslf", "ovdf"), small, mesh_hash(ball));
 
     // Vertex colours: two parts, and none.
     VertexColors colors;

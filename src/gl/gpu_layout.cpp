@@ -168,13 +168,16 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
         const int zoom_records = int(g.ovdf_frames.size());
         for (int shell = 0; shell < op.shells; ++shell)  // after the frames: (zoom, cone, 0, 0)
             g.ovdf_frames.push_back(Vec4(o.shell_zoom(shell).zoom, o.shell_zoom(shell).cone, 0.0f, 0.0f));
-        // Then the samples' surface distances, four to a texel (1: outside, for a field without them).
+        // Then the samples' surface distances and occluded areas, two samples
+        // to a texel (1: outside, and no area bound, for a field without them).
         const int surfaces = int(g.ovdf_frames.size());
         const size_t samples = op.sample_count();
-        for (size_t s = 0; s < samples; s += kSurfacesPerTexel) {
-            Vec4 texel(1.0f);
-            for (size_t c = 0; c < kSurfacesPerTexel && s + c < samples; ++c)
-                texel[int(c)] = o.surface_distance.empty() ? 1.0f : o.surface_distance[s + c];
+        for (size_t s = 0; s < samples; s += kSamplesPerTexel) {
+            Vec4 texel(1.0f, shading::kOvdfNoAreaBound, 1.0f, shading::kOvdfNoAreaBound);
+            for (size_t c = 0; c < kSamplesPerTexel && s + c < samples; ++c) {
+                if (!o.surface_distance.empty()) texel[int(2 * c)] = o.surface_distance[s + c];
+                if (!o.occluded_area.empty()) texel[int(2 * c + 1)] = o.occluded_area[s + c];
+            }
             g.ovdf_frames.push_back(texel);
         }
         // Then the radial spans, two lines (enter, exit) to a texel.

@@ -18,7 +18,8 @@
 //    so a reconstruction is Σ_t dot(table_t, coefficients_t)
 //  OVDF sample frames: per (face, i, j) two texels, x and z (y = z × x); then
 //    per shell one texel (table zoom, cone radius, 0, 0) (fields/ovdf.h OvdfZoom);
-//    then the samples' surface distances, kSurfacesPerTexel to a texel;
+//    then per sample (surface distance, occluded area), kSamplesPerTexel
+//    samples to a texel;
 //    then the radial spans, (enter, exit) of two lines to a texel. The
 //    part record's kSlotOvdfRecords holds where the last three start.
 //
@@ -74,7 +75,7 @@ static_assert(kSlotShapeHigh < kPartStride);
 
 inline constexpr int kLightTexels = 3;        // per light in the lights texture
 inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
-inline constexpr int kSurfacesPerTexel = 4;   // OVDF surface distances, RGBA
+inline constexpr int kSamplesPerTexel = 2;    // OVDF samples' (surface distance, occluded area), RG and BA
 
 // The integer constants the shading pass reads, by their GLSL names.
 struct ShaderIntConstant {
@@ -106,7 +107,7 @@ inline constexpr ShaderIntConstant kShaderIntConstants[] = {
     {"kSlotShapeLow", kSlotShapeLow},
     {"kSlotShapeHigh", kSlotShapeHigh},
     {"kLightTexels", kLightTexels},
-    {"kSurfacesPerTexel", kSurfacesPerTexel},
+    {"kSamplesPerTexel", kSamplesPerTexel},
 };
 
 // GLSL declarations of kShaderIntConstants and of kPi and kSqrt2 (the

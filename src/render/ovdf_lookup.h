@@ -47,6 +47,9 @@ struct OvdfPoint {
     OvdfZoom zoom[2];              // per bracketing shell: its table zoom and cone
     int term_count[2] = {0, 0};    // terms of each shell, shell 0's first
     const OvdfTerm* terms = nullptr;
+    // The samples' blended occluded area (Ovdf::occluded_area_at) of a
+    // Prepared or Slow point; no bound otherwise (inside stays dark).
+    float occluded_area = shading::kOvdfNoAreaBound;
 };
 
 class OvdfLookup {
@@ -68,6 +71,13 @@ public:
     // 1 − cos in the pole frame). Branch-free, for vectorized loops.
     static bool unshadowed(float cos_to_center, float cone, float half_edge) {
         return shading::ovdf_unshadowed(cos_to_center, cone, half_edge);  // the GPU's test too
+    }
+
+    // The visible fraction of the square of half-edge h around a unit light
+    // direction: the distance's straight-edge rule, bounded by the
+    // silhouette's area; equals field().visible_fraction up to rounding.
+    float visible_fraction(const OvdfPoint& q, const Vec3& point, const Vec3& light, float h) const {
+        return shading::ovdf_area_bound(visible_fraction_from_distance(distance(q, point, light), h), q.occluded_area, h);
     }
 
     // Blended signed distance (plane units) for a unit light direction; equals

@@ -182,7 +182,7 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
                 v.terms_used += fast->prepare(point, q, v.terms + v.terms_used);
                 v.prepared[k] = true;
             }
-            s.vis[i] *= visible_fraction_from_distance(fast->distance(q, point, dir), s.qh[i]);
+            s.vis[i] *= fast->visible_fraction(q, point, dir, s.qh[i]);
         } else {
             const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
             s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);

@@ -385,6 +385,18 @@ RSL_SHARED float ovdf_weighted_plane_distance(float weighted_table_distance, flo
 RSL_SHARED float ovdf_receiver_distance(float blended, float radial, float cone) {
     return max(blended, radial - cone);
 }
+// The straight-edge rule (visible_fraction_from_distance) takes the shadow's
+// edge for a line across the square: a square much larger than the part's
+// silhouette near its edge loses half of itself to a part that covers a
+// sliver of it. The part cannot shadow more of the square than its whole
+// silhouette: `occluded_area`, the samples' blended shadowed area of their
+// tables in plane units (Ovdf::occluded_area), bounds the shadowed share of
+// the square of half-edge h. kOvdfNoAreaBound: no bound (a receiver inside
+// the part stays dark).
+RSL_CONST float kOvdfNoAreaBound = 3.0e38f;
+RSL_SHARED float ovdf_area_bound(float visible, float occluded_area, float h) {
+    return max(visible, 1.0f - occluded_area / (4.0f * h * h));
+}
 // A receiver within the OVDF part's bounding sphere is inside the part (a
 // neighbour's vertex sunk into it at a joint, fully shadowed) where its
 // samples' blended surface distance is below −kOvdfContactTolerance·R. A
