@@ -44,7 +44,7 @@ void set_corners() {
         vec4 normal = fetch(u_normals, vertex);
         vec4 tangent = fetch(u_tangents, vertex);
         g_corner_frame[c] = frame_rows(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent.xyz);
-        corner_enclosed[c] = tangent.w > 0.5;
+        corner_enclosed[c] = self && tangent.w > 0.5;  // as the CPU: only with the SVDF on
         g_corner_cluster[c] = self && normal.w >= 0.0 ? int(normal.w) : -1;
         if (g_corner_cluster[c] >= 0) load_svdf_coefficients(svdf, local, c);
     }
