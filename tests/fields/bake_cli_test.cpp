@@ -131,6 +131,16 @@ TEST_CASE("rsl bake: bakes, reuses the cache, refuses and rebakes a corrupt file
         CHECK(info_status == 0);
         CHECK(contains(text, "OK"));
     }
+    // ... an OVDF's spans and occluded areas ...
+    for (const fs::path& f : files) {
+        if (f.filename().string().rfind("ovdf-", 0) != 0) continue;
+        const auto [info_status, text] = run_rsl("info " + f.string());
+        INFO(text);
+        CHECK(info_status == 0);
+        CHECK(contains(text, "radial spans   256x256 lines per cube face"));
+        CHECK(contains(text, "occluded area  per sample, up to "));
+        CHECK_FALSE(contains(text, "up to 0.000 plane"));  // a box shadows something
+    }
     // ... and refuses the box's SVDF with one byte flipped, naming the file.
     const fs::path victim = files[2];
     std::string bytes = baked.at(victim);
