@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 
 #include "fields/field_file.h"
-#include "fields/solid_pieces.h"
 #include "src/core/error.h"
 #include "src/core/progress_report.h"
 #include "src/shading/shading_core.h"
@@ -165,11 +164,10 @@ fs::path svdf_cache_file(const fs::path& directory, uint64_t mesh_hash, const Sv
 }
 
 fs::path ovdf_cache_file(const fs::path& directory, uint64_t mesh_hash, const OvdfParams& params) {
-    // The radial spans' resolution and the inside rule are the build's, not
-    // parameters: a build that bakes differently looks for files of its own.
+    // The radial spans' resolution is the build's, not a parameter: a build
+    // that bakes finer spans looks for files of its own.
     return cache_file(directory, "ovdf", mesh_hash,
-                      params_json(params) + fmt::format(";spans {};inside {}", shading::kOvdfSpanResolution,
-                                                        kSolidInsideRule));
+                      params_json(params) + fmt::format(";spans {}", shading::kOvdfSpanResolution));
 }
 
 size_t memory_bytes(const Svdf& svdf) { return model_bytes(svdf.model); }

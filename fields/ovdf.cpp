@@ -78,12 +78,12 @@ float Ovdf::sample_distance(int sample, const Vec2& p) const {
 }
 
 float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_edge, OvdfBlend blend) const {
-    const float fraction = visible_fraction_from_distance(distance(point, light, blend), half_edge);
-    if (!(fraction < 1.0f) || occluded_area.empty()) return fraction;
-    // Not inside the part (distance() gave it 0): bounded by the silhouette's area.
     const float d = glm::length(point - center);
+    if (d >= shell_radii_.back()) return 1.0f;  // no shadow beyond the outer shell
     const OvdfLocation at = locate(point, d);
-    if (d < radius && receiver_inside(point, d, at)) return fraction;
+    if (d < radius && receiver_inside(point, d, at)) return 0.0f;
+    // Outside the part: the straight-edge rule, bounded by the silhouette's area.
+    const float fraction = visible_fraction_from_distance(located_distance(at, d, light, blend), half_edge);
     return shading::ovdf_area_bound(fraction, occluded_area_at(at), half_edge);
 }
 
@@ -138,11 +138,14 @@ bool Ovdf::receiver_inside(const Vec3& point, float d, const OvdfLocation& at) c
 }
 
 float Ovdf::distance(const Vec3& point, const Vec3& light, OvdfBlend blend) const {
-    const Vec3 v = point - center;
-    const float d = glm::length(v);
+    const float d = glm::length(point - center);
     if (d >= shell_radii_.back()) return kVdtNoBoundaryDistance;  // no shadow beyond the outer shell
     const OvdfLocation at = locate(point, d);
     if (d < radius && receiver_inside(point, d, at)) return -kVdtNoBoundaryDistance;
+    return located_distance(at, d, light, blend);
+}
+
+float Ovdf::located_distance(const OvdfLocation& at, float d, const Vec3& light, OvdfBlend blend) const {
     const int s0 = at.s0, face = at.face;
     const float fs = at.fs;
     const glm::ivec4& ii = at.ii;

@@ -185,6 +185,9 @@ public:
     float sample_distance(int sample, const Vec2& p) const;
 
 private:
+    // distance() at a receiver located outside the part (d from the centre,
+    // within the outer shell).
+    float located_distance(const OvdfLocation& at, float d, const Vec3& light, OvdfBlend blend) const;
     // A per-sample value blended with a lookup's eight weights.
     float blend_samples(const std::vector<float>& per_sample, const OvdfLocation& at) const;
 

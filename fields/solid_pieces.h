@@ -5,10 +5,12 @@
 //
 // A point is inside when nearly all (12) of the 14 probe rays from it meet
 // the part from behind, leaving through a face that turns outwards; the
-// others may escape through a small hole. That alone fails where a part is several closed pieces that
-// overlap — a robot's waist cone sunk into its pelvis box, a chair's legs
-// into its seat, a glTF node whose primitives were joined: a ray from inside
-// one piece may first meet another piece's faces from outside. So the test
+// others may escape through a small hole (field format 8 on: fields baked
+// under the earlier rule, which had every probe hit, are baked again). That
+// alone fails where a part is several closed pieces that overlap — a
+// robot's waist cone sunk into its pelvis box, a chair's legs into its
+// seat, a glTF node whose primitives were joined: a ray from inside one
+// piece may first meet another piece's faces from outside. So the test
 // also runs on each closed piece alone (triangles joined by shared edges,
 // their vertices welded by position so that UV and normal seams do not
 // split a surface, while pieces touching at a vertex stay two), and a point
@@ -28,11 +30,6 @@
 #include "src/rays/ray_scene.h"
 
 namespace rsl {
-
-// The inside rule's revision, part of the OVDF cache key (field_cache.cpp):
-// fields baked under an earlier rule are baked again, not read. 2: probes
-// that escape no longer make a point outside (a solid with small holes).
-inline constexpr int kSolidInsideRule = 2;
 
 class SolidPieces {
 public:

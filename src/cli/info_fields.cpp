@@ -32,12 +32,12 @@ void print_field_file(const std::filesystem::path& path) {
                int(std::lround(std::sqrt(h.dims))), int(std::lround(std::sqrt(h.dims))));
     fmt::print("  compression    {} {} x {} vectors, tables in {}\n", h.clusters,
                h.kind == FieldKind::Svdf ? "clusters" : "segments", h.vectors, h.half_tables ? "half" : "float");
-    if (h.kind == FieldKind::Ovdf)
+    if (h.kind == FieldKind::Ovdf) {
         fmt::print("  radial spans   {}x{} lines per cube face (the receivers' inside test, fields/ovdf_spans.h)\n",
                    span_resolution, span_resolution);
-    if (h.kind == FieldKind::Ovdf)
         fmt::print("  occluded area  per sample, up to {:.3f} plane units² (bounds the shadowed share of large squares)\n",
                    largest_area);
+    }
     fmt::print("  size           {:.2f} MB on disk, {:.2f} MB as raw float (1:{:.1f})\n", h.file_bytes / 1e6,
                raw / 1e6, double(raw) / double(h.file_bytes));
     fmt::print("  checksum       {:016x} (FNV-1a 64) OK, contents OK\n", h.checksum);
