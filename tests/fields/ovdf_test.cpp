@@ -346,6 +346,36 @@ TEST_CASE("OVDF counts a receiver on the part's surface as outside it", "[ovdf]"
     CHECK(dark >= 0.6 * trials);
 }
 
+TEST_CASE("OVDF darkens a receiver sunk 0.0008 R into the part along its radial line", "[ovdf]") {
+    // The robot's knee (docs/RESULTS.md, "The span margin, again"): shin
+    // vertices 0.0005–0.0008 R inside the thigh along their radial lines,
+    // which meet the thigh at cos 0.3, are black in the truth, while its
+    // glint vertex 0.0005 R inside is lit. Here points under a box's top face,
+    // at every angle its lines meet it (cos 0.3–1), sunk along their line:
+    // 0.0008 R is inside (the margin 0.001 R called all of them outside),
+    // 0.0003 R is still on the surface.
+    const TriangleMesh box = thin_box(1.0f, 0.3f);
+    const Ovdf ovdf = bake_ovdf(box, small_params(10, 16));
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(0, 1);
+    int dark = 0, lit = 0;
+    const int trials = 400;
+    for (int trial = 0; trial < trials; ++trial) {
+        const Vec3 on_face(-0.9f + 1.8f * u(rng), 0.3f, -0.25f + 0.5f * u(rng));
+        const Vec3 line = glm::normalize(on_face - ovdf.center);
+        const float enter = glm::length(on_face - ovdf.center);
+        const float up = 0.8f + 0.2f * u(rng), phi = 2.0f * kPi * u(rng);
+        const Vec3 light(std::sqrt(1 - up * up) * std::cos(phi), up, std::sqrt(1 - up * up) * std::sin(phi));
+        const Vec3 sunk = ovdf.center + line * (enter - 0.0008f * ovdf.radius);
+        const Vec3 on_surface = ovdf.center + line * (enter - 0.0003f * ovdf.radius);
+        dark += ovdf.visible_fraction(sunk, light, 0.05f) == 0.0f;
+        lit += ovdf.visible_fraction(on_surface, light, 0.05f) > 0.5f;
+    }
+    std::printf("OVDF under a box's face along the lines: 0.0008 R %d of %d dark, 0.0003 R %d lit\n", dark, trials, lit);
+    CHECK(dark >= 0.98 * trials);
+    CHECK(lit >= 0.95 * trials);
+}
+
 TEST_CASE("OVDF tells inside from outside in a part made of overlapping closed pieces", "[ovdf]") {
     // A cross: two boxes 2 × 0.6 × 0.6, along x and along z, each closed,
     // overlapping in the middle (as a robot's waist cone sunk into its pelvis,
