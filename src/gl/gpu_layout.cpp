@@ -14,13 +14,20 @@ namespace {
 
 constexpr size_t kExactFloatIndex = size_t(1) << 24;
 
+// Pads `out` to the next block start (gpu_layout.h block_start) and returns it.
+size_t start_block(std::vector<Vec4>& out) {
+    out.resize(block_start(out.size()), Vec4(0.0f));
+    RSL_CHECK_EQ(size_t(float(out.size())), out.size());
+    return out.size();
+}
+
 bool is_half_exact(float v) { return round_to_half(v) == v; }
 
 // Appends a CPCA model's tables ([μ, b…] per (cluster, texel)) and returns
 // the first texel; records whether every value is exactly a half.
-int append_tables(const CpcaModel& model, std::vector<Vec4>& out, bool& half_exact) {
+size_t append_tables(const CpcaModel& model, std::vector<Vec4>& out, bool& half_exact) {
     const int stride = cpca_stride(model.vectors);
-    const size_t base = out.size();
+    const size_t base = start_block(out);
     out.resize(base + size_t(model.clusters) * model.dims * stride, Vec4(0.0f));
     for (int c = 0; c < model.clusters; ++c)
         for (int d = 0; d < model.dims; ++d) {
@@ -31,13 +38,13 @@ int append_tables(const CpcaModel& model, std::vector<Vec4>& out, bool& half_exa
                 half_exact = half_exact && is_half_exact(row[i]);
             }
         }
-    return int(base);
+    return base;
 }
 
 // Appends [1, w…] per sample and returns the first texel.
-int append_coefficients(const CpcaModel& model, std::vector<Vec4>& out) {
+size_t append_coefficients(const CpcaModel& model, std::vector<Vec4>& out) {
     const int stride = cpca_stride(model.vectors);
-    const size_t base = out.size();
+    const size_t base = start_block(out);
     out.resize(base + size_t(model.samples()) * stride, Vec4(0.0f));
     for (int s = 0; s < model.samples(); ++s) {
         float* texels = &out[base + size_t(s) * stride].x;
@@ -45,7 +52,7 @@ int append_coefficients(const CpcaModel& model, std::vector<Vec4>& out) {
         const float* w = model.coefficients_of(s);
         for (int i = 0; i < model.vectors; ++i) texels[i + 1] = w[i];
     }
-    return int(base);
+    return base;
 }
 
 void check_index(const Scene& scene, size_t size, const char* what) {
@@ -111,8 +118,8 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
             const CpcaModel& m = svdf->model;
             const int stride = cpca_stride(m.vectors);
             g.max_stride = std::max(g.max_stride, stride);
-            const int tables = append_tables(m, g.svdf_tables, g.svdf_tables_half);
-            const int coefficients = append_coefficients(m, g.svdf_coefficients);
+            const size_t tables = append_tables(m, g.svdf_tables, g.svdf_tables_half);
+            const size_t coefficients = append_coefficients(m, g.svdf_coefficients);
             record[kSlotSvdf] = Vec4(float(tables), float(coefficients), float(svdf->resolution()), float(stride));
             svdf_records[svdf] = record[kSlotSvdf];
         }
@@ -155,9 +162,9 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
                                              scene.parts[p].name);
         const int stride = cpca_stride(o.model.vectors);
         g.max_stride = std::max(g.max_stride, stride);
-        const int tables = append_tables(o.model, g.ovdf_tables, g.ovdf_tables_half);
-        const int coefficients = append_coefficients(o.model, g.ovdf_coefficients);
-        const int frames = int(g.ovdf_frames.size());
+        const size_t tables = append_tables(o.model, g.ovdf_tables, g.ovdf_tables_half);
+        const size_t coefficients = append_coefficients(o.model, g.ovdf_coefficients);
+        const size_t frames = start_block(g.ovdf_frames);
         for (int face = 0; face < shading::kCubeFaces; ++face)
             for (int j = 0; j < n; ++j)
                 for (int i = 0; i < n; ++i) {
@@ -165,12 +172,12 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
                     g.ovdf_frames.push_back(Vec4(frame.x, 0.0f));  // kOvdfFrameTexels
                     g.ovdf_frames.push_back(Vec4(frame.z, 0.0f));
                 }
-        const int zoom_records = int(g.ovdf_frames.size());
+        const size_t zoom_records = start_block(g.ovdf_frames);
         for (int shell = 0; shell < op.shells; ++shell)  // after the frames: (zoom, cone, 0, 0)
             g.ovdf_frames.push_back(Vec4(o.shell_zoom(shell).zoom, o.shell_zoom(shell).cone, 0.0f, 0.0f));
         // Then the samples' surface distances and occluded areas, two samples
         // to a texel (1: outside, and no area bound, for a field without them).
-        const int surfaces = int(g.ovdf_frames.size());
+        const size_t surfaces = start_block(g.ovdf_frames);
         const size_t samples = op.sample_count();
         for (size_t s = 0; s < samples; s += kSamplesPerTexel) {
             Vec4 texel(1.0f, shading::kOvdfNoAreaBound, 1.0f, shading::kOvdfNoAreaBound);
@@ -181,7 +188,7 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
             g.ovdf_frames.push_back(texel);
         }
         // Then the radial spans, two lines (enter, exit) to a texel.
-        const int spans = int(g.ovdf_frames.size());
+        const size_t spans = start_block(g.ovdf_frames);
         for (size_t k = 0; k < o.radial_span.size(); k += 4) {
             Vec4 texel(0.0f);
             for (size_t c = 0; c < 4 && k + c < o.radial_span.size(); ++c) texel[int(c)] = o.radial_span[k + c];
@@ -196,12 +203,10 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
         for (int k = 0; k < 5; ++k) ovdf_records[&o][size_t(k)] = record[kOvdfSlots[k]];
     }
     g.first_vertex.push_back(int(g.positions.size()));
+    // A vertex's part and first vertex are float texels too (the tables'
+    // block starts are exact by start_block; their textures' size is the
+    // driver's to allow, gl_objects.cpp).
     check_index(scene, g.positions.size(), "the vertices");
-    check_index(scene, g.svdf_tables.size(), "the SVDF tables");
-    check_index(scene, g.svdf_coefficients.size(), "the SVDF coefficients");
-    check_index(scene, g.ovdf_tables.size(), "the OVDF tables");
-    check_index(scene, g.ovdf_coefficients.size(), "the OVDF coefficients");
-    check_index(scene, g.ovdf_frames.size(), "the OVDF frames");
     return g;
 }
 

@@ -3,8 +3,8 @@
 // the CPU without any GL call so that the layout can be tested by itself.
 //
 // Flat arrays go into RGBA "array textures" (gl_objects.h): element i at texel
-// (i % 2048, i / 2048). Indices stored in float texels are exact below 2^24
-// (checked).
+// (i % 2048, i / 2048). Indices stored in float texels are exact: below 2^24
+// (checked), and block starts beyond it by alignment (block_start).
 //
 //  vertex rectangle (3 textures, one texel per vertex, vertex i at (i % W, i / W)):
 //    positions  xyz = part-space position, w = part index
@@ -114,6 +114,16 @@ inline constexpr ShaderIntConstant kShaderIntConstants[] = {
 // shading core's, printed so that they read back as the same floats), one
 // `const` per line, for the host to prepend to the shading pass.
 std::string shader_layout_constants();
+
+// Where a block (one field's tables, coefficients, frames, spans) starts in
+// a flat array after `size` texels. The part records hold block starts in
+// float texels, and a float holds every integer below 2^24 but beyond it
+// only multiples of a power of two: starting every block at a multiple of
+// kBlockAlign keeps its start exact up to 2^24 · kBlockAlign texels, past any
+// texture a driver allows (the robot's 32-shell OVDF tables are 18.9 M
+// texels; the limit was 2^24 before).
+inline constexpr size_t kBlockAlign = 64;
+inline size_t block_start(size_t size) { return (size + kBlockAlign - 1) / kBlockAlign * kBlockAlign; }
 
 // Texels of a reconstruction row or coefficient row for k basis vectors.
 inline int cpca_stride(int vectors) { return (vectors + 1 + 3) / 4; }

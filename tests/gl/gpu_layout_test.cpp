@@ -70,6 +70,30 @@ TEST_CASE("packed SVDF and OVDF rows reconstruct the fields' values", "[gl-layou
     // The fields store half-precision tables: RGBA16F holds them exactly.
     CHECK(g.svdf_tables_half);
     CHECK(g.ovdf_tables_half);
+    // Every block starts on the alignment that keeps its float start exact.
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        const Vec4* record = &g.part_static[p * gl::kPartStride];
+        for (const Vec4& starts : {record[gl::kSlotOvdfBases], record[gl::kSlotOvdfRecords]})
+            for (int k = 0; k < 3; ++k) CHECK(size_t(starts[k]) % gl::kBlockAlign == 0);
+        for (int k = 0; k < 2; ++k) CHECK(size_t(record[gl::kSlotSvdf][k]) % gl::kBlockAlign == 0);
+    }
+}
+
+TEST_CASE("Block starts stay exact in float texels past 2^24 texels", "[gl-layout]") {
+    // The robot's 32-shell OVDF tables are 18.9 M texels: a block starting
+    // beyond 2^24 at any texel could not be read back exactly from its float
+    // record, so the layout refused the scene (and `rsl view` the robot).
+    // Random sizes up to 2^30 texels (16 GB of RGBA32F, past any texture a
+    // driver allows).
+    std::mt19937_64 rng(24);
+    for (int trial = 0; trial < 10000; ++trial) {
+        const size_t size = (size_t(1) << 24) + rng() % ((size_t(1) << 30) - (size_t(1) << 24) - gl::kBlockAlign);
+        const size_t start = gl::block_start(size);
+        CHECK(start >= size);
+        CHECK(start < size + gl::kBlockAlign);
+        CHECK(size_t(float(start)) == start);
+        CHECK(size_t(int(float(start))) == start);  // the shader's int(bases.x)
+    }
 }
 
 // An anisotropic material and small tables for the BRDF packing tests.
