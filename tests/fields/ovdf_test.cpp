@@ -49,6 +49,27 @@ double cap_reference(const Frame& frame, float d, const Vec2& p0, float h) {
     return double(visible) / (m * m);
 }
 
+// A receiver looking at the unit sphere: at distance d (d_min + d_span·u)
+// in a random direction, its frame's pole towards the centre with a random
+// twist, and ρ, the plane radius of the sphere's cap in that frame (the cap
+// is the disk |p| < ρ, so its VDT distance is |p| − ρ exactly). The
+// distributions are the caller's, so that its random sequence goes on.
+struct CapView {
+    float d = 0, rho = 0;
+    Vec3 point{0};
+    Frame frame;
+};
+CapView random_cap_view(std::mt19937& rng, std::normal_distribution<float>& g,
+                        std::uniform_real_distribution<float>& u, float d_min, float d_span) {
+    CapView v;
+    const Vec3 dir = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+    v.d = d_min + d_span * u(rng);
+    v.point = v.d * dir;
+    v.frame = Frame::from_normal_tangent(-dir, Vec3(g(rng), g(rng), g(rng)));
+    v.rho = std::sqrt(2.0f) * std::sin(0.5f * std::asin(1.0f / v.d));
+    return v;
+}
+
 }  // namespace
 
 struct Stats {
@@ -81,13 +102,10 @@ TEST_CASE("OVDF of a sphere matches the analytic spherical cap", "[ovdf]") {
     std::vector<double> errors[3][2], distance_errors[3];
     int partial = 0;
     for (int k = 0; k < 3000; ++k) {
-        const Vec3 dir = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
-        const float d = 1.25f + 4.5f * u(rng);
-        const Vec3 point = d * dir;
-        // Receiver frame: pole towards the sphere, arbitrary twist. The cap is
-        // the disk |p| < ρ of its plane, so D(p) = |p| − ρ exactly.
-        const Frame frame = Frame::from_normal_tangent(-dir, Vec3(g(rng), g(rng), g(rng)));
-        const float rho = std::sqrt(2.0f) * std::sin(0.5f * std::asin(1.0f / d));
+        const CapView view = random_cap_view(rng, g, u, 1.25f, 4.5f);
+        const float d = view.d, rho = view.rho;
+        const Vec3& point = view.point;
+        const Frame& frame = view.frame;
         const float h = (0.1f + 0.4f * u(rng)) * rho;  // squares smaller than the cap
         const float angle = 2 * kPi * u(rng), r = (rho + h) * 1.2f * u(rng);
         const Vec2 p0 = r * Vec2(std::cos(angle), std::sin(angle));
@@ -163,11 +181,10 @@ TEST_CASE("OVDF squares much larger than the silhouette: the area bound against 
     std::uniform_real_distribution<float> u(0, 1);
     std::vector<double> bounded, straight, silhouette;
     for (int k = 0; k < 2000; ++k) {
-        const Vec3 dir = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
-        const float d = 2.0f + 4.0f * u(rng);
-        const Vec3 point = d * dir;
-        const Frame frame = Frame::from_normal_tangent(-dir, Vec3(g(rng), g(rng), g(rng)));
-        const float rho = std::sqrt(2.0f) * std::sin(0.5f * std::asin(1.0f / d));
+        const CapView view = random_cap_view(rng, g, u, 2.0f, 4.0f);
+        const float d = view.d, rho = view.rho;
+        const Vec3& point = view.point;
+        const Frame& frame = view.frame;
         const float h = std::min(0.5f, (1.5f + 2.5f * u(rng)) * rho);  // squares larger than the cap
         const float angle = 2 * kPi * u(rng), r = (rho + h) * u(rng);
         const Vec2 p0 = r * Vec2(std::cos(angle), std::sin(angle));
