@@ -56,6 +56,10 @@ struct BlockSpread {
 // Per-thread scratch of one block (about 40 KB plus the occluder pool, never
 // on the heap once warm).
 struct Renderer::BlockScratch {
+    // The part's vertex at each point (shade_block; the renderer's block order).
+    int vertex[kShadeBlock];
+    // Per point, parts with highlights per pixel: its rim view floor (brdf_queries).
+    alignas(64) float view_floor[kShadeBlock];
     // World positions and shading frames (x = tangent, y = bitangent, z = normal).
     alignas(64) float px[kShadeBlock], py[kShadeBlock], pz[kShadeBlock];
     alignas(64) float xx[kShadeBlock], xy[kShadeBlock], xz[kShadeBlock];
@@ -71,6 +75,7 @@ struct Renderer::BlockScratch {
     alignas(64) float lpx[kShadeBlock], lpy[kShadeBlock], lz[kShadeBlock];
     // Compacted queries.
     int index[kShadeBlock];
+    int query_vertex[kShadeBlock];  // the vertex of each query (shade_block)
     alignas(64) float qx[kShadeBlock], qy[kShadeBlock], tx[kShadeBlock], ty[kShadeBlock], qh[kShadeBlock];
     alignas(64) float qvx[kShadeBlock], qvy[kShadeBlock], qvz[kShadeBlock];
     alignas(64) float br[kShadeBlock], bg[kShadeBlock], bb[kShadeBlock], vis[kShadeBlock];

@@ -12,6 +12,7 @@
 #include "src/render/ovdf_occluder.h"
 #include "src/core/sphere_light.h"
 #include "src/render/block_scratch.h"
+#include "src/render/vertex_blocks.h"
 
 namespace rsl {
 
@@ -60,6 +61,7 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
         if (part.mesh.normals.size() != n)
             throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
                              part.mesh.normals.size(), n);
+        block_order_.push_back(spatial_block_order(part.mesh.positions, kShadeBlock));
         for (size_t begin = 0; begin < n; begin += kShadeBlock)
             blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kShadeBlock))});
         local_bounds_.push_back(part.mesh.bounding_sphere());

@@ -89,7 +89,7 @@ public:
 private:
     struct Block {
         int part;
-        int begin, end;  // vertex range
+        int begin, end;  // a range of the part's block_order_ (its vertices in compact blocks)
     };
     struct BlockScratch;  // shade_block.cpp
     void update_frame();
@@ -137,6 +137,10 @@ private:
     std::vector<int> synced_material_;
     std::vector<uint64_t> synced_revision_;
     std::vector<Block> blocks_;
+    // Per part: its vertices in the order they are shaded, runs of
+    // kShadeBlock compact in space (vertex_blocks.h), so that culling per
+    // block has a small sphere to test.
+    std::vector<std::vector<int>> block_order_;
     std::vector<BoundingSphere> local_bounds_;       // per part, in its own frame
     std::vector<Bounds> local_boxes_;                // per part, in its own frame (the slab rule, square_lights.h)
     std::vector<OccluderShape> shapes_;              // per part: its exact shape, if any (occluder_shape.h)

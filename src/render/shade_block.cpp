@@ -403,6 +403,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     RSL_CHECK(!specular || specular->isotropic() == isotropic);
     const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
     const int n = block.end - block.begin;
+    const int* const order = block_order_[size_t(part_index)].data() + block.begin;
     const bool has_tangents = !mesh.tangents.empty();
     const bool vertex_culling = options_.occluder_culling;
     if (s.occluders.size() != scene_.parts.size()) s.occluders.assign(scene_.parts.size(), {});  // first block only
@@ -411,7 +412,8 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
 
     // World position, shading frame (as PosedScene::vertex) and local view.
     for (int k = 0; k < n; ++k) {
-        const int v = block.begin + k;
+        const int v = order[k];
+        s.vertex[k] = v;
         const Vec3 normal = glm::normalize(pose.normal * mesh.normals[v]);
         const Vec3 tangent = has_tangents ? pose.linear * Vec3(mesh.tangents[v]) : Vec3(0);
         set_point(s, k, Vec3(pose.transform * Vec4(mesh.positions[v], 1.0f)), Frame::from_normal_tangent(normal, tangent));
@@ -446,21 +448,27 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const bool keep_unshadowed = pixel && !pixel->unshadowed.empty();
     const bool keep_specular = keep_unshadowed && specular;
     const bool keep_self = pixel && !pixel->self_visibility.empty();
-    const float* rim_floor = keep_self ? rim_view_floor_[size_t(part_index)].data() + block.begin : nullptr;
-    if (pixel) {
-        const size_t first = size_t(block.begin) * lights, last = size_t(block.end) * lights;
-        std::fill(pixel->occlusion.begin() + first, pixel->occlusion.begin() + last, 1.0f);
-        if (keep_unshadowed) std::fill(pixel->unshadowed.begin() + first, pixel->unshadowed.begin() + last, Color(0));
-        if (keep_specular)
-            std::fill(pixel->unshadowed_specular.begin() + first, pixel->unshadowed_specular.begin() + last, Color(0));
-        if (keep_self) std::fill(pixel->self_visibility.begin() + first, pixel->self_visibility.begin() + last, 0.0f);
+    const float* rim_floor = nullptr;
+    if (keep_self) {
+        for (int k = 0; k < n; ++k) s.view_floor[k] = rim_view_floor_[size_t(part_index)][size_t(s.vertex[k])];
+        rim_floor = s.view_floor;
     }
+    if (pixel)
+        for (int k = 0; k < n; ++k) {
+            const size_t first = size_t(s.vertex[k]) * lights, last = first + lights;
+            std::fill(pixel->occlusion.begin() + first, pixel->occlusion.begin() + last, 1.0f);
+            if (keep_unshadowed) std::fill(pixel->unshadowed.begin() + first, pixel->unshadowed.begin() + last, Color(0));
+            if (keep_specular)
+                std::fill(pixel->unshadowed_specular.begin() + first, pixel->unshadowed_specular.begin() + last, Color(0));
+            if (keep_self) std::fill(pixel->self_visibility.begin() + first, pixel->self_visibility.begin() + last, 0.0f);
+        }
     for (size_t l = 0; l < lights; ++l) {
         if (l < environment ? !options_.environment : !options_.local_lights) continue;
         set_light(s, l, n);
         const int m = brdf_queries(s, table, specular, n, rim_floor);
         if (m == 0) continue;
         counts.lookups += size_t(m);
+        for (int i = 0; i < m; ++i) s.query_vertex[i] = s.vertex[s.index[i]];
         if (rim_floor)  // the rim's queries kept for the pixels are not the frame's lookups
             for (int i = 0; i < m; ++i) counts.lookups -= s.skip[i] ? 1 : 0;
 
@@ -475,10 +483,10 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         const bool exact_others = exact_mode == ExactVisibilityMode::Others || exact_mode == ExactVisibilityMode::OthersProduct;
         if (exact && !exact_others) {
             for (int i = 0; i < m; ++i) s.skip[i] = adds_nothing(i);
-            exact->visible_fraction_batch(part_index, block.begin, s.index, s.qx, s.qy, s.qh, s.skip, m, s.vis,
+            exact->visible_fraction_batch(part_index, 0, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.vis,
                                           &counts.shadow_rays);
         } else if (svdf) {
-            svdf->visible_fraction_batch(block.begin, s.index, s.qx, s.qy, s.qh, m, s.vis);
+            svdf->visible_fraction_batch(0, s.query_vertex, s.qx, s.qy, s.qh, m, s.vis);
         } else {
             for (int i = 0; i < m; ++i) s.vis[i] = 1.0f;
         }
@@ -489,7 +497,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
                 if (adds_nothing(i)) s.vis[i] = 0.0f;
         if (exact && exact_others) {
             for (int i = 0; i < m; ++i) s.skip[i] = !(s.vis[i] > 0.0f);
-            exact->visible_fraction_batch(part_index, block.begin, s.index, s.qx, s.qy, s.qh, s.skip, m, s.exact,
+            exact->visible_fraction_batch(part_index, 0, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.exact,
                                           &counts.shadow_rays);
             for (int i = 0; i < m; ++i) s.vis[i] *= s.exact[i];
         }
@@ -501,7 +509,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
         if (pixel) {  // the others' shadows' factor, and the light's share or the SVDF's without it
             for (int i = 0; i < m; ++i) {
                 const int k = s.index[i];
-                const size_t at = size_t(block.begin + k) * lights + l;
+                const size_t at = size_t(s.vertex[k]) * lights + l;
                 const float before = s.unshadowed_vis[i];
                 pixel->occlusion[at] = before > 0.0f ? s.vis[i] / before : 1.0f;
                 if (keep_unshadowed)
@@ -520,10 +528,10 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     }
 
     std::vector<Color>& colors = out.parts[part_index];
-    for (int k = 0; k < n; ++k) colors[block.begin + k] = Color(s.r[k], s.g[k], s.b[k]);
+    for (int k = 0; k < n; ++k) colors[size_t(s.vertex[k])] = Color(s.r[k], s.g[k], s.b[k]);
     if (specular) {
         std::vector<Color>& layer = out.specular[part_index];
-        for (int k = 0; k < n; ++k) layer[block.begin + k] = Color(s.sr[k], s.sg[k], s.sb[k]);
+        for (int k = 0; k < n; ++k) layer[size_t(s.vertex[k])] = Color(s.sr[k], s.sg[k], s.sb[k]);
     }
     counts.vertices += size_t(n);
 }
