@@ -82,9 +82,18 @@ float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_ed
     if (d >= shell_radii_.back()) return 1.0f;  // no shadow beyond the outer shell
     const OvdfLocation at = locate(point, d);
     if (d < radius && receiver_inside(point, d, at)) return 0.0f;
-    // Outside the part: the straight-edge rule, bounded by the silhouette's area.
+    const float area = occluded_area_at(at);
+    // A part whose bounding cone is narrower than the square: the small-occluder rule.
+    const float cone = ovdf_zoom(d, radius).cone;
+    const float w = shading::ovdf_small_occluder_weight(cone, half_edge, area);
+    const float small =
+        w > 0.0f ? shading::ovdf_small_occluder_fraction(glm::length(lookup_plane_point(at.aligned.to_local(light))), area,
+                                                        cone, half_edge)
+                 : 1.0f;
+    if (w >= 1.0f) return small;
+    // Else the straight-edge rule, bounded by the silhouette's area.
     const float fraction = visible_fraction_from_distance(located_distance(at, d, light, blend), half_edge);
-    return shading::ovdf_area_bound(fraction, occluded_area_at(at), half_edge);
+    return shading::ovdf_fade_small_occluder(shading::ovdf_area_bound(fraction, area, half_edge), small, w);
 }
 
 OvdfLocation Ovdf::locate(const Vec3& point, float d) const {

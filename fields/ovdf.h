@@ -157,7 +157,10 @@ public:
     // Visible fraction, as far as this part occludes, of the square of half-edge
     // `half_edge` around light direction `light` (unit, occluder frame) seen from
     // `point` (occluder frame). 1 beyond the outer shell; clamped to the inner
-    // shell inside it.
+    // shell inside it. Squares wider than the part's bounding cone take the
+    // small-occluder rule, the others the straight-edge rule on distance()
+    // bounded by the occluded area, faded between
+    // (shading::ovdf_small_occluder_weight).
     float visible_fraction(const Vec3& point, const Vec3& light, float half_edge,
                            OvdfBlend blend = OvdfBlend::AlignedCoefficients) const;
 

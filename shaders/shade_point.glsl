@@ -216,7 +216,11 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     // The receiver's own pole frame, twisted by the face rule like its
     // samples: one plane point for all eight samples.
     vec2 lp = lookup_plane_point(to_local(frame_rows(-dir, u_face_s[face.face]), light));
+    // A part narrower than the square: the small-occluder rule, no tables.
+    float small_weight = ovdf_small_occluder_weight(cone, h, occluded_area);
     float radial = length(lp);
+    float small = small_weight > 0.0f ? ovdf_small_occluder_fraction(radial, occluded_area, cone, h) : 1.0f;
+    if (small_weight >= 1.0f) return small;
     float distance = 0.0f;
     for (int k = 0; k < 2; ++k) {
         int shell = s0 + k;
@@ -255,8 +259,9 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
         }
         distance += ovdf_weighted_plane_distance(ws * value, ws, zoom, radial);
     }
-    return ovdf_area_bound(visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, cone), h),
-                           occluded_area, h);
+    float by_tables = ovdf_area_bound(visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, cone), h),
+                                      occluded_area, h);
+    return ovdf_fade_small_occluder(by_tables, small, small_weight);
 }
 
 // The exact shadow of a part that is a rectangle or a box

@@ -32,10 +32,11 @@ struct OccluderVertexScratch {
     // Which side of the part's bounding box the vertex lies on along each
     // axis of the part's frame (box_sides, the slab rule).
     alignas(64) float side_x[kShadeBlock], side_y[kShadeBlock], side_z[kShadeBlock];
-    bool prepared[kShadeBlock];
-    // The light-independent half of the OVDF lookup, prepared on first need,
-    // and the terms the prepared points use (their own, so that a pool that
-    // grows never moves them).
+    bool located[kShadeBlock];
+    // The light-independent half of the OVDF lookup, located on first need
+    // and completed with its terms when a light needs the tables, and the
+    // terms the points use (their own, so that a pool that grows never moves
+    // them).
     OvdfPoint points[kShadeBlock];
     OvdfTerm terms[kShadeBlock * OvdfPoint::kMaxTerms];
     int terms_used = 0;

@@ -12,32 +12,31 @@ OvdfLookup::OvdfLookup(const Ovdf& field)
       vdt_resolution_(field.params.vdt_resolution),
       outer_(field.shell_radius(field.params.shells - 1)) {}
 
-int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) const {
+void OvdfLookup::locate(const Vec3& point, OvdfPoint& out) const {
     const Ovdf& f = *field_;
     const float d = glm::length(point - f.center);
     out.occluded_area = shading::kOvdfNoAreaBound;
     if (d >= outer_) {
         out.kind = OvdfPoint::Outside;
-        return 0;
+        return;
     }
     out.cone = ovdf_zoom(d, f.radius).cone;
     // The same sample location as the field's own lookup.
-    const OvdfLocation at = f.locate(point, d);
+    const OvdfLocation& at = out.at = f.locate(point, d);
     out.x = at.aligned.x, out.y = at.aligned.y, out.z = at.aligned.z;
     if (d < f.radius && f.receiver_inside(point, d, at)) {
         out.kind = OvdfPoint::Inside;
-        return 0;
+        return;
     }
+    out.occluded_area = f.occluded_area_at(at);
+    out.kind = usable() ? OvdfPoint::Located : OvdfPoint::Slow;
+}
+
+int OvdfLookup::complete(OvdfPoint& out, OvdfTerm* terms) const {
+    if (out.kind != OvdfPoint::Located) return 0;
+    const Ovdf& f = *field_;
+    const OvdfLocation& at = out.at;
     out.terms = terms;
-    if (!usable()) {
-        out.occluded_area = f.occluded_area_at(at);
-        out.kind = OvdfPoint::Slow;
-        return 0;
-    }
-    // The samples' occluded areas blend as Ovdf::occluded_area_at does, read
-    // with their coefficients below.
-    const float* area = f.occluded_area.empty() ? nullptr : f.occluded_area.data();
-    float blended_area = 0.0f;
     int used = 0;
     for (int k = 0; k < 2; ++k) {
         const int shell = at.s0 + k;
@@ -54,13 +53,7 @@ int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) cons
             term.row_offset = int(size_t(segment) * dims_ * (vectors_ + 1));
             term.mean_weight = ws;
             const float* c[4];
-            float shell_area = 0.0f;
-            for (int q = 0; q < 4; ++q) {
-                const int sample = f.sample_index(shell, at.face, at.ii[q], at.jj[q]);
-                c[q] = f.model.coefficients_of(sample);
-                if (area) shell_area += at.w[q] * area[sample];
-            }
-            blended_area += ws * shell_area;
+            for (int q = 0; q < 4; ++q) c[q] = f.model.coefficients_of(f.sample_index(shell, at.face, at.ii[q], at.jj[q]));
             const float w0 = ws * at.w[0], w1 = ws * at.w[1], w2 = ws * at.w[2], w3 = ws * at.w[3];
             for (int m = 0; m < vectors_; ++m)
                 term.coefficients[m] = w0 * c[0][m] + w1 * c[1][m] + w2 * c[2][m] + w3 * c[3][m];
@@ -68,9 +61,7 @@ int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) cons
             continue;
         }
         // On a seam: one term per PCA segment among the four samples.
-        float shell_area = 0.0f;
         for (int q = 0; q < 4; ++q) {
-            if (area) shell_area += at.w[q] * area[f.sample_index(shell, at.face, at.ii[q], at.jj[q])];
             if (at.w[q] == 0.0f) continue;
             const int segment = f.segment_of(shell, at.face, at.ii[q], at.jj[q]);
             const int row_offset = int(size_t(segment) * dims_ * (vectors_ + 1));
@@ -86,14 +77,12 @@ int OvdfLookup::prepare(const Vec3& point, OvdfPoint& out, OvdfTerm* terms) cons
             term->mean_weight += at.w[q];
             for (int m = 0; m < vectors_; ++m) term->coefficients[m] += at.w[q] * sample[m];
         }
-        blended_area += ws * shell_area;
         for (int t = first; t < used; ++t) {
             terms[t].mean_weight *= ws;
             for (int m = 0; m < vectors_; ++m) terms[t].coefficients[m] *= ws;
         }
         out.term_count[k] = used - first;
     }
-    out.occluded_area = area ? blended_area : shading::kOvdfNoAreaBound;
     out.kind = OvdfPoint::Prepared;
     return used;
 }

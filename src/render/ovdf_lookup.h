@@ -12,7 +12,12 @@
 // Most (vertex, occluder, light) lookups never need the blend: the part lies
 // in its bounding cone seen from the vertex, and unshadowed() decides from
 // that cone alone that a light's square lies beyond it (the lookup's last
-// bound), so a renderer prepares a point only when some light needs it.
+// bound), so a renderer prepares a point only when some light needs it. Of
+// the rest, the lights whose square is wider than the cone take the
+// small-occluder rule (shading::ovdf_small_occluder_weight), which needs the point's
+// location and blended occluded area but no coefficients: a renderer locates
+// a point first and completes it with its terms only when a narrower light
+// needs the tables.
 //
 // It mirrors fields/ovdf.cpp (same formulas, same order of blending) and is
 // pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp.
@@ -35,9 +40,10 @@ struct OvdfTerm {
 struct OvdfPoint {
     static constexpr int kMaxTerms = 8;  // two shells × four samples in four segments at most
     // Outside: beyond the outer shell (distance "no boundary"); Inside: within
-    // the part (fully shadowed); Prepared: terms are ready; Slow: the field's
-    // own lookup.
-    enum Kind : int { Outside = 0, Inside = 1, Prepared = 2, Slow = 3 };
+    // the part (fully shadowed); Located: frame, cone and occluded area are
+    // ready (the small-occluder rule), the terms not yet (complete());
+    // Prepared: terms are ready; Slow: the field's own lookup.
+    enum Kind : int { Outside = 0, Inside = 1, Prepared = 2, Slow = 3, Located = 4 };
     int kind = Outside;
     Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};  // the aligned pole frame (z: towards the part's center)
     // Plane radius of the part's bounding cone seen from the point (kOvdfNoCone
@@ -48,8 +54,9 @@ struct OvdfPoint {
     int term_count[2] = {0, 0};    // terms of each shell, shell 0's first
     const OvdfTerm* terms = nullptr;
     // The samples' blended occluded area (Ovdf::occluded_area_at) of a
-    // Prepared or Slow point; no bound otherwise (inside stays dark).
+    // Located, Prepared or Slow point; no bound otherwise (inside stays dark).
     float occluded_area = shading::kOvdfNoAreaBound;
+    OvdfLocation at;  // where the point lies among the samples (Located, Prepared)
 };
 
 class OvdfLookup {
@@ -63,7 +70,20 @@ public:
     // The point half of a lookup: Outside, or Prepared with its sample blend
     // written to `terms` (room for OvdfPoint::kMaxTerms, which must outlive
     // the point's lookups; Slow when !usable()). Returns the terms used.
-    int prepare(const Vec3& point, OvdfPoint& q, OvdfTerm* terms) const;
+    // locate() then complete() is the same in two steps.
+    int prepare(const Vec3& point, OvdfPoint& q, OvdfTerm* terms) const {
+        locate(point, q);
+        return complete(q, terms);
+    }
+    // The point's location: Outside, Inside, Slow, or Located (no terms yet).
+    void locate(const Vec3& point, OvdfPoint& q) const;
+    // A Located point's terms (prepare()'s); other kinds stay as they are.
+    int complete(OvdfPoint& q, OvdfTerm* terms) const;
+    // Whether a lookup of `q` for squares of half-edge h needs its terms:
+    // a Located point whose occluder is not small for h.
+    static bool needs_terms(const OvdfPoint& q, float h) {
+        return q.kind == OvdfPoint::Located && shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area) < 1.0f;
+    }
 
     // Whether the lookup certainly gives 1 for a light whose direction has
     // cosine `cos_to_center` with the pole and a square of half-edge h: the
@@ -76,13 +96,19 @@ public:
     // The visible fraction of the square of half-edge h around a unit light
     // direction: the distance's straight-edge rule, bounded by the
     // silhouette's area; equals field().visible_fraction up to rounding.
+    // `q` must not need its terms (needs_terms).
     float visible_fraction(const OvdfPoint& q, const Vec3& point, const Vec3& light, float h) const {
-        return shading::ovdf_area_bound(visible_fraction_from_distance(distance(q, point, light), h), q.occluded_area, h);
+        const float w = shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area);
+        const float small = w > 0.0f ? shading::ovdf_small_occluder_fraction(glm::length(plane_point(q, light)), q.occluded_area, q.cone, h) : 1.0f;
+        if (w >= 1.0f) return small;
+        const float tables =
+            shading::ovdf_area_bound(visible_fraction_from_distance(distance(q, point, light), h), q.occluded_area, h);
+        return shading::ovdf_fade_small_occluder(tables, small, w);
     }
 
     // Blended signed distance (plane units) for a unit light direction; equals
     // field().distance(point, light, AlignedCoefficients) up to rounding.
-    // `q` must be Outside, Prepared or Slow.
+    // `q` must be Outside, Inside, Prepared or Slow.
     float distance(const OvdfPoint& q, const Vec3& point, const Vec3& light) const {
         if (q.kind == OvdfPoint::Outside) return kVdtNoBoundaryDistance;
         if (q.kind == OvdfPoint::Inside) return -kVdtNoBoundaryDistance;
@@ -97,12 +123,15 @@ public:
     }
 
 private:
+    // The light's plane point in the point's aligned pole frame.
+    static Vec2 plane_point(const OvdfPoint& q, const Vec3& light) {
+        return lookup_plane_point(Vec3(glm::dot(light, q.x), glm::dot(light, q.y), glm::dot(light, q.z)));
+    }
     // distance() of a Prepared point; V = the PCA vector count (0: vectors_).
     template <int V>
     float prepared_distance(const OvdfPoint& q, const Vec3& light) const {
         const int vectors = V > 0 ? V : vectors_, stride = vectors + 1;
-        const Vec3 local(glm::dot(light, q.x), glm::dot(light, q.y), glm::dot(light, q.z));
-        const Vec2 p = lookup_plane_point(local);
+        const Vec2 p = plane_point(q, light);
         const float radial = std::sqrt(p.x * p.x + p.y * p.y);
         const int n = vdt_resolution_;
         float distance = 0;

@@ -56,7 +56,7 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
     OccluderVertexScratch& v = *s.pool[s.pool_used++];
     s.occluders[size_t(o)].vertices = &v;
     v.terms_used = 0;
-    for (int k = 0; k < n; ++k) v.prepared[k] = false;
+    for (int k = 0; k < n; ++k) v.located[k] = false;
     // In the occluder's frame, structure of arrays so that the loop
     // vectorizes: the box sides (the slab rule), and as OvdfLookup::prepare
     // the pole and the cone (ratios d/R are the same in the world).
@@ -175,13 +175,15 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
                                                         Vec2(s.qx[i], s.qy[i]), s.qh[i], shape.lo, shape.hi);
         } else if (fast) {
             OvdfPoint& q = v.points[k];
-            const bool needs_point = !v.prepared[k] || q.kind == OvdfPoint::Slow;
+            const bool needs_point = !v.located[k] || q.kind == OvdfPoint::Slow;
             const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
                                            : Vec3(0);
-            if (!v.prepared[k]) {
-                v.terms_used += fast->prepare(point, q, v.terms + v.terms_used);
-                v.prepared[k] = true;
+            if (!v.located[k]) {
+                fast->locate(point, q);
+                v.located[k] = true;
             }
+            // The terms only for a light narrower than the part's cone (small occluders need none).
+            if (OvdfLookup::needs_terms(q, s.qh[i])) v.terms_used += fast->complete(q, v.terms + v.terms_used);
             s.vis[i] *= fast->visible_fraction(q, point, dir, s.qh[i]);
         } else {
             const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));

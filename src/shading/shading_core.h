@@ -48,6 +48,7 @@ using glm::max;
 using glm::min;
 using glm::normalize;
 using std::abs;
+using std::acos;
 using std::log;
 using std::sin;
 using std::sqrt;
@@ -396,6 +397,67 @@ RSL_SHARED float ovdf_receiver_distance(float blended, float radial, float cone)
 RSL_CONST float kOvdfNoAreaBound = 3.0e38f;
 RSL_SHARED float ovdf_area_bound(float visible, float occluded_area, float h) {
     return max(visible, 1.0f - occluded_area / (4.0f * h * h));
+}
+// A small occluder: the part's bounding cone seen from the receiver (plane
+// radius `cone`) narrower than the light's square (cone < h). Its shadow is
+// then a blob inside or across the square, and no straight edge describes
+// it: where the blob sits across the square's edge the rule above shadows
+// up to half the square, and the area bound all of the blob's area, while
+// only the share of the blob inside the square is dark. The small-occluder
+// rule takes the blob for a disk of its area A centred on the pole (the
+// direction to the part's centre, the plane's origin) and the light for the
+// square's inscribed disk, and shadows their overlap's share of the square.
+// The inscribed disk, since every lookup (and the culling) takes a light
+// whose square lies beyond the cone, |p| ≥ h + cone, for unshadowed
+// (ovdf_unshadowed), and the blob (its radius clamped to the cone) must keep
+// within that reach; a disk of the square's area reached 13% of h further, and culling
+// changed the colours. Disks, since the
+// square's turn about the pole is not known there (the pole frame's tangent
+// follows the occluder's cube face, not the receiver's frame): a rule that
+// turned with the frame changed at the faces' seams, and the GPU, whose
+// face choice differs by rounding there, with it. It needs no table: the
+// renderers skip the blend of PCA coefficients and rows, which in a yard of
+// 128 parts was most of the other parts' shadows (86% of the lookups had
+// cone < h). Against the truth it is as accurate as the tables, or slightly
+// more (docs/RESULTS.md "Small occluders"); tests/fields/ovdf_test.cpp pins
+// it against exact caps and a traced bar.
+//
+// The rule's weight: 1 for cone ≤ h, 0 (the tables alone) from cone ≥ 1.25 h,
+// linear between, so that a part whose cone crosses a square's size as it
+// moves does not pop, and the two renderers, whose cones differ by float
+// rounding, do not take different rules at the edge.
+RSL_CONST float kOvdfSmallOccluderRatio = 1.0f;  // the rule alone below cone = ratio × h
+RSL_CONST float kOvdfSmallOccluderFade = 1.25f;  // the tables alone from cone = fade × h
+RSL_SHARED float ovdf_small_occluder_weight(float cone, float h, float occluded_area) {
+    // A field without areas has none to take (kOvdfNoAreaBound, or the GPU's
+    // blend of it, which rounds below it); a real area is at most 8.
+    if (!(occluded_area < 1.0e30f)) return 0.0f;
+    return clamp((kOvdfSmallOccluderFade * h - cone) / ((kOvdfSmallOccluderFade - kOvdfSmallOccluderRatio) * h), 0.0f,
+                 1.0f);
+}
+// The area shared by two disks of radii a and b whose centres lie `distance` apart.
+RSL_SHARED float disk_overlap_area(float distance, float a, float b) {
+    if (distance >= a + b) return 0.0f;
+    float smaller = min(a, b);
+    if (distance <= abs(a - b)) return kPi * smaller * smaller;
+    float d2 = distance * distance;
+    float alpha = acos(clamp((d2 + a * a - b * b) / (2.0f * distance * a), -1.0f, 1.0f));
+    float beta = acos(clamp((d2 + b * b - a * a) / (2.0f * distance * b), -1.0f, 1.0f));
+    float kite = (-distance + a + b) * (distance + a - b) * (distance - a + b) * (distance + a + b);
+    return min(a * a * alpha + b * b * beta - 0.5f * sqrt(max(kite, 0.0f)), kPi * smaller * smaller);
+}
+// The visible share of the square of half-edge h whose centre lies at plane
+// radius `radial` from the pole, that a small occluder of plane area A leaves.
+// The blob's disk stays within the cone: A blends samples of two shells,
+// and the nearer shell's, seen from closer, is the larger.
+RSL_SHARED float ovdf_small_occluder_fraction(float radial, float occluded_area, float cone, float h) {
+    float blob = min(sqrt(max(occluded_area, 0.0f) / kPi), cone);  // the disk of area A
+    return 1.0f - disk_overlap_area(radial, h, blob) / (4.0f * h * h);
+}
+// The lookup's visible fraction from the tables' (straight edge, area bound)
+// and the small-occluder rule's, by the rule's weight w.
+RSL_SHARED float ovdf_fade_small_occluder(float tables, float small, float w) {
+    return w <= 0.0f ? tables : w >= 1.0f ? small : w * small + (1.0f - w) * tables;
 }
 // A receiver within the OVDF part's bounding sphere is inside the part (a
 // neighbour's vertex sunk into it at a joint, fully shadowed) where its

@@ -1,8 +1,10 @@
 // The renderer's split OVDF lookup (src/render/ovdf_lookup.h) against the
 // field's own lookup, Ovdf::distance with aligned-coefficient blending, at
 // random receiver points (inside the inner shell, between shells, on cube-face
-// and PCA-segment seams, beyond the outer shell) and random lights; and its
-// cheap cone test against the full lookup.
+// and PCA-segment seams, beyond the outer shell) and random lights; its
+// cheap cone test against the full lookup; and the renderer's lazy form
+// (locate, then complete only for lights that need the tables: the
+// small-occluder rule needs none) against the field's visible fraction.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -27,7 +29,7 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
     std::mt19937 rng{11};
     std::normal_distribution<float> normal;
     std::uniform_real_distribution<float> uniform(0, 1);
-    int fast = 0, seam = 0, outside = 0, shadowed = 0, unshadowed = 0, bounded = 0;
+    int fast = 0, seam = 0, outside = 0, shadowed = 0, unshadowed = 0, bounded = 0, small = 0, completed = 0;
     for (int trial = 0; trial < 4000; ++trial) {
         const Vec3 dir = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
         const float distance = field.radius * params.outer_radius * 1.2f * uniform(rng);
@@ -42,6 +44,10 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
             (q.term_count[0] > 1 || q.term_count[1] > 1 ? seam : fast)++;
         }
         outside += q.kind == OvdfPoint::Outside;
+        OvdfPoint lazy;  // as the renderer: located first, terms on a light's need
+        OvdfTerm lazy_terms[OvdfPoint::kMaxTerms];
+        lookup.locate(point, lazy);
+        REQUIRE((lazy.kind == OvdfPoint::Located) == (q.kind == OvdfPoint::Prepared));
         for (int l = 0; l < 4; ++l) {
             // Lights biased towards the occluder so that many lookups see it.
             const Vec3 light = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)) - 1.5f * dir);
@@ -53,6 +59,14 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
             const float h = 0.3f * uniform(rng);
             const float field_fraction = field.visible_fraction(point, light, h);
             REQUIRE(lookup.visible_fraction(q, point, light, h) == Approx(field_fraction).margin(1e-4f));
+            const bool needs = OvdfLookup::needs_terms(lazy, h);
+            if (needs) {
+                REQUIRE(lookup.complete(lazy, lazy_terms) == used);
+                ++completed;
+            }
+            REQUIRE(!OvdfLookup::needs_terms(lazy, h));
+            REQUIRE(lookup.visible_fraction(lazy, point, light, h) == Approx(field_fraction).margin(1e-4f));
+            small += q.kind == OvdfPoint::Prepared && shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area) > 0.0f;
             bounded += field_fraction > visible_fraction_from_distance(expected, h) + 1e-3f;
             // The cheap cone test claims 1 only where the lookup gives it.
             if (q.kind != OvdfPoint::Outside && OvdfLookup::unshadowed(glm::dot(light, q.z), q.cone, h)) {
@@ -68,6 +82,8 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
     CHECK(shadowed > 500);
     CHECK(unshadowed > 1000);
     CHECK(bounded > 100);  // the area bound raised some fractions, alike in both
+    CHECK(small > 500);     // squares wider than the part's cone: the small-occluder rule, alike in both
+    CHECK(completed > 500);
 }
 
 }  // namespace
