@@ -14,10 +14,10 @@
 // that cone alone that a light's square lies beyond it (the lookup's last
 // bound), so a renderer prepares a point only when some light needs it. Of
 // the rest, the lights whose square is wider than the cone take the
-// small-occluder rule (shading::ovdf_small_occluder_weight), which needs the point's
-// location and blended occluded area but no coefficients: a renderer locates
-// a point first and completes it with its terms only when a narrower light
-// needs the tables.
+// small-occluder rule (shading::ovdf_small_occluder_weight), which needs the
+// point's location and blended occluded area but no coefficients: a
+// renderer locates a point first and completes it with its terms only when
+// a narrower light needs the tables.
 //
 // It mirrors fields/ovdf.cpp (same formulas, same order of blending) and is
 // pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp.
@@ -94,12 +94,15 @@ public:
     }
 
     // The visible fraction of the square of half-edge h around a unit light
-    // direction: the distance's straight-edge rule, bounded by the
-    // silhouette's area; equals field().visible_fraction up to rounding.
-    // `q` must not need its terms (needs_terms).
+    // direction: the small-occluder rule where the square is wider than the
+    // part's cone, the distance's straight-edge rule bounded by the
+    // silhouette's area where it is narrower, faded between; equals
+    // field().visible_fraction up to rounding. `q` must not need its terms
+    // (needs_terms).
     float visible_fraction(const OvdfPoint& q, const Vec3& point, const Vec3& light, float h) const {
         const float w = shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area);
-        const float small = w > 0.0f ? shading::ovdf_small_occluder_fraction(glm::length(plane_point(q, light)), q.occluded_area, q.cone, h) : 1.0f;
+        const float radial = w > 0.0f ? glm::length(plane_point(q, light)) : 0.0f;
+        const float small = w > 0.0f ? shading::ovdf_small_occluder_fraction(radial, q.occluded_area, q.cone, h) : 1.0f;
         if (w >= 1.0f) return small;
         const float tables =
             shading::ovdf_area_bound(visible_fraction_from_distance(distance(q, point, light), h), q.occluded_area, h);

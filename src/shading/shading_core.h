@@ -410,15 +410,14 @@ RSL_SHARED float ovdf_area_bound(float visible, float occluded_area, float h) {
 // The inscribed disk, since every lookup (and the culling) takes a light
 // whose square lies beyond the cone, |p| ≥ h + cone, for unshadowed
 // (ovdf_unshadowed), and the blob (its radius clamped to the cone) must keep
-// within that reach; a disk of the square's area reached 13% of h further, and culling
-// changed the colours. Disks, since the
-// square's turn about the pole is not known there (the pole frame's tangent
-// follows the occluder's cube face, not the receiver's frame): a rule that
-// turned with the frame changed at the faces' seams, and the GPU, whose
-// face choice differs by rounding there, with it. It needs no table: the
-// renderers skip the blend of PCA coefficients and rows, which in a yard of
-// 128 parts was most of the other parts' shadows (86% of the lookups had
-// cone < h). Against the truth it is as accurate as the tables, or slightly
+// within that reach; a disk of the square's area reached 13% of h further,
+// and culling changed the colours. Disks, since the square's turn about the
+// pole is not known there (the pole frame's tangent follows the occluder's
+// cube face, not the receiver's frame): a rule that turned with the frame
+// changed at the faces' seams, and the GPU, whose face choice differs by
+// rounding there, with it. It needs no table: the renderers skip the blend
+// of PCA coefficients and rows, which in a yard of 128 parts was most of the
+// other parts' shadows (86% of the lookups had cone < h). Against the truth it is as accurate as the tables, or slightly
 // more (docs/RESULTS.md "Small occluders"); tests/fields/ovdf_test.cpp pins
 // it against exact caps and a traced bar.
 //
