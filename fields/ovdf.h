@@ -169,7 +169,9 @@ public:
 
     // The samples around `point` (occluder frame) at distance d = |point −
     // center|; callers handle d beyond the outer shell first.
-    OvdfLocation locate(const Vec3& point, float d) const;
+    // Without `with_frame`, `aligned` is left as constructed (the
+    // small-occluder rule needs only the samples' blended area).
+    OvdfLocation locate(const Vec3& point, float d, bool with_frame = true) const;
     // The blended surface distance at a location: where it is negative within
     // the bounding sphere, the point is inside the part and every lookup is
     // fully shadowed.

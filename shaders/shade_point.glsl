@@ -213,14 +213,18 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
         occluded_area += ws * value.y;
     }
     if (d < center.w && span_inside < 0 && ovdf_inside_part(center.w, surface)) return 0.0f;
+    // A part narrower than the square: the small-occluder rule, which needs
+    // neither the pole frame nor the tables (the light's radius from the pole
+    // as the CPU's OvdfLookup takes it).
+    float small_weight = ovdf_small_occluder_weight(cone, h, occluded_area);
+    float small = small_weight > 0.0f
+                      ? ovdf_small_occluder_fraction(ovdf_pole_radial(dot(light, normalize(-dir))), occluded_area, cone, h)
+                      : 1.0f;
+    if (small_weight >= 1.0f) return small;
     // The receiver's own pole frame, twisted by the face rule like its
     // samples: one plane point for all eight samples.
     vec2 lp = lookup_plane_point(to_local(frame_rows(-dir, u_face_s[face.face]), light));
-    // A part narrower than the square: the small-occluder rule, no tables.
-    float small_weight = ovdf_small_occluder_weight(cone, h, occluded_area);
     float radial = length(lp);
-    float small = small_weight > 0.0f ? ovdf_small_occluder_fraction(radial, occluded_area, cone, h) : 1.0f;
-    if (small_weight >= 1.0f) return small;
     float distance = 0.0f;
     for (int k = 0; k < 2; ++k) {
         int shell = s0 + k;

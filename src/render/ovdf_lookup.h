@@ -40,23 +40,26 @@ struct OvdfTerm {
 struct OvdfPoint {
     static constexpr int kMaxTerms = 8;  // two shells × four samples in four segments at most
     // Outside: beyond the outer shell (distance "no boundary"); Inside: within
-    // the part (fully shadowed); Located: frame, cone and occluded area are
-    // ready (the small-occluder rule), the terms not yet (complete());
-    // Prepared: terms are ready; Slow: the field's own lookup.
-    enum Kind : int { Outside = 0, Inside = 1, Prepared = 2, Slow = 3, Located = 4 };
+    // the part (fully shadowed); Near: cone, occluded area and pole are
+    // ready, which is all the small-occluder rule needs (locate_near);
+    // Located: the samples' location and the pole frame too, the terms not
+    // yet (complete()); Prepared: terms are ready; Slow: the field's own lookup.
+    enum Kind : int { Outside = 0, Inside = 1, Prepared = 2, Slow = 3, Located = 4, Near = 5 };
+    // What every kind sets first, in the point's first cache line: a point
+    // that only the small-occluder rule reads writes nothing else.
     int kind = Outside;
-    Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};  // the aligned pole frame (z: towards the part's center)
     // Plane radius of the part's bounding cone seen from the point (kOvdfNoCone
     // inside the bounding sphere): lights with |p| − cone ≥ h are unshadowed.
     float cone = kOvdfNoCone;
+    // The samples' blended occluded area (Ovdf::occluded_area_at) of a Near,
+    // Located, Prepared or Slow point; no bound otherwise (inside stays dark).
+    float occluded_area = shading::kOvdfNoAreaBound;
+    Vec3 pole{0, 0, 1};  // unit direction from the point to the part's center (the pole frame's z)
+    OvdfLocation at;  // where the point lies among the samples, and its pole frame (Located, Prepared)
     float shell_weight[2] = {0, 0};
     OvdfZoom zoom[2];              // per bracketing shell: its table zoom and cone
     int term_count[2] = {0, 0};    // terms of each shell, shell 0's first
     const OvdfTerm* terms = nullptr;
-    // The samples' blended occluded area (Ovdf::occluded_area_at) of a
-    // Located, Prepared or Slow point; no bound otherwise (inside stays dark).
-    float occluded_area = shading::kOvdfNoAreaBound;
-    OvdfLocation at;  // where the point lies among the samples (Located, Prepared)
 };
 
 class OvdfLookup {
@@ -77,6 +80,14 @@ public:
     }
     // The point's location: Outside, Inside, Slow, or Located (no terms yet).
     void locate(const Vec3& point, OvdfPoint& q) const;
+    // The same, but Near in place of Located outside the bounding sphere:
+    // the samples' area without the pole frame, for the small-occluder rule.
+    void locate_near(const Vec3& point, OvdfPoint& q) const;
+    // Whether a lookup of a Near point for squares of half-edge h needs the
+    // full location (locate()): the part is not small for h.
+    static bool needs_location(const OvdfPoint& q, float h) {
+        return q.kind == OvdfPoint::Near && shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area) < 1.0f;
+    }
     // A Located point's terms (prepare()'s); other kinds stay as they are.
     int complete(OvdfPoint& q, OvdfTerm* terms) const;
     // Whether a lookup of `q` for squares of half-edge h needs its terms:
@@ -101,7 +112,7 @@ public:
     // (needs_terms).
     float visible_fraction(const OvdfPoint& q, const Vec3& point, const Vec3& light, float h) const {
         const float w = shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area);
-        const float radial = w > 0.0f ? glm::length(plane_point(q, light)) : 0.0f;
+        const float radial = w > 0.0f ? shading::ovdf_pole_radial(glm::dot(light, q.pole)) : 0.0f;
         const float small = w > 0.0f ? shading::ovdf_small_occluder_fraction(radial, q.occluded_area, q.cone, h) : 1.0f;
         if (w >= 1.0f) return small;
         const float tables =
@@ -128,7 +139,8 @@ public:
 private:
     // The light's plane point in the point's aligned pole frame.
     static Vec2 plane_point(const OvdfPoint& q, const Vec3& light) {
-        return lookup_plane_point(Vec3(glm::dot(light, q.x), glm::dot(light, q.y), glm::dot(light, q.z)));
+        const Frame& f = q.at.aligned;
+        return lookup_plane_point(Vec3(glm::dot(light, f.x), glm::dot(light, f.y), glm::dot(light, f.z)));
     }
     // distance() of a Prepared point; V = the PCA vector count (0: vectors_).
     template <int V>

@@ -175,13 +175,16 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
                                                         Vec2(s.qx[i], s.qy[i]), s.qh[i], shape.lo, shape.hi);
         } else if (fast) {
             OvdfPoint& q = v.points[k];
-            const bool needs_point = !v.located[k] || q.kind == OvdfPoint::Slow;
+            const bool needs_point = !v.located[k] || q.kind == OvdfPoint::Slow || OvdfLookup::needs_location(q, s.qh[i]);
             const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
                                            : Vec3(0);
+            // The small-occluder rule needs no pole frame: the rest of the
+            // location only when a narrower light needs the tables.
             if (!v.located[k]) {
-                fast->locate(point, q);
+                fast->locate_near(point, q);
                 v.located[k] = true;
             }
+            if (OvdfLookup::needs_location(q, s.qh[i])) fast->locate(point, q);
             // The terms only for a light narrower than the part's cone (small occluders need none).
             if (OvdfLookup::needs_terms(q, s.qh[i])) v.terms_used += fast->complete(q, v.terms + v.terms_used);
             s.vis[i] *= fast->visible_fraction(q, point, dir, s.qh[i]);

@@ -292,6 +292,38 @@ TEST_CASE("OVDF of a thin bar matches ray-traced visibility at every distance", 
     }
 }
 
+TEST_CASE("The small-occluder rule's disk overlap against a grid, and its arccos against the library's", "[ovdf]") {
+    // portable_acos: Abramowitz & Stegun's bound (2e-8 rad) plus float rounding.
+    double worst = 0;
+    for (int i = 0; i <= 200000; ++i) {
+        const float x = -1.0f + 2.0f * float(i) / 200000.0f;
+        worst = std::max(worst, std::abs(double(shading::portable_acos(x)) - std::acos(double(x))));
+    }
+    CHECK(worst < 1e-6);
+    // disk_overlap_area against counting a 1000² grid over the smaller disk's box.
+    std::mt19937 rng{5};
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    for (int trial = 0; trial < 60; ++trial) {
+        const float a = 0.05f + 0.5f * uniform(rng), b = 0.05f + 0.5f * uniform(rng);
+        const float distance = (a + b) * 1.1f * uniform(rng);
+        const float r = std::min(a, b);
+        const Vec2 small_center = a <= b ? Vec2(0.0f) : Vec2(distance, 0.0f);
+        const Vec2 large_center = a <= b ? Vec2(distance, 0.0f) : Vec2(0.0f);
+        const float large = std::max(a, b);
+        constexpr int kGrid = 1000;
+        const float cell = 2.0f * r / kGrid;
+        long inside = 0;
+        for (int j = 0; j < kGrid; ++j)
+            for (int i = 0; i < kGrid; ++i) {
+                const Vec2 p = small_center + Vec2(-r + (float(i) + 0.5f) * cell, -r + (float(j) + 0.5f) * cell);
+                inside += glm::length(p - small_center) < r && glm::length(p - large_center) < large;
+            }
+        const float counted = float(inside) * cell * cell;
+        INFO("a = " << a << ", b = " << b << ", distance = " << distance);
+        CHECK(shading::disk_overlap_area(distance, a, b) == Approx(counted).margin(2e-3f * r * r));
+    }
+}
+
 TEST_CASE("OVDF small occluders: a far bar under wide squares against rays", "[ovdf]") {
     // Sky squares wider than the bar's bounding cone (cone < h): the
     // small-occluder rule (shading::ovdf_small_occluder_weight) takes the bar's

@@ -11,7 +11,7 @@ namespace rsl::shading {
 
 // RSL_GLSL_BEGIN
 
-RSL_CONST int kShadingCoreModes = 14;
+RSL_CONST int kShadingCoreModes = 15;
 
 struct CaseOutput {
     vec4 first;
@@ -133,6 +133,20 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
         o.second = vec4(taps.weight.x, taps.weight.w,
                         float(ovdf_span_inside(length(v) / 3.0f, span, 1.0f + abs(b.w))),
                         float(ovdf_span_inside(span.x - 0.002f * abs(a.w), span, 1.0f)));
+    } else if (mode == 14) {  // the small-occluder rule, and a light's radius from the pole
+        // Squares of half-edge ≥ 0.05: the rule divides the disks' overlap by
+        // the square's area 4h², which for the smallest squares above
+        // magnifies the overlap's float rounding (1e-7 of the disks') past
+        // the comparison's tolerance, on either side alike.
+        ha = 0.05f + 0.5f * abs(a.w);
+        float cone = 0.01f + 0.5f * abs(b.x);
+        float area = 0.3f * abs(b.y);  // at times more than the cone's disk holds
+        float radial = 1.4f * abs(b.w);
+        vec3 pole = normalize(vec3(b.x, b.y, b.z) + vec3(0.0f, 0.0f, 1e-3f));
+        o.first = vec4(ovdf_small_occluder_weight(cone, ha, area), disk_overlap_area(radial, ha, 0.5f * abs(b.z)),
+                       ovdf_small_occluder_fraction(radial, area, cone, ha), ovdf_fade_small_occluder(a.x, a.y, b.z));
+        o.second = vec4(ovdf_pole_radial(dot(w, pole)), ovdf_small_occluder_weight(cone, ha, 2.0e30f),
+                        ovdf_small_occluder_fraction(ovdf_pole_radial(dot(w, pole)), area, cone, ha), portable_acos(a.z));
     }
     return o;
 }

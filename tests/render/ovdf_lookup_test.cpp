@@ -2,9 +2,10 @@
 // field's own lookup, Ovdf::distance with aligned-coefficient blending, at
 // random receiver points (inside the inner shell, between shells, on cube-face
 // and PCA-segment seams, beyond the outer shell) and random lights; its
-// cheap cone test against the full lookup; and the renderer's lazy form
+// cheap cone test against the full lookup; and the renderer's lazy forms
 // (locate, then complete only for lights that need the tables: the
-// small-occluder rule needs none) against the field's visible fraction.
+// small-occluder rule needs none; locate_near, then the full location only
+// for lights that need the tables) against the field's visible fraction.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -30,6 +31,7 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
     std::normal_distribution<float> normal;
     std::uniform_real_distribution<float> uniform(0, 1);
     int fast = 0, seam = 0, outside = 0, shadowed = 0, unshadowed = 0, bounded = 0, small = 0, completed = 0;
+    int near_small = 0, relocated = 0;
     for (int trial = 0; trial < 4000; ++trial) {
         const Vec3 dir = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
         const float distance = field.radius * params.outer_radius * 1.2f * uniform(rng);
@@ -48,6 +50,16 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
         OvdfTerm lazy_terms[OvdfPoint::kMaxTerms];
         lookup.locate(point, lazy);
         REQUIRE((lazy.kind == OvdfPoint::Located) == (q.kind == OvdfPoint::Prepared));
+        OvdfPoint near;  // as the renderer now: near first, the pole frame and terms on a light's need
+        OvdfTerm near_terms[OvdfPoint::kMaxTerms];
+        lookup.locate_near(point, near);
+        const float d = glm::length(point - field.center);
+        REQUIRE((near.kind == OvdfPoint::Near) == (lazy.kind == OvdfPoint::Located && d >= field.radius));
+        if (near.kind == OvdfPoint::Near) {
+            REQUIRE(near.cone == lazy.cone);
+            REQUIRE(near.occluded_area == lazy.occluded_area);
+            REQUIRE(glm::length(near.pole - lazy.pole) < 1e-6f);
+        }
         for (int l = 0; l < 4; ++l) {
             // Lights biased towards the occluder so that many lookups see it.
             const Vec3 light = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)) - 1.5f * dir);
@@ -66,10 +78,20 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
             }
             REQUIRE(!OvdfLookup::needs_terms(lazy, h));
             REQUIRE(lookup.visible_fraction(lazy, point, light, h) == Approx(field_fraction).margin(1e-4f));
+            if (OvdfLookup::needs_location(near, h)) {
+                lookup.locate(point, near);
+                ++relocated;
+            } else {
+                near_small += near.kind == OvdfPoint::Near;
+            }
+            if (OvdfLookup::needs_terms(near, h)) lookup.complete(near, near_terms);
+            REQUIRE(!OvdfLookup::needs_location(near, h));
+            REQUIRE(!OvdfLookup::needs_terms(near, h));
+            REQUIRE(lookup.visible_fraction(near, point, light, h) == Approx(field_fraction).margin(1e-4f));
             small += q.kind == OvdfPoint::Prepared && shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area) > 0.0f;
             bounded += field_fraction > visible_fraction_from_distance(expected, h) + 1e-3f;
             // The cheap cone test claims 1 only where the lookup gives it.
-            if (q.kind != OvdfPoint::Outside && OvdfLookup::unshadowed(glm::dot(light, q.z), q.cone, h)) {
+            if (q.kind != OvdfPoint::Outside && OvdfLookup::unshadowed(glm::dot(light, q.pole), q.cone, h)) {
                 ++unshadowed;
                 REQUIRE(visible_fraction_from_distance(expected, h) >= 1.0f - 1e-5f);
             }
@@ -84,6 +106,8 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
     CHECK(bounded > 100);  // the area bound raised some fractions, alike in both
     CHECK(small > 500);     // squares wider than the part's cone: the small-occluder rule, alike in both
     CHECK(completed > 500);
+    CHECK(near_small > 300);  // answered by the small-occluder rule with no pole frame
+    CHECK(relocated > 300);
 }
 
 }  // namespace
