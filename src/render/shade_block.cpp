@@ -43,8 +43,7 @@ void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sph
     const float d = glm::length(to_part);
     if (!(d - block_sphere.radius > part.radius)) return;  // a vertex may lie in the bounding sphere: no cone
     b.pole = to_part / d;
-    const float spread = std::asin(std::min(1.0f, block_sphere.radius / d)) + 1e-3f;
-    b.spread = BlockSpread{std::cos(spread), std::sin(spread)};
+    b.spread = block_spread(block_sphere.radius, d);
     b.cone = ovdf_zoom(d - block_sphere.radius, part.radius).cone;
 }
 
