@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <span>
 
 #include "src/core/error.h"
 #include "src/render/block_scratch.h"
@@ -42,14 +43,38 @@ float sum_of(const Color& c) { return c.r + c.g + c.b; }
 
 }  // namespace
 
+// The occluders that may shadow a triangle, per light: light l's are
+// ids[first[l] .. first[l + 1]). A pixel of the triangle looks up these
+// alone, not every part whose reach holds it: in a dense scene (128 parts
+// within reach of each other) that was 128 cone tests per pixel and light.
+// Built in a thread's scratch (`first`, `ids`), kept in one block per
+// triangle (`packed`: the lights + 1 offsets, then the ids), and none for a
+// triangle that no occluder may shadow.
+struct Renderer::TriangleOccluders {
+    std::vector<uint32_t> first;
+    std::vector<int> ids;
+    std::span<const int> of(size_t l) const {
+        return std::span<const int>(ids).subspan(first[l], first[l + 1] - first[l]);
+    }
+};
 // Per part shaded per pixel, during one image's formation: for each
 // triangle, once its first pixel asks, the lights some occluder may shadow
-// somewhere on it (bit l of `lights` words). Filled by whichever worker
-// thread gets there first; a second one computing it too writes the same.
+// somewhere on it (bit l of `lights` words) and those occluders. The first
+// worker thread to claim a triangle fills them; another that finds it being
+// filled computes its own copy.
 struct Renderer::TriangleLights {
+    struct PackedOccluders {
+        std::unique_ptr<int[]> packed;
+        std::span<const int> of(size_t l, size_t lights) const {
+            const int* ids = packed.get() + lights + 1;
+            return std::span<const int>(ids + packed[l], ids + packed[l + 1]);
+        }
+    };
+    static constexpr uint8_t kEmpty = 0, kReady = 1, kFilling = 2;
     size_t words = 0;
-    std::unique_ptr<std::atomic<uint8_t>[]> ready;
-    std::unique_ptr<std::atomic<uint64_t>[]> masks;
+    std::unique_ptr<std::atomic<uint8_t>[]> state;
+    std::unique_ptr<uint64_t[]> masks;
+    std::unique_ptr<PackedOccluders[]> occluders;
 };
 
 // A vertex v whose normal is within δ_v of every normal it shares a
@@ -102,8 +127,9 @@ PartShaders Renderer::pixel_shading(const VertexColors& colors, const PosedScene
             const size_t triangles = scene_.parts[p].mesh.triangle_count();
             cache = std::make_shared<TriangleLights>();
             cache->words = (lights + 63) / 64;
-            cache->ready = std::make_unique<std::atomic<uint8_t>[]>(triangles);
-            cache->masks = std::make_unique<std::atomic<uint64_t>[]>(triangles * cache->words);
+            cache->state = std::make_unique<std::atomic<uint8_t>[]>(triangles);
+            cache->masks = std::make_unique<uint64_t[]>(triangles * cache->words);
+            cache->occluders = std::make_unique<TriangleLights::PackedOccluders[]>(triangles);
         }
         if (!cache && (layered || terms.self_visibility.size() != pairs)) continue;
         shaders[p] = [this, &colors, &posed, cache](const RayHit& hit, const Vec3& direction) {
@@ -126,11 +152,13 @@ void Renderer::occluders_near(const BoundingSphere& sphere, size_t part, std::ve
         if (const int o = lists.field_parts[size_t(index)]; size_t(o) != part) out.push_back(o);
 }
 
-// The lights some occluder may shadow somewhere on the triangle: the block
-// culling's tests (block_may_be_shadowed) with the triangle's bounding
-// sphere as the block. Conservative: a light left out has F_l = 1 at every
-// point of the triangle.
-void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask) const {
+// The lights some occluder may shadow somewhere on the triangle, and per
+// light those occluders: the block culling's tests (block_may_be_shadowed)
+// with the triangle's bounding sphere as the block. Conservative: a light
+// left out has F_l = 1 at every point of the triangle, and so has the
+// factor of an occluder left out of a light's list.
+void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask,
+                               TriangleOccluders& occluders) const {
     const size_t lights = environment_squares_.size() + light_positions_.size();
     for (size_t word = 0; word < (lights + 63) / 64; ++word) mask[word] = 0;
     const PartPose& pose = poses_[part];
@@ -150,13 +178,22 @@ void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* cor
     near_stamp.resize(scene_.parts.size(), 0);
     for (const int o : near) near_stamp[size_t(o)] = s.stamp;
     const size_t slot_base = part * lights;
+    occluders.first.assign(lights + 1, 0);
+    occluders.ids.clear();
     for (size_t l = 0; l < lights; ++l) {
+        occluders.first[l] = uint32_t(occluders.ids.size());
         bool may = false;
         for (size_t e = offsets_[slot_base + l]; e < offsets_[slot_base + l + 1] && !may; ++e)
             may = near_stamp[size_t(occluders_[e])] == s.stamp &&
                   block_may_be_shadowed(s, sphere, occluders_[e], occluder_growth_[e], l);
-        if (may) mask[l / 64] |= uint64_t(1) << (l % 64);
+        if (!may) continue;
+        mask[l / 64] |= uint64_t(1) << (l % 64);
+        // The light's occluders among the near ones, by the tests a pixel
+        // makes (no part-level light test): a superset of any pixel's.
+        for (const int o : near)
+            if (block_may_be_shadowed(s, sphere, o, -1.0f, l)) occluders.ids.push_back(o);
     }
+    occluders.first[lights] = uint32_t(occluders.ids.size());
 }
 
 Color Renderer::shade_pixel(const VertexColors& colors, const PosedScene& posed, TriangleLights* cache,
@@ -179,15 +216,31 @@ Color Renderer::shade_pixel(const VertexColors& colors, const PosedScene& posed,
     // Shadows per pixel: the triangle's lights, from the cache or computed now.
     thread_local std::vector<uint64_t> mask;
     mask.assign((lights + 63) / 64, 0);
+    thread_local TriangleOccluders built;  // a triangle's lists, before they are packed
+    const TriangleLights::PackedOccluders* packed = nullptr;  // the cache's lists, or `built` when null
     if (cache) {
         const size_t triangle = size_t(hit.triangle);
-        std::atomic<uint64_t>* cached = &cache->masks[triangle * cache->words];
-        if (cache->ready[triangle].load(std::memory_order_acquire)) {
-            for (size_t word = 0; word < cache->words; ++word) mask[word] = cached[word].load(std::memory_order_relaxed);
+        uint64_t* cached = &cache->masks[triangle * cache->words];
+        std::atomic<uint8_t>& state = cache->state[triangle];
+        uint8_t seen = state.load(std::memory_order_acquire);
+        if (seen == TriangleLights::kReady) {
+            std::copy(cached, cached + cache->words, mask.begin());
+            packed = &cache->occluders[triangle];
         } else {
-            triangle_lights(s, part, corner, mask.data());
-            for (size_t word = 0; word < cache->words; ++word) cached[word].store(mask[word], std::memory_order_relaxed);
-            cache->ready[triangle].store(1, std::memory_order_release);
+            triangle_lights(s, part, corner, mask.data(), built);
+            // Kept when this thread claims the triangle first; else (another
+            // thread is filling it) used from `built` for this pixel alone.
+            if (seen == TriangleLights::kEmpty &&
+                state.compare_exchange_strong(seen, TriangleLights::kFilling, std::memory_order_acquire)) {
+                std::copy(mask.begin(), mask.end(), cached);
+                if (!built.ids.empty()) {
+                    TriangleLights::PackedOccluders& keep = cache->occluders[triangle];
+                    keep.packed = std::make_unique<int[]>(lights + 1 + built.ids.size());
+                    std::copy(built.first.begin(), built.first.end(), keep.packed.get());
+                    std::copy(built.ids.begin(), built.ids.end(), keep.packed.get() + lights + 1);
+                }
+                state.store(TriangleLights::kReady, std::memory_order_release);
+            }
         }
         // The dimmest of the triangle's shadowed lights, as many as together
         // hold at most kBlendedShare of the pixel's colour, are blended too.
@@ -223,18 +276,17 @@ Color Renderer::shade_pixel(const VertexColors& colors, const PosedScene& posed,
     const Vec3& point = x.position;
     set_point(s, 0, point, x.frame);
     const BoundingSphere block_sphere{point, 1e-6f * (1.0f + glm::length(point))};
-    thread_local std::vector<int> near;
-    near.clear();
-    if (any) occluders_near(BoundingSphere{point, 0.0f}, part, near);
-    // The other parts' factor of light l at the point (after set_light).
+    // The other parts' factor of light l at the point (after set_light), from
+    // the triangle's occluders of that light.
     RenderStats counts;  // not reported: the frame's counters are the vertices'
     auto occlusion_here = [&](size_t l) {
+        RSL_CHECK(cache);  // a shadowed light comes from a triangle's mask
         s.queried[0] = 1;
         s.query_of[0] = 0;
         s.index[0] = 0;
         s.qx[0] = s.lpx[0], s.qy[0] = s.lpy[0], s.qh[0] = s.half[0];
         s.vis[0] = 1.0f;
-        shadow_by_occluders(s, block_sphere, near, nullptr, l, 1, 1, counts);
+        shadow_by_occluders(s, block_sphere, packed ? packed->of(l, lights) : built.of(l), nullptr, l, 1, 1, counts);
         return s.vis[0];
     };
 

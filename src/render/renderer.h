@@ -117,7 +117,9 @@ private:
     struct TriangleLights;  // pixel_shading.cpp
     Color shade_pixel(const VertexColors& colors, const PosedScene& posed, TriangleLights* cache, const RayHit& hit,
                       const Vec3& ray_direction) const;
-    void triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask) const;
+    struct TriangleOccluders;  // pixel_shading.cpp
+    void triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask,
+                         TriangleOccluders& occluders) const;
     void occluders_near(const BoundingSphere& sphere, size_t part, std::vector<int>& out) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
     OccluderVertexScratch& prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
