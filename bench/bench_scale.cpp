@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 #include <set>
 
 #include <fmt/core.h>
@@ -141,16 +142,12 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
             const VertexColors reference = truth.shade_vertices();
             truth_seconds += seconds_since(start);
             const VertexErrorReport error = compare_vertex_colors(colors, reference);
-            const ObjectErrorReport parts = object_errors(error);
+            const ObjectErrorReport by_part = object_errors(error);
             all.push_back(error.total.relative_l2());
-            objects.push_back(parts.objects.relative_l2());
-            if (parts.worst > worst) worst = parts.worst, worst_part = parts.worst_part, worst_time = t;
+            objects.push_back(by_part.objects.relative_l2());
+            if (by_part.worst > worst) worst = by_part.worst, worst_part = by_part.worst_part, worst_time = t;
         }
-        auto mean = [](const std::vector<double>& v) {
-            double sum = 0;
-            for (const double x : v) sum += x;
-            return sum / double(v.size());
-        };
+        auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size()); };
         row["truth_seconds"] = truth_seconds;
         row["error_times"] = kFrameTimes;
         row["relative_l2_vs_truth"] = mean(all);  // the mean over the frames

@@ -45,8 +45,8 @@ struct OvdfPoint {
     // Located: the samples' location and the pole frame too, the terms not
     // yet (complete()); Prepared: terms are ready; Slow: the field's own lookup.
     enum Kind : int { Outside = 0, Inside = 1, Prepared = 2, Slow = 3, Located = 4, Near = 5 };
-    // What every kind sets first, in the point's first cache line: a point
-    // that only the small-occluder rule reads writes nothing else.
+    // What every kind sets comes first, together (24 bytes): a Near point,
+    // which only the small-occluder rule reads, writes nothing else.
     int kind = Outside;
     // Plane radius of the part's bounding cone seen from the point (kOvdfNoCone
     // inside the bounding sphere): lights with |p| − cone ≥ h are unshadowed.
