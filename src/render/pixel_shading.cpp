@@ -141,7 +141,7 @@ PartShaders Renderer::pixel_shading(const VertexColors& colors, const PosedScene
 
 // The other parts whose occluder field reaches `sphere` (from the frame's
 // sphere tree over the reaches): a ground's per-light lists hold every part
-// over it, a triangle or a pixel lies in few reaches.
+// over it, a triangle lies in few reaches.
 void Renderer::occluders_near(const BoundingSphere& sphere, size_t part, std::vector<int>& out) const {
     const OccluderLists& lists = frame_.occluder_lists();
     thread_local std::vector<int> found;

@@ -128,6 +128,38 @@ TEST_CASE("A pixel at a receiver's vertex takes that vertex's colour", "[render]
     CHECK(per_pixel < int(ground.triangle_count()) / 4);  // not where the ground is lit alike
 }
 
+TEST_CASE("Pixels at a receiver's vertices take their colours under several occluders", "[render][pixel-shadows]") {
+    // A pixel looks up only its triangle's occluders for each light
+    // (TriangleOccluders); the vertex colours come from every occluder. With
+    // six boxes whose shadows overlap on the ground, a list that left one
+    // out would change some corner's pixel.
+    Scene scene = test::box_over_coarse_ground();
+    const TriangleMesh box = scene.parts[1].mesh;
+    const Vec3 places[] = {{-1.3f, 0.5f, -1.0f}, {1.4f, 0.7f, 0.4f}, {-0.6f, 0.9f, 1.2f},
+                           {1.0f, 0.45f, -1.6f}, {-1.8f, 0.8f, 0.9f}};
+    for (const Vec3& at : places) {
+        Transform t;
+        t.translation = at;
+        TriangleMesh copy = box;
+        copy.name = "box" + std::to_string(scene.parts.size());
+        test::add_part(scene, std::move(copy), t);
+    }
+    const CubeMap environment = test::sky_with_sun(16);
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    const PosedScene posed(scene, 0.0f);  // the shaders keep a reference
+    for (const bool exact_shapes : {true, false}) {  // the boxes' exact shapes, then their OVDFs
+        INFO("exact shapes " << exact_shapes);
+        RenderOptions options;
+        options.exact_shapes = exact_shapes;
+        Renderer renderer(scene, fit_environment_lights(environment, 30), fields, options);
+        renderer.keep_pixel_terms(true);
+        const VertexColors colors = renderer.shade();
+        const PartShaders shaders = renderer.pixel_shading(colors, posed);
+        REQUIRE(shaders[0]);
+        CHECK(corners_take_vertex_colors(shaders[0], scene.parts[0].mesh, colors.parts[0]) == 6 * 6 * 2 * 3);
+    }
+}
+
 }  // namespace
 }  // namespace rsl
 
