@@ -111,6 +111,19 @@ struct OvdfLocation {
     Frame aligned;               // z = from the point towards the part's center
 };
 
+// Many receivers for Ovdf::locate_near, structure of arrays (caller-owned,
+// `count` each): points in the occluder's frame in; per point, whether it
+// lies between the bounding sphere and the outer shell (`near`: 1) and
+// there its bounding cone, blended occluded area and pole out (other points
+// need locate()); `distance` and `coordinate` are scratch.
+struct OvdfNearPoints {
+    int count = 0;
+    const float *x = nullptr, *y = nullptr, *z = nullptr;
+    float *distance = nullptr, *coordinate = nullptr;
+    float *cone = nullptr, *occluded_area = nullptr, *pole_x = nullptr, *pole_y = nullptr, *pole_z = nullptr;
+    int32_t* near = nullptr;
+};
+
 class Ovdf {
 public:
     OvdfParams params;
@@ -172,6 +185,9 @@ public:
     // Without `with_frame`, `aligned` is left as constructed (the
     // small-occluder rule needs only the samples' blended area).
     OvdfLocation locate(const Vec3& point, float d, bool with_frame = true) const;
+    // OvdfLookup::locate_near's half of locate() for many points at once
+    // (fields/ovdf_near.cpp): the same values, in a vectorized loop.
+    void locate_near(const OvdfNearPoints& points) const;
     // The blended surface distance at a location: where it is negative within
     // the bounding sphere, the point is inside the part and every lookup is
     // fully shadowed.

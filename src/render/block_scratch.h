@@ -105,6 +105,26 @@ struct Renderer::BlockScratch {
     // needs no rays, and its visible fraction.
     alignas(64) bool skip[kShadeBlock];
     alignas(64) float exact[kShadeBlock];
+    // One (light, occluder)'s vertices that need their OVDF point located
+    // (locate_near_points): their points in the occluder's frame and the
+    // batch's outputs (Ovdf::locate_near).
+    struct NearLocations {
+        alignas(64) float x[kShadeBlock], y[kShadeBlock], z[kShadeBlock];
+        alignas(64) float distance[kShadeBlock], coordinate[kShadeBlock], cone[kShadeBlock];
+        alignas(64) float occluded_area[kShadeBlock], pole_x[kShadeBlock], pole_y[kShadeBlock], pole_z[kShadeBlock];
+        alignas(64) int32_t near[kShadeBlock];
+        int vertex[kShadeBlock];
+    } near;
+    // One (light, occluder)'s lookups that take the small-occluder rule
+    // alone: gathered by the lookup loop, then evaluated in one vectorized
+    // pass (the rule is a lens area: two arccos polynomials and a square root
+    // that, one query at a time, were a dense scene's largest cost).
+    struct SmallOccluderQueries {
+        alignas(64) float cos_to_pole[kShadeBlock], occluded_area[kShadeBlock], cone[kShadeBlock];
+        alignas(64) float half_edge[kShadeBlock], fraction[kShadeBlock];
+        int query[kShadeBlock];
+        int count = 0;
+    } small;
 
     // Per occluder part (sized to the scene on first use): what the block
     // knows of it, valid while `stamp` equals the block's. The bounding cone

@@ -148,8 +148,10 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
     // A block's (light, occluder) pair usually needs a few of its ~200
     // queries: the loop visits those alone, eight flags at a time, rather
     // than testing every query (a branch per query, which mispredicts).
+    s.small.count = 0;
     for (int k = 0; k < n; ++k) s.needed_bytes[k] = uint8_t(s.needed[k]);
     for (int k = n; k < kShadeBlock && k % 8 != 0; ++k) s.needed_bytes[k] = 0;
+    if (fast && fast->usable() && shape.kind == shading::kShapeNone) locate_near_points(s, v, o, n);
     for (int first = 0; first < n; first += 8) {
         uint64_t flags;  // needed[first .. first + 8), one byte (0 or 1) each
         std::memcpy(&flags, s.needed_bytes + first, 8);
@@ -183,6 +185,16 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
                 fast->locate_near(point, q);
                 v.located[k] = true;
             }
+            if (q.kind == OvdfPoint::Near && !OvdfLookup::needs_location(q, s.qh[i])) {
+                // The small-occluder rule alone (OvdfLookup::visible_fraction's w = 1 case): batched.
+                BlockScratch::SmallOccluderQueries& b = s.small;
+                b.cos_to_pole[b.count] = glm::dot(dir, q.pole);
+                b.occluded_area[b.count] = q.occluded_area;
+                b.cone[b.count] = q.cone;
+                b.half_edge[b.count] = s.qh[i];
+                b.query[b.count++] = i;
+                continue;
+            }
             if (OvdfLookup::needs_location(q, s.qh[i])) fast->locate(point, q);
             // The terms only for a light narrower than the part's cone (small occluders need none).
             if (OvdfLookup::needs_terms(q, s.qh[i])) v.terms_used += fast->complete(q, v.terms + v.terms_used);
@@ -193,6 +205,64 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
         }
         }
     }
+    small_occluder_factors(s);
+}
+
+// The OVDF points of the vertices whose lookups the current (light,
+// occluder) needs and that are not located yet, located in one batch
+// (Ovdf::locate_near; OvdfLookup::locate_near's values), the few within the
+// bounding sphere one at a time.
+void Renderer::locate_near_points(BlockScratch& s, OccluderVertexScratch& v, int o, int n) const {
+    BlockScratch::NearLocations& b = s.near;
+    const Mat4 m = poses_[o].inverse;
+    int count = 0;
+    for (int first = 0; first < n; first += 8) {
+        uint64_t flags;
+        std::memcpy(&flags, s.needed_bytes + first, 8);
+        for (; flags != 0; flags &= flags - 1) {
+            const int k = first + std::countr_zero(flags) / 8;
+            if (v.located[k] || !(s.vis[s.query_of[k]] > 0.0f)) continue;
+            const Vec3 point = Vec3(m * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
+            b.x[count] = point.x, b.y[count] = point.y, b.z[count] = point.z;
+            b.vertex[count++] = k;
+        }
+    }
+    if (count == 0) return;
+    const OvdfLookup& fast = *fast_lookups_[o];
+    OvdfNearPoints batch;
+    batch.count = count;
+    batch.x = b.x, batch.y = b.y, batch.z = b.z;
+    batch.distance = b.distance, batch.coordinate = b.coordinate;
+    batch.cone = b.cone, batch.occluded_area = b.occluded_area;
+    batch.pole_x = b.pole_x, batch.pole_y = b.pole_y, batch.pole_z = b.pole_z;
+    batch.near = b.near;
+    fast.field().locate_near(batch);
+    for (int j = 0; j < count; ++j) {
+        const int k = b.vertex[j];
+        OvdfPoint& q = v.points[k];
+        v.located[k] = true;
+        if (!b.near[j]) {
+            fast.locate(Vec3(b.x[j], b.y[j], b.z[j]), q);
+            continue;
+        }
+        q.kind = OvdfPoint::Near;
+        q.cone = b.cone[j];
+        q.occluded_area = b.occluded_area[j];
+        q.pole = Vec3(b.pole_x[j], b.pole_y[j], b.pole_z[j]);
+    }
+}
+
+// The batched small-occluder lookups' visible fractions (as
+// OvdfLookup::visible_fraction), multiplied into their queries' vis. Each
+// query is in the batch at most once, so no product is reordered.
+void Renderer::small_occluder_factors(BlockScratch& s) {
+    BlockScratch::SmallOccluderQueries& b = s.small;
+    float* const vis = s.vis;
+    const int count = b.count;
+    for (int j = 0; j < count; ++j)
+        b.fraction[j] = shading::ovdf_small_occluder_fraction(shading::ovdf_pole_radial(b.cos_to_pole[j]),
+                                                              b.occluded_area[j], b.cone[j], b.half_edge[j]);
+    for (int j = 0; j < count; ++j) vis[b.query[j]] *= b.fraction[j];
 }
 
 namespace {

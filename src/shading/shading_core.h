@@ -454,15 +454,19 @@ RSL_SHARED float portable_acos(float x) {
     return x < 0.0f ? kPi - angle : angle;
 }
 // The area shared by two disks of radii a and b whose centres lie `distance` apart.
+// Branch-free (the lens is computed always and selected), so that the CPU's
+// loop over a block's small-occluder queries vectorizes; where the lens is
+// not selected its divisions may give inf or NaN, which the selects drop.
 RSL_SHARED float disk_overlap_area(float distance, float a, float b) {
-    if (distance >= a + b) return 0.0f;
     float smaller = min(a, b);
-    if (distance <= abs(a - b)) return kPi * smaller * smaller;
+    float contained = kPi * smaller * smaller;
     float d2 = distance * distance;
     float alpha = portable_acos((d2 + a * a - b * b) / (2.0f * distance * a));
     float beta = portable_acos((d2 + b * b - a * a) / (2.0f * distance * b));
     float kite = (-distance + a + b) * (distance + a - b) * (distance - a + b) * (distance + a + b);
-    return min(a * a * alpha + b * b * beta - 0.5f * sqrt(max(kite, 0.0f)), kPi * smaller * smaller);
+    float lens = min(a * a * alpha + b * b * beta - 0.5f * sqrt(max(kite, 0.0f)), contained);
+    float overlap = distance <= abs(a - b) ? contained : lens;
+    return distance >= a + b ? 0.0f : overlap;
 }
 // The visible share of the square of half-edge h whose centre lies at plane
 // radius `radial` from the pole, that a small occluder of plane area A leaves.

@@ -1,0 +1,98 @@
+// Ovdf::locate_near: the near half of a receiver's location (cone, blended
+// occluded area, pole) for many receivers at once. The CPU renderer locates
+// one point per (vertex, occluder) that a light needs, millions a frame in a
+// dense scene, and the small-occluder rule needs only this half; one point
+// at a time it was a third of such a frame (calls, a Frame built and
+// dropped, a branch per shell). The same formulas in the same order as
+// Ovdf::locate and blend_samples, so the results are theirs
+// (tests/fields/ovdf_test.cpp); the loop is branch-free for the vectorizer.
+#include <cmath>
+
+#include "fields/ovdf.h"
+
+namespace rsl {
+
+void Ovdf::locate_near(const OvdfNearPoints& points) const {
+    const int count = points.count;
+    const float outer = shell_radii_.back();
+    const float* const px = points.x;
+    const float* const py = points.y;
+    const float* const pz = points.z;
+    float* const distance = points.distance;
+    float* const coordinate = points.coordinate;
+    // The distances (vectorized), then the shell coordinates: a log, which
+    // does not vectorize without -ffast-math.
+    for (int j = 0; j < count; ++j) {
+        distance[j] = glm::length(Vec3(px[j], py[j], pz[j]) - center);
+    }
+    for (int j = 0; j < count; ++j) coordinate[j] = shell_coordinate(distance[j]);
+
+    const int n = params.cube_resolution, shells = params.shells;
+    const int shell_stride = shading::kCubeFaces * n * n;
+    const float hi = float(n - 1);
+    const float* const area = occluded_area.empty() ? nullptr : occluded_area.data();
+    const float* const face_s = &face_s_[0].x;
+    const float* const face_t = &face_t_[0].x;
+    const Vec3* const normals = face_normal_.data();
+    const Vec3 c = center;
+    const float r = radius;
+#if defined(__clang__)
+#pragma clang loop vectorize(assume_safety)
+#else
+#pragma GCC ivdep
+#endif
+    for (int j = 0; j < count; ++j) {
+        const float d0 = distance[j];
+        // Between the bounding sphere and the outer shell; the other lanes
+        // go on with a harmless stand-in (no NaN reaches an index).
+        const bool near = d0 < outer && !(d0 < r);
+        const float d = near ? d0 : 1.0f;
+        const float ox = near ? px[j] - c.x : 0.0f, oy = near ? py[j] - c.y : 0.0f, oz = near ? pz[j] - c.z : 1.0f;
+        const float inverse = 1.0f / d;
+        const Vec3 dir(ox * inverse, oy * inverse, oz * inverse);
+        // ovdf_zoom's cone, ovdf_shell_pair, cube_face, ovdf_sample_taps.
+        points.cone[j] = d <= r ? kOvdfNoCone : shading::ovdf_cone_radius(d, r);
+        const float u = glm::clamp(near ? coordinate[j] : 0.0f, 0.0f, float(shells - 1));
+        const int s0 = std::min(int(u), shells - 2);
+        const float fs = u - float(s0);
+        int face = 0;
+        float cosine = -2.0f;
+        for (int f = 0; f < shading::kCubeFaces; ++f) {
+            const float dot = dir.x * normals[f].x + dir.y * normals[f].y + dir.z * normals[f].z;
+            face = dot > cosine ? f : face;
+            cosine = dot > cosine ? dot : cosine;
+        }
+        const Vec3 s(face_s[3 * face], face_s[3 * face + 1], face_s[3 * face + 2]);
+        const Vec3 t(face_t[3 * face], face_t[3 * face + 1], face_t[3 * face + 2]);
+        const float inverse_cosine = 1.0f / cosine;
+        const float x = glm::clamp((glm::dot(dir, s) * inverse_cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
+        const float y = glm::clamp((glm::dot(dir, t) * inverse_cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
+        const int i0 = std::min(int(x), n - 2), j0 = std::min(int(y), n - 2);
+        const float fx = x - float(i0), fy = y - float(j0);
+        const float w0 = (1.0f - fx) * (1.0f - fy), w1 = fx * (1.0f - fy), w2 = (1.0f - fx) * fy, w3 = fx * fy;
+        // blend_samples: both shells (a shell of weight 0 adds 0).
+        if (area) {
+            const int lower = ((s0 * shading::kCubeFaces + face) * n + j0) * n + i0;
+            float blended = 0.0f;
+            for (int k = 0; k < 2; ++k) {
+                const float ws = k == 0 ? 1.0f - fs : fs;
+                const float* const a = area + lower + k * shell_stride;
+                float value = 0.0f;
+                value += w0 * a[0];
+                value += w1 * a[1];
+                value += w2 * a[n];
+                value += w3 * a[n + 1];
+                blended += ws * value;
+            }
+            points.occluded_area[j] = blended;
+        } else {
+            points.occluded_area[j] = shading::kOvdfNoAreaBound;
+        }
+        // As locate()'s pole frame: z = normalize(−dir).
+        const Vec3 pole = glm::normalize(-dir);
+        points.pole_x[j] = pole.x, points.pole_y[j] = pole.y, points.pole_z[j] = pole.z;
+        points.near[j] = near;
+    }
+}
+
+}  // namespace rsl
