@@ -115,11 +115,10 @@ struct OvdfLocation {
 // `count` each): points in the occluder's frame in; per point, whether it
 // lies between the bounding sphere and the outer shell (`near`: 1) and
 // there its bounding cone, blended occluded area and pole out (other points
-// need locate()); `distance` and `coordinate` are scratch.
+// need locate()).
 struct OvdfNearPoints {
     int count = 0;
     const float *x = nullptr, *y = nullptr, *z = nullptr;
-    float *distance = nullptr, *coordinate = nullptr;
     float *cone = nullptr, *occluded_area = nullptr, *pole_x = nullptr, *pole_y = nullptr, *pole_z = nullptr;
     int32_t* near = nullptr;
 };

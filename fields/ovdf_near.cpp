@@ -3,9 +3,10 @@
 // one point per (vertex, occluder) that a light needs, millions a frame in a
 // dense scene, and the small-occluder rule needs only this half; one point
 // at a time it was a third of such a frame (calls, a Frame built and
-// dropped, a branch per shell). The same formulas in the same order as
-// Ovdf::locate and blend_samples, so the results are theirs
-// (tests/fields/ovdf_test.cpp); the loop is branch-free for the vectorizer.
+// dropped, a branch per shell, a call to the library's log). The same
+// formulas in the same order as Ovdf::locate and blend_samples, so the
+// results are theirs (tests/fields/ovdf_near_test.cpp); the loop is
+// branch-free for the vectorizer.
 #include <cmath>
 
 #include "fields/ovdf.h"
@@ -18,15 +19,6 @@ void Ovdf::locate_near(const OvdfNearPoints& points) const {
     const float* const px = points.x;
     const float* const py = points.y;
     const float* const pz = points.z;
-    float* const distance = points.distance;
-    float* const coordinate = points.coordinate;
-    // The distances (vectorized), then the shell coordinates: a log, which
-    // does not vectorize without -ffast-math.
-    for (int j = 0; j < count; ++j) {
-        distance[j] = glm::length(Vec3(px[j], py[j], pz[j]) - center);
-    }
-    for (int j = 0; j < count; ++j) coordinate[j] = shell_coordinate(distance[j]);
-
     const int n = params.cube_resolution, shells = params.shells;
     const int shell_stride = shading::kCubeFaces * n * n;
     const float hi = float(n - 1);
@@ -36,13 +28,15 @@ void Ovdf::locate_near(const OvdfNearPoints& points) const {
     const Vec3* const normals = face_normal_.data();
     const Vec3 c = center;
     const float r = radius;
+    const int spacing = int(params.spacing);
+    const float inner = params.inner_radius, outer_ratio = params.outer_radius;
 #if defined(__clang__)
 #pragma clang loop vectorize(assume_safety)
 #else
 #pragma GCC ivdep
 #endif
     for (int j = 0; j < count; ++j) {
-        const float d0 = distance[j];
+        const float d0 = glm::length(Vec3(px[j], py[j], pz[j]) - c);
         // Between the bounding sphere and the outer shell; the other lanes
         // go on with a harmless stand-in (no NaN reaches an index).
         const bool near = d0 < outer && !(d0 < r);
@@ -52,7 +46,8 @@ void Ovdf::locate_near(const OvdfNearPoints& points) const {
         const Vec3 dir(ox * inverse, oy * inverse, oz * inverse);
         // ovdf_zoom's cone, ovdf_shell_pair, cube_face, ovdf_sample_taps.
         points.cone[j] = d <= r ? kOvdfNoCone : shading::ovdf_cone_radius(d, r);
-        const float u = glm::clamp(near ? coordinate[j] : 0.0f, 0.0f, float(shells - 1));
+        const float coordinate = shading::ovdf_shell_coordinate(spacing, shells, inner, outer_ratio, d / r);
+        const float u = glm::clamp(coordinate, 0.0f, float(shells - 1));
         const int s0 = std::min(int(u), shells - 2);
         const float fs = u - float(s0);
         int face = 0;

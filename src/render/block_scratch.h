@@ -110,8 +110,7 @@ struct Renderer::BlockScratch {
     // batch's outputs (Ovdf::locate_near).
     struct NearLocations {
         alignas(64) float x[kShadeBlock], y[kShadeBlock], z[kShadeBlock];
-        alignas(64) float distance[kShadeBlock], coordinate[kShadeBlock], cone[kShadeBlock];
-        alignas(64) float occluded_area[kShadeBlock], pole_x[kShadeBlock], pole_y[kShadeBlock], pole_z[kShadeBlock];
+        alignas(64) float cone[kShadeBlock], occluded_area[kShadeBlock], pole_x[kShadeBlock], pole_y[kShadeBlock], pole_z[kShadeBlock];
         alignas(64) int32_t near[kShadeBlock];
         int vertex[kShadeBlock];
     } near;

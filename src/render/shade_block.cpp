@@ -232,7 +232,6 @@ void Renderer::locate_near_points(BlockScratch& s, OccluderVertexScratch& v, int
     OvdfNearPoints batch;
     batch.count = count;
     batch.x = b.x, batch.y = b.y, batch.z = b.z;
-    batch.distance = b.distance, batch.coordinate = b.coordinate;
     batch.cone = b.cone, batch.occluded_area = b.occluded_area;
     batch.pole_x = b.pole_x, batch.pole_y = b.pole_y, batch.pole_z = b.pole_z;
     batch.near = b.near;

@@ -26,6 +26,7 @@
 //  * RSL_SHARED before every function (C++: inline), RSL_CONST before
 //    constants (C++: inline constexpr; GLSL: const).
 #pragma once
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -51,6 +52,10 @@ using std::abs;
 using std::log;
 using std::sin;
 using std::sqrt;
+
+// GLSL's bit reinterpretations (portable_log).
+inline int floatBitsToInt(float x) { return std::bit_cast<int>(x); }
+inline float intBitsToFloat(int x) { return std::bit_cast<float>(x); }
 
 // π and √2 come from std::numbers; the GPU gets these values as generated
 // constants (gpu_layout.h shader_constants_glsl), not as literals.
@@ -268,9 +273,31 @@ RSL_SHARED vec2 anisotropic_view_point(vec3 view) {
 
 // Continuous shell index of distance ratio d / R between the inner and the
 // outer shell radii (× R): spacing 0 geometric, 1 linear, 2 inverse radius.
+// The natural log of a positive normal float to 1.2e-7 (absolute where
+// |log x| < 1, relative above; tests/fields/ovdf_test.cpp), the same
+// arithmetic in both renderers and, unlike the libraries' log, in a loop the
+// CPU vectorizes (its near-point locations, fields/ovdf_near.cpp). x = m·2^e
+// with m in [√½, √2): log x = e·ln 2 + 2·atanh(s), s = (m − 1)/(m + 1), |s| ≤
+// 0.172, whose series to s⁹ leaves 1e-9.
+RSL_SHARED float portable_log(float x) {
+    int bits = floatBitsToInt(x);
+    int exponent = ((bits >> 23) & 255) - 127;
+    float m = intBitsToFloat((bits & 8388607) | 1065353216);  // the mantissa in [1, 2)
+    bool high = m > 1.41421356f;
+    m = high ? 0.5f * m : m;
+    exponent = high ? exponent + 1 : exponent;
+    float s = (m - 1.0f) / (m + 1.0f);
+    float s2 = s * s;
+    float series = 0.222222222f;  // 2/9, 2/7, 2/5, 2/3, 2: 2·atanh(s)/s
+    series = series * s2 + 0.285714286f;
+    series = series * s2 + 0.4f;
+    series = series * s2 + 0.666666667f;
+    series = series * s2 + 2.0f;
+    return float(exponent) * 0.693147181f + s * series;
+}
 RSL_SHARED float ovdf_shell_coordinate(int spacing, int shells, float inner, float outer, float ratio) {
     float last = float(shells - 1);
-    if (spacing == 0) return last * log(max(ratio, 1e-6f) / inner) / log(outer / inner);
+    if (spacing == 0) return last * portable_log(max(ratio, 1e-6f) / inner) / portable_log(outer / inner);
     if (spacing == 1) return last * (ratio - inner) / (outer - inner);
     return last * (1.0f / max(ratio, 1e-6f) - 1.0f / inner) / (1.0f / outer - 1.0f / inner);
 }

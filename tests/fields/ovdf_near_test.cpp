@@ -19,15 +19,14 @@ using namespace rsl;
 namespace {
 
 struct NearBatch {
-    std::vector<float> x, y, z, distance, coordinate, cone, area, pole_x, pole_y, pole_z;
+    std::vector<float> x, y, z, cone, area, pole_x, pole_y, pole_z;
     std::vector<int32_t> near;
     explicit NearBatch(int n)
-        : x(n), y(n), z(n), distance(n), coordinate(n), cone(n), area(n), pole_x(n), pole_y(n), pole_z(n), near(n) {}
+        : x(n), y(n), z(n), cone(n), area(n), pole_x(n), pole_y(n), pole_z(n), near(n) {}
     OvdfNearPoints view(int count) {
         OvdfNearPoints p;
         p.count = count;
         p.x = x.data(), p.y = y.data(), p.z = z.data();
-        p.distance = distance.data(), p.coordinate = coordinate.data();
         p.cone = cone.data(), p.occluded_area = area.data();
         p.pole_x = pole_x.data(), p.pole_y = pole_y.data(), p.pole_z = pole_z.data();
         p.near = near.data();
@@ -66,7 +65,7 @@ void check_batches(const Ovdf& field, uint32_t seed, int* near_points, int* othe
             const Vec3 p(batch.x[j], batch.y[j], batch.z[j]);
             const float d = glm::length(p - field.center);
             const bool near = d < outer && !(d < field.radius);
-            INFO("point " << j << " of " << count << std::setprecision(9) << ", d = " << d << " batch " << batch.distance[j] << " (R = " << field.radius << ", outer " << outer << ")");
+            INFO("point " << j << " of " << count << std::setprecision(9) << ", d = " << d << " (R = " << field.radius << ", outer " << outer << ")");
             REQUIRE(bool(batch.near[j]) == near);
             if (!near) {
                 ++*other_points;
