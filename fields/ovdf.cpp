@@ -96,7 +96,7 @@ float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_ed
     return shading::ovdf_fade_small_occluder(shading::ovdf_area_bound(fraction, area, half_edge), small, w);
 }
 
-OvdfLocation Ovdf::locate(const Vec3& point, float d, bool with_frame) const {
+OvdfLocation Ovdf::locate(const Vec3& point, float d) const {
     OvdfLocation at;
     const Vec3 dir = d > 0 ? (point - center) * (1.0f / d) : Vec3(0, 0, 1);
     const shading::ShellPair shells = shading::ovdf_shell_pair(shell_coordinate(d), params.shells);  // clamped inside
@@ -109,7 +109,7 @@ OvdfLocation Ovdf::locate(const Vec3& point, float d, bool with_frame) const {
         shading::ovdf_sample_taps(dir, face.cosine, face_s_[at.face], face_t_[at.face], params.cube_resolution);
     at.ii = taps.i, at.jj = taps.j, at.w = taps.weight;
     // The receiver's own pole frame, twisted by the face rule like its samples.
-    if (with_frame) at.aligned = Frame::from_normal_tangent(-dir, face_s_[at.face]);
+    at.aligned = Frame::from_normal_tangent(-dir, face_s_[at.face]);
     return at;
 }
 

@@ -181,9 +181,7 @@ public:
 
     // The samples around `point` (occluder frame) at distance d = |point −
     // center|; callers handle d beyond the outer shell first.
-    // Without `with_frame`, `aligned` is left as constructed (the
-    // small-occluder rule needs only the samples' blended area).
-    OvdfLocation locate(const Vec3& point, float d, bool with_frame = true) const;
+    OvdfLocation locate(const Vec3& point, float d) const;
     // OvdfLookup::locate_near's half of locate() for many points at once
     // (fields/ovdf_near.cpp): the same values, in a vectorized loop.
     void locate_near(const OvdfNearPoints& points) const;

@@ -32,11 +32,20 @@ struct OccluderVertexScratch {
     // Which side of the part's bounding box the vertex lies on along each
     // axis of the part's frame (box_sides, the slab rule).
     alignas(64) float side_x[kShadeBlock], side_y[kShadeBlock], side_z[kShadeBlock];
-    bool located[kShadeBlock];
-    // The light-independent half of the OVDF lookup, located on first need
-    // and completed with its terms when a light needs the tables, and the
-    // terms the points use (their own, so that a pool that grows never moves
-    // them).
+    // An OVDF occluder: each vertex in the part's frame, as the lookups take it.
+    alignas(64) float local_x[kShadeBlock], local_y[kShadeBlock], local_z[kShadeBlock];
+    // How far each vertex's OVDF lookup is located (on first need): not yet;
+    // Near, its cone, blended occluded area and pole in the near_ arrays
+    // (all the small-occluder rule reads, located in batches:
+    // locate_near_points); or a full point in `points`.
+    enum : uint8_t { kUnlocated = 0, kNear = 1, kPoint = 2 };
+    alignas(64) uint8_t located[kShadeBlock];
+    alignas(64) float near_cone[kShadeBlock], near_area[kShadeBlock];
+    alignas(64) float near_pole_x[kShadeBlock], near_pole_y[kShadeBlock], near_pole_z[kShadeBlock];
+    // The light-independent half of the OVDF lookup, located when a light
+    // needs the tables or the vertex lies within the bounding sphere and
+    // completed with its terms when a light needs them, and the terms the
+    // points use (their own, so that a pool that grows never moves them).
     OvdfPoint points[kShadeBlock];
     OvdfTerm terms[kShadeBlock * OvdfPoint::kMaxTerms];
     int terms_used = 0;
@@ -110,7 +119,8 @@ struct Renderer::BlockScratch {
     // batch's outputs (Ovdf::locate_near).
     struct NearLocations {
         alignas(64) float x[kShadeBlock], y[kShadeBlock], z[kShadeBlock];
-        alignas(64) float cone[kShadeBlock], occluded_area[kShadeBlock], pole_x[kShadeBlock], pole_y[kShadeBlock], pole_z[kShadeBlock];
+        alignas(64) float cone[kShadeBlock], occluded_area[kShadeBlock];
+        alignas(64) float pole_x[kShadeBlock], pole_y[kShadeBlock], pole_z[kShadeBlock];
         alignas(64) int32_t near[kShadeBlock];
         int vertex[kShadeBlock];
     } near;

@@ -32,18 +32,6 @@ void OvdfLookup::locate(const Vec3& point, OvdfPoint& out) const {
     out.kind = usable() ? OvdfPoint::Located : OvdfPoint::Slow;
 }
 
-void OvdfLookup::locate_near(const Vec3& point, OvdfPoint& out) const {
-    const Ovdf& f = *field_;
-    const Vec3 offset = point - f.center;
-    const float d = glm::length(offset);
-    if (d >= outer_ || d < f.radius || !usable()) return locate(point, out);  // the inside test needs the full location
-    out.cone = ovdf_zoom(d, f.radius).cone;
-    out.occluded_area = f.occluded_area_at(f.locate(point, d, /*with_frame=*/false));
-    // As Ovdf::locate's pole frame: z = normalize(−dir).
-    out.pole = glm::normalize(-(offset * (1.0f / d)));
-    out.kind = OvdfPoint::Near;
-}
-
 int OvdfLookup::complete(OvdfPoint& out, OvdfTerm* terms) const {
     if (out.kind != OvdfPoint::Located) return 0;
     const Ovdf& f = *field_;

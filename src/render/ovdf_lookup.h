@@ -14,10 +14,11 @@
 // that cone alone that a light's square lies beyond it (the lookup's last
 // bound), so a renderer prepares a point only when some light needs it. Of
 // the rest, the lights whose square is wider than the cone take the
-// small-occluder rule (shading::ovdf_small_occluder_weight), which needs the
-// point's location and blended occluded area but no coefficients: a
-// renderer locates a point first and completes it with its terms only when
-// a narrower light needs the tables.
+// small-occluder rule (shading::ovdf_small_occluder_weight), which needs
+// only the point's cone, blended occluded area and pole — the CPU renderer
+// gets those for many vertices at once (Ovdf::locate_near) — and no pole
+// frame or coefficients: a renderer locates a point fully, then completes
+// it with its terms, only when a narrower light needs the tables.
 //
 // It mirrors fields/ovdf.cpp (same formulas, same order of blending) and is
 // pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp.
@@ -40,18 +41,15 @@ struct OvdfTerm {
 struct OvdfPoint {
     static constexpr int kMaxTerms = 8;  // two shells × four samples in four segments at most
     // Outside: beyond the outer shell (distance "no boundary"); Inside: within
-    // the part (fully shadowed); Near: cone, occluded area and pole are
-    // ready, which is all the small-occluder rule needs (locate_near);
-    // Located: the samples' location and the pole frame too, the terms not
-    // yet (complete()); Prepared: terms are ready; Slow: the field's own lookup.
-    enum Kind : int { Outside = 0, Inside = 1, Prepared = 2, Slow = 3, Located = 4, Near = 5 };
-    // What every kind sets comes first, together (24 bytes): a Near point,
-    // which only the small-occluder rule reads, writes nothing else.
+    // the part (fully shadowed); Located: the samples' location and the pole
+    // frame, the terms not yet (complete()); Prepared: terms are ready; Slow:
+    // the field's own lookup.
+    enum Kind : int { Outside = 0, Inside = 1, Prepared = 2, Slow = 3, Located = 4 };
     int kind = Outside;
     // Plane radius of the part's bounding cone seen from the point (kOvdfNoCone
     // inside the bounding sphere): lights with |p| − cone ≥ h are unshadowed.
     float cone = kOvdfNoCone;
-    // The samples' blended occluded area (Ovdf::occluded_area_at) of a Near,
+    // The samples' blended occluded area (Ovdf::occluded_area_at) of a
     // Located, Prepared or Slow point; no bound otherwise (inside stays dark).
     float occluded_area = shading::kOvdfNoAreaBound;
     Vec3 pole{0, 0, 1};  // unit direction from the point to the part's center (the pole frame's z)
@@ -80,14 +78,6 @@ public:
     }
     // The point's location: Outside, Inside, Slow, or Located (no terms yet).
     void locate(const Vec3& point, OvdfPoint& q) const;
-    // The same, but Near in place of Located outside the bounding sphere:
-    // the samples' area without the pole frame, for the small-occluder rule.
-    void locate_near(const Vec3& point, OvdfPoint& q) const;
-    // Whether a lookup of a Near point for squares of half-edge h needs the
-    // full location (locate()): the part is not small for h.
-    static bool needs_location(const OvdfPoint& q, float h) {
-        return q.kind == OvdfPoint::Near && shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area) < 1.0f;
-    }
     // A Located point's terms (prepare()'s); other kinds stay as they are.
     int complete(OvdfPoint& q, OvdfTerm* terms) const;
     // Whether a lookup of `q` for squares of half-edge h needs its terms:

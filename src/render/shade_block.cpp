@@ -55,7 +55,7 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
     OccluderVertexScratch& v = *s.pool[s.pool_used++];
     s.occluders[size_t(o)].vertices = &v;
     v.terms_used = 0;
-    for (int k = 0; k < n; ++k) v.located[k] = false;
+    for (int k = 0; k < n; ++k) v.located[k] = OccluderVertexScratch::kUnlocated;
     // In the occluder's frame, structure of arrays so that the loop
     // vectorizes: the box sides (the slab rule), and as OvdfLookup::prepare
     // the pole and the cone (ratios d/R are the same in the world).
@@ -81,6 +81,10 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
         v.side_x[k] = box_side(x, box.lo.x, box.hi.x);
         v.side_y[k] = box_side(y, box.lo.y, box.hi.y);
         v.side_z[k] = box_side(z, box.lo.z, box.hi.z);
+        // As glm's m * vec4(p, 1), which the lookups took before (the same sums).
+        v.local_x[k] = (m[0][0] * s.px[k] + m[1][0] * s.py[k]) + (m[2][0] * s.pz[k] + m[3][0]);
+        v.local_y[k] = (m[0][1] * s.px[k] + m[1][1] * s.py[k]) + (m[2][1] * s.pz[k] + m[3][1]);
+        v.local_z[k] = (m[0][2] * s.px[k] + m[1][2] * s.py[k]) + (m[2][2] * s.pz[k] + m[3][2]);
         const float vx = x - center.x, vy = y - center.y, vz = z - center.z;
         const float d = std::sqrt(vx * vx + vy * vy + vz * vz);
         const bool inside = d < outer;
@@ -175,30 +179,30 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
             s.vis[i] *= shading::shape_visible_fraction(shape.kind, v.shape_point[k], v.shape_frame[k],
                                                         Vec2(s.qx[i], s.qy[i]), s.qh[i], shape.lo, shape.hi);
         } else if (fast) {
+            const float h = s.qh[i];
+            const Vec3 point(v.local_x[k], v.local_y[k], v.local_z[k]);
             OvdfPoint& q = v.points[k];
-            const bool needs_point = !v.located[k] || q.kind == OvdfPoint::Slow || OvdfLookup::needs_location(q, s.qh[i]);
-            const Vec3 point = needs_point ? Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f))
-                                           : Vec3(0);
-            // The small-occluder rule needs no pole frame: the rest of the
-            // location only when a narrower light needs the tables.
-            if (!v.located[k]) {
-                fast->locate_near(point, q);
-                v.located[k] = true;
+            if (v.located[k] == OccluderVertexScratch::kNear) {
+                if (shading::ovdf_small_occluder_weight(v.near_cone[k], h, v.near_area[k]) >= 1.0f) {
+                    // The small-occluder rule alone (OvdfLookup::visible_fraction's w = 1 case): batched.
+                    BlockScratch::SmallOccluderQueries& b = s.small;
+                    b.cos_to_pole[b.count] = dir.x * v.near_pole_x[k] + dir.y * v.near_pole_y[k] + dir.z * v.near_pole_z[k];
+                    b.occluded_area[b.count] = v.near_area[k];
+                    b.cone[b.count] = v.near_cone[k];
+                    b.half_edge[b.count] = h;
+                    b.query[b.count++] = i;
+                    continue;
+                }
+                // A light narrower than the part's cone: the tables, so the full location.
+                fast->locate(point, q);
+                v.located[k] = OccluderVertexScratch::kPoint;
+            } else if (v.located[k] == OccluderVertexScratch::kUnlocated) {  // not batched: a field prepare() cannot take
+                fast->locate(point, q);
+                v.located[k] = OccluderVertexScratch::kPoint;
             }
-            if (q.kind == OvdfPoint::Near && !OvdfLookup::needs_location(q, s.qh[i])) {
-                // The small-occluder rule alone (OvdfLookup::visible_fraction's w = 1 case): batched.
-                BlockScratch::SmallOccluderQueries& b = s.small;
-                b.cos_to_pole[b.count] = glm::dot(dir, q.pole);
-                b.occluded_area[b.count] = q.occluded_area;
-                b.cone[b.count] = q.cone;
-                b.half_edge[b.count] = s.qh[i];
-                b.query[b.count++] = i;
-                continue;
-            }
-            if (OvdfLookup::needs_location(q, s.qh[i])) fast->locate(point, q);
             // The terms only for a light narrower than the part's cone (small occluders need none).
-            if (OvdfLookup::needs_terms(q, s.qh[i])) v.terms_used += fast->complete(q, v.terms + v.terms_used);
-            s.vis[i] *= fast->visible_fraction(q, point, dir, s.qh[i]);
+            if (OvdfLookup::needs_terms(q, h)) v.terms_used += fast->complete(q, v.terms + v.terms_used);
+            s.vis[i] *= fast->visible_fraction(q, point, dir, h);
         } else {
             const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
             s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
@@ -214,16 +218,14 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
 // bounding sphere one at a time.
 void Renderer::locate_near_points(BlockScratch& s, OccluderVertexScratch& v, int o, int n) const {
     BlockScratch::NearLocations& b = s.near;
-    const Mat4 m = poses_[o].inverse;
     int count = 0;
     for (int first = 0; first < n; first += 8) {
         uint64_t flags;
         std::memcpy(&flags, s.needed_bytes + first, 8);
         for (; flags != 0; flags &= flags - 1) {
             const int k = first + std::countr_zero(flags) / 8;
-            if (v.located[k] || !(s.vis[s.query_of[k]] > 0.0f)) continue;
-            const Vec3 point = Vec3(m * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
-            b.x[count] = point.x, b.y[count] = point.y, b.z[count] = point.z;
+            if (v.located[k] != OccluderVertexScratch::kUnlocated || !(s.vis[s.query_of[k]] > 0.0f)) continue;
+            b.x[count] = v.local_x[k], b.y[count] = v.local_y[k], b.z[count] = v.local_z[k];
             b.vertex[count++] = k;
         }
     }
@@ -238,16 +240,15 @@ void Renderer::locate_near_points(BlockScratch& s, OccluderVertexScratch& v, int
     fast.field().locate_near(batch);
     for (int j = 0; j < count; ++j) {
         const int k = b.vertex[j];
-        OvdfPoint& q = v.points[k];
-        v.located[k] = true;
-        if (!b.near[j]) {
-            fast.locate(Vec3(b.x[j], b.y[j], b.z[j]), q);
+        if (!b.near[j]) {  // within the bounding sphere (the inside test) or beyond the outer shell
+            fast.locate(Vec3(b.x[j], b.y[j], b.z[j]), v.points[k]);
+            v.located[k] = OccluderVertexScratch::kPoint;
             continue;
         }
-        q.kind = OvdfPoint::Near;
-        q.cone = b.cone[j];
-        q.occluded_area = b.occluded_area[j];
-        q.pole = Vec3(b.pole_x[j], b.pole_y[j], b.pole_z[j]);
+        v.located[k] = OccluderVertexScratch::kNear;
+        v.near_cone[k] = b.cone[j];
+        v.near_area[k] = b.occluded_area[j];
+        v.near_pole_x[k] = b.pole_x[j], v.near_pole_y[k] = b.pole_y[j], v.near_pole_z[k] = b.pole_z[j];
     }
 }
 

@@ -4,8 +4,9 @@
 // and PCA-segment seams, beyond the outer shell) and random lights; its
 // cheap cone test against the full lookup; and the renderer's lazy forms
 // (locate, then complete only for lights that need the tables: the
-// small-occluder rule needs none; locate_near, then the full location only
-// for lights that need the tables) against the field's visible fraction.
+// small-occluder rule needs none; the near half from Ovdf::locate_near and
+// the small-occluder rule on it, the full location only for lights that
+// need the tables) against the field's visible fraction.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -50,15 +51,24 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
         OvdfTerm lazy_terms[OvdfPoint::kMaxTerms];
         lookup.locate(point, lazy);
         REQUIRE((lazy.kind == OvdfPoint::Located) == (q.kind == OvdfPoint::Prepared));
-        OvdfPoint near;  // as the renderer now: near first, the pole frame and terms on a light's need
-        OvdfTerm near_terms[OvdfPoint::kMaxTerms];
-        lookup.locate_near(point, near);
+        // As the CPU renderer now: the near half first (Ovdf::locate_near,
+        // a batch of one here), the full location on a light's need.
+        float near_cone = 0, near_area = 0, pole_x = 0, pole_y = 0, pole_z = 0;
+        int32_t is_near = 0;
+        OvdfNearPoints batch;
+        batch.count = 1;
+        batch.x = &point.x, batch.y = &point.y, batch.z = &point.z;
+        batch.cone = &near_cone, batch.occluded_area = &near_area;
+        batch.pole_x = &pole_x, batch.pole_y = &pole_y, batch.pole_z = &pole_z;
+        batch.near = &is_near;
+        field.locate_near(batch);
         const float d = glm::length(point - field.center);
-        REQUIRE((near.kind == OvdfPoint::Near) == (lazy.kind == OvdfPoint::Located && d >= field.radius));
-        if (near.kind == OvdfPoint::Near) {
-            REQUIRE(near.cone == lazy.cone);
-            REQUIRE(near.occluded_area == lazy.occluded_area);
-            REQUIRE(glm::length(near.pole - lazy.pole) < 1e-6f);
+        REQUIRE(bool(is_near) == (lazy.kind == OvdfPoint::Located && d >= field.radius));
+        const Vec3 near_pole(pole_x, pole_y, pole_z);
+        if (is_near) {
+            REQUIRE(near_cone == lazy.cone);
+            REQUIRE(near_area == lazy.occluded_area);
+            REQUIRE(glm::length(near_pole - lazy.pole) < 1e-6f);
         }
         for (int l = 0; l < 4; ++l) {
             // Lights biased towards the occluder so that many lookups see it.
@@ -78,16 +88,15 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
             }
             REQUIRE(!OvdfLookup::needs_terms(lazy, h));
             REQUIRE(lookup.visible_fraction(lazy, point, light, h) == Approx(field_fraction).margin(1e-4f));
-            if (OvdfLookup::needs_location(near, h)) {
-                lookup.locate(point, near);
-                ++relocated;
-            } else {
-                near_small += near.kind == OvdfPoint::Near;
+            if (is_near && shading::ovdf_small_occluder_weight(near_cone, h, near_area) >= 1.0f) {
+                // The renderer's batched small-occluder rule (small_occluder_factors).
+                const float small = shading::ovdf_small_occluder_fraction(
+                    shading::ovdf_pole_radial(glm::dot(light, near_pole)), near_area, near_cone, h);
+                REQUIRE(small == Approx(field_fraction).margin(1e-4f));
+                ++near_small;
+            } else if (is_near) {
+                ++relocated;  // a narrower light: the lazy path above
             }
-            if (OvdfLookup::needs_terms(near, h)) lookup.complete(near, near_terms);
-            REQUIRE(!OvdfLookup::needs_location(near, h));
-            REQUIRE(!OvdfLookup::needs_terms(near, h));
-            REQUIRE(lookup.visible_fraction(near, point, light, h) == Approx(field_fraction).margin(1e-4f));
             small += q.kind == OvdfPoint::Prepared && shading::ovdf_small_occluder_weight(q.cone, h, q.occluded_area) > 0.0f;
             bounded += field_fraction > visible_fraction_from_distance(expected, h) + 1e-3f;
             // The cheap cone test claims 1 only where the lookup gives it.
