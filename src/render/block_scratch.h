@@ -16,6 +16,16 @@ namespace rsl {
 
 inline constexpr int kShadeBlock = 256;  // points per block (renderer.cpp splits the parts so)
 
+// One (light, occluder)'s vertices that need their OVDF point located, in
+// the occluder's frame, and the batch's outputs (Ovdf::locate_near).
+struct NearLocations {
+    alignas(64) float x[kShadeBlock], y[kShadeBlock], z[kShadeBlock];
+    alignas(64) float cone[kShadeBlock], occluded_area[kShadeBlock];
+    alignas(64) float pole_x[kShadeBlock], pole_y[kShadeBlock], pole_z[kShadeBlock];
+    alignas(64) int32_t near[kShadeBlock];
+    int vertex[kShadeBlock];
+};
+
 // One occluder part's per-vertex scratch for the current block: its bounding
 // cone seen from each vertex, the slab rule's box sides and the prepared
 // OVDF points. Taken from a per-thread pool when a block first needs the
@@ -38,8 +48,8 @@ struct OccluderVertexScratch {
     // Near, its cone, blended occluded area and pole in the near_ arrays
     // (all the small-occluder rule reads, located in batches:
     // locate_near_points); or a full point in `points`.
-    enum : uint8_t { kUnlocated = 0, kNear = 1, kPoint = 2 };
-    alignas(64) uint8_t located[kShadeBlock];
+    enum : int32_t { kUnlocated = 0, kNear = 1, kPoint = 2 };
+    alignas(64) int32_t located[kShadeBlock];  // 32-bit: the small-occluder loop gathers it
     alignas(64) float near_cone[kShadeBlock], near_area[kShadeBlock];
     alignas(64) float near_pole_x[kShadeBlock], near_pole_y[kShadeBlock], near_pole_z[kShadeBlock];
     // The light-independent half of the OVDF lookup, located when a light
@@ -114,26 +124,20 @@ struct Renderer::BlockScratch {
     // needs no rays, and its visible fraction.
     alignas(64) bool skip[kShadeBlock];
     alignas(64) float exact[kShadeBlock];
-    // One (light, occluder)'s vertices that need their OVDF point located
-    // (locate_near_points): their points in the occluder's frame and the
-    // batch's outputs (Ovdf::locate_near).
-    struct NearLocations {
-        alignas(64) float x[kShadeBlock], y[kShadeBlock], z[kShadeBlock];
-        alignas(64) float cone[kShadeBlock], occluded_area[kShadeBlock];
-        alignas(64) float pole_x[kShadeBlock], pole_y[kShadeBlock], pole_z[kShadeBlock];
-        alignas(64) int32_t near[kShadeBlock];
-        int vertex[kShadeBlock];
-    } near;
-    // One (light, occluder)'s lookups that take the small-occluder rule
-    // alone: gathered by the lookup loop, then evaluated in one vectorized
-    // pass (the rule is a lens area: two arccos polynomials and a square root
-    // that, one query at a time, were a dense scene's largest cost).
-    struct SmallOccluderQueries {
-        alignas(64) float cos_to_pole[kShadeBlock], occluded_area[kShadeBlock], cone[kShadeBlock];
-        alignas(64) float half_edge[kShadeBlock], fraction[kShadeBlock];
-        int query[kShadeBlock];
-        int count = 0;
-    } small;
+    // One (light, occluder)'s vertices to locate (ovdf_factors.cpp).
+    NearLocations near;
+    // One (light, occluder)'s OVDF lookups (ovdf_factors.cpp), listed so
+    // that the small-occluder rule — a lens area: two arccos polynomials and
+    // a square root, most lookups in a scene of many parts — runs in one
+    // vectorized loop: each query's vertex, index and half-edge, the light's
+    // direction in the part's frame, and whether the rule alone decides it
+    // and its value.
+    struct OvdfQueries {
+        int vertex[kShadeBlock], query[kShadeBlock];
+        alignas(64) float half_edge[kShadeBlock], dir_x[kShadeBlock], dir_y[kShadeBlock], dir_z[kShadeBlock];
+        alignas(64) int32_t small[kShadeBlock];
+        alignas(64) float fraction[kShadeBlock];
+    } ovdf;
 
     // Per occluder part (sized to the scene on first use): what the block
     // knows of it, valid while `stamp` equals the block's. The bounding cone

@@ -125,8 +125,8 @@ private:
     OccluderVertexScratch& prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;
     void occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int light, int occluder, int n, int m,
                           RenderStats& counts) const;
-    void locate_near_points(BlockScratch& s, OccluderVertexScratch& v, int occluder, int n) const;
-    static void small_occluder_factors(BlockScratch& s);
+    void ovdf_factors(BlockScratch& s, OccluderVertexScratch& v, int light, int occluder, int n,
+                      RenderStats& counts) const;  // ovdf_factors.cpp
 
     const Scene& scene_;
     RenderOptions options_;

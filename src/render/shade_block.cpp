@@ -152,10 +152,9 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
     // A block's (light, occluder) pair usually needs a few of its ~200
     // queries: the loop visits those alone, eight flags at a time, rather
     // than testing every query (a branch per query, which mispredicts).
-    s.small.count = 0;
     for (int k = 0; k < n; ++k) s.needed_bytes[k] = uint8_t(s.needed[k]);
     for (int k = n; k < kShadeBlock && k % 8 != 0; ++k) s.needed_bytes[k] = 0;
-    if (fast && fast->usable() && shape.kind == shading::kShapeNone) locate_near_points(s, v, o, n);
+    if (fast && fast->usable() && shape.kind == shading::kShapeNone) return ovdf_factors(s, v, l, o, n, counts);
     for (int first = 0; first < n; first += 8) {
         uint64_t flags;  // needed[first .. first + 8), one byte (0 or 1) each
         std::memcpy(&flags, s.needed_bytes + first, 8);
@@ -178,91 +177,20 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
             if (!v.in_reach[k]) continue;
             s.vis[i] *= shading::shape_visible_fraction(shape.kind, v.shape_point[k], v.shape_frame[k],
                                                         Vec2(s.qx[i], s.qy[i]), s.qh[i], shape.lo, shape.hi);
-        } else if (fast) {
-            const float h = s.qh[i];
+        } else if (fast) {  // a field prepare() cannot take (ovdf_factors takes the others)
             const Vec3 point(v.local_x[k], v.local_y[k], v.local_z[k]);
             OvdfPoint& q = v.points[k];
-            if (v.located[k] == OccluderVertexScratch::kNear) {
-                if (shading::ovdf_small_occluder_weight(v.near_cone[k], h, v.near_area[k]) >= 1.0f) {
-                    // The small-occluder rule alone (OvdfLookup::visible_fraction's w = 1 case): batched.
-                    BlockScratch::SmallOccluderQueries& b = s.small;
-                    b.cos_to_pole[b.count] = dir.x * v.near_pole_x[k] + dir.y * v.near_pole_y[k] + dir.z * v.near_pole_z[k];
-                    b.occluded_area[b.count] = v.near_area[k];
-                    b.cone[b.count] = v.near_cone[k];
-                    b.half_edge[b.count] = h;
-                    b.query[b.count++] = i;
-                    continue;
-                }
-                // A light narrower than the part's cone: the tables, so the full location.
-                fast->locate(point, q);
-                v.located[k] = OccluderVertexScratch::kPoint;
-            } else if (v.located[k] == OccluderVertexScratch::kUnlocated) {  // not batched: a field prepare() cannot take
+            if (v.located[k] == OccluderVertexScratch::kUnlocated) {
                 fast->locate(point, q);
                 v.located[k] = OccluderVertexScratch::kPoint;
             }
-            // The terms only for a light narrower than the part's cone (small occluders need none).
-            if (OvdfLookup::needs_terms(q, h)) v.terms_used += fast->complete(q, v.terms + v.terms_used);
-            s.vis[i] *= fast->visible_fraction(q, point, dir, h);
+            s.vis[i] *= fast->visible_fraction(q, point, dir, s.qh[i]);
         } else {
             const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
             s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
         }
         }
     }
-    small_occluder_factors(s);
-}
-
-// The OVDF points of the vertices whose lookups the current (light,
-// occluder) needs and that are not located yet, located in one batch
-// (Ovdf::locate_near; OvdfLookup::locate_near's values), the few within the
-// bounding sphere one at a time.
-void Renderer::locate_near_points(BlockScratch& s, OccluderVertexScratch& v, int o, int n) const {
-    BlockScratch::NearLocations& b = s.near;
-    int count = 0;
-    for (int first = 0; first < n; first += 8) {
-        uint64_t flags;
-        std::memcpy(&flags, s.needed_bytes + first, 8);
-        for (; flags != 0; flags &= flags - 1) {
-            const int k = first + std::countr_zero(flags) / 8;
-            if (v.located[k] != OccluderVertexScratch::kUnlocated || !(s.vis[s.query_of[k]] > 0.0f)) continue;
-            b.x[count] = v.local_x[k], b.y[count] = v.local_y[k], b.z[count] = v.local_z[k];
-            b.vertex[count++] = k;
-        }
-    }
-    if (count == 0) return;
-    const OvdfLookup& fast = *fast_lookups_[o];
-    OvdfNearPoints batch;
-    batch.count = count;
-    batch.x = b.x, batch.y = b.y, batch.z = b.z;
-    batch.cone = b.cone, batch.occluded_area = b.occluded_area;
-    batch.pole_x = b.pole_x, batch.pole_y = b.pole_y, batch.pole_z = b.pole_z;
-    batch.near = b.near;
-    fast.field().locate_near(batch);
-    for (int j = 0; j < count; ++j) {
-        const int k = b.vertex[j];
-        if (!b.near[j]) {  // within the bounding sphere (the inside test) or beyond the outer shell
-            fast.locate(Vec3(b.x[j], b.y[j], b.z[j]), v.points[k]);
-            v.located[k] = OccluderVertexScratch::kPoint;
-            continue;
-        }
-        v.located[k] = OccluderVertexScratch::kNear;
-        v.near_cone[k] = b.cone[j];
-        v.near_area[k] = b.occluded_area[j];
-        v.near_pole_x[k] = b.pole_x[j], v.near_pole_y[k] = b.pole_y[j], v.near_pole_z[k] = b.pole_z[j];
-    }
-}
-
-// The batched small-occluder lookups' visible fractions (as
-// OvdfLookup::visible_fraction), multiplied into their queries' vis. Each
-// query is in the batch at most once, so no product is reordered.
-void Renderer::small_occluder_factors(BlockScratch& s) {
-    BlockScratch::SmallOccluderQueries& b = s.small;
-    float* const vis = s.vis;
-    const int count = b.count;
-    for (int j = 0; j < count; ++j)
-        b.fraction[j] = shading::ovdf_small_occluder_fraction(shading::ovdf_pole_radial(b.cos_to_pole[j]),
-                                                              b.occluded_area[j], b.cone[j], b.half_edge[j]);
-    for (int j = 0; j < count; ++j) vis[b.query[j]] *= b.fraction[j];
 }
 
 namespace {
