@@ -14,11 +14,13 @@ namespace rsl::assets {
 
 inline constexpr float kYardLoopSeconds = 4.0f;
 inline constexpr int kYardMaxInstances = 4096;
-// The OVDF's outer radius, in bounding radii. Measured on yard-32
-// (docs/RESULTS.md "Scale"): 10 shades 41% fewer lookups than the bench's 20
-// and is no less accurate (its 13 shells sit closer together); 6 and 4 cut
-// the long shadows on the ground (error 4.2% → 6.9%, 11.8%).
-inline constexpr double kYardOvdfReach = 10.0;
+// The OVDF's outer radius, in bounding radii. Measured with `rsl bench
+// scale --reaches` (docs/RESULTS.md "The reach, once more"): the ground's
+// long shadows need the reach (the all-vertex error's growth from N = 8 to
+// 64: +1.04 points at 10R, +0.89 at 16R, +0.81 at 20R), and each step costs
+// frame time (yard-128 at 16R about 1.1x the 10R frame); 6 and 4 cut the
+// shadows on the ground outright (error 4.2% → 6.9%, 11.8% on yard-32).
+inline constexpr double kYardOvdfReach = 16.0;
 
 // Nodes: "ground" (static), then "crate_0000", "cup_0001", ... (one per
 // instance, meshes shared: instance i uses mesh i mod 4).
