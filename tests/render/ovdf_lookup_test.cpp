@@ -89,7 +89,7 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
             REQUIRE(!OvdfLookup::needs_terms(lazy, h));
             REQUIRE(lookup.visible_fraction(lazy, point, light, h) == Approx(field_fraction).margin(1e-4f));
             if (is_near && shading::ovdf_small_occluder_weight(near_cone, h, near_area) >= 1.0f) {
-                // The renderer's batched small-occluder rule (small_occluder_factors).
+                // The renderer's batched small-occluder rule (ovdf_factors.cpp).
                 const float small = shading::ovdf_small_occluder_fraction(
                     shading::ovdf_pole_radial(glm::dot(light, near_pole)), near_area, near_cone, h);
                 REQUIRE(small == Approx(field_fraction).margin(1e-4f));
