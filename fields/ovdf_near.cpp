@@ -37,9 +37,10 @@ void Ovdf::locate_near(const OvdfNearPoints& points) const {
 #endif
     for (int j = 0; j < count; ++j) {
         const float d0 = glm::length(Vec3(px[j], py[j], pz[j]) - c);
-        // Between the bounding sphere and the outer shell; the other lanes
-        // go on with a harmless stand-in (no NaN reaches an index).
-        const bool near = d0 < outer && !(d0 < r);
+        // Between the bounding sphere and the outer shell (and off the
+        // centre, for a degenerate part of radius 0); the other lanes go on
+        // with a harmless stand-in (no NaN reaches an index).
+        const bool near = d0 < outer && !(d0 < r) && d0 > 0.0f;
         const float d = near ? d0 : 1.0f;
         const float ox = near ? px[j] - c.x : 0.0f, oy = near ? py[j] - c.y : 0.0f, oz = near ? pz[j] - c.z : 1.0f;
         const float inverse = 1.0f / d;

@@ -64,7 +64,7 @@ void check_batches(const Ovdf& field, uint32_t seed, int* near_points, int* othe
         for (int j = 0; j < count; ++j) {
             const Vec3 p(batch.x[j], batch.y[j], batch.z[j]);
             const float d = glm::length(p - field.center);
-            const bool near = d < outer && !(d < field.radius);
+            const bool near = d < outer && !(d < field.radius) && d > 0.0f;
             INFO("point " << j << " of " << count << std::setprecision(9) << ", d = " << d << " (R = " << field.radius << ", outer " << outer << ")");
             REQUIRE(bool(batch.near[j]) == near);
             if (!near) {
