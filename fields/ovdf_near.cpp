@@ -30,11 +30,7 @@ void Ovdf::locate_near(const OvdfNearPoints& points) const {
     const float r = radius;
     const int spacing = int(params.spacing);
     const float inner = params.inner_radius, outer_ratio = params.outer_radius;
-#if defined(__clang__)
-#pragma clang loop vectorize(assume_safety)
-#else
-#pragma GCC ivdep
-#endif
+    RSL_VECTORIZE_NO_ALIAS
     for (int j = 0; j < count; ++j) {
         const float d0 = glm::length(Vec3(px[j], py[j], pz[j]) - c);
         // Between the bounding sphere and the outer shell (and off the

@@ -19,6 +19,15 @@ using Quat = glm::quat;
 using DVec3 = glm::dvec3;
 using Color = glm::vec3;  // linear RGB radiance or reflectance
 
+// Before a loop over arrays reached through pointers whose iterations touch
+// disjoint memory the compiler cannot prove so: vectorize it without the
+// run-time alias checks (too many of them, and GCC gives up instead).
+#if defined(__clang__)
+#define RSL_VECTORIZE_NO_ALIAS _Pragma("clang loop vectorize(assume_safety)")
+#else
+#define RSL_VECTORIZE_NO_ALIAS _Pragma("GCC ivdep")
+#endif
+
 inline constexpr float kPi = shading::kPi;
 inline constexpr float kSqrt2 = shading::kSqrt2;
 inline constexpr float kInvPi = std::numbers::inv_pi_v<float>;

@@ -4,8 +4,10 @@
 // pixels see), structure of arrays, never on the heap once warm. Private to
 // src/render.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -15,6 +17,20 @@
 namespace rsl {
 
 inline constexpr int kShadeBlock = 256;  // points per block (renderer.cpp splits the parts so)
+
+// Calls visit(k), in order, for each point k < n whose byte in
+// `needed_bytes` (0 or 1, zero up to the next multiple of 8 past n) is set:
+// a block's (light, occluder) pair usually needs a few of its ~200 points,
+// and eight flags at a time the loop skips the others without a branch
+// each (one per point mispredicts).
+template <typename Visit>
+inline void for_each_needed(const uint8_t* needed_bytes, int n, Visit&& visit) {
+    for (int first = 0; first < n; first += 8) {
+        uint64_t flags;
+        std::memcpy(&flags, needed_bytes + first, 8);
+        for (; flags != 0; flags &= flags - 1) visit(first + std::countr_zero(flags) / 8);
+    }
+}
 
 // One (light, occluder)'s vertices that need their OVDF point located, in
 // the occluder's frame, and the batch's outputs (Ovdf::locate_near).

@@ -8,9 +8,6 @@
 // take the scalar path (OvdfLookup). The values are OvdfLookup::
 // visible_fraction's (tests/render/ovdf_lookup_test.cpp pins the rule on
 // the batch's values to the field's own lookup).
-#include <bit>
-#include <cstring>
-
 #include "src/render/block_scratch.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/renderer.h"
@@ -60,31 +57,26 @@ void Renderer::ovdf_factors(BlockScratch& s, OccluderVertexScratch& v, int l, in
     // The needed queries whose visibility is not black already (later
     // occluders cannot change it), and among them the vertices to locate.
     int count = 0, to_locate = 0;
-    for (int first = 0; first < n; first += 8) {
-        uint64_t flags;  // needed[first .. first + 8), one byte (0 or 1) each
-        std::memcpy(&flags, s.needed_bytes + first, 8);
-        for (; flags != 0; flags &= flags - 1) {
-            const int k = first + std::countr_zero(flags) / 8;
-            const int i = s.query_of[k];
-            if (!(s.vis[i] > 0.0f)) continue;
-            Vec3 dir = light_local;
-            if (!is_environment) {  // the light's direction at this vertex, and the slab rule for it
-                const Vec3 light = occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]);
-                if (clears_box_face_scaled(Vec3(v.side_x[k], v.side_y[k], v.side_z[k]), light, occluder.face_scale,
-                                           square_cone_sine(s.qh[i])))
-                    continue;
-                dir = glm::normalize(light);
-            }
-            b.vertex[count] = k, b.query[count] = i, b.half_edge[count] = s.qh[i];
-            b.dir_x[count] = dir.x, b.dir_y[count] = dir.y, b.dir_z[count] = dir.z;
-            ++count;
-            if (v.located[k] == OccluderVertexScratch::kUnlocated) {
-                unlocated.x[to_locate] = v.local_x[k], unlocated.y[to_locate] = v.local_y[k];
-                unlocated.z[to_locate] = v.local_z[k];
-                unlocated.vertex[to_locate++] = k;
-            }
+    for_each_needed(s.needed_bytes, n, [&](int k) {
+        const int i = s.query_of[k];
+        if (!(s.vis[i] > 0.0f)) return;
+        Vec3 dir = light_local;
+        if (!is_environment) {  // the light's direction at this vertex, and the slab rule for it
+            const Vec3 light = occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]);
+            if (clears_box_face_scaled(Vec3(v.side_x[k], v.side_y[k], v.side_z[k]), light, occluder.face_scale,
+                                       square_cone_sine(s.qh[i])))
+                return;
+            dir = glm::normalize(light);
         }
-    }
+        b.vertex[count] = k, b.query[count] = i, b.half_edge[count] = s.qh[i];
+        b.dir_x[count] = dir.x, b.dir_y[count] = dir.y, b.dir_z[count] = dir.z;
+        ++count;
+        if (v.located[k] == OccluderVertexScratch::kUnlocated) {
+            unlocated.x[to_locate] = v.local_x[k], unlocated.y[to_locate] = v.local_y[k];
+            unlocated.z[to_locate] = v.local_z[k];
+            unlocated.vertex[to_locate++] = k;
+        }
+    });
     counts.occluder_lookups += size_t(count);
     if (count == 0) return;
     if (to_locate > 0) locate_near_points(unlocated, v, fast, to_locate);
@@ -92,11 +84,7 @@ void Renderer::ovdf_factors(BlockScratch& s, OccluderVertexScratch& v, int l, in
     // The small-occluder rule (OvdfLookup::visible_fraction's w = 1 case) for
     // every query whose vertex is Near: whether it applies, and its value.
     // Branch-free; a vertex that is not Near reads stand-ins (dropped).
-#if defined(__clang__)
-#pragma clang loop vectorize(assume_safety)
-#else
-#pragma GCC ivdep
-#endif
+    RSL_VECTORIZE_NO_ALIAS
     for (int j = 0; j < count; ++j) {
         const int k = b.vertex[j];
         const bool near = v.located[k] == OccluderVertexScratch::kNear;

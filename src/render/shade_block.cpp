@@ -69,11 +69,7 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
     // The block's and the occluder's scratch never overlap; without saying
     // so GCC would need more run-time alias checks than it makes, and not
     // vectorize.
-#if defined(__clang__)
-#pragma clang loop vectorize(assume_safety)
-#else
-#pragma GCC ivdep
-#endif
+    RSL_VECTORIZE_NO_ALIAS
     for (int k = 0; k < n; ++k) {
         const float x = m[0][0] * s.px[k] + m[1][0] * s.py[k] + m[2][0] * s.pz[k] + m[3][0];
         const float y = m[0][1] * s.px[k] + m[1][1] * s.py[k] + m[2][1] * s.pz[k] + m[3][1];
@@ -149,32 +145,26 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
             s.needed[k] = s.queried[k] & int32_t(!OvdfLookup::unshadowed(c, v.cone[k], s.half[k]));
         }
     }
-    // A block's (light, occluder) pair usually needs a few of its ~200
-    // queries: the loop visits those alone, eight flags at a time, rather
-    // than testing every query (a branch per query, which mispredicts).
+    // The lookups visit the needed queries alone (for_each_needed).
     for (int k = 0; k < n; ++k) s.needed_bytes[k] = uint8_t(s.needed[k]);
     for (int k = n; k < kShadeBlock && k % 8 != 0; ++k) s.needed_bytes[k] = 0;
     if (fast && fast->usable() && shape.kind == shading::kShapeNone) return ovdf_factors(s, v, l, o, n, counts);
-    for (int first = 0; first < n; first += 8) {
-        uint64_t flags;  // needed[first .. first + 8), one byte (0 or 1) each
-        std::memcpy(&flags, s.needed_bytes + first, 8);
-        for (; flags != 0; flags &= flags - 1) {
-            const int k = first + std::countr_zero(flags) / 8;
-            const int i = s.query_of[k];
-            if (!(s.vis[i] > 0.0f)) continue;  // black already: later occluders cannot change it
+    for_each_needed(s.needed_bytes, n, [&](int k) {
+        const int i = s.query_of[k];
+        if (!(s.vis[i] > 0.0f)) return;  // black already: later occluders cannot change it
         const Vec3 dir = is_environment ? light_local
                                         : glm::normalize(occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]));
         if (!is_environment) {  // the slab rule for a local light's own direction
             const Vec3 light = occluder.inverse_linear * Vec3(s.dx[k], s.dy[k], s.dz[k]);
             if (clears_box_face_scaled(Vec3(v.side_x[k], v.side_y[k], v.side_z[k]), light, occluder.face_scale,
                                        square_cone_sine(s.qh[i])))
-                continue;
+                return;
         }
         ++counts.occluder_lookups;
         if (shape.kind != shading::kShapeNone) {  // a rectangle or a box: its exact shadow (occluder_shape.h)
             // Within the field's reach only, as its lookup (and so the
             // occluder lists and culling): the part shadows nothing beyond it.
-            if (!v.in_reach[k]) continue;
+            if (!v.in_reach[k]) return;
             s.vis[i] *= shading::shape_visible_fraction(shape.kind, v.shape_point[k], v.shape_frame[k],
                                                         Vec2(s.qx[i], s.qy[i]), s.qh[i], shape.lo, shape.hi);
         } else if (fast) {  // a field prepare() cannot take (ovdf_factors takes the others)
@@ -189,8 +179,7 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
             const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
             s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
         }
-        }
-    }
+    });
 }
 
 namespace {
