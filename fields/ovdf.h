@@ -182,8 +182,9 @@ public:
     // The samples around `point` (occluder frame) at distance d = |point −
     // center|; callers handle d beyond the outer shell first.
     OvdfLocation locate(const Vec3& point, float d) const;
-    // OvdfLookup::locate_near's half of locate() for many points at once
-    // (fields/ovdf_near.cpp): the same values, in a vectorized loop.
+    // The near half of locate() — bounding cone, blended occluded area,
+    // pole — for many points at once, all the small-occluder rule reads
+    // (fields/ovdf_near.cpp): locate()'s values, in a vectorized loop.
     void locate_near(const OvdfNearPoints& points) const;
     // The blended surface distance at a location: where it is negative within
     // the bounding sphere, the point is inside the part and every lookup is

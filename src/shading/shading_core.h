@@ -271,8 +271,6 @@ RSL_SHARED vec2 anisotropic_view_point(vec3 view) {
 
 // ---- the occluder field (fields/ovdf.h) ----
 
-// Continuous shell index of distance ratio d / R between the inner and the
-// outer shell radii (× R): spacing 0 geometric, 1 linear, 2 inverse radius.
 // The natural log of a positive normal float to 1.2e-7 (absolute where
 // |log x| < 1, relative above; tests/fields/ovdf_test.cpp), the same
 // arithmetic in both renderers and, unlike the libraries' log, in a loop the
@@ -295,6 +293,8 @@ RSL_SHARED float portable_log(float x) {
     series = series * s2 + 2.0f;
     return float(exponent) * 0.693147181f + s * series;
 }
+// Continuous shell index of distance ratio d / R between the inner and the
+// outer shell radii (× R): spacing 0 geometric, 1 linear, 2 inverse radius.
 RSL_SHARED float ovdf_shell_coordinate(int spacing, int shells, float inner, float outer, float ratio) {
     float last = float(shells - 1);
     if (spacing == 0) return last * portable_log(max(ratio, 1e-6f) / inner) / portable_log(outer / inner);
