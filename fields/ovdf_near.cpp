@@ -2,8 +2,8 @@
 // occluded area, pole) for many receivers at once. The CPU renderer locates
 // one point per (vertex, occluder) that a light needs, millions a frame in a
 // dense scene, and the small-occluder rule needs only this half; one point
-// at a time it was a third of such a frame (calls, a Frame built and
-// dropped, a branch per shell, a call to the library's log). The same
+// at a time it was over a quarter of such a frame's profile (calls, a Frame
+// built and dropped, a branch per shell, a call to the library's log). The same
 // formulas in the same order as Ovdf::locate and blend_samples, so the
 // results are theirs (tests/fields/ovdf_near_test.cpp); the loop is
 // branch-free for the vectorizer.
