@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "assets/generate/yard.h"
 #include "bench/bench.h"
 #include "src/cli/command.h"
 #include "src/core/atomic_file.h"
@@ -50,7 +51,8 @@ RegisterCommand bench_command({"bench",
             ->delimiter(',')
             ->check(CLI::Range(1, 4096));
         app.add_option("--reaches", args->reaches,
-                       "scale: OVDF outer radii in bounding radii to compare (default: the yard's 20)")
+                       fmt::format("scale: OVDF outer radii in bounding radii to compare (default: the yard's {:g})",
+                                   assets::kYardOvdfReach))
             ->delimiter(',')
             ->check(CLI::Range(1.5, 100.0));
         app.callback([args] {
