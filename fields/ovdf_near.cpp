@@ -20,8 +20,6 @@ void Ovdf::locate_near(const OvdfNearPoints& points) const {
     const float* const py = points.y;
     const float* const pz = points.z;
     const int n = params.cube_resolution, shells = params.shells;
-    const int shell_stride = shading::kCubeFaces * n * n;
-    const float hi = float(n - 1);
     const float* const area = occluded_area.empty() ? nullptr : occluded_area.data();
     const float* const face_s = &face_s_[0].x;
     const float* const face_t = &face_t_[0].x;
@@ -41,39 +39,22 @@ void Ovdf::locate_near(const OvdfNearPoints& points) const {
         const float ox = near ? px[j] - c.x : 0.0f, oy = near ? py[j] - c.y : 0.0f, oz = near ? pz[j] - c.z : 1.0f;
         const float inverse = 1.0f / d;
         const Vec3 dir(ox * inverse, oy * inverse, oz * inverse);
-        // ovdf_zoom's cone, ovdf_shell_pair, cube_face, ovdf_sample_taps.
+        // ovdf_zoom's cone; the shell pair, cube face and sample taps as locate().
         points.cone[j] = d <= r ? kOvdfNoCone : shading::ovdf_cone_radius(d, r);
-        const float coordinate = shading::ovdf_shell_coordinate(spacing, shells, inner, outer_ratio, d / r);
-        const float u = glm::clamp(coordinate, 0.0f, float(shells - 1));
-        const int s0 = std::min(int(u), shells - 2);
-        const float fs = u - float(s0);
-        int face = 0;
-        float cosine = -2.0f;
-        for (int f = 0; f < shading::kCubeFaces; ++f) {
-            const float dot = dir.x * normals[f].x + dir.y * normals[f].y + dir.z * normals[f].z;
-            face = dot > cosine ? f : face;
-            cosine = dot > cosine ? dot : cosine;
-        }
-        const Vec3 s(face_s[3 * face], face_s[3 * face + 1], face_s[3 * face + 2]);
-        const Vec3 t(face_t[3 * face], face_t[3 * face + 1], face_t[3 * face + 2]);
-        const float inverse_cosine = 1.0f / cosine;
-        const float x = glm::clamp((glm::dot(dir, s) * inverse_cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
-        const float y = glm::clamp((glm::dot(dir, t) * inverse_cosine + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f, hi);
-        const int i0 = std::min(int(x), n - 2), j0 = std::min(int(y), n - 2);
-        const float fx = x - float(i0), fy = y - float(j0);
-        const float w0 = (1.0f - fx) * (1.0f - fy), w1 = fx * (1.0f - fy), w2 = (1.0f - fx) * fy, w3 = fx * fy;
+        const shading::ShellPair pair =
+            shading::ovdf_shell_pair(shading::ovdf_shell_coordinate(spacing, shells, inner, outer_ratio, d / r), shells);
+        const shading::CubeFace face = shading::cube_face(dir, normals);
+        const Vec3 s(face_s[3 * face.face], face_s[3 * face.face + 1], face_s[3 * face.face + 2]);
+        const Vec3 t(face_t[3 * face.face], face_t[3 * face.face + 1], face_t[3 * face.face + 2]);
+        const shading::SampleTaps taps = shading::ovdf_sample_taps(dir, face.cosine, s, t, n);
         // blend_samples: both shells (a shell of weight 0 adds 0).
         if (area) {
-            const int lower = ((s0 * shading::kCubeFaces + face) * n + j0) * n + i0;
             float blended = 0.0f;
             for (int k = 0; k < 2; ++k) {
-                const float ws = k == 0 ? 1.0f - fs : fs;
-                const float* const a = area + lower + k * shell_stride;
+                const float ws = k == 0 ? 1.0f - pair.upper_weight : pair.upper_weight;
                 float value = 0.0f;
-                value += w0 * a[0];
-                value += w1 * a[1];
-                value += w2 * a[n];
-                value += w3 * a[n + 1];
+                for (int q = 0; q < 4; ++q)
+                    value += taps.weight[q] * area[shading::ovdf_sample_index(pair.lower + k, face.face, taps.i[q], taps.j[q], n)];
                 blended += ws * value;
             }
             points.occluded_area[j] = blended;
