@@ -3,7 +3,8 @@
 // per frame and per vertex, OVDF lookups, occluder candidates per receiver,
 // and for N ≤ 64 the error against the truth at the same frames (all
 // vertices, the objects: their means over the frames; the worst part of
-// any frame) — plus a PNG of frame time against N. With `--reaches` the
+// any frame; and per reach, the errors' growth from the smallest N, in
+// percentage points) — plus a PNG of frame time against N. With `--reaches` the
 // same for several OVDF outer radii: what a shorter reach costs in error and
 // saves in time.
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <numeric>
 #include <set>
+#include <string>
 
 #include <fmt/core.h>
 
@@ -64,9 +66,11 @@ size_t field_ram_bytes(const PartFields& fields, size_t& unique, size_t& meshes)
 }
 
 struct ScaleRow {
+    int instances = 0;
     int parts = 0;
     float reach = 0;
     double shade_ms = 0;
+    double error_all = -1, error_objects = -1;  // five-frame means; −1: no truth at this N
 };
 
 ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
@@ -159,7 +163,32 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
         row["worst_part_time"] = worst_time;
     }
     bench_emit(row);
-    return ScaleRow{instances, scene->precompute.ovdf_outer_radius, shade[kFrameTimes.size() / 2]};
+    ScaleRow result{instances, int(scene->parts.size()), scene->precompute.ovdf_outer_radius,
+                    shade[kFrameTimes.size() / 2]};
+    if (row.contains("relative_l2_vs_truth"))
+        result.error_all = row["relative_l2_vs_truth"], result.error_objects = row["objects_relative_l2"];
+    return result;
+}
+
+// The errors' growth against the smallest N with a truth, in percentage
+// points of the five-frame means (issue 15's goal: within one point at N =
+// 32 and 64), one line per reach.
+void emit_error_growth(const std::vector<ScaleRow>& rows) {
+    if (rows.size() < 2) return;
+    const ScaleRow& base = *std::min_element(
+        rows.begin(), rows.end(), [](const ScaleRow& a, const ScaleRow& b) { return a.instances < b.instances; });
+    nlohmann::json all, objects;
+    for (const ScaleRow& row : rows) {
+        if (row.instances == base.instances) continue;
+        all[std::to_string(row.instances)] = 100.0 * (row.error_all - base.error_all);
+        objects[std::to_string(row.instances)] = 100.0 * (row.error_objects - base.error_objects);
+    }
+    bench_emit({{"bench", "scale"},
+                {"case", fmt::format("error growth, reach {:g}R", base.reach)},
+                {"ovdf_outer_radius", base.reach},
+                {"baseline_instances", base.instances},
+                {"growth_points_all", all},
+                {"growth_points_objects", objects}});
 }
 
 void bench_scale(const BenchOptions& options) {
@@ -173,13 +202,16 @@ void bench_scale(const BenchOptions& options) {
     for (size_t r = 0; r < reaches.size(); ++r) {
         raster::Series line;
         line.color = colors[r % 4];
+        std::vector<ScaleRow> rows;
         for (const int n : counts) {
             const ScaleRow row = bench_yard(options, n, reaches[r]);
             line.name = fmt::format("REACH {:g}R", row.reach);
             line.x.push_back(std::log2(double(row.parts)));  // the plot's x axis is linear
             line.y.push_back(row.shade_ms);
+            if (row.error_all >= 0) rows.push_back(row);
         }
         series.push_back(line);
+        emit_error_growth(rows);
     }
     const fs::path plot = options.output / "scale" / "frame_time.png";
     write_png(plot, raster::line_plot(series, "LOG2 PARTS (3: 8 PARTS, 10: 1,024)", "SHADING MS PER FRAME (CPU)"));
