@@ -148,7 +148,9 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
     // The lookups visit the needed queries alone (for_each_needed).
     for (int k = 0; k < n; ++k) s.needed_bytes[k] = uint8_t(s.needed[k]);
     for (int k = n; k < kShadeBlock && k % 8 != 0; ++k) s.needed_bytes[k] = 0;
-    if (fast && fast->usable() && shape.kind == shading::kShapeNone) return ovdf_factors(s, v, l, o, n, counts);
+    // A split-lookup OVDF (a fast lookup exists only where prepare() takes
+    // the field: renderer.cpp) goes through the batched passes.
+    if (fast && shape.kind == shading::kShapeNone) return ovdf_factors(s, v, l, o, n, counts);
     for_each_needed(s.needed_bytes, n, [&](int k) {
         const int i = s.query_of[k];
         if (!(s.vis[i] > 0.0f)) return;  // black already: later occluders cannot change it
@@ -167,15 +169,7 @@ void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l
             if (!v.in_reach[k]) return;
             s.vis[i] *= shading::shape_visible_fraction(shape.kind, v.shape_point[k], v.shape_frame[k],
                                                         Vec2(s.qx[i], s.qy[i]), s.qh[i], shape.lo, shape.hi);
-        } else if (fast) {  // a field prepare() cannot take (ovdf_factors takes the others)
-            const Vec3 point(v.local_x[k], v.local_y[k], v.local_z[k]);
-            OvdfPoint& q = v.points[k];
-            if (v.located[k] == OccluderVertexScratch::kUnlocated) {
-                fast->locate(point, q);
-                v.located[k] = OccluderVertexScratch::kPoint;
-            }
-            s.vis[i] *= fast->visible_fraction(q, point, dir, s.qh[i]);
-        } else {
+        } else {  // the field's own lookup (no split lookup: options, or not a coefficient-blended OVDF)
             const Vec3 point = Vec3(occluder.inverse * Vec4(s.px[k], s.py[k], s.pz[k], 1.0f));
             s.vis[i] *= field.visible_fraction(point, dir, s.qh[i]);
         }
