@@ -20,42 +20,50 @@ std::optional<OccluderShape> find_rectangle(const TriangleMesh& mesh) {
     const BoundingSphere sphere = mesh.bounding_sphere();
     if (!(sphere.radius > 0.0f)) return std::nullopt;
     // The plane of the largest triangle (in double: sums over big grids).
-    glm::dvec3 normal(0.0), first_edge(0.0);
+    glm::dvec3 normal(0.0);
     double largest = 0.0, area = 0.0;
+    size_t largest_at = 0;
     for (size_t i = 0; i < mesh.indices.size(); i += 3) {
         const glm::dvec3 a(mesh.positions[mesh.indices[i]]), b(mesh.positions[mesh.indices[i + 1]]),
             c(mesh.positions[mesh.indices[i + 2]]);
         const glm::dvec3 n = glm::cross(b - a, c - a);
         const double twice = glm::length(n);
         area += 0.5 * twice;
-        if (twice > largest) largest = twice, normal = n / twice;
-        if (glm::length(first_edge) == 0.0 && glm::length(b - a) > 0.0) first_edge = b - a;
+        if (twice > largest) largest = twice, normal = n / twice, largest_at = i;
     }
     if (!(largest > 0.0)) return std::nullopt;
     const glm::dvec3 origin(mesh.positions[mesh.indices[0]]);
     const double tolerance = 1e-5 * double(sphere.radius);
     for (const Vec3& p : mesh.positions)
         if (std::abs(glm::dot(glm::dvec3(p) - origin, normal)) > tolerance) return std::nullopt;
-    // Axes across: the first edge, made orthogonal to the normal.
-    glm::dvec3 s = first_edge - normal * glm::dot(first_edge, normal);
-    if (!(glm::length(s) > 0.0)) return std::nullopt;
-    s = glm::normalize(s);
-    const glm::dvec3 t = glm::cross(normal, s);
-    double lo_s = 1e300, hi_s = -1e300, lo_t = 1e300, hi_t = -1e300;
-    for (const Vec3& p : mesh.positions) {
-        const glm::dvec3 d = glm::dvec3(p) - origin;
-        lo_s = std::min(lo_s, glm::dot(d, s)), hi_s = std::max(hi_s, glm::dot(d, s));
-        lo_t = std::min(lo_t, glm::dot(d, t)), hi_t = std::max(hi_t, glm::dot(d, t));
+    // The rectangle's sides lie along one of the largest triangle's edges:
+    // in a grid, any edge but a diagonal; in a quad of two triangles, the
+    // edge a triangle's first edge may be is the diagonal (an exporter's
+    // index order), so each of the three is tried.
+    for (int e = 0; e < 3; ++e) {
+        const glm::dvec3 a(mesh.positions[mesh.indices[largest_at + size_t(e)]]);
+        const glm::dvec3 b(mesh.positions[mesh.indices[largest_at + size_t((e + 1) % 3)]]);
+        glm::dvec3 s = (b - a) - normal * glm::dot(b - a, normal);
+        if (!(glm::length(s) > 0.0)) continue;
+        s = glm::normalize(s);
+        const glm::dvec3 t = glm::cross(normal, s);
+        double lo_s = 1e300, hi_s = -1e300, lo_t = 1e300, hi_t = -1e300;
+        for (const Vec3& p : mesh.positions) {
+            const glm::dvec3 d = glm::dvec3(p) - origin;
+            lo_s = std::min(lo_s, glm::dot(d, s)), hi_s = std::max(hi_s, glm::dot(d, s));
+            lo_t = std::min(lo_t, glm::dot(d, t)), hi_t = std::max(hi_t, glm::dot(d, t));
+        }
+        const double rectangle = (hi_s - lo_s) * (hi_t - lo_t);
+        if (!(rectangle > 0.0) || std::abs(area - rectangle) > 1e-3 * rectangle) continue;
+        OccluderShape r;
+        r.kind = shading::kShapeRectangle;
+        r.center = Vec3(origin + s * (0.5 * (lo_s + hi_s)) + t * (0.5 * (lo_t + hi_t)));
+        r.s = Vec3(s), r.t = Vec3(t), r.normal = Vec3(normal);
+        r.hi = Vec3(float(0.5 * (hi_s - lo_s)), float(0.5 * (hi_t - lo_t)), 0.0f);
+        r.lo = -r.hi;
+        return r;
     }
-    const double rectangle = (hi_s - lo_s) * (hi_t - lo_t);
-    if (!(rectangle > 0.0) || std::abs(area - rectangle) > 1e-3 * rectangle) return std::nullopt;
-    OccluderShape r;
-    r.kind = shading::kShapeRectangle;
-    r.center = Vec3(origin + s * (0.5 * (lo_s + hi_s)) + t * (0.5 * (lo_t + hi_t)));
-    r.s = Vec3(s), r.t = Vec3(t), r.normal = Vec3(normal);
-    r.hi = Vec3(float(0.5 * (hi_s - lo_s)), float(0.5 * (hi_t - lo_t)), 0.0f);
-    r.lo = -r.hi;
-    return r;
+    return std::nullopt;
 }
 
 std::optional<OccluderShape> find_box(const TriangleMesh& mesh) {

@@ -28,8 +28,8 @@ struct OccluderShape {
 
 // The rectangle a mesh covers exactly, if it is one: every vertex within
 // 10⁻⁵ of its size of one plane, and its triangles' area that of the
-// rectangle its vertices span along the first edge's direction and the
-// normal's cross (within 0.1%, so no hole, disc or L-shape passes).
+// rectangle its vertices span along one of the largest triangle's edges and
+// the normal's cross (within 0.1%, so no hole, disc or L-shape passes).
 std::optional<OccluderShape> find_rectangle(const TriangleMesh& mesh);
 // The box a mesh covers exactly, if it is one, axis-aligned in the mesh's
 // frame: every triangle on one face of its bounding box, and their area the

@@ -3,6 +3,7 @@
 // square against rays cast at the mesh itself.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <functional>
 #include <random>
 
@@ -61,6 +62,40 @@ TEST_CASE("A grid plane is found as its rectangle, anywhere; boxes, holes and be
     TriangleMesh bent = plane;
     bent.positions[plane.positions.size() / 2].y += 1e-3f;
     CHECK_FALSE(find_rectangle(bent));
+}
+
+TEST_CASE("A quad of two triangles is its rectangle in any index order an exporter writes; a rhombus is not",
+          "[render][shape]") {
+    // 4 × 2 at y = 0: corners 0 (−2, −1), 1 (2, −1), 2 (2, 1), 3 (−2, 1) in x, z.
+    TriangleMesh quad;
+    quad.positions = {{-2, 0, -1}, {2, 0, -1}, {2, 0, 1}, {-2, 0, 1}};
+    quad.normals.assign(4, Vec3(0, 1, 0));
+    // Both diagonals, each triangle's indices in each of its three rotations:
+    // a triangle's first edge is then a side or the diagonal.
+    const std::array<std::array<uint32_t, 6>, 2> splits = {{{0, 2, 1, 0, 3, 2}, {1, 3, 2, 1, 0, 3}}};
+    int tried = 0;
+    for (const auto& split : splits)
+        for (int first = 0; first < 3; ++first)
+            for (int second = 0; second < 3; ++second) {
+                quad.indices.clear();
+                for (int k = 0; k < 3; ++k) quad.indices.push_back(split[size_t((first + k) % 3)]);
+                for (int k = 0; k < 3; ++k) quad.indices.push_back(split[size_t(3 + (second + k) % 3)]);
+                const std::optional<OccluderShape> r = find_rectangle(quad);
+                INFO("indices " << quad.indices[0] << quad.indices[1] << quad.indices[2] << " " << quad.indices[3]
+                                << quad.indices[4] << quad.indices[5]);
+                REQUIRE(r);
+                CHECK(std::max(r->hi.x, r->hi.y) == Approx(2.0f));
+                CHECK(std::min(r->hi.x, r->hi.y) == Approx(1.0f));
+                CHECK(glm::length(r->center) < 1e-6f);
+                ++tried;
+            }
+    CHECK(tried == 18);
+    // A rhombus: no edge and no diagonal spans a rectangle of its area.
+    quad.positions = {{-2, 0, 0}, {0, 0, -1}, {2, 0, 0}, {0, 0, 1}};
+    quad.indices = {0, 2, 1, 0, 3, 2};
+    CHECK_FALSE(find_rectangle(quad));
+    quad.indices = {0, 1, 3, 1, 2, 3};
+    CHECK_FALSE(find_rectangle(quad));
 }
 
 TEST_CASE("A closed box mesh is found as its box; an open box, a moved vertex and a sphere are not", "[render][shape]") {
