@@ -107,7 +107,7 @@ vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
         sum += ((1.0f - wi) * wj) * slice_integral(s + v, t);
         sum += (wi * wj) * slice_integral(s + v + 1, t);
     }
-    return sum * t.inv_full_area;
+    return max(sum * t.inv_full_area, vec3(0.0f));  // ≥ 0 as the CPU's: a tiny square's differences can cancel below 0
 }
 
 // ---- visibility distance tables (fields/vdt.h, svdf.h, ovdf.cpp) ----

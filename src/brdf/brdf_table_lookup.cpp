@@ -8,6 +8,7 @@
 //      weights and the two corners of a pair are combined once at the end.
 // The split keeps pass 2's dependency chains short (addresses are ready), so
 // consecutive queries overlap. square_average is a batch of one.
+#include <algorithm>
 #include <cstring>
 
 #if defined(__AVX__)
@@ -229,9 +230,11 @@ void BrdfTable::batch_kernel(const SquareQueries& q, const ColorOutputs& out) co
             for (int s = 1; s < Slices; ++s) upper[0] += upper[s], lower[0] += lower[s];
             // Upper pair: weights (1 − f1, f1); lower: (f0 − 1, −f0) = −(1 − f0, f0).
             const Float8 sum = upper[0] * pair_weights(b.f_upper[k]) - lower[0] * pair_weights(b.f_lower[k]);
-            *r = (sum[0] + sum[3] + offset.r) * b.inv_area[k];
-            *gr = (sum[1] + sum[4] + offset.g) * b.inv_area[k];
-            *bl = (sum[2] + sum[5] + offset.b) * b.inv_area[k];
+            // An average of ρ·cos ≥ 0; the table's differences over a square
+            // of a texel or less (a sun) can cancel to a rounding below 0.
+            *r = std::max((sum[0] + sum[3] + offset.r) * b.inv_area[k], 0.0f);
+            *gr = std::max((sum[1] + sum[4] + offset.g) * b.inv_area[k], 0.0f);
+            *bl = std::max((sum[2] + sum[5] + offset.b) * b.inv_area[k], 0.0f);
         }
     }
 }
