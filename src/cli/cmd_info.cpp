@@ -13,6 +13,7 @@
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
+#include "src/core/scene_environment.h"
 
 namespace rsl::cli {
 
@@ -163,6 +164,26 @@ void print_lights(const Scene& scene) {
     }
 }
 
+// What lights the scene from afar: its map, a uniform sky, glTF suns.
+void print_environment_of(const Scene& scene) {
+    const EnvironmentDesc& env = scene.environment;
+    if (env.file.empty()) {
+        fmt::print("  environment:       {}\n", describe_environment(env));
+    } else {
+        fmt::print("  environment:       {} (cube N = {}), rotation {}° + {}°/s about {}\n", env.file.string(),
+                   env.resolution, env.rotation_degrees, env.rotation_degrees_per_second, vec3_text(env.rotation_axis));
+        if (!env.second_file.empty())
+            fmt::print("                     blends to {} over {} s\n", env.second_file.string(), env.blend_period_seconds);
+        EnvironmentDesc added = env;  // what lights the scene besides the map
+        added.file.clear();
+        if (added.present()) fmt::print("                     with {}\n", describe_environment(added));
+    }
+    for (const SunLight& sun : env.suns)
+        fmt::print("    sun {:<12} towards {}, irradiance {} (glTF directional light; one texel of the map)\n",
+                   "'" + sun.name + "'", vec3_text(sun.direction_at(scene, scene.animation.start)),
+                   vec3_text(sun.irradiance));
+}
+
 void print_scene_body(const Scene& scene) {
     print_parts(scene);
     fmt::print("  materials:         {}\n", scene.materials.size());
@@ -171,15 +192,7 @@ void print_scene_body(const Scene& scene) {
         for (const auto& [key, values] : m.params) params += fmt::format(" {}={}", key, fmt::join(values, ","));
         fmt::print("    {:<16} {}{}{}\n", m.name, m.model, params, m.file.empty() ? "" : " file " + m.file.string());
     }
-    const EnvironmentDesc& env = scene.environment;
-    if (env.file.empty()) {
-        fmt::print("  environment:       none\n");
-    } else {
-        fmt::print("  environment:       {} (cube N = {}), rotation {}° + {}°/s about {}\n", env.file.string(),
-                   env.resolution, env.rotation_degrees, env.rotation_degrees_per_second, vec3_text(env.rotation_axis));
-        if (!env.second_file.empty())
-            fmt::print("                     blends to {} over {} s\n", env.second_file.string(), env.blend_period_seconds);
-    }
+    print_environment_of(scene);
     print_lights(scene);
     print_camera(scene);
     print_gltf_extensions(scene);
@@ -194,6 +207,7 @@ void print_mesh_file(const std::filesystem::path& path) {
     print_parts(scene);
     if (scene.animation.end > scene.animation.start)
         fmt::print("  animation:         {} .. {} s\n", scene.animation.start, scene.animation.end);
+    print_environment_of(scene);  // the bare file's default sky, and its suns
     if (!scene.lights.empty()) print_lights(scene);
     if (scene.gltf_camera) print_camera(scene);
     print_gltf_extensions(scene);

@@ -11,6 +11,7 @@
 #include "src/core/error.h"
 #include "src/core/progress_report.h"
 #include "src/core/scene.h"
+#include "src/core/scene_environment.h"
 #include "src/trace/ground_truth.h"
 #include "src/frame/image_formation.h"
 
@@ -41,11 +42,9 @@ double seconds_since(Clock::time_point start) {
 // w·second of the scene format (EnvironmentDesc::blend_weight_at), which the
 // RSL renderer applies to its two RSL sets.
 CubeMap load_scene_environment(const Scene& scene, int resolution, float t) {
-    if (scene.environment.file.empty()) return CubeMap(resolution);  // lights only
-    const CubeMap first = load_environment(scene.environment.file, resolution);
+    const CubeMap first = scene_environment_map(scene, resolution);  // black without one: lights only
     if (scene.environment.second_file.empty()) return first;
-    return blend_environments(first, load_environment(scene.environment.second_file, resolution),
-                              scene.environment.blend_weight_at(t));
+    return blend_environments(first, scene_environment_map(scene, resolution, true), scene.environment.blend_weight_at(t));
 }
 
 void run_truth(const TruthArgs& args) {

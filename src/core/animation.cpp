@@ -131,6 +131,12 @@ Vec3 LocalLight::axis_at(const Scene& scene, float t) const {
     return len > 0 ? d / len : Vec3(0, 0, -1);
 }
 
+Vec3 SunLight::direction_at(const Scene& scene, float t) const {
+    const Vec3 d = Mat3(scene.node_world_at(node, t)) * Vec3(0, 0, 1);  // against the light's −Z
+    const float len = glm::length(d);
+    return len > 0 ? d / len : Vec3(0, 1, 0);
+}
+
 Mat4 Scene::node_world_at(int node, float t) const {
     if (node < 0) return Mat4(1.0f);
     RSL_CHECK_LT(size_t(node), nodes.size());

@@ -19,7 +19,7 @@ struct ExtensionSupport {
 
 // Extensions exporters write that rsl knows. Any other is "not supported".
 constexpr ExtensionSupport kExtensions[] = {
-    {"KHR_lights_punctual", true, "point and spot lights become sphere lights; directional lights are dropped"},
+    {"KHR_lights_punctual", true, "point and spot lights become sphere lights; directional lights become suns in the environment map"},
     {"KHR_mesh_quantization", true, "integer and normalized vertex attributes are read"},
     {"KHR_materials_emissive_strength", false, "materials come from the scene file"},
     {"KHR_texture_transform", false, "textures are not read"},
@@ -95,6 +95,8 @@ void check_required_extensions(const tinygltf::Model& model, const std::filesyst
 // as radiant intensity in the environment map's units per steradian (no
 // 683 lm/W factor). The sphere light that has I on its axis has radiance
 // L = I / (π a²) and power Φ = L·π·4πa² = 4π·I, times the light's colour.
+// A directional light's intensity (lux) is read as irradiance the same way,
+// and it becomes a sun (SunLight, scene_environment.h).
 void import_lights(const tinygltf::Model& model, const std::filesystem::path& path, const SceneNodes& nodes,
                    Scene& scene) {
     std::vector<std::string> dropped, ranged;
@@ -104,12 +106,17 @@ void import_lights(const tinygltf::Model& model, const std::filesystem::path& pa
         const tinygltf::Light& source = model.lights[l];
         const std::string name = node_name(model, n);
         const std::string where = fmt::format("light {} ('{}') on node '{}'", l, source.name, name);
-        if (source.type != "point" && source.type != "spot") {
+        if (source.type != "point" && source.type != "spot" && source.type != "directional") {
             dropped.push_back(fmt::format("'{}' ({})", name, source.type));
             continue;
         }
         if (!(source.intensity >= 0 && std::isfinite(source.intensity)))
             throw_file_error(path, "{}: intensity {} is not a finite non-negative number", where, source.intensity);
+        if (source.type == "directional") {  // lux, read as irradiance (as candela above): a sun
+            scene.environment.suns.push_back(
+                SunLight{name, nodes.scene_node[n], float(source.intensity) * light_color(source, path, where)});
+            continue;
+        }
         if (source.range > 0) ranged.push_back(fmt::format("'{}'", name));
         LocalLight light;
         light.name = name;
@@ -128,8 +135,7 @@ void import_lights(const tinygltf::Model& model, const std::filesystem::path& pa
         scene.lights.push_back(std::move(light));
     }
     if (!dropped.empty())
-        warn_file(path, "light{} {} dropped: rsl's local lights are spheres (point and spot lights); light the scene "
-                  "with the environment map instead",
+        warn_file(path, "light{} {} dropped: not a KHR_lights_punctual type (point, spot, directional)",
                   dropped.size() == 1 ? "" : "s", fmt::join(dropped, ", "));
     if (!ranged.empty())
         warn_file(path, "the range of light{} {} is ignored: rsl's lights fall off with the inverse square, without a cutoff",

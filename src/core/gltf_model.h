@@ -26,7 +26,7 @@ struct SceneNodes {
 // Throws when the file requires an extension rsl does not honour.
 void check_required_extensions(const tinygltf::Model& model, const std::filesystem::path& path);
 // KHR_lights_punctual point and spot lights on the default scene's nodes
-// become sphere lights; directional lights are dropped with a warning.
+// become sphere lights, directional lights suns (EnvironmentDesc::suns).
 void import_lights(const tinygltf::Model& model, const std::filesystem::path& path, const SceneNodes& nodes,
                    Scene& scene);
 // The first perspective camera node of the default scene, when the scene has

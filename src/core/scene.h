@@ -94,8 +94,22 @@ struct LocalLight {
     Vec3 axis_at(const Scene& scene, float t) const;  // unit
 };
 
+// A directional light (a glTF "sun", KHR_lights_punctual): irradiance E per
+// channel at normal incidence, from the direction opposite its node's −Z. It
+// joins the environment map as the radiance of the texel around that
+// direction (scene_environment_map), so the RSL fit, both renderers and the
+// truth all see it; its shadows are as soft as one texel.
+struct SunLight {
+    std::string name;  // its node's
+    int node = -1;     // the scene node whose −Z it shines along
+    Color irradiance{0};
+
+    // Unit direction towards the sun (world) at time t.
+    Vec3 direction_at(const Scene& scene, float t) const;
+};
+
 struct EnvironmentDesc {
-    std::filesystem::path file;
+    std::filesystem::path file;  // empty: no map (black), unless `uniform` or `suns` light it
     int resolution = 32;  // cube map N
     Vec3 rotation_axis{0, 1, 0};
     float rotation_degrees = 0;            // at t = 0
@@ -109,6 +123,11 @@ struct EnvironmentDesc {
     // first map alone at t = 0, the second alone at half the period, back at
     // a full period. 0 without a second map.
     float blend_weight_at(float t) const;
+    // A uniform sky added to the map (the bare mesh files' default, radiance 1).
+    Color uniform{0};
+    std::vector<SunLight> suns;  // glTF directional lights
+    // Whether anything lights the scene from afar (a map, a uniform sky or a sun).
+    bool present() const { return !file.empty() || uniform.r > 0 || uniform.g > 0 || uniform.b > 0 || !suns.empty(); }
 };
 
 struct Camera {

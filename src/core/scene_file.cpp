@@ -551,7 +551,9 @@ private:
     int default_material_ = 0;
 };
 
-// A bare mesh file: one part per mesh (node), a Lambert material, a framing camera.
+// A bare mesh file: one part per mesh (node), a Lambert material, a framing
+// camera, and a uniform white sky (radiance 1) with the file's suns, so that
+// a mesh or an exporter's glTF, which carries no environment, renders lit.
 Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
     Scene scene;
     scene.source = path;
@@ -570,6 +572,7 @@ Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
         part.node = 0;
         scene.parts.push_back(std::move(part));
     }
+    scene.environment.uniform = Color(1.0f);
     scene.subdivision.enabled = false;  // no scene file, so no way to switch it off: as loaded
     subdivide_scene_parts(scene);
     finish_scene(scene, false, false, false);

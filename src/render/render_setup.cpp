@@ -4,6 +4,7 @@
 
 #include "src/core/progress_report.h"
 #include "src/core/error.h"
+#include "src/core/scene_environment.h"
 
 namespace rsl {
 
@@ -44,20 +45,20 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
     RenderSetup setup;
     setup.scene = std::move(scene);
     const Scene& s = *setup.scene;
-    if (!s.environment.file.empty() && options.environment) {
+    if (s.environment.present() && options.environment) {
         auto start = std::chrono::steady_clock::now();
-        setup.environment = load_environment(s.environment.file, s.environment.resolution);
+        setup.environment = scene_environment_map(s, s.environment.resolution);
         setup.environment_lights.first =
             fit_environment_lights(setup.environment, options.environment_lights, options.cross_face_lights);
         if (!s.environment.second_file.empty()) {
-            setup.second_environment = load_environment(s.environment.second_file, s.environment.resolution);
+            setup.second_environment = scene_environment_map(s, s.environment.resolution, true);
             setup.environment_lights.second =
                 fit_environment_lights(setup.second_environment, options.environment_lights, options.cross_face_lights);
         }
         setup.fit_seconds = seconds_since(start);
         if (how.progress) how.progress("fit", 1.0);
         if (progress)
-            std::fprintf(stderr, "%s: %zu RSLs fitted in %.2f s%s\n", s.environment.file.string().c_str(),
+            std::fprintf(stderr, "%s: %zu RSLs fitted in %.2f s%s\n", describe_environment(s.environment).c_str(),
                          setup.environment_lights.first.lights.size(), setup.fit_seconds,
                          s.environment.second_file.empty() ? "" : " (and as many for the blend's second map)");
     }

@@ -178,7 +178,7 @@ GltfBuilder lights_file() {
     const int shelf = b.node({{"name", "shelf"}, {"translation", {1, 0, 0}}, {"children", {lamp}}});
     const int spot = b.node({{"name", "spot"}, {"translation", {0, 2, 0}}, {"rotation", rotation_xyzw({1, 0, 0}, -90)},
                              {"extensions", light(1)}});
-    const int sun = b.node({{"name", "sun"}, {"extensions", light(2)}});
+    const int sun = b.node({{"name", "sun"}, {"rotation", rotation_xyzw({1, 0, 0}, -60)}, {"extensions", light(2)}});
     const int mover = b.node({{"name", "mover"}, {"extensions", light(3)}});
     const int ground = b.node({{"name", "ground"}, {"mesh", square}});
     b.channel(mover, "translation", "LINEAR", {0, 1}, {0, 0, 0, 0, 2, 0});
@@ -188,13 +188,23 @@ GltfBuilder lights_file() {
 
 }  // namespace
 
-TEST_CASE("KHR_lights_punctual: point and spot lights become sphere lights on their nodes", "[gltf]") {
+TEST_CASE("KHR_lights_punctual: point and spot lights become sphere lights on their nodes, directional ones suns",
+          "[gltf]") {
     const auto dir = temp_dir("lights");
     GltfBuilder b = lights_file();
     b.write_gltf(dir / "lights.gltf");
     test::WarningCapture warnings;
     const Scene scene = load_scene(dir / "lights.gltf");
-    REQUIRE(scene.lights.size() == 3);  // the directional light is dropped
+    REQUIRE(scene.lights.size() == 3);  // the directional light is a sun of the environment
+    REQUIRE(scene.environment.suns.size() == 1);
+    const SunLight& sun = scene.environment.suns[0];
+    CHECK(sun.name == "sun");
+    check_near(sun.irradiance, Color(5.0f));  // lux read as irradiance, white by default
+    // Against its node's −Z, turned −60° about x: up and towards +Z.
+    check_near(sun.direction_at(scene, 0.0f), {0.0f, std::sin(kPi / 3.0f), std::cos(kPi / 3.0f)});
+    // A bare glTF has no map: a uniform white sky lights it with its suns.
+    CHECK(scene.environment.uniform == Color(1.0f));
+    CHECK(scene.environment.present());
     const LocalLight& lamp = scene.lights[0];
     CHECK(lamp.name == "lamp");
     CHECK(lamp.radius == kGltfLightRadius);
@@ -218,9 +228,8 @@ TEST_CASE("KHR_lights_punctual: point and spot lights become sphere lights on th
     check_near(mover.position_at(scene, 0.5f), {0, 1, 0});
     check_near(mover.power, Color(4 * kPi), 1e-5f);  // defaults: white, intensity 1
 
-    REQUIRE(warnings.messages().size() == 2);
-    CHECK(warnings.messages()[0].find("light 'sun' (directional) dropped") != std::string::npos);
-    CHECK(warnings.messages()[1].find("the range of light 'mover' is ignored") != std::string::npos);
+    REQUIRE(warnings.messages().size() == 1);
+    CHECK(warnings.messages()[0].find("the range of light 'mover' is ignored") != std::string::npos);
     for (const std::string& m : warnings.messages()) CHECK(m.find((dir / "lights.gltf").string()) == 0);
 
     SECTION("the scene file sets radii by node name, \"*\" for the rest") {
@@ -228,6 +237,8 @@ TEST_CASE("KHR_lights_punctual: point and spot lights become sphere lights on th
             "lights": [ { "radius": 0.3, "position": [0, 5, 0] } ] })");
         const Scene s = load_scene(dir / "radii.json");
         REQUIRE(s.lights.size() == 4);
+        CHECK(s.environment.suns.size() == 1);       // the glTF's sun comes along
+        CHECK(s.environment.uniform == Color(0.0f));  // a scene file says what lights it
         CHECK(s.lights[0].radius == 0.2f);
         CHECK(s.lights[1].radius == 0.01f);
         CHECK(s.lights[2].radius == 0.2f);
