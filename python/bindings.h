@@ -17,7 +17,9 @@ void bind_renderer(py::module_& m);  // rsl.Renderer (renderer_bindings.cpp)
 api::Pose pose_from(const std::vector<float>& translation, const std::vector<float>& rotation,
                     const std::vector<float>& scale);
 
-// compare()'s numbers as a dict, per part under "parts".
-py::dict error_dict(const api::VertexError& error);
+// compare()'s numbers as a dict, per part under "parts"; with_objects (the
+// colours carry the scene's parts: a renderer's compare) adds "objects" and
+// "worst_part"/"worst" when some part is not a receiver.
+py::dict error_dict(const api::VertexError& error, bool with_objects);
 
 }  // namespace rsl::python

@@ -76,7 +76,7 @@ void bind_files(py::module_& m) {
         [](const FloatArray& result, const FloatArray& reference) {
             const api::VertexError e = api::compare(colors_from_numpy(result, "result", {}, {}),
                                                     colors_from_numpy(reference, "reference", {}, {}));
-            return error_dict(e);
+            return error_dict(e, false);
         },
         py::arg("result"), py::arg("reference"),
         "`rsl compare` of per-vertex colours ((N, 3) arrays): relative_l2, max_error, relative_max, count");
@@ -113,13 +113,18 @@ void bind_files(py::module_& m) {
 
 }  // namespace
 
-py::dict error_dict(const api::VertexError& e) {
+py::dict error_dict(const api::VertexError& e, bool with_objects) {
     py::dict d;
     d["relative_l2"] = e.relative_l2, d["max_error"] = e.max_error, d["relative_max"] = e.relative_max;
     d["count"] = e.count;
     py::dict parts;
     for (size_t p = 0; p < e.part_names.size(); ++p) parts[py::str(e.part_names[p])] = e.part_relative_l2[p];
     d["parts"] = parts;
+    if (with_objects && e.object_parts > 0) {
+        d["objects"] = e.objects_relative_l2;
+        d["worst_part"] = e.worst_part;
+        d["worst"] = e.worst_relative_l2;
+    }
     return d;
 }
 

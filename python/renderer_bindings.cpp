@@ -234,10 +234,14 @@ void bind_renderer(py::module_& m) {
              py::arg("subdivision") = 1, py::arg("local_lights") = true, py::arg("progress") = py::none(),
              "The Embree ground truth of the current frame (rsl truth), (N, 3)")
         .def("compare",
-             [](const PyRenderer& r, const FloatArray& result, const FloatArray& reference) {
-                 return error_dict(api::compare(r.colors(result, "result"), r.colors(reference, "reference")));
+             [](const PyRenderer& r, const FloatArray& result, const FloatArray& reference,
+                const std::vector<std::string>& receivers) {
+                 return error_dict(api::compare(r.colors(result, "result"), r.colors(reference, "reference"), receivers),
+                                   true);
              },
-             py::arg("result"), py::arg("reference"), "rsl compare of (N, 3) colours, with the error of each part")
+             py::arg("result"), py::arg("reference"), py::arg("receivers") = std::vector<std::string>{"ground", "floor"},
+             "rsl compare of (N, 3) colours, with the error of each part, of the objects (every part but the "
+             "receivers) and the worst part")
         .def("write_vertex_colors",
              [](const PyRenderer& r, const std::string& path, const FloatArray& colors, const std::string& producer) {
                  api::VertexColors c = r.colors(colors, "colors");

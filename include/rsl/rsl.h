@@ -310,9 +310,18 @@ struct VertexError {
     size_t count = 0;
     std::vector<std::string> part_names;
     std::vector<double> part_relative_l2;
+    // The objects: every part but the static receivers, together, and the
+    // worst of them (`rsl compare`'s line): a large ground can make the
+    // all-vertex error look right while the objects on it are far off.
+    double objects_relative_l2 = 0;
+    size_t object_parts = 0;  // 0: every part is a receiver (the two below then say nothing)
+    std::string worst_part;
+    double worst_relative_l2 = 0;
 };
-// Both must describe the same vertices (else rsl::Error).
-VertexError compare(const VertexColors& result, const VertexColors& reference);
+// Both must describe the same vertices (else rsl::Error). `receivers`: the
+// parts left out of the objects' error (`rsl compare --receivers`).
+VertexError compare(const VertexColors& result, const VertexColors& reference,
+                    const std::vector<std::string>& receivers = {"ground", "floor"});
 struct ImageError {
     double relative_l2 = 0, relative_h1 = 0, max_error = 0;
     size_t covered = 0, total = 0;  // the pixels the reference covers count

@@ -123,9 +123,17 @@ class ModuleTest(unittest.TestCase):
         by_numpy = np.linalg.norm((colors - truth).astype(np.float64)) / np.linalg.norm(truth.astype(np.float64))
         self.assertAlmostEqual(error["relative_l2"] / by_numpy, 1.0, places=5)
         self.assertTrue(0.001 < error["relative_l2"] < 0.25, error)
-        parts = self.renderer.compare(colors, truth)["parts"]
+        by_part = self.renderer.compare(colors, truth)
+        parts = by_part["parts"]
         self.assertEqual(sorted(parts), ["floor", "orb"])
         self.assertAlmostEqual(parts["orb"] / number_after(text, "part orb: relative L2"), 1.0, places=5)
+        # The objects (all but the floor: the orb) and the worst part, as rsl compare prints them.
+        self.assertAlmostEqual(by_part["objects"] / number_after(text, "objects: relative L2"), 1.0, places=5)
+        self.assertEqual(by_part["worst_part"], "orb")
+        self.assertAlmostEqual(by_part["worst"], parts["orb"], places=9)
+        self.assertNotIn("objects", error)  # bare arrays have no parts
+        # With the orb as a receiver too, no part is an object.
+        self.assertNotIn("objects", self.renderer.compare(colors, truth, receivers=["orb", "floor"]))
         status, text = run_rsl("compare", f"{self.folder}/cli.exr", f"{self.folder}/truth.exr")
         image_error = rsl.compare_images(self.renderer.render_image(), self.renderer.form_image(truth))
         self.assertAlmostEqual(image_error["relative_l2"] / number_after(text, "relative L2:"), 1.0, places=5)

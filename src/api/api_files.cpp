@@ -50,7 +50,8 @@ EnvironmentFit fit_environment(const std::string& file, int lights, int resoluti
     return fit;
 }
 
-VertexError compare(const VertexColors& result, const VertexColors& reference) {
+VertexError compare(const VertexColors& result, const VertexColors& reference,
+                    const std::vector<std::string>& receivers) {
     const ::rsl::VertexColors a = to_internal(result, "compare result"), b = to_internal(reference, "compare reference");
     check_same_vertices(a, "result", b, "reference");
     const VertexErrorReport report = compare_vertex_colors(a, b);
@@ -61,6 +62,11 @@ VertexError compare(const VertexColors& result, const VertexColors& reference) {
     error.count = report.total.count;
     error.part_names = report.part_names;
     for (const ErrorStats& part : report.parts) error.part_relative_l2.push_back(part.relative_l2());
+    const ObjectErrorReport objects = object_errors(report, receivers);
+    error.objects_relative_l2 = objects.objects.relative_l2();
+    error.object_parts = objects.object_parts;
+    error.worst_part = objects.worst_part;
+    error.worst_relative_l2 = objects.worst;
     return error;
 }
 

@@ -95,6 +95,12 @@ TEST_CASE("the API's frame, image and truth are rsl render's and rsl truth's, bi
     REQUIRE(compare_status == 0);
     const api::VertexError error = api::compare(colors, truth);
     CHECK(error.relative_l2 == Approx(number_after(compare_text, "relative L2: ")).epsilon(1e-5));
+    // The objects (all but the floor: the orb) and the worst part, as rsl compare prints them.
+    CHECK(error.object_parts == 1);
+    CHECK(error.worst_part == "orb");
+    CHECK(error.objects_relative_l2 == Approx(number_after(compare_text, "objects: relative L2 ")).epsilon(1e-5));
+    CHECK(error.worst_relative_l2 == Approx(number_after(compare_text, "part orb: relative L2 ")).epsilon(1e-5));
+    CHECK(api::compare(colors, truth, {"orb", "floor"}).object_parts == 0);
     CHECK(error.relative_l2 > 0.001);  // an RSL frame is not the truth…
     CHECK(error.relative_l2 < 0.25);   // …but close to it
     const auto [image_status, image_text] = test::run_rsl(fmt::format("compare {0}/cli.exr {0}/truth.exr", out));
