@@ -239,7 +239,7 @@ void bind_renderer(py::module_& m) {
                  return error_dict(api::compare(r.colors(result, "result"), r.colors(reference, "reference"), receivers),
                                    true);
              },
-             py::arg("result"), py::arg("reference"), py::arg("receivers") = std::vector<std::string>{"ground", "floor"},
+             py::arg("result"), py::arg("reference"), py::arg("receivers") = std::vector<std::string>{"ground", "floor", "plane"},
              "rsl compare of (N, 3) colours, with the error of each part, of the objects (every part but the "
              "receivers) and the worst part")
         .def("write_vertex_colors",

@@ -319,9 +319,10 @@ struct VertexError {
     double worst_relative_l2 = 0;
 };
 // Both must describe the same vertices (else rsl::Error). `receivers`: the
-// parts left out of the objects' error (`rsl compare --receivers`).
+// parts left out of the objects' error (`rsl compare --receivers`; a name
+// matches ignoring case and an exporter's copy number: "Plane.001").
 VertexError compare(const VertexColors& result, const VertexColors& reference,
-                    const std::vector<std::string>& receivers = {"ground", "floor"});
+                    const std::vector<std::string>& receivers = {"ground", "floor", "plane"});
 struct ImageError {
     double relative_l2 = 0, relative_h1 = 0, max_error = 0;
     size_t covered = 0, total = 0;  // the pixels the reference covers count

@@ -102,7 +102,7 @@ RegisterCommand compare_command({"compare",
         app.add_option("--width", args->width, "Error image width for vertex files (default: the camera's)");
         app.add_option("--height", args->height, "Error image height for vertex files (default: the camera's)");
         app.add_option("--receivers", args->receivers,
-                       "Parts left out of the objects' error, the static receivers (default: ground, floor)")
+                       "Parts left out of the objects' error, the static receivers (default: ground, floor, plane; a name matches in any case and with an exporter's copy number, e.g. Plane.001)")
             ->delimiter(',');
         app.callback([args] {
             const Kind ka = kind_of(args->a), kb = kind_of(args->b);

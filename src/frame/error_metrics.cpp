@@ -1,3 +1,5 @@
+#include <cctype>
+#include <string_view>
 #include "src/frame/error_metrics.h"
 
 #include <algorithm>
@@ -49,10 +51,24 @@ void ErrorStats::merge(const ErrorStats& other) {
     count += other.count;
 }
 
+bool is_receiver(const std::string& name, const std::string& receiver) {
+    // The name without a trailing copy number: digits after '.', '_' or '-'.
+    size_t end = name.size();
+    while (end > 0 && std::isdigit(static_cast<unsigned char>(name[end - 1]))) --end;
+    const bool numbered = end < name.size() && end > 0 && (name[end - 1] == '.' || name[end - 1] == '_' || name[end - 1] == '-');
+    const std::string_view base = numbered ? std::string_view(name).substr(0, end - 1) : std::string_view(name);
+    return base.size() == receiver.size() &&
+           std::equal(base.begin(), base.end(), receiver.begin(), [](char x, char y) {
+               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+           });
+}
+
 ObjectErrorReport object_errors(const VertexErrorReport& report, const std::vector<std::string>& receivers) {
     ObjectErrorReport result;
     for (size_t p = 0; p < report.parts.size(); ++p) {
-        if (std::find(receivers.begin(), receivers.end(), report.part_names[p]) != receivers.end()) continue;
+        if (std::any_of(receivers.begin(), receivers.end(),
+                        [&](const std::string& r) { return is_receiver(report.part_names[p], r) || report.part_names[p] == r; }))
+            continue;
         result.objects.merge(report.parts[p]);
         ++result.object_parts;
         if (result.worst_part.empty() || report.parts[p].relative_l2() > result.worst) {

@@ -36,9 +36,15 @@ struct VertexErrorReport {
 VertexErrorReport compare_vertex_colors(const VertexColors& a, const VertexColors& b);
 
 // The static receivers of the project's scenes, a ground or a floor under
-// the objects. A large receiver can make the all-vertex error look right
-// while the objects on it are far off, so the objects are measured apart.
-inline const std::vector<std::string> kDefaultReceivers = {"ground", "floor"};
+// the objects, and Blender's "Plane". A large receiver can make the
+// all-vertex error look right while the objects on it are far off, so the
+// objects are measured apart.
+inline const std::vector<std::string> kDefaultReceivers = {"ground", "floor", "plane"};
+
+// Whether part `name` is receiver `receiver`: the same name, ignoring case
+// and an exporter's copy number (".001", "_2", "-3"), so that a glTF's
+// "Plane" or "Floor.001" counts as the receiver it is.
+bool is_receiver(const std::string& name, const std::string& receiver);
 
 // The error of the objects: every part not named in `receivers`, together,
 // and the worst of them (largest relative L2; empty name when no part is an

@@ -84,6 +84,28 @@ TEST_CASE("Image errors: covered pixels only, H1 ignores constant offsets", "[tr
     REQUIRE(err.rgb(3, 2) == false_color(1.0f));  // uniform error at full scale
 }
 
+TEST_CASE("Receivers match an exporter's names: any case, a copy number", "[trace][error]") {
+    for (const char* name : {"ground", "Ground", "GROUND", "ground.001", "Ground_2", "ground-17"})
+        CHECK(is_receiver(name, "ground"));
+    for (const char* name : {"Plane", "Plane.001", "plane_3"}) CHECK(is_receiver(name, "plane"));
+    for (const char* name : {"planet", "airplane", "ground.", "ground.a1", "Plane.001.002", "groundwork", "", "3"})
+        CHECK_FALSE(is_receiver(name, "plane"));
+    CHECK_FALSE(is_receiver("ground.", "ground"));
+    CHECK_FALSE(is_receiver("ground.a1", "ground"));
+    // Blender's plane under a glTF's objects is a receiver by default.
+    VertexColors b;
+    b.add_part("Plane", 40);
+    b.add_part("Teapot.000", 5);
+    b.add_part("Teapot.001", 5);
+    for (auto& part : b.parts)
+        for (Color& c : part) c = Color(1.0f);
+    VertexColors a = b;
+    for (Color& c : a.parts[0]) c = Color(2.0f);  // the plane far off, the teapots exact
+    const ObjectErrorReport r = object_errors(compare_vertex_colors(a, b));
+    CHECK(r.object_parts == 2);
+    CHECK(r.objects.relative_l2() == 0.0);
+}
+
 TEST_CASE("False colours are ordered from dark to red and clamp", "[trace][error]") {
     REQUIRE(luminance(false_color(0.0f)) < luminance(false_color(0.5f)));
     REQUIRE(false_color(1.0f).r > false_color(1.0f).b);
