@@ -21,6 +21,7 @@
 #include "src/frame/image_formation.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/render/render_setup.h"
+#include "src/core/scene_environment.h"
 
 namespace rsl {
 namespace {
@@ -131,8 +132,8 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
         if (!args.quiet) fmt::print(stderr, "{}\n", line);
     };
     const auto load_start = Clock::now();
-    const CubeMap environment = load_environment(scene.environment.file, scene.environment.resolution);
-    say(fmt::format("environment {} as 6x{}^2 ({:.1f} s)", scene.environment.file.string(), environment.resolution(),
+    const CubeMap environment = scene_environment_map(scene, scene.environment.resolution);
+    say(fmt::format("environment {} as 6x{}^2 ({:.1f} s)", describe_environment(scene.environment), environment.resolution(),
                     seconds_since(load_start)));
 
     GroundTruthOptions truth_options;

@@ -17,6 +17,7 @@
 #include "src/render/render_setup.h"
 #include "src/frame/error_metrics.h"
 #include "src/trace/ground_truth.h"
+#include "src/core/scene_environment.h"
 
 namespace rsl::bench {
 namespace {
@@ -84,7 +85,7 @@ void bench_factors(const BenchOptions& options) {
         const std::string env_name =
             frame.environment == "scene" ? base->environment.file.stem().string() : frame.environment;
         const CubeMap map = frame.environment == "scene"
-                                ? load_environment(base->environment.file, base->environment.resolution)
+                                ? scene_environment_map(*base, base->environment.resolution)
                                 : load_environment(options.shared_assets / "probes" / (frame.environment + ".hdr"),
                                                    base->environment.resolution);
         auto start = Clock::now();

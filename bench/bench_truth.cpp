@@ -18,6 +18,7 @@
 #include "src/core/scene.h"
 #include "src/trace/ground_truth.h"
 #include "src/frame/image_formation.h"
+#include "src/core/scene_environment.h"
 
 namespace rsl::bench {
 namespace {
@@ -151,8 +152,7 @@ RegisterBenchmark truth_benchmark({"truth",
         }
         const Scene robot = load_scene(robot_path);
         const int robot_n = options.quick ? 8 : 32;
-        const CubeMap environment = robot.environment.file.empty()
-            ? CubeMap(robot_n) : load_environment(robot.environment.file, robot_n);
+        const CubeMap environment = scene_environment_map(robot, robot_n);
         emit_truth(fmt::format("robot t=0, its environment 6x{}x{}", robot_n, robot_n), robot, environment, 0.0f);
         if (!options.quick) emit_truth("robot t=0, white 6x32x32", robot, white_cube(32), 0.0f);
     }});
