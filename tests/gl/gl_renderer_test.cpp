@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "src/render/occluder_shape.h"
+#include "src/core/scene_environment.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/gpu_layout.h"
 #include "assets/generate/pbr_scene.h"
@@ -239,6 +240,19 @@ TEST_CASE("GL matches the CPU under a blend of two environments", "[gl-renderer]
     // t = 4/3: second map weight 0.25; t = 4: the second set alone.
     check_against_cpu(scene, EnvironmentLights(test::random_rsls(8, 3), test::random_rsls(6, 11)), fields,
                       RenderOptions{}, {0.0f, 4.0f / 3.0f, 4.0f});
+}
+
+TEST_CASE("GL matches the CPU under a glTF sun (a one-texel light) and a uniform sky", "[gl-renderer]") {
+    Scene scene = moving_scene();
+    SceneNode sun;
+    sun.name = "sun";
+    sun.rest.rotation = glm::angleAxis(glm::radians(-50.0f), glm::normalize(Vec3(1, 0.3f, 0)));
+    scene.nodes.push_back(sun);
+    scene.environment.suns.push_back(SunLight{"sun", int(scene.nodes.size()) - 1, Color(3.0f, 2.8f, 2.5f)});
+    scene.environment.uniform = Color(0.2f);
+    const CubeMap environment = scene_environment_map(scene, 16);
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    check_against_cpu(scene, fit_environment_lights(environment, 30), fields, RenderOptions{}, {0.0f, 0.5f});
 }
 
 TEST_CASE("GL material edits re-upload only the changed table and match the CPU", "[gl-renderer]") {
