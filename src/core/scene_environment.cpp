@@ -1,9 +1,12 @@
 #include "src/core/scene_environment.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "src/core/error.h"
+#include "src/core/image.h"
 
 namespace rsl {
 
@@ -36,7 +39,17 @@ CubeMap scene_environment_map(const Scene& scene, int resolution, bool second) {
     // The map's own frame: content at map direction m shows at rotation_at(t)·m.
     const float start = scene.animation.start;
     const Mat3 to_map = glm::transpose(env.rotation_at(start));
-    for (const SunLight& sun : env.suns) add_sun(map, to_map * sun.direction_at(scene, start), sun.irradiance);
+    for (const SunLight& sun : env.suns) {
+        const Vec3 towards = to_map * sun.direction_at(scene, start);
+        // Refused here, by name, rather than by the fit as a texel's radiance.
+        const float brightest = std::max({sun.irradiance.r, sun.irradiance.g, sun.irradiance.b});
+        const float radiance = brightest / map.solid_angle(map.index_of(towards));
+        if (!(radiance <= kMaxRadiance))
+            throw_file_error(scene.source, "sun '{}': irradiance {:g} is radiance {:g} in one texel of the {}² cube "
+                             "map, above the {:g} rsl accepts (lower the light's intensity)",
+                             sun.name, brightest, radiance, resolution, kMaxRadiance);
+        add_sun(map, towards, sun.irradiance);
+    }
     return map;
 }
 

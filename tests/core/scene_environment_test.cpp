@@ -93,6 +93,11 @@ TEST_CASE("the scene's map: the file or black, a uniform sky, suns against the e
     // Within a texel or so of the sun's direction (rotate() resamples).
     CHECK(glm::dot(world.texel_direction(brightest), towards) > std::cos(2.5f * kPi / 2.0f / 16.0f));
 
+    // A sun too bright for one texel is refused by name (not by the fit, as a texel).
+    scene.environment.suns[0].irradiance = Color(1e13f, 1.0f, 1.0f);
+    scene.source = "sunny.gltf";
+    CHECK_THROWS_WITH(scene_environment_map(scene, 16), Catch::StartsWith("sunny.gltf: sun 'sun': irradiance 1e+13"));
+
     // No sun and no sky: nothing lights the scene; an empty map is black.
     Scene dark = test::make_scene("dark");
     CHECK_FALSE(dark.environment.present());
