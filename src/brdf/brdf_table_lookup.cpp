@@ -149,7 +149,7 @@ void BrdfTable::batch_kernel(const SquareQueries& q, const ColorOutputs& out) co
         for (size_t g = 0; g < count; g += 8) {
             const size_t i = begin + g;
             Float8 h = q.half_edge ? load_group(q.half_edge, i, q.count) : splat(q.uniform_half_edge);
-            h = max8(h, splat(1e-6f));
+            h = max8(h, splat(shading::kMinSquareTexels / static_cast<float>(n)));  // as square_taps
             const Float8 cx = load_group(q.center_x, i, q.count), cy = load_group(q.center_y, i, q.count);
             const Float8 fn = splat(static_cast<float>(n));
             const Float8 x0 = clamp8((cx - h + 1.0f) * scale, fn), x1 = clamp8((cx + h + 1.0f) * scale, fn);

@@ -179,7 +179,7 @@ void print_environment_of(const Scene& scene) {
         if (added.present()) fmt::print("                     with {}\n", describe_environment(added));
     }
     for (const SunLight& sun : env.suns)
-        fmt::print("    sun {:<12} towards {}, irradiance {} (glTF directional light; one texel of the map)\n",
+        fmt::print("    sun {:<12} towards {}, irradiance {} (glTF directional light: a light of the sun's size)\n",
                    "'" + sun.name + "'", vec3_text(sun.direction_at(scene, scene.animation.start)),
                    vec3_text(sun.irradiance));
 }

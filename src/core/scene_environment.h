@@ -1,8 +1,8 @@
 #pragma once
-// What lights a scene from afar, as one cube map: its environment file (or a
-// black map), plus a uniform sky, plus its suns. Every consumer — the RSL fit
+// What lights a scene from afar: its environment file (or a black map) plus a
+// uniform sky, as one cube map, and its suns. Every consumer — the RSL fit
 // behind both renderers, `rsl truth`, the viewer — takes the scene's
-// environment from here, so a glTF sun lights them all alike.
+// environment from here.
 #include <string>
 
 #include "src/core/envmap.h"
@@ -11,21 +11,20 @@
 namespace rsl {
 
 // The scene's environment map at cube resolution N (the renderers take
-// environment.resolution; the truth its own):
-// environment.file (second: environment.second_file, the blend's other end),
-// `uniform` added to every texel, and each sun's irradiance E added to the
-// texel around its direction at the scene's start as radiance E / Ω (the
-// texel's solid angle), so that the map's energy grows by exactly E. Both
-// ends of a blend get the suns, so the blend keeps them whole. The map turns
-// with environment.rotation; a sun is placed where it stands at the start.
+// environment.resolution; the truth its own): environment.file (second:
+// environment.second_file, the blend's other end), or a black map, with
+// `uniform` added to every texel. The suns are not in it: a texel is far
+// wider than the sun, so each is a light of its own (fit_scene_lights,
+// src/render/renderer.h) and a direction of the ground truth.
 CubeMap scene_environment_map(const Scene& scene, int resolution, bool second = false);
+
+// A sun's direction in the environment map's frame: where it stands at the
+// scene's start, turned back by environment.rotation there (content at map
+// direction m shows at rotation_at(t)·m), so it turns with the map.
+Vec3 sun_direction_in_map(const Scene& scene, const SunLight& sun);
 
 // What lights the scene from afar, for messages: "grace.hdr", "a uniform sky
 // of radiance 1", "grace.hdr + sun 'Sun'", or "none".
 std::string describe_environment(const EnvironmentDesc& environment);
-
-// Adds a sun of irradiance E (per channel) in unit direction `towards_sun`
-// to the map (as above).
-void add_sun(CubeMap& map, const Vec3& towards_sun, const Color& irradiance);
 
 }  // namespace rsl

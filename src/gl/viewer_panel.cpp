@@ -84,11 +84,12 @@ void viewer_panel(ViewerState& state) {
             if (ImGui::IsItemDeactivatedAfterEdit() && !state.refit.valid()) {
                 const CubeMap* environment = state.environment;
                 const CubeMap* second = state.second_environment;
+                const Scene* scene = state.scene;  // its suns join each set
                 const int count = state.rsl_count;
                 state.refit_count = count;
-                state.refit = std::async(std::launch::async, [environment, second, count] {
-                    return EnvironmentLights(fit_environment_lights(*environment, count),
-                                             second ? fit_environment_lights(*second, count) : RslSet{});
+                state.refit = std::async(std::launch::async, [scene, environment, second, count] {
+                    return EnvironmentLights(fit_scene_lights(*scene, *environment, count),
+                                             second ? fit_scene_lights(*scene, *second, count) : RslSet{});
                 });
             }
             if (state.refit.valid()) ImGui::Text("fitting %d RSLs...", state.refit_count);

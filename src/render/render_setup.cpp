@@ -49,11 +49,11 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
         auto start = std::chrono::steady_clock::now();
         setup.environment = scene_environment_map(s, s.environment.resolution);
         setup.environment_lights.first =
-            fit_environment_lights(setup.environment, options.environment_lights, options.cross_face_lights);
+            fit_scene_lights(s, setup.environment, options.environment_lights, options.cross_face_lights);
         if (!s.environment.second_file.empty()) {
             setup.second_environment = scene_environment_map(s, s.environment.resolution, true);
-            setup.environment_lights.second =
-                fit_environment_lights(setup.second_environment, options.environment_lights, options.cross_face_lights);
+            setup.environment_lights.second =  // the suns in both, so the blend keeps them whole
+                fit_scene_lights(s, setup.second_environment, options.environment_lights, options.cross_face_lights);
         }
         setup.fit_seconds = seconds_since(start);
         if (how.progress) how.progress("fit", 1.0);

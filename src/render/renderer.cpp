@@ -12,6 +12,7 @@
 #include "src/render/ovdf_occluder.h"
 #include "src/core/sphere_light.h"
 #include "src/render/block_scratch.h"
+#include "src/core/scene_environment.h"
 #include "src/render/vertex_blocks.h"
 
 namespace rsl {
@@ -21,6 +22,22 @@ RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross
     options.lights = lights;
     options.cross_face = cross_face;
     return lightfit::decompose(environment, options);
+}
+
+RslSet fit_scene_lights(const Scene& scene, const CubeMap& environment, int lights, bool cross_face) {
+    // A black map (suns alone) has nothing to fit.
+    const DVec3 energy = environment.resolution() > 0 ? environment.energy() : DVec3(0.0);
+    RslSet set = energy != DVec3(0.0) ? fit_environment_lights(environment, lights, cross_face) : RslSet{};
+    if (set.resolution == 0) set.resolution = environment.resolution();
+    const float half_diagonal = kSunAngularRadius * std::sqrt(0.5f * kPi);  // 2r² = π·α²
+    for (const SunLight& sun : scene.environment.suns) {
+        RotatableSquareLight light;
+        light.center = sun_direction_in_map(scene, sun);
+        light.half_diagonal = half_diagonal;
+        light.radiance = sun.irradiance / light.solid_angle();
+        set.lights.push_back(light);
+    }
+    return set;
 }
 
 void check_part_fields(const Scene& scene, PartFields& fields) {

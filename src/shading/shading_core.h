@@ -219,9 +219,17 @@ struct SquareTaps {
     float clipped_area;   // texel units: the square's area inside [0, n]²
     float inv_full_area;  // 1 / (the whole square's area in texel units)
 };
+// A square narrower than a table texel (a sun's) is read as one texel wide:
+// the table holds texel averages, so nothing finer is there to read, and the
+// corner sums' difference over a sliver of a texel is their float rounding,
+// which the two renderers' different sums turn into different averages
+// (2% on a glossy part under a glTF sun). kMinSquareTexels: the narrowest
+// square's edge in table texels (half-edge kMinSquareTexels / n in plane
+// units, where a texel is 2 / n wide).
+RSL_CONST float kMinSquareTexels = 1.0f;
 RSL_SHARED SquareTaps square_taps(vec2 c, float half_edge, int n) {
     float scale = 0.5f * float(n);  // plane → texel units
-    float h = max(half_edge, 1e-6f);
+    float h = max(half_edge, kMinSquareTexels / float(n));
     float x0 = clamp((c.x - h + 1.0f) * scale, 0.0f, float(n));
     float x1 = clamp((c.x + h + 1.0f) * scale, 0.0f, float(n));
     float y0 = clamp((c.y - h + 1.0f) * scale, 0.0f, float(n));

@@ -2,6 +2,7 @@
 // shadow rays in coherent per-point batches (docs/TRUTH.md).
 #include "src/trace/ground_truth.h"
 
+#include "src/core/scene_environment.h"
 #include "src/frame/image_formation.h"
 
 #include <array>
@@ -127,6 +128,14 @@ void GroundTruth::set_time(float t) {
                                                      options_.texel_subdivision);
     else
         environment_ = {};
+    // Each sun, a direction of irradiance E (a delta light: one shadow ray),
+    // turning with the map as its RSL does (fit_scene_lights).
+    if (options_.environment)
+        for (const SunLight& sun : scene_.environment.suns) {
+            environment_.directions.push_back(
+                glm::normalize(scene_.environment.rotation_at(t) * sun_direction_in_map(scene_, sun)));
+            environment_.radiance_weights.push_back(sun.irradiance);
+        }
     light_positions_.clear();
     light_axes_.clear();
     light_cones_.clear();

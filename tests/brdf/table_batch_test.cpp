@@ -24,7 +24,7 @@ struct Reference {
 Reference reference_average(const BrdfTable& t, Vec2 c, float h, Vec3 view) {
     const int n = t.grid().n, v = t.options().view_samples;
     const float scale = 0.5f * float(n);
-    h = std::max(h, 1e-6f);
+    h = std::max(h, shading::kMinSquareTexels / float(n));  // a square is read at least one texel wide
     float lo[2], hi[2];
     for (int d = 0; d < 2; ++d) {
         lo[d] = std::clamp((c[d] - h + 1.0f) * scale, 0.0f, float(n));

@@ -87,8 +87,10 @@ Scene moving_scene() {
 // edge to float rounding may land on the other side on the GPU: one tap of
 // one light, a few tenths of a percent of one vertex (measured: 1 vertex of
 // 697 at 0.5%). Such scenes allow two such vertices.
+// `l2_limit`: the relative L2 allowed where no tap is discrete.
 void check_against_cpu(const Scene& scene, const EnvironmentLights& lights, const PartFields& fields,
-                       const RenderOptions& options, const std::vector<float>& times, bool discrete_taps = false) {
+                       const RenderOptions& options, const std::vector<float>& times, bool discrete_taps = false,
+                       double l2_limit = 1e-5) {
     test::gl_context();
     Renderer cpu(scene, lights, fields, options);
     gl::GlRenderer gpu(scene, lights, fields, options);
@@ -109,7 +111,7 @@ void check_against_cpu(const Scene& scene, const EnvironmentLights& lights, cons
                         << ", max relative " << d.max_relative << ", " << d.over_tolerance << " of " << d.vertices
                         << " vertices over " << kTolerance << ", mean value " << d.mean_luminance);
             CHECK(d.mean_luminance > 1e-3);  // a lit scene: the comparison means something
-            CHECK(d.relative_l2 < (discrete_taps ? 5e-4 : 1e-5));
+            CHECK(d.relative_l2 < (discrete_taps ? 5e-4 : l2_limit));
             CHECK(d.over_tolerance <= d.vertices / 1000 + (discrete_taps ? 2 : 0));
         }
         CHECK(gpu.frame().occluder_pairs() == cpu.stats().occluder_pairs);
@@ -242,7 +244,7 @@ TEST_CASE("GL matches the CPU under a blend of two environments", "[gl-renderer]
                       RenderOptions{}, {0.0f, 4.0f / 3.0f, 4.0f});
 }
 
-TEST_CASE("GL matches the CPU under a glTF sun (a one-texel light) and a uniform sky", "[gl-renderer]") {
+TEST_CASE("GL matches the CPU under a glTF sun (a light of the sun's size) and a uniform sky", "[gl-renderer]") {
     Scene scene = moving_scene();
     SceneNode sun;
     sun.name = "sun";
@@ -252,7 +254,16 @@ TEST_CASE("GL matches the CPU under a glTF sun (a one-texel light) and a uniform
     scene.environment.uniform = Color(0.2f);
     const CubeMap environment = scene_environment_map(scene, 16);
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    check_against_cpu(scene, fit_environment_lights(environment, 30), fields, RenderOptions{}, {0.0f, 0.5f});
+    const RslSet lights = fit_scene_lights(scene, environment, 30);
+    REQUIRE(lights.lights.size() == 31);  // the sky's 30 and the sun
+    // The sun gives most of the light through one BRDF texel's corner sums,
+    // whose float rounding (about 1e-4 of the texel's value, summed in a
+    // different order on the GPU) is most of the difference: measured 2.0e-5,
+    // with the visibility factors off as with them. Each vertex within 0.1%.
+    check_against_cpu(scene, lights, fields, RenderOptions{}, {0.0f, 0.5f}, false, 4e-5);
+    RenderOptions unshadowed;
+    unshadowed.self_visibility = unshadowed.occluders = false;
+    check_against_cpu(scene, lights, fields, unshadowed, {0.0f}, false, 4e-5);
 }
 
 TEST_CASE("GL material edits re-upload only the changed table and match the CPU", "[gl-renderer]") {
