@@ -228,7 +228,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
         for (int lights : args.rsl_lights) {
             const auto fit_start = Clock::now();
             RslSet set = lights == options.environment_lights ? setup.environment_lights.first
-                                                                : fit_environment_lights(setup.environment, lights);
+                                                                : fit_scene_lights(*setup.scene, setup.environment, lights);
             const double fit_s = lights == options.environment_lights ? setup.fit_seconds : seconds_since(fit_start);
             options.environment_lights = lights;
             Renderer renderer(scene, std::move(set), setup.fields, options);

@@ -181,7 +181,7 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
     };
     auto lights_for = [&](int k) {
         return k == args.baseline_lights ? setup.environment_lights.first
-                                         : fit_environment_lights(setup.environment, k, options.cross_face_lights);
+                                         : fit_scene_lights(*setup.scene, setup.environment, k, options.cross_face_lights);
     };
 
     for (int k : args.rsl_lights) {

@@ -75,7 +75,7 @@ DemoResult run_compare_demo(const DemoOptions& options) {
         RenderOptions k_options = render;
         k_options.environment_lights = lights;
         RslSet set =
-            lights == kLightCounts[0] ? setup.environment_lights.first : fit_environment_lights(setup.environment, lights);
+            lights == kLightCounts[0] ? setup.environment_lights.first : fit_scene_lights(*setup.scene, setup.environment, lights);
         const std::unique_ptr<VertexRenderer> renderer =
             make_renderer(Backend::Cpu, *scene, std::move(set), setup.fields, k_options);
         timing.update_seconds = seconds_between(begin, std::chrono::steady_clock::now());  // fit + tables

@@ -4,6 +4,7 @@
 // sample against all parts in their current poses (docs/TRUTH.md).
 //
 //   B(x, ω_o) = Σ_k L_k ρ(ω_k, ω_o) cos θ_k V(x, ω_k) Ω_k        (every cube-map texel k)
+//             + Σ_suns E_s ρ(ω_s, ω_o) cos θ_s V(x, ω_s)           (glTF suns: irradiance E_s)
 //             + Σ_lights ∫_cone L_e ρ cos θ V dω                  (sphere lights)
 //
 // Cube-map texels carry their exact solid angles Ω_k; the environment's
