@@ -95,10 +95,10 @@ struct LocalLight {
 };
 
 // A directional light (a glTF "sun", KHR_lights_punctual): irradiance E per
-// channel at normal incidence, from the direction opposite its node's −Z. It
-// joins the environment map as the radiance of the texel around that
-// direction (scene_environment_map), so the RSL fit, both renderers and the
-// truth all see it; its shadows are as soft as one texel.
+// channel at normal incidence, from the direction opposite its node's −Z.
+// The renderers light with it as one square light of the sun's size after
+// the environment map's (fit_scene_lights, src/render/renderer.h), the
+// ground truth as a direction of irradiance E; it turns with the map.
 struct SunLight {
     std::string name;  // its node's
     int node = -1;     // the scene node whose −Z it shines along

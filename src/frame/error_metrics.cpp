@@ -1,11 +1,11 @@
-#include <cctype>
-#include <string_view>
 #include "src/frame/error_metrics.h"
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include "src/core/error.h"
 #include "src/core/texture.h"
