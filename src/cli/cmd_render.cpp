@@ -164,7 +164,7 @@ RegisterCommand render_command({"render",
         auto* time = app.add_option("--time,-t", args->time, "Time in seconds")->capture_default_str();
         auto* frames = app.add_option("--frames", args->frames, "START:END:STEP: numbered frames OUT.NNNN.exr");
         time->excludes(frames);
-        app.add_option("--lights,-k", args->lights, "Number of environment RSLs")->capture_default_str();
+        app.add_option("--lights,-k", args->lights, "Number of environment RSLs fitted to the map (each glTF sun adds one of its own)")->capture_default_str();
         app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer)")
             ->check(CLI::IsMember({"cpu", "gl"}))->capture_default_str();
         app.add_flag("--same-face", args->same_face, "Fit light regions within one cube face only (the paper's rule)");
