@@ -84,12 +84,17 @@ void viewer_panel(ViewerState& state) {
             if (ImGui::IsItemDeactivatedAfterEdit() && !state.refit.valid()) {
                 const CubeMap* environment = state.environment;
                 const CubeMap* second = state.second_environment;
-                const Scene* scene = state.scene;  // its suns join each set
+                // The suns join each set, taken here: the fit runs while the scene may change.
+                const std::vector<RotatableSquareLight> suns = sun_lights(*state.scene);
                 const int count = state.rsl_count;
                 state.refit_count = count;
-                state.refit = std::async(std::launch::async, [scene, environment, second, count] {
-                    return EnvironmentLights(fit_scene_lights(*scene, *environment, count),
-                                             second ? fit_scene_lights(*scene, *second, count) : RslSet{});
+                state.refit = std::async(std::launch::async, [environment, second, count, suns] {
+                    const auto with_suns = [&](const CubeMap& map) {
+                        RslSet set = fit_environment_lights(map, count);
+                        set.lights.insert(set.lights.end(), suns.begin(), suns.end());
+                        return set;
+                    };
+                    return EnvironmentLights(with_suns(*environment), second ? with_suns(*second) : RslSet{});
                 });
             }
             if (state.refit.valid()) ImGui::Text("fitting %d RSLs...", state.refit_count);

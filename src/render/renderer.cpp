@@ -18,6 +18,11 @@
 namespace rsl {
 
 RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face) {
+    if (environment.energy() == DVec3(0.0)) {  // a black map (a scene lit by suns alone): nothing to fit
+        RslSet none;
+        none.resolution = environment.resolution();
+        return none;
+    }
     lightfit::DecomposeOptions options;
     options.lights = lights;
     options.cross_face = cross_face;
@@ -25,19 +30,23 @@ RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross
 }
 
 RslSet fit_scene_lights(const Scene& scene, const CubeMap& environment, int lights, bool cross_face) {
-    // A black map (suns alone) has nothing to fit.
-    const DVec3 energy = environment.resolution() > 0 ? environment.energy() : DVec3(0.0);
-    RslSet set = energy != DVec3(0.0) ? fit_environment_lights(environment, lights, cross_face) : RslSet{};
-    if (set.resolution == 0) set.resolution = environment.resolution();
+    RslSet set = fit_environment_lights(environment, lights, cross_face);
+    const std::vector<RotatableSquareLight> suns = sun_lights(scene);
+    set.lights.insert(set.lights.end(), suns.begin(), suns.end());
+    return set;
+}
+
+std::vector<RotatableSquareLight> sun_lights(const Scene& scene) {
     const float half_diagonal = kSunAngularRadius * std::sqrt(0.5f * kPi);  // 2r² = π·α²
+    std::vector<RotatableSquareLight> lights;
     for (const SunLight& sun : scene.environment.suns) {
         RotatableSquareLight light;
         light.center = sun_direction_in_map(scene, sun);
         light.half_diagonal = half_diagonal;
         light.radiance = sun.irradiance / light.solid_angle();
-        set.lights.push_back(light);
+        lights.push_back(light);
     }
-    return set;
+    return lights;
 }
 
 void check_part_fields(const Scene& scene, PartFields& fields) {

@@ -204,7 +204,8 @@ private:
 // vertex count) and gives it one entry per part (missing ones null).
 void check_part_fields(const Scene& scene, PartFields& fields);
 
-// The environment map fitted with K RSLs (lightfit, default options).
+// The environment map fitted with K RSLs (lightfit, default options); none
+// for a black map.
 RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face = true);
 
 // The sun's angular radius (0.267°): a glTF sun is a square of the sun's
@@ -216,5 +217,7 @@ inline constexpr float kSunAngularRadius = 0.00465f;
 // sun's solid angle, its integral 2r²·I the sun's irradiance E. The ground
 // truth takes the same suns as directions of irradiance E (GroundTruth).
 RslSet fit_scene_lights(const Scene& scene, const CubeMap& environment, int lights, bool cross_face = true);
+// The suns' lights alone (what fit_scene_lights appends to the map's).
+std::vector<RotatableSquareLight> sun_lights(const Scene& scene);
 
 }  // namespace rsl

@@ -55,6 +55,12 @@ TEST_CASE("a sun lights the scene and casts its shadow where the truth does", "[
     CHECK(glm::length(sun.center - towards_sun) < 1e-6f);
     CHECK(sun.solid_angle() == Approx(kPi * kSunAngularRadius * kSunAngularRadius).epsilon(1e-5));
     CHECK(sun.light_integral().g == Approx(3.0).epsilon(1e-5));
+    // The suns alone (a scene file without a map): a black map fits no light.
+    CHECK(fit_environment_lights(CubeMap(8), 30).lights.empty());
+    const RslSet suns_only = fit_scene_lights(scene, CubeMap(8), 30);
+    REQUIRE(suns_only.lights.size() == 1);
+    CHECK(suns_only.lights[0].center == sun.center);
+    CHECK(sun_lights(scene).size() == 1);
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     const VertexColors rsl = Renderer(scene, lights, fields, RenderOptions{}).shade();
     const VertexColors truth = GroundTruth(scene, environment, 0.0f).shade_vertices();
