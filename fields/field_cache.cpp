@@ -11,7 +11,7 @@
 #include "fields/field_file.h"
 #include "src/core/error.h"
 #include "src/core/progress_report.h"
-#include "src/shading/shading_core.h"
+#include "src/shading/ovdf_inside.h"
 
 namespace rsl {
 namespace fs = std::filesystem;

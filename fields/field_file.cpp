@@ -9,6 +9,7 @@
 #include "src/core/atomic_file.h"
 #include "src/core/binary_io.h"
 #include "src/core/error.h"
+#include "src/shading/ovdf_tables.h"
 
 namespace rsl {
 namespace fs = std::filesystem;

@@ -28,6 +28,7 @@
 #include "fields/svdf.h"
 #include "src/core/binary_io.h"  // fnv1a64
 #include "src/core/mesh.h"
+#include "src/shading/ovdf_tables.h"
 
 namespace rsl {
 

@@ -14,6 +14,10 @@
 #include "src/core/error.h"
 #include "src/core/hemisphere.h"
 #include "src/rays/ray_scene.h"
+#include "src/shading/interpolation.h"
+#include "src/shading/ovdf_tables.h"
+#include "src/shading/ovdf_small_occluder.h"
+#include "src/shading/ovdf_inside.h"
 
 namespace rsl {
 
@@ -99,7 +103,7 @@ float Ovdf::visible_fraction(const Vec3& point, const Vec3& light, float half_ed
 OvdfLocation Ovdf::locate(const Vec3& point, float d) const {
     OvdfLocation at;
     const Vec3 dir = d > 0 ? (point - center) * (1.0f / d) : Vec3(0, 0, 1);
-    const shading::ShellPair shells = shading::ovdf_shell_pair(shell_coordinate(d), params.shells);  // clamped inside
+    const shading::LerpPair shells = shading::ovdf_shell_pair(shell_coordinate(d), params.shells);  // clamped inside
     at.s0 = shells.lower;
     at.fs = shells.upper_weight;
     // Cube face and bilinear position among the face's sample directions.

@@ -40,6 +40,9 @@
 #include "fields/cpca.h"
 #include "fields/visibility_map.h"
 #include "src/core/mesh.h"
+#include "src/shading/ovdf_tables.h"
+#include "src/shading/ovdf_small_occluder.h"
+#include "src/shading/ovdf_inside.h"
 
 namespace rsl {
 

@@ -10,6 +10,8 @@
 #include <cmath>
 
 #include "fields/ovdf.h"
+#include "src/shading/interpolation.h"
+#include "src/shading/ovdf_tables.h"
 
 namespace rsl {
 
@@ -41,7 +43,7 @@ void Ovdf::locate_near(const OvdfNearPoints& points) const {
         const Vec3 dir(ox * inverse, oy * inverse, oz * inverse);
         // ovdf_zoom's cone; the shell pair, cube face and sample taps as locate().
         points.cone[j] = d <= r ? kOvdfNoCone : shading::ovdf_cone_radius(d, r);
-        const shading::ShellPair pair =
+        const shading::LerpPair pair =
             shading::ovdf_shell_pair(shading::ovdf_shell_coordinate(spacing, shells, inner, outer_ratio, d / r), shells);
         const shading::CubeFace face = shading::cube_face(dir, normals);
         const Vec3 s(face_s[3 * face.face], face_s[3 * face.face + 1], face_s[3 * face.face + 2]);

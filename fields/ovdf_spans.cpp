@@ -2,7 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "src/shading/shading_core.h"
+#include "src/shading/ovdf_tables.h"
+#include "src/shading/ovdf_inside.h"
 
 namespace rsl {
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fields/solid_pieces.h"
+#include "src/shading/ovdf_inside.h"
 
 namespace rsl {
 

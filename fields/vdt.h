@@ -32,6 +32,9 @@
 #include <vector>
 
 #include "src/core/hemisphere.h"
+#include "src/shading/frames.h"
+#include "src/shading/interpolation.h"
+#include "src/shading/vdt.h"
 
 namespace rsl {
 

@@ -43,7 +43,7 @@ void set_corners() {
         corner_position[c] = fetch(u_positions, vertex).xyz;
         vec4 normal = fetch(u_normals, vertex);
         vec4 tangent = fetch(u_tangents, vertex);
-        g_corner_frame[c] = frame_rows(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent.xyz);
+        g_corner_frame[c] = frame_from_normal_tangent(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent.xyz);
         corner_enclosed[c] = self && tangent.w > 0.5;  // as the CPU: only with the SVDF on
         g_corner_cluster[c] = self && normal.w >= 0.0 ? int(normal.w) : -1;
         if (g_corner_cluster[c] >= 0) load_svdf_coefficients(svdf, local, c);
@@ -85,7 +85,7 @@ void main() {
     if (dot(n, face) < 0.0) n = -n;
     g_self_corners = 0;
     if (u_corners) set_corners();
-    PointShade shaded = shade_point(u_part, v_position, frame_rows(n, v_tangent));
+    PointShade shaded = shade_point(u_part, v_position, frame_from_normal_tangent(n, v_tangent));
     vec3 color = u_textured ? shaded.color * texture(u_base_color, v_texcoord).rgb + shaded.specular : shaded.color;
     o_color = u_linear ? vec4(color, 1.0) : vec4(srgb(color * u_exposure), 1.0);
 }

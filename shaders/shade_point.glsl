@@ -69,13 +69,6 @@ mat3 part_normal_matrix(int part) {
 uint uint_fetch(usampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0).r; }
 uint list_texel(int i) { return uint_fetch(u_occluder_lists, i); }
 
-// Frame::from_normal_tangent as a matrix: local = transpose(frame) * world.
-mat3 frame_rows(vec3 n, vec3 t) {
-    LocalFrame f = frame_from_normal_tangent(n, t);
-    return mat3(f.x, f.y, f.z);
-}
-vec3 to_local(mat3 frame, vec3 v) { return vec3(dot(v, frame[0]), dot(v, frame[1]), dot(v, frame[2])); }
-
 // ---- BRDF summed-area tables (brdf_table.cpp) ----
 
 vec3 slice_integral(int s, SquareTaps t) {
@@ -93,13 +86,13 @@ vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
     int first = int(material.x), v = int(material.z);
     vec3 sum = vec3(0.0f);
     if (material.y > 0.5f) {
-        SampleLerp k = sample_lerp(isotropic_view_coordinate(view.z, v), v);
+        LerpPair k = sample_lerp(isotropic_view_coordinate(view.z, v), v);
         sum += (1.0f - k.upper_weight) * slice_integral(first + k.lower, t);
         sum += k.upper_weight * slice_integral(first + k.lower + 1, t);
     } else {
         vec2 p = anisotropic_view_point(view);
-        SampleLerp i = sample_lerp(view_grid_coordinate(p.x, v), v);
-        SampleLerp j = sample_lerp(view_grid_coordinate(p.y, v), v);
+        LerpPair i = sample_lerp(view_grid_coordinate(p.x, v), v);
+        LerpPair j = sample_lerp(view_grid_coordinate(p.y, v), v);
         float wi = i.upper_weight, wj = j.upper_weight;
         int s = first + j.lower * v + i.lower;
         sum += ((1.0f - wi) * (1.0f - wj)) * slice_integral(s, t);
@@ -123,7 +116,7 @@ int g_self_corners = 0;
 vec4 g_svdf_coefficients[3 * MAX_STRIDE];
 int g_corner_cluster[3];
 float g_corner_weight[3];
-mat3 g_corner_frame[3];
+LocalFrame g_corner_frame[3];
 
 // Corner `corner`'s CPCA coefficients: those of the part's vertex `local_vertex`.
 void load_svdf_coefficients(vec4 svdf, int local_vertex, int corner) {
@@ -172,7 +165,7 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     vec4 grid = part_texel(part, kSlotOvdfGrid);
     vec4 records = part_texel(part, kSlotOvdfRecords);
     int shell_count = int(shells.x), n = int(grid.x), vdt_n = int(grid.y), stride = int(grid.z), m = int(grid.w);
-    ShellPair pair = ovdf_shell_pair(
+    LerpPair pair = ovdf_shell_pair(
         ovdf_shell_coordinate(int(shells.y), shell_count, shells.z, shells.w, d / center.w), shell_count);
     int s0 = pair.lower;
     float fs = pair.upper_weight;
@@ -223,7 +216,7 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
     if (small_weight >= 1.0f) return small;
     // The receiver's own pole frame, twisted by the face rule like its
     // samples: one plane point for all eight samples.
-    vec2 lp = lookup_plane_point(to_local(frame_rows(-dir, u_face_s[face.face]), light));
+    vec2 lp = lookup_plane_point(frame_to_local(frame_from_normal_tangent(-dir, u_face_s[face.face]), light));
     float radial = length(lp);
     float distance = 0.0f;
     for (int k = 0; k < 2; ++k) {
@@ -270,17 +263,18 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
 
 // The exact shadow of a part that is a rectangle or a box
 // (shape_visible_fraction): shape = (center, kind), point in the part's
-// frame, `axes` the receiver's shading frame moved into it.
-float exact_shape_fraction(int part, vec4 shape, vec3 point, mat3 axes, vec2 lp, float h) {
+// frame, `axes` the receiver's shading frame and `linear` the part's inverse
+// transform that moves it there.
+float exact_shape_fraction(int part, vec4 shape, vec3 point, LocalFrame axes, mat3 linear, vec2 lp, float h) {
     // Within the field's reach only, as its lookup and the occluder lists.
     vec4 field = part_texel(part, kSlotOvdfCenter);
     if (!(length(point - field.xyz) < field.w * part_texel(part, kSlotOvdfShells).w)) return 1.0;
     mat3 to_shape = transpose(mat3(part_texel(part, kSlotShapeS).xyz, part_texel(part, kSlotShapeT).xyz,
                                    part_texel(part, kSlotShapeNormal).xyz));
     LocalFrame frame;
-    frame.x = to_shape * axes[0];
-    frame.y = to_shape * axes[1];
-    frame.z = to_shape * axes[2];
+    frame.x = to_shape * (linear * axes.x);
+    frame.y = to_shape * (linear * axes.y);
+    frame.z = to_shape * (linear * axes.z);
     return shape_visible_fraction(int(shape.w + 0.5), to_shape * (point - shape.xyz), frame, lp, h,
                                   part_texel(part, kSlotShapeLow).xyz, part_texel(part, kSlotShapeHigh).xyz);
 }
@@ -358,18 +352,18 @@ float blocker_distance(ShadowReceiver r, int taps, float distance) {
     return blockers == 0 ? 0.0 : sum / float(blockers);
 }
 
-float shadow_visible_fraction(int layer, vec3 light, vec3 p, mat3 frame, vec2 lp, float h) {
+float shadow_visible_fraction(int layer, vec3 light, vec3 p, LocalFrame frame, vec2 lp, float h) {
     LocalFrame m = shadow_map_frame(light);
     ShadowReceiver r;
     r.q = shadow_map_point(m, u_shadow_sphere.xyz, u_shadow_sphere.w, p);
-    r.gradient = shadow_receiver_gradient(m, frame[2]);
+    r.gradient = shadow_receiver_gradient(m, frame.z);
     r.bias = kShadowDepthBiasTexels * u_shadow_texel;
     r.layer = layer;
     int taps = 0;
     for (int i = 0; i < kShadowTaps; ++i) {
         vec2 point = shadow_tap_point(lp, h, i);
         if (dot(point, point) >= 1.0) continue;  // below the horizon: the BRDF average is 0 there
-        g_shadow_slope[taps++] = shadow_map_slope(m, frame * plane_to_hemisphere(point));
+        g_shadow_slope[taps++] = shadow_map_slope(m, frame_to_world(frame, plane_to_hemisphere(point)));
     }
     if (taps == 0) return 1.0;
     float distance = u_pcf_depth;
@@ -399,7 +393,7 @@ float self_visibility(vec4 svdf, vec3 direction, vec2 lp, float h) {
     for (int c = 0; c < 3; ++c) {
         // A corner whose hemisphere the square misses has no share (the
         // CPU's vertex pass queries no such square).
-        vec3 local = to_local(g_corner_frame[c], direction);
+        vec3 local = frame_to_local(g_corner_frame[c], direction);
         if (!square_reaches_hemisphere(local.z, h)) continue;
         float corner = g_corner_cluster[c] < 0
                            ? 1.0
@@ -411,14 +405,14 @@ float self_visibility(vec4 svdf, vec3 direction, vec2 lp, float h) {
 }
 
 // The sum at world point p of `part`, shading frame `frame` (rows: tangent,
-// bitangent, normal), towards u_camera, with self_visibility's factor.
-PointShade shade_point(int part, vec3 p, mat3 frame) {
+// bitangent, normal: frame_from_normal_tangent), towards u_camera, with self_visibility's factor.
+PointShade shade_point(int part, vec3 p, LocalFrame frame) {
     vec4 material = part_texel(part, kSlotMaterial);
     vec4 specular_material = part_texel(part, kSlotSpecular);
     bool layered = specular_material.w > 0.5;
     vec4 svdf = part_texel(part, kSlotSvdf);
     bool isotropic = material.y > 0.5;
-    vec3 wo = to_local(frame, normalize(u_camera - p));
+    vec3 wo = frame_to_local(frame, normalize(u_camera - p));
     vec2 alignment = view_alignment(wo);
 
     PointShade result;
@@ -446,7 +440,7 @@ PointShade shade_point(int part, vec3 p, mat3 frame) {
             vec4 c = fetch(u_lights, kLightTexels * l + 2);
             integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -direction, b.w, c.w));
         }
-        vec3 local = to_local(frame, direction);
+        vec3 local = frame_to_local(frame, direction);
         vec2 lp = hemisphere_to_plane(local);
         if (!(h > 0.0f) || !square_reaches_hemisphere(local.z, h)) continue;
         vec2 square = isotropic ? to_view_aligned(lp, alignment) : lp;
@@ -470,7 +464,7 @@ PointShade shade_point(int part, vec3 p, mat3 frame) {
             vec3 dir = normalize(mat3(inverse) * direction);
             if (clears_box(o, point, mat3(inverse) * direction, mat3(inverse), h)) continue;
             vec4 shape = part_texel(o, kSlotShape);
-            visibility *= shape.w > 0.5 ? exact_shape_fraction(o, shape, point, mat3(inverse) * frame, lp, h)
+            visibility *= shape.w > 0.5 ? exact_shape_fraction(o, shape, point, frame, mat3(inverse), lp, h)
                                         : ovdf_visible_fraction(o, point, dir, h);
         }
         result.color += integral * brdf * visibility;

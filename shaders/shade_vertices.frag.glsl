@@ -29,7 +29,7 @@ void main() {
     int local_vertex = vertex - int(part_texel(part, kSlotVertices).x);
 
     vec3 p = (transform * vec4(position.xyz, 1.0)).xyz;
-    mat3 frame = frame_rows(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent);
+    LocalFrame frame = frame_from_normal_tangent(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent);
     bool self = u_self_visibility && svdf.z > 0.0 && normal.w >= 0.0;
     g_self_corners = self ? 1 : 0;
     if (self) {

@@ -37,11 +37,8 @@ enum class SatStorage {
 
 struct BrdfTableOptions {
     // N: light directions on the N×N equal-area grid. 64, not the 32 of the
-    // other tables: a glossy lobe under the sun is a few texels wide at 32,
-    // and the box reconstruction held most of the robot's error under the
-    // sun (sunsky, t = 0.5: 6.4% over all vertices, the Phong-40 torso 10.6%;
-    // at 48 / 64 / 96: 4.2% / 3.9% / 3.8%, the torso 2.1% at 64; docs/BRDF.md
-    // "Table resolution").
+    // other tables: a glossy lobe under the sun is only a few texels wide at
+    // 32 (docs/journal/parameter-sweeps.md).
     int resolution = 64;
     int view_samples = 32;           // V: isotropic V polar samples, anisotropic V×V directions
     int interior_supersampling = 2;  // sub-samples per texel side inside the disk

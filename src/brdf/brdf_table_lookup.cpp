@@ -16,6 +16,7 @@
 #endif
 
 #include "src/brdf/brdf_table.h"
+#include "src/shading/brdf_sat.h"
 
 // The 32-byte vector helpers below are internal and inlined; without AVX
 // (RSL_NATIVE off) GCC warns that returning one differs from an AVX build's

@@ -6,6 +6,7 @@
 
 #include "fields/field_file.h"
 #include "src/cli/info.h"
+#include "src/shading/ovdf_tables.h"
 
 namespace rsl::cli {
 namespace {

@@ -15,6 +15,8 @@
 #include <cmath>
 
 #include "src/core/math.h"
+#include "src/shading/frames.h"
+#include "src/shading/squares.h"
 
 namespace rsl {
 

@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "src/shading/shading_core.h"
+#include "src/shading/frames.h"
 
 namespace rsl {
 

@@ -13,6 +13,7 @@
 #include "src/core/mesh.h"
 #include "src/core/subdivide.h"
 #include "src/core/texture.h"
+#include "src/shading/squares.h"
 
 namespace rsl {
 

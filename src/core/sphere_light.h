@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "src/core/scene.h"
-#include "src/shading/shading_core.h"
+#include "src/shading/squares.h"
 
 namespace rsl {
 

@@ -14,13 +14,10 @@ namespace rsl {
 // `relative_edge` × its bounding-sphere radius, or `absolute_edge` (in the
 // mesh's own units) when that is set (> 0); off when !enabled.
 struct SubdivisionSettings {
-    // On unless the scene file says `false`: measured on coarse boxes under
-    // grace (docs/SCENE_FORMAT.md, "Subdivision"), it lowers the image error
-    // (7.2% -> 5.7%) and keeps every box within 5% per vertex, now that exact
-    // shapes shadow near contacts and the truth shades seams as an instant
-    // outside the other part. Finely tessellated meshes are unchanged. Bare
-    // .obj/.gltf files, which have no scene file to switch it off, load as
-    // they are.
+    // On unless the scene file says `false`: it lowers the image error of
+    // coarse meshes and leaves fine ones unchanged (docs/SCENE_FORMAT.md,
+    // "Subdivision"). Bare .obj/.gltf files, which have no scene file to
+    // switch it off, load as they are.
     bool enabled = true;
     // With it on: the image error stops falling at R/4–R/8, the worst box's
     // per-vertex error keeps falling to R/8, and R/16 costs 3× more.

@@ -7,6 +7,7 @@
 #include "src/core/error.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/render/occluder_shape.h"
+#include "src/shading/ovdf_tables.h"
 
 namespace rsl::gl {
 

@@ -36,6 +36,7 @@
 #include "src/brdf/brdf_table.h"
 #include "src/core/scene.h"
 #include "src/render/part_fields.h"
+#include "src/shading/shapes.h"
 
 namespace rsl::gl {
 

@@ -13,6 +13,7 @@
 
 #include "src/render/ovdf_lookup.h"
 #include "src/render/renderer.h"
+#include "src/shading/frames.h"
 
 namespace rsl {
 

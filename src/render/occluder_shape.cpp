@@ -1,4 +1,5 @@
 #include "src/render/occluder_shape.h"
+#include "src/shading/shapes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "src/core/mesh.h"
-#include "src/shading/shading_core.h"
+#include "src/shading/shapes.h"
 
 namespace rsl {
 

@@ -11,6 +11,7 @@
 #include "src/render/block_scratch.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/renderer.h"
+#include "src/shading/ovdf_small_occluder.h"
 
 namespace rsl {
 

@@ -1,4 +1,5 @@
 #include "src/render/ovdf_lookup.h"
+#include "src/shading/ovdf_tables.h"
 
 #include <cmath>
 

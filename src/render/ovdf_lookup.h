@@ -25,6 +25,8 @@
 
 #include "fields/ovdf.h"
 #include "fields/vdt.h"
+#include "src/shading/ovdf_tables.h"
+#include "src/shading/ovdf_small_occluder.h"
 
 namespace rsl {
 

@@ -31,12 +31,9 @@ namespace {
 
 // The dimmest lights whose shares at the corners together stay below this
 // fraction of the pixel's colour (sky squares low on the horizon) keep the
-// corners' blend of their factor, as per vertex. Measured on the default
-// frame (its ground shadow against the per-pixel truth; per vertex 11.4%)
-// and on tests/render/pixel_shading_test.cpp's box (exact shape / OVDF;
-// per vertex 6.5% / 6.2%): 1/64, 1/16, 1/8 and 1/4 give 9.31%, 9.31%,
-// 9.30%, 9.30% and 3.9/3.3%, 3.9/3.4%, 3.9/3.4%, 3.8/3.4%, and form the
-// default image in 420, 185, 125 and 96 ms (14 ms per vertex).
+// corners' blend of their factor, as per vertex: the image's error is the
+// same from 1/64 to 1/4, and 1/4 forms it four times faster
+// (docs/journal/parameter-sweeps.md).
 constexpr float kBlendedShare = 1.0f / 4.0f;
 
 float sum_of(const Color& c) { return c.r + c.g + c.b; }

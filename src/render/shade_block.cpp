@@ -16,6 +16,10 @@
 #include "src/render/block_scratch.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/renderer.h"
+#include "src/shading/frames.h"
+#include "src/shading/squares.h"
+#include "src/shading/ovdf_tables.h"
+#include "src/shading/shapes.h"
 
 namespace rsl {
 

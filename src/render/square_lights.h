@@ -19,6 +19,7 @@
 #include "src/core/hemisphere.h"
 #include "src/core/math.h"
 #include "src/core/mesh.h"
+#include "src/shading/squares.h"
 
 namespace rsl {
 

@@ -8,6 +8,7 @@
 
 #include "src/brdf/brdf_table.h"
 #include "tests/brdf/brdf_test_util.h"
+#include "src/shading/brdf_sat.h"
 
 using namespace rsl;
 using namespace rsl::test;

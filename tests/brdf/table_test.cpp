@@ -7,6 +7,7 @@
 #include "src/brdf/texel_sampler.h"
 #include "tests/brdf/brdf_test_util.h"
 #include "tests/brdf/table_test_util.h"
+#include "src/shading/brdf_sat.h"
 
 using namespace rsl;
 using namespace rsl::test;

@@ -13,6 +13,7 @@
 #include "src/core/sphere_light.h"
 #include "tests/core/gltf_builder.h"
 #include "tests/test_support.h"
+#include "src/shading/squares.h"
 
 using namespace rsl;
 using test::GltfBuilder;

@@ -13,6 +13,7 @@
 
 #include "assets/generate/primitives.h"
 #include "fields/ovdf.h"
+#include "src/shading/ovdf_tables.h"
 
 using namespace rsl;
 

@@ -10,6 +10,8 @@
 #include "fields/ovdf.h"
 #include "src/core/hemisphere.h"
 #include "src/rays/ray_scene.h"
+#include "src/shading/ovdf_tables.h"
+#include "src/shading/ovdf_small_occluder.h"
 
 using namespace rsl;
 

@@ -12,6 +12,7 @@
 #include "src/render/renderer.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "src/shading/shapes.h"
 
 namespace rsl {
 namespace {

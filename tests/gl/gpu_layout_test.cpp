@@ -9,6 +9,7 @@
 #include "src/render/occluder_shape.h"
 #include "src/render/ovdf_occluder.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "src/shading/shapes.h"
 
 namespace rsl {
 namespace {

@@ -62,7 +62,7 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
         }
     } else if (mode == 6) {  // view samples
         int v = 2 + int(8.0f * abs(b.z));
-        SampleLerp lerp = sample_lerp(10.0f * a.x, v);
+        LerpPair lerp = sample_lerp(10.0f * a.x, v);
         vec2 view = anisotropic_view_point(normalize(vec3(b.x, b.y, b.w)));
         vec2 aligned = to_view_aligned(vec2(a.y, a.z), view_alignment(w));
         o.first = vec4(float(lerp.lower), lerp.upper_weight, isotropic_view_coordinate(a.y, v), view_grid_coordinate(a.z, v));
@@ -72,7 +72,7 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
         int shells = 2 + int(20.0f * abs(b.z));
         float coordinate = ovdf_shell_coordinate(spacing, shells, 0.3f + 0.2f * abs(b.x), 4.0f + 20.0f * abs(b.y),
                                                  0.1f + 30.0f * abs(a.x));
-        ShellPair pair = ovdf_shell_pair(coordinate, shells);
+        LerpPair pair = ovdf_shell_pair(coordinate, shells);
         float radius = 0.1f + abs(a.y);
         float distance = radius * (0.5f + 10.0f * abs(a.z));
         OvdfZoom zoom = ovdf_zoom(distance, radius);

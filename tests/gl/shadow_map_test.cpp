@@ -25,6 +25,7 @@
 #include "tests/gl/gl_test_support.h"
 #include "tests/render/render_test_scenes.h"
 #include "tests/test_support.h"
+#include "src/shading/frames.h"
 
 namespace rsl {
 namespace {

@@ -13,6 +13,9 @@
 #include "src/rays/ray_scene.h"
 #include "src/render/occluder_shape.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "src/shading/frames.h"
+#include "src/shading/shadow_maps.h"
+#include "src/shading/shapes.h"
 
 namespace rsl {
 namespace {

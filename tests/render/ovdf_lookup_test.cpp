@@ -13,6 +13,7 @@
 
 #include "src/render/ovdf_lookup.h"
 #include "tests/render/render_test_scenes.h"
+#include "src/shading/ovdf_small_occluder.h"
 
 namespace rsl {
 namespace {
