@@ -4,6 +4,7 @@
 // images are compared with compare_images (src/frame/error_metrics.h), the
 // same definition `rsl compare` uses.
 #include "bench/baselines_experiment.h"
+#include "lightfit/scene_lights.h"
 
 #include "bench/experiment_support.h"
 
@@ -231,7 +232,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
                                                                 : fit_scene_lights(*setup.scene, setup.environment, lights);
             const double fit_s = lights == options.environment_lights ? setup.fit_seconds : seconds_since(fit_start);
             options.environment_lights = lights;
-            Renderer renderer(scene, std::move(set), setup.fields, options);
+            CpuRenderer renderer(scene, std::move(set), setup.fields, options);
             renderer.set_time(t);
             VertexColors colors = renderer.make_output();
             const double ms = median_ms(args.repeats, [&] { renderer.shade(colors); });
@@ -240,7 +241,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
             // unshadowed truth: the lighting + BRDF part of RSL's error.
             RenderOptions no_shadows = options;
             no_shadows.self_visibility = false, no_shadows.occluders = false;
-            Renderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
+            CpuRenderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
             light_only.set_time(t);
             light_only.shade(colors);
             unshadowed_errors.rsl.push_back({lights, relative_l2_error(flatten(colors), unshadowed.texel_sum)});

@@ -60,12 +60,12 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
     auto time_of = [&](int f) { return scene->animation.start + duration * float(f) / float(frames); };
 
     renderer.set_time(time_of(0));
-    renderer.shade();  // warm-up: shader compilation happens at first use on some drivers
+    renderer.shade_on_device();  // warm-up: shader compilation happens at first use on some drivers
     glFinish();
     auto start = Clock::now();
     for (int f = 0; f < frames; ++f) {
         renderer.set_time(time_of(f));
-        renderer.shade();
+        renderer.shade_on_device();
     }
     glFinish();
     const double shade_seconds = since(start) / frames;
@@ -87,7 +87,7 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
         for (int f = 0; f < display_frames; ++f) {
             const float t = time_of(f * frames / display_frames);
             renderer.set_time(t);
-            renderer.shade();
+            renderer.shade_on_device();
             glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.id());
             glViewport(0, 0, width, height);
             glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -107,7 +107,7 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
                 {"device", device},
                 {"quick_fields", options.quick},
                 {"vertices", renderer.vertex_count()},
-                {"lights", renderer.frame().light_count()},
+                {"lights", renderer.stats().lights},
                 {"frames", frames},
                 {"shading_ms", 1e3 * shade_seconds},
                 {"shading_fps", 1.0 / shade_seconds},
@@ -116,8 +116,8 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
                 {"frame_fps", 1.0 / frame_seconds},
                 {"frame_vertex_blend_ms", 1e3 * blend_frame_seconds},
                 {"frame_vertex_blend_fps", 1.0 / blend_frame_seconds},
-                {"occluder_pairs", renderer.frame().occluder_pairs()},
-                {"occluder_pairs_culled", renderer.frame().occluder_pairs_culled()},
+                {"occluder_pairs", renderer.stats().occluder_pairs},
+                {"occluder_pairs_culled", renderer.stats().occluder_pairs_culled},
                 {"gpu_megabytes", double(renderer.gpu_bytes()) / (1 << 20)}});
 }
 

@@ -61,16 +61,14 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     const double image_seconds = median_seconds(repeats, [&] { image = form_image(posed, camera, colors); });
     // `rsl render`'s image: shading that keeps the per-pixel terms, then the
     // image with per-pixel shadows and highlights (docs/RENDERER.md).
-    renderer->keep_pixel_terms(true);
+    renderer->keep_image_terms(true);
     renderer->shade(colors);
     const double shade_pixel_terms_seconds = median_seconds(repeats, [&] {
         renderer->set_time(c.time);
         renderer->shade(colors);
     });
-    const double image_per_pixel_seconds = median_seconds(repeats, [&] {
-        form_image(posed, camera, colors, {}, renderer->pixel_shading(colors, posed));
-    });
-    renderer->keep_pixel_terms(false);
+    const double image_per_pixel_seconds = median_seconds(repeats, [&] { renderer->form_image(colors, camera); });
+    renderer->keep_image_terms(false);
     renderer->shade(colors);  // the colours and stats of the frame as measured first
 
     // The same frame with parts of the work switched off or done the slower

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 
+#include "lightfit/scene_lights.h"
 #include "lightfit/reconstruct.h"
 #include "bench/bench.h"
 #include "src/backend/make_renderer.h"

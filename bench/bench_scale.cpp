@@ -102,7 +102,7 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
         renderer->shade(colors);
         shade.push_back(1e3 * seconds_since(start));
         lookups += renderer->stats().occluder_lookups;
-        const auto* cpu = dynamic_cast<const Renderer*>(renderer.get());
+        const auto* cpu = dynamic_cast<const CpuRenderer*>(renderer.get());
         if (cpu) candidates += cpu->frame().occluder_lists().candidates, entries += cpu->frame().occluder_lists().occluders.size();
     }
     std::sort(shade.begin(), shade.end());

@@ -4,6 +4,7 @@
 // differ in the visibility factor alone; errors are against the ground
 // truth under the scene's own environment.
 #include "bench/many_light_experiment.h"
+#include "lightfit/scene_lights.h"
 
 #include <cmath>
 #include <fmt/core.h>
@@ -187,14 +188,14 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
     for (int k : args.rsl_lights) {
         RenderOptions o = options;
         o.environment_lights = k;
-        Renderer renderer(scene, lights_for(k), setup.fields, o);
+        CpuRenderer renderer(scene, lights_for(k), setup.fields, o);
         measure(make_row("rsl", k, k), renderer);
     }
     // Ray-traced many-light: the fields unused, every visibility factor by rays.
     auto ray_row = [&](const std::string& method, int samples) {
         RenderOptions o = options;
         o.exact_visibility = std::make_shared<ExactVisibility>(scene, t, ExactVisibilityMode::All, samples, true);
-        Renderer renderer(scene, lights_for(args.baseline_lights), PartFields{}, o);
+        CpuRenderer renderer(scene, lights_for(args.baseline_lights), PartFields{}, o);
         measure(make_row(method, samples, args.baseline_lights), renderer);
         return rows.back().rays;
     };
@@ -207,7 +208,7 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
         if (rays_at_one == 0) {  // the pairs that need rays, from one frame at S = 1
             RenderOptions o = options;
             o.exact_visibility = std::make_shared<ExactVisibility>(scene, t, ExactVisibilityMode::All, 1, true);
-            Renderer probe(scene, lights_for(args.baseline_lights), PartFields{}, o);
+            CpuRenderer probe(scene, lights_for(args.baseline_lights), PartFields{}, o);
             probe.set_time(t);
             probe.shade();
             rays_at_one = probe.stats().shadow_rays;

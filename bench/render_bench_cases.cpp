@@ -1,4 +1,5 @@
 #include "bench/render_bench_cases.h"
+#include "lightfit/scene_lights.h"
 
 #include <chrono>
 #include <cstdio>
@@ -109,7 +110,7 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
                         row.settings = sc.scene_settings ? "scene" : "bench";
                         const RslSet rsls = fit_environment_lights(env.map, k);
                         RenderOptions options;
-                        Renderer renderer(*scene, rsls, setup.fields, options);
+                        CpuRenderer renderer(*scene, rsls, setup.fields, options);
                         renderer.set_time(t);
                         start = std::chrono::steady_clock::now();
                         const VertexColors colors = renderer.shade();
@@ -123,7 +124,7 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
                         row.worst_part = objects.worst_part, row.worst_part_error = objects.worst;
                         RenderOptions no_occluders;
                         no_occluders.occluders = false;
-                        Renderer self_only(*scene, rsls, setup.fields, no_occluders);
+                        CpuRenderer self_only(*scene, rsls, setup.fields, no_occluders);
                         self_only.set_time(t);
                         row.no_occluder_error = compare_vertex_colors(self_only.shade(), reference).total.relative_l2();
                         // The light approximation alone: the exact integral

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <cmath>
 
+#include "lightfit/scene_lights.h"
 #include "demos/contact_sheet.h"
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"

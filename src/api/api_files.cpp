@@ -4,13 +4,14 @@
 
 #include <fmt/format.h>
 
+#include "lightfit/scene_lights.h"
 #include "lightfit/reconstruct.h"
 #include "src/api/api_convert.h"
 #include "src/backend/make_renderer.h"
 #include "src/core/envmap.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/part_fields.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/version/build_info.h"
 
 namespace rsl::api {

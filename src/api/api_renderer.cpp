@@ -183,31 +183,33 @@ void Renderer::set_material_parameter(const std::string& material, const std::st
 VertexColors Renderer::shade() {
     State& s = *state_;
     s.update_frame();
-    s.renderer->keep_pixel_terms(false);  // colours alone: no image's terms to keep
+    s.renderer->keep_image_terms(false);  // colours alone: no image's terms to keep
     s.renderer->shade(s.output);
     // A textured part's colour at unit texture: its diffuse and specular
     // layers summed (render_image applies the texture per pixel).
     return to_api(s.output.at_unit_texture());
 }
 
-Image Renderer::State::form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings,
-                                  bool per_pixel) const {
-    const State& s = *this;
-    const rsl::Scene& scene = s.scene();
+std::pair<int, int> Renderer::State::image_size(const ImageSettings& settings) const {
     if (settings.samples < 1) throw_error("samples {}: expected at least 1", settings.samples);
     if (settings.width < 0 || settings.height < 0)
         throw_error("image size {}×{}: expected positive (or 0: the camera's)", settings.width, settings.height);
-    const int width = settings.width > 0 ? settings.width : scene.camera.width;
-    const int height = settings.height > 0 ? settings.height : scene.camera.height;
+    return {settings.width > 0 ? settings.width : scene().camera.width,
+            settings.height > 0 ? settings.height : scene().camera.height};
+}
+
+// Any colours (the caller's, edited or blended): their image alone, with
+// textures per pixel and no renderer's per-pixel terms.
+Image Renderer::State::form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings) const {
+    const State& s = *this;
+    const auto [width, height] = image_size(settings);
     // As `rsl render`: made posed at the first frame, then moved to each.
-    if (!s.posed) s.posed = std::make_unique<PosedScene>(scene, s.time);
+    if (!s.posed) s.posed = std::make_unique<PosedScene>(s.scene(), s.time);
     s.posed->set_time(s.time);
     ImageFormationOptions formation;
     formation.samples_per_side = settings.samples;
-    // The renderer's per-pixel shadows and highlights need its own colours.
-    const PartShaders part_shaders = per_pixel ? s.renderer->pixel_shading(colors, *s.posed) : PartShaders{};
-    return to_api(::rsl::form_image(*s.posed, PinholeCamera::at_time(scene.camera, s.time, width, height), colors,
-                                    formation, part_shaders));
+    return to_api(::rsl::form_image(*s.posed, PinholeCamera::at_time(s.scene().camera, s.time, width, height), colors,
+                                    formation));
 }
 
 Image Renderer::form_image(const VertexColors& colors, const ImageSettings& settings) const {
@@ -217,10 +219,15 @@ Image Renderer::form_image(const VertexColors& colors, const ImageSettings& sett
 Image Renderer::render_image(const ImageSettings& settings) {
     State& s = *state_;
     s.update_frame();
-    s.renderer->keep_pixel_terms(true);
+    s.renderer->keep_image_terms(true);
     s.renderer->shade(s.output);
-    // With the layers (textures per pixel) and the renderer's per-pixel shadows, as `rsl render`.
-    return s.form_image(s.output, settings, true);
+    // The renderer's own image of its colours (per-pixel shadows and
+    // highlights, textures per pixel), as `rsl render`'s.
+    const auto [width, height] = s.image_size(settings);
+    ImageFormationOptions formation;
+    formation.samples_per_side = settings.samples;
+    return to_api(s.renderer->form_image(s.output, PinholeCamera::at_time(s.scene().camera, s.time, width, height),
+                                         formation));
 }
 
 VertexColors Renderer::truth(const TruthSettings& settings) const {

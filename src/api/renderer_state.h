@@ -5,6 +5,7 @@
 // and materials are written into the scene too), so that the renderer, image
 // formation and the ground truth all read one scene.
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "rsl/rsl.h"
@@ -33,10 +34,12 @@ struct Renderer::State {
         renderer->set_time(time);
         frame_stale = false;
     }
-    // The image of internal vertex colours, layered parts' textures applied
-    // per pixel, as `rsl render` forms it (the scene posed at `time`).
-    // per_pixel: `colors` are the renderer's last shade(), formed with its per-pixel passes.
-    Image form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings, bool per_pixel = false) const;
+    // The image of any internal vertex colours, layered parts' textures
+    // applied per pixel (the scene posed at `time`); the renderer's own
+    // image of its last shade() is VertexRenderer::form_image.
+    Image form_image(const ::rsl::VertexColors& colors, const ImageSettings& settings) const;
+    // The image's width and height (0: the camera's); throws for bad settings.
+    std::pair<int, int> image_size(const ImageSettings& settings) const;
     int part_index(const std::string& part) const;  // throws naming the parts
     void check_part(int part) const;
 };

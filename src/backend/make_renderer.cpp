@@ -1,7 +1,7 @@
 #include "src/backend/make_renderer.h"
 
 #include "src/core/error.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #ifdef RSL_HAVE_GL
 #include "src/gl/gl.h"
 #include "src/gl/headless_renderer.h"
@@ -38,7 +38,7 @@ std::unique_ptr<VertexRenderer> make_renderer(Backend backend, const Scene& scen
                                               const RenderOptions& options) {
     switch (backend) {
     case Backend::Cpu:
-        return std::make_unique<Renderer>(scene, std::move(environment_lights), std::move(fields), options);
+        return std::make_unique<CpuRenderer>(scene, std::move(environment_lights), std::move(fields), options);
     case Backend::Gl:
 #ifdef RSL_HAVE_GL
         return std::make_unique<gl::HeadlessGlRenderer>(scene, std::move(environment_lights), std::move(fields),

@@ -1,7 +1,8 @@
 // `rsl render SCENE --time T -o out.exr`: the CPU runtime renderer
-// (docs/RENDERER.md), or with --backend gl the GPU one (docs/GPU.md). Per-vertex colours from the RSL sum, interpolated by
-// primary rays exactly as `rsl truth` does (form_image), written as EXR + PNG,
-// and optionally as per-vertex .rslv for `rsl compare`.
+// (docs/design/RENDERER.md), or with --backend gl the GPU one (docs/GPU.md).
+// Per-vertex colours from the RSL sum and the image the renderer forms of
+// them (VertexRenderer::form_image: the same picture on either backend),
+// written as EXR + PNG, and optionally as per-vertex .rslv for `rsl compare`.
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -37,7 +38,6 @@ struct RenderArgs {
     bool quiet = false;
     int shadow_maps = 0;  // 0: off; else the resolution (GL only)
     std::string shadow_filter = "pcss";
-    bool gpu_image = false;  // images formed on the GPU (the display and per-pixel passes)
 };
 
 // "A:B:STEP" → the times A, A + STEP, … ≤ B (inclusive within rounding).
@@ -69,11 +69,6 @@ void run_render(const RenderArgs& args) {
     const std::filesystem::path output(args.output);
     if (output.extension() != ".exr") throw_error("-o {}: expected an .exr path (a .png preview is written beside it)", args.output);
 
-    if (args.gpu_image && backend == Backend::Cpu) throw_error("--gpu-image: images formed on the GPU need --backend gl");
-    if (args.gpu_image && args.samples != 1)
-        throw_error("--gpu-image: the GPU forms one sample per pixel (--samples {} needs the CPU's image formation)",
-                    args.samples);
-
     RenderOptions options;
     options.environment_lights = args.lights;
     options.cross_face_lights = !args.same_face;
@@ -104,10 +99,6 @@ void run_render(const RenderArgs& args) {
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(backend, scene, setup.environment_lights, setup.fields, options);
     if (!args.quiet && backend != Backend::Cpu) fmt::print(stderr, "{}\n", renderer->device());
-    if (!args.quiet && backend != Backend::Cpu && !args.gpu_image &&
-        (options.pixel_shadows != PixelShadows::Off || options.pixel_highlights))
-        fmt::print(stderr, "images: the vertex colours' blend (per-pixel shadows and highlights are the cpu "
-                           "backend's and, with --gpu-image, the GPU's per-pixel pass; docs/GPU.md)\n");
     if (!args.quiet && setup.environment_lights.blends())
         fmt::print(stderr, "environment: {} blended with {} over a {} s period (docs/SCENE_FORMAT.md)\n",
                    scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
@@ -116,9 +107,8 @@ void run_render(const RenderArgs& args) {
     const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
     const int width = args.width > 0 ? args.width : scene.camera.width;
     const int height = args.height > 0 ? args.height : scene.camera.height;
-    PosedScene posed(scene, times.front());
     VertexColors colors = renderer->make_output();
-    renderer->keep_pixel_terms(true);  // every frame forms an image
+    renderer->keep_image_terms(true);  // every frame forms an image
     ImageFormationOptions formation;
     formation.samples_per_side = args.samples;
     // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
@@ -131,12 +121,8 @@ void run_render(const RenderArgs& args) {
         renderer->set_time(t);
         renderer->shade(colors);
         const auto shaded = std::chrono::steady_clock::now();
-        posed.set_time(t);
         const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, width, height);
-        std::optional<Image> device_image;
-        if (args.gpu_image) device_image = renderer->device_image(camera);
-        const Image image = device_image ? std::move(*device_image)
-                                         : form_image(posed, camera, colors, formation, renderer->pixel_shading(colors, posed));
+        const Image image = renderer->form_image(colors, camera, formation);
         const auto formed = std::chrono::steady_clock::now();
         const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
         write_exr_and_png(exr, image, tone);
@@ -177,13 +163,13 @@ RegisterCommand render_command({"render",
         app.add_option("--pixel-shadows", args->pixel_shadows,
                        "Which parts take the other parts' shadows per pixel in the image, where a shadow edge "
                        "crosses a triangle (sharp shadows on coarse receivers; per-vertex colours unchanged; "
-                       "cpu backend, and gl with --gpu-image): planes (flat rectangles: grounds, floors), all "
+                       "either backend): planes (flat rectangles: grounds, floors), all "
                        "(the gl backend: as planes), or off")
             ->check(CLI::IsMember({"planes", "all", "off"}))->capture_default_str();
         app.add_flag("--pixel-highlights,!--no-pixel-highlights", args->pixel_highlights,
                      "Glossy parts take each light's BRDF average at every pixel's own normal and view in the "
                      "image, so that highlights between vertices show (default on; per-vertex colours unchanged; "
-                     "cpu backend, and gl with --gpu-image)");
+                     "either backend)");
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
         app.add_option("-o,--output", args->output, "Image to write (.exr; a .png preview beside it)")->required();
         app.add_option("--vertex-out", args->vertex_output, "Per-vertex colours (.rslv) for `rsl compare`");
@@ -198,10 +184,6 @@ RegisterCommand render_command({"render",
                        "With --shadow-maps: pcss (blocker search; default) or pcf (fixed occluder distance, "
                        "0.1 x the scene's radius)")
             ->check(CLI::IsMember({"pcf", "pcss"}))->needs(shadow_maps)->capture_default_str();
-        app.add_flag("--gpu-image", args->gpu_image,
-                     "With --backend gl: form the images on the GPU, as `rsl view` shows them (the vertex colours "
-                     "rasterized, flat rectangles shaded per pixel by the GPU's per-pixel pass; one sample per "
-                     "pixel; docs/GPU.md)");
         app.add_flag("--quiet,-q", args->quiet, "No progress lines");
         app.callback([args] { run_render(*args); });
     }});

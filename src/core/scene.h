@@ -98,7 +98,7 @@ struct LocalLight {
 // A directional light (a glTF "sun", KHR_lights_punctual): irradiance E per
 // channel at normal incidence, from the direction opposite its node's −Z.
 // The renderers light with it as one square light of the sun's size after
-// the environment map's (fit_scene_lights, src/render/renderer.h), the
+// the environment map's (fit_scene_lights, src/render/cpu_renderer.h), the
 // ground truth as a direction of irradiance E; it turns with the map.
 struct SunLight {
     std::string name;  // its node's

@@ -15,7 +15,7 @@ namespace rsl {
 // environment.second_file, the blend's other end), or a black map, with
 // `uniform` added to every texel. The suns are not in it: a texel is far
 // wider than the sun, so each is a light of its own (fit_scene_lights,
-// src/render/renderer.h) and a direction of the ground truth.
+// src/render/cpu_renderer.h) and a direction of the ground truth.
 CubeMap scene_environment_map(const Scene& scene, int resolution, bool second = false);
 
 // A sun's direction in the environment map's frame: where it stands at the

@@ -293,4 +293,34 @@ Image trace_image_one_ray_at_a_time(const PosedScene& scene, const PinholeCamera
     return image;
 }
 
+Image resolve_samples(const Image& fine, int samples_per_side) {
+    const int s = samples_per_side;
+    RSL_CHECK_GE(s, 1);
+    if (s == 1) return fine;
+    RSL_CHECK(fine.width % s == 0 && fine.height % s == 0);
+    Image image(fine.width / s, fine.height / s, fine.channels);
+    const float weight = 1.0f / float(s * s);
+    const size_t c = size_t(fine.channels);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            float* pixel = &image.pixels[(size_t(y) * size_t(image.width) + size_t(x)) * c];
+            for (int b = 0; b < s; ++b)
+                for (int a = 0; a < s; ++a) {
+                    const float* sample = &fine.pixels[(size_t(y * s + b) * size_t(fine.width) + size_t(x * s + a)) * c];
+                    for (size_t k = 0; k < c; ++k) pixel[k] += sample[k];
+                }
+            for (size_t k = 0; k < c; ++k) pixel[k] *= weight;
+        }
+    return image;
+}
+
+void fill_background(Image& image, const Color& background) {
+    RSL_CHECK_EQ(image.channels, 4);
+    for (size_t i = 0; i + 3 < image.pixels.size(); i += 4) {
+        const float uncovered = 1.0f - image.pixels[i + 3];
+        for (int k = 0; k < 3; ++k) image.pixels[i + size_t(k)] += uncovered * background[k];
+        image.pixels[i + 3] = 1.0f;
+    }
+}
+
 }  // namespace rsl

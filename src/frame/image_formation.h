@@ -86,4 +86,12 @@ const Texture* layer_texture(const Scene& scene, const VertexColors& colors, siz
 Image form_image(const PosedScene& scene, const PinholeCamera& camera, const VertexColors& colors,
                  const ImageFormationOptions& options = {}, const PartShaders& part_shaders = {});
 
+// An image drawn with one sample per pixel at S times the size (a
+// rasterizer's: its pixel centres are form_image's S×S sample positions)
+// as form_image's: each S×S block's RGBA averaged into one pixel.
+Image resolve_samples(const Image& fine, int samples_per_side);
+// Uncovered shares of an RGBA image (premultiplied) filled with `background`,
+// as form_image's opaque_background: alpha becomes 1.
+void fill_background(Image& image, const Color& background);
+
 }  // namespace rsl

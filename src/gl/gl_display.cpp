@@ -1,5 +1,5 @@
 // The GL renderer's display pass and its per-pixel pass (gl_renderer.h),
-// and the images they form offscreen (form_image: `rsl render --gpu-image`,
+// and the images they form offscreen (draw_image: `rsl render --backend gl`,
 // the tests that hold the per-pixel pass to the CPU's).
 #include <algorithm>
 #include <cmath>
@@ -109,7 +109,7 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
     check_gl("the display pass");
 }
 
-Image GlRenderer::form_image(const PinholeCamera& camera) {
+Image GlRenderer::draw_image(const PinholeCamera& camera) {
     RSL_CHECK(camera.width > 0 && camera.height > 0);
     // Where the context has glClipControl (OpenGL 4.5: Mesa's llvmpipe, the
     // vendors' drivers), reversed Z into a float depth buffer: depth = near /
@@ -197,6 +197,22 @@ Image GlRenderer::form_image(const PinholeCamera& camera) {
     const size_t row = size_t(camera.width) * 4;
     for (int y = 0; y < camera.height; ++y)
         std::copy_n(&rows[size_t(camera.height - 1 - y) * row], row, &image.pixels[size_t(y) * row]);
+    return image;
+}
+
+Image GlRenderer::backend_image(const VertexColors& colors, const PinholeCamera& camera,
+                                const ImageFormationOptions& options) {
+    // The display pass draws `colors` as shaded on the device: they must be
+    // the last shade()'s (the CPU's image reads the same colours from them).
+    RSL_CHECK_EQ(colors.vertex_count(), size_t(vertex_count_));
+    // S×S samples per pixel: the image S times as large, whose pixel centres
+    // are the CPU's sample positions, averaged (resolve_samples).
+    const int s = options.samples_per_side;
+    PinholeCamera fine = camera;
+    fine.width *= s;
+    fine.height *= s;
+    Image image = resolve_samples(draw_image(fine), s);
+    if (options.opaque_background) fill_background(image, options.background);
     return image;
 }
 

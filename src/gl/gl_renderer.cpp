@@ -7,7 +7,7 @@
 #include "src/brdf/material_library.h"
 #include "src/core/error.h"
 #include "src/render/occluder_shape.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/core/sphere_light.h"
 
 namespace rsl::gl {
@@ -37,21 +37,11 @@ size_t texel_bytes(const ArrayTexture& array, size_t bytes_per_texel) {
 }  // namespace
 
 namespace {
-PartFields checked(const Scene& scene, PartFields fields) {
-    check_part_fields(scene, fields);
-    return fields;
-}
 }  // namespace
 
 GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
                        const RenderOptions& options)
-    : scene_(scene),
-      options_(options),
-      environment_(std::move(environment_lights)),
-      local_lights_(scene.lights),
-      fields_(checked(scene, std::move(fields))),
-      library_(scene_material_library(scene, options)),
-      frame_(scene, fields_) {
+    : VertexRenderer(scene, std::move(environment_lights), std::move(fields), options) {
 
     const PackedGeometry geometry = pack_geometry(scene, fields_, options_.exact_shapes);
     const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride) + shading_prelude();
@@ -84,7 +74,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     timings_.clock = clock_timing_;
     check_shadow_map_options(options_.shadow_maps);
     check_gl("creating the GL renderer");
-    set_local_lights(local_lights_);  // checks them, sizes the frame, poses at t = 0
+    start();
 }
 
 GlRenderer::~GlRenderer() = default;
@@ -309,39 +299,10 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
     shadow_maps_stale_ = true;
 }
 
-void GlRenderer::set_environment_lights(EnvironmentLights lights) {
-    environment_ = std::move(lights);
-    frame_.reserve(environment_.light_count(), local_lights_.size());
-    update_frame();
-}
-
-void GlRenderer::set_local_lights(std::vector<LocalLight> lights) {
-    check_local_lights(scene_, lights);
-    local_lights_ = std::move(lights);
-    frame_.reserve(environment_.light_count(), local_lights_.size());
-    update_frame();
-}
-
-void GlRenderer::set_time(float t) {
-    time_ = t;
-    view_rotation_ = Mat3(1.0f);
-    view_camera_.reset();
-    update_frame();
-}
-
-void GlRenderer::set_view(float t, const Vec3& camera, const Mat3& environment_rotation) {
-    time_ = t;
-    view_rotation_ = environment_rotation;
-    view_camera_ = camera;
-    update_frame();
-}
-
-void GlRenderer::update_frame() {
-    frame_.update(scene_, environment_, local_lights_, options_, time_, view_rotation_, view_camera_);
+void GlRenderer::frame_changed() {
     shadow_maps_stale_ = true;  // poses or lights may have moved
-    stats_.occluder_pairs = frame_.occluder_pairs();
-    stats_.occluder_pairs_culled = frame_.occluder_pairs_culled();
-    stats_.lights = size_t(frame_.light_count());
+    pack_occluder_lists(frame_.occluder_lists(), occluder_list_texels_);
+    stats_.lights = frame_.environment_squares().size() + frame_.light_positions().size();
     stats_.vertices = size_t(vertex_count_);
 }
 
@@ -368,10 +329,10 @@ void GlRenderer::upload_frame() {
     if (light_texels_.empty()) light_texels_.push_back(Vec4(0.0f));
     update_array_texture(lights_, light_texels_);
 
-    upload_uint_array(occluder_lists_, frame_.occluder_list_texels());
+    upload_uint_array(occluder_lists_, occluder_list_texels_);
 }
 
-void GlRenderer::shade() {
+void GlRenderer::shade_on_device() {
     collect_timings();
     sync_materials();
     upload_frame();
@@ -424,7 +385,7 @@ void GlRenderer::bind_shading_inputs(const Program& program) {
     bind_texture(kUnitOvdfCoefficients, GL_TEXTURE_2D, ovdf_coefficients_.texture.id());
     bind_texture(kUnitOvdfFrames, GL_TEXTURE_2D, ovdf_frames_.texture.id());
     glUniform1i(uniform(program, "u_environment_lights"), int(frame_.environment_squares().size()));
-    glUniform1i(uniform(program, "u_light_count"), frame_.light_count());
+    glUniform1i(uniform(program, "u_light_count"), int(stats_.lights));
     glUniform1i(uniform(program, "u_environment_enabled"), options_.environment ? 1 : 0);
     glUniform1i(uniform(program, "u_local_enabled"), options_.local_lights ? 1 : 0);
     glUniform1i(uniform(program, "u_self_visibility"), options_.self_visibility ? 1 : 0);
@@ -507,16 +468,8 @@ std::string GlRenderer::pass_times() const {
                        t.clock ? " (clock)" : " (timer queries)");
 }
 
-VertexColors GlRenderer::make_output() const {
-    VertexColors colors;
-    colors.scene_name = scene_.name;
-    colors.producer = "rsl-gl";
-    for (const Part& part : scene_.parts) colors.add_part(part.name, part.mesh.vertex_count());
-    return colors;
-}
-
 void GlRenderer::shade(VertexColors& out) {
-    shade();
+    shade_on_device();
     read_colors(out);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The GPU runtime renderer (RSL paper §5.2): the CPU renderer's sum
-// (src/render/renderer.h) as a render-to-vertex-array pass.
+// (src/render/cpu_renderer.h) as a render-to-vertex-array pass.
 //
 //  1. Shading pass: a fragment shader runs over the "vertex rectangle" — one
 //     texel per vertex of every part, W = 2048 wide — and writes each vertex's
@@ -36,7 +36,6 @@
 
 #include "lightfit/rsl.h"
 #include "src/core/scene.h"
-#include "src/gl/frame_state.h"
 #include "src/gl/gl_objects.h"
 #include "src/gl/gpu_layout.h"
 #include "src/gl/shadow_maps.h"
@@ -63,57 +62,29 @@ struct MaterialUploads {
     int tables = 0;  // single tables uploaded into their own slices
 };
 
-class GlRenderer final : public VertexRenderer {
+class GlRenderer : public VertexRenderer {
 public:
-    // `scene` must outlive the renderer. Tables: the scene's materials with
-    // options.material_override applied (scene_material_library, as the CPU renderer).
+    // As VertexRenderer's constructor (vertex_renderer.h); needs a current
+    // OpenGL ≥ 3.3 core context for its lifetime.
     GlRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields, const RenderOptions& options);
     ~GlRenderer() override;
-    GlRenderer(const GlRenderer&) = delete;
-    GlRenderer& operator=(const GlRenderer&) = delete;
 
     std::string backend() const override { return "gl"; }
-    const Scene& scene() const override { return scene_; }
 
-    // Poses, lights and camera at time t (the scene's camera), by the shared FrameSetup.
-    void set_time(float t) override;
-    // The viewer's variant: its own camera and an extra environment rotation.
-    void set_view(float t, const Vec3& camera, const Mat3& environment_rotation) override;
-    float time() const override { return time_; }
-
-    MaterialLibrary& materials() override { return library_; }
-    const MaterialLibrary& materials() const override { return library_; }
-    void set_environment_lights(EnvironmentLights lights) override;
-    const EnvironmentLights& environment_lights() const override { return environment_; }
-    void set_local_lights(std::vector<LocalLight> lights) override;
-    const std::vector<LocalLight>& local_lights() const override { return local_lights_; }
-
-    // Runs the shading pass and fills the vertex-colour buffer (on the GPU).
-    void shade();
-    // shade() and the colours copied to the CPU (tests, `rsl render --backend gl`).
+    // Runs the shading pass and fills the vertex-colour buffer (on the GPU;
+    // the viewer draws it as it is).
+    void shade_on_device();
+    // shade_on_device() and the colours copied to the CPU.
     void shade(VertexColors& out) override;
-    VertexColors make_output() const override;
-    // Textured parts get two layers (match_layers), as the CPU renderer's.
+    using VertexRenderer::shade;
+    // The vertex colours of the last shade_on_device(), into `out`; textured
+    // parts get two layers (match_layers), as the CPU renderer's.
     void read_colors(VertexColors& out) const;
-    VertexColors shade_and_read() {
-        VertexColors out = make_output();
-        shade(out);
-        return out;
-    }
-    // Occluder pairs of the frame (the shader does not count lookups).
-    const RenderStats& stats() const override { return stats_; }
 
     // Display pass into the bound framebuffer (depth test on, caller clears):
     // the vertex colours' blend, and the per-pixel pass for the parts shaded
     // per pixel (per_pixel_part). sRGB at `exposure`.
     void draw(const Mat4& view_projection, float exposure);
-    // The image the display pass draws at `camera`, in linear radiance, read
-    // back: RGBA, alpha the coverage (0 or 1: one sample per pixel, at its
-    // centre, as form_image with samples_per_side = 1), row 0 at the top.
-    // After shade(); the camera's pose is the caller's (the vertex colours'
-    // view is the frame's camera).
-    Image form_image(const PinholeCamera& camera);
-    std::optional<Image> device_image(const PinholeCamera& camera) override { return form_image(camera); }
     // Whether the display pass shades part p per pixel: the parts that are
     // one flat rectangle (find_rectangle), unless options().pixel_shadows is
     // Off, and the glossy ones (material not Lambert, untextured) while
@@ -127,10 +98,8 @@ public:
     // its shadow maps (not material overrides or table options: materials()
     // is the library). Throws rsl::Error for shadow-map options out of range.
     void set_toggles(const RenderOptions& options);
-    const RenderOptions& options() const { return options_; }
     MaterialUploads material_uploads() const { return uploads_; }
 
-    const FrameState& frame() const { return frame_; }
     PassTimings timings() const { return timings_; }
     // "shadow maps 3.1 ms, shading 40.2 ms, pack 0.3 ms (clock)": the last measured frame.
     std::string pass_times() const override;
@@ -140,10 +109,22 @@ public:
     GLuint color_buffer() const { return colors_.id(); }
     int vertex_count() const { return vertex_count_; }
 
+protected:
+    // The display pass's image at `camera`, read back (draw_image), S× as
+    // large for S×S samples and resolved to one pixel each.
+    Image backend_image(const VertexColors& colors, const PinholeCamera& camera,
+                        const ImageFormationOptions& options) override;
+    // The shadow maps are stale, the frame's occluder lists flattened for the shader.
+    void frame_changed() override;
+
 private:
+    // The image the display pass draws at `camera`, in linear radiance,
+    // read back: RGBA, alpha the coverage (0 or 1: one sample per pixel, at
+    // its centre), row 0 at the top. After shade_on_device(); the camera's
+    // pose is the caller's (the vertex colours' view is the frame's camera).
+    Image draw_image(const PinholeCamera& camera);
     void upload_geometry(const PackedGeometry& geometry);
     void upload_frame();
-    void update_frame();
     // Brings the BRDF texture up to the library: in place when only tables of
     // the same layout changed, else a full pack (upload_all_tables).
     void sync_materials();
@@ -165,12 +146,6 @@ private:
     void begin_pass(int pass);
     void end_pass(int pass);
 
-    const Scene& scene_;
-    RenderOptions options_;
-    EnvironmentLights environment_;
-    std::vector<LocalLight> local_lights_;
-    PartFields fields_;
-    MaterialLibrary library_;
     // What the BRDF texture holds: per part its table then per part its
     // specular table (wanted_tables() order), per distinct table its slices
     // (first, count); layered_: some part has a specular table.
@@ -182,11 +157,8 @@ private:
     };
     std::vector<TableSlot> slots_;
     MaterialUploads uploads_;
-    FrameState frame_;
-    float time_ = 0;
-    Mat3 view_rotation_{1.0f};
-    std::optional<Vec3> view_camera_;
-    RenderStats stats_;
+    // The frame's occluder lists as the shader walks them (pack_occluder_lists).
+    std::vector<uint32_t> occluder_list_texels_;
     int vertex_count_ = 0, rect_height_ = 1;
     std::vector<int> first_vertex_;
     std::vector<Vec4> part_records_;
@@ -199,7 +171,7 @@ private:
     std::vector<Bounds> part_bounds_;  // per part: its mesh's box (part space)
     Texture positions_, normals_, tangents_;
     ArrayTexture parts_, lights_, brdf_offsets_;
-    ArrayTexture occluder_lists_;  // FrameState::occluder_list_texels
+    ArrayTexture occluder_lists_;  // occluder_list_texels_
     ArrayTexture indices_;         // every part's triangle indices (part-local), first_index_ order
     ArrayTexture svdf_tables_, svdf_coefficients_, ovdf_tables_, ovdf_coefficients_, ovdf_frames_;
     Texture brdf_;

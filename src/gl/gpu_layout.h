@@ -29,12 +29,14 @@
 //  BRDF: one 3D texture (N+1)×(N+1)×slices of SAT corners (sat_data() order),
 //    all tables stacked along z; per slice its mean offset (RGB)
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "src/brdf/brdf_table.h"
 #include "src/core/scene.h"
+#include "src/render/culling.h"
 #include "src/render/part_fields.h"
 #include "src/shading/shapes.h"
 
@@ -167,5 +169,12 @@ PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable
 
 // The pose slots of one part record.
 void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, Vec4* record);
+
+// The CPU renderer's occluder lists (culling.h) as the shader walks them:
+// texel s = p·L + l (light l of receiver part p, environment lights first)
+// holds the index of the slot's first occluder texel and texel s + 1 the
+// end; the occluder part indices follow the P·L + 1 offsets. Throws
+// rsl::Error past what uint texels index.
+void pack_occluder_lists(const OccluderLists& lists, std::vector<uint32_t>& texels);
 
 }  // namespace rsl::gl

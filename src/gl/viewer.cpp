@@ -214,7 +214,7 @@ void run_viewer(const ViewerOptions& options) {
         const Mat3 turn = Mat3(glm::rotate(Mat4(1.0f), glm::radians(state.environment_degrees), Vec3(0, 1, 0)));
         const Vec3 eye = state.camera.eye();
         renderer.set_view(state.time, eye, turn);
-        renderer.shade();
+        renderer.shade_on_device();
         if (frame == 0 && options.auto_exposure) {
             VertexColors colors = renderer.make_output();
             renderer.read_colors(colors);

@@ -4,9 +4,10 @@
 #include <algorithm>
 #include <string>
 
+#include "lightfit/scene_lights.h"
 #include "src/core/error.h"
 #include "src/gl/viewer_state.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 
 namespace rsl::gl {
 
@@ -69,9 +70,9 @@ void viewer_panel(ViewerState& state) {
     ImGui::Text("GPU%s: shading %.2f ms, pack %.2f ms, display %.2f ms", t.clock ? " (clock, software GL)" : "",
                 t.shade_ms, t.pack_ms, t.display_ms);
     if (t.shadow_ms > 0) ImGui::Text("shadow maps %.2f ms", t.shadow_ms);  // the shadow-map baseline's depth pass
-    ImGui::Text("%d vertices, %d lights, occluder pairs %zu (%zu culled)", state.renderer->vertex_count(),
-                state.renderer->frame().light_count(), state.renderer->frame().occluder_pairs(),
-                state.renderer->frame().occluder_pairs_culled());
+    ImGui::Text("%d vertices, %zu lights, occluder pairs %zu (%zu culled)", state.renderer->vertex_count(),
+                state.renderer->stats().lights, state.renderer->stats().occluder_pairs,
+                state.renderer->stats().occluder_pairs_culled);
 
     if (ImGui::CollapsingHeader("Animation and lighting", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::Checkbox("play (space)", &state.playing);

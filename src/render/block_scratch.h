@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "src/render/ovdf_lookup.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/shading/frames.h"
 
 namespace rsl {
@@ -103,7 +103,7 @@ inline BlockSpread block_spread(float radius, float distance) {
 
 // Per-thread scratch of one block (about 40 KB plus the occluder pool, never
 // on the heap once warm).
-struct Renderer::BlockScratch {
+struct CpuRenderer::BlockScratch {
     // The part's vertex at each point (shade_block; the renderer's block order).
     int vertex[kShadeBlock];
     // Per point, parts with highlights per pixel: its rim view floor (brdf_queries).

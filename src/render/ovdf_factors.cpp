@@ -10,7 +10,7 @@
 // the batch's values to the field's own lookup).
 #include "src/render/block_scratch.h"
 #include "src/render/ovdf_lookup.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/shading/ovdf_small_occluder.h"
 
 namespace rsl {
@@ -45,7 +45,7 @@ void locate_near_points(NearLocations& b, OccluderVertexScratch& v, const OvdfLo
 
 }  // namespace
 
-void Renderer::ovdf_factors(BlockScratch& s, OccluderVertexScratch& v, int l, int o, int n,
+void CpuRenderer::ovdf_factors(BlockScratch& s, OccluderVertexScratch& v, int l, int o, int n,
                             RenderStats& counts) const {
     const PartPose& occluder = poses_[o];
     const OvdfLookup& fast = *fast_lookups_[o];

@@ -23,7 +23,7 @@
 
 #include "src/core/error.h"
 #include "src/render/block_scratch.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 
 namespace rsl {
 
@@ -47,7 +47,7 @@ float sum_of(const Color& c) { return c.r + c.g + c.b; }
 // Built in a thread's scratch (`first`, `ids`), kept in one block per
 // triangle (`packed`: the lights + 1 offsets, then the ids), and none for a
 // triangle that no occluder may shadow.
-struct Renderer::TriangleOccluders {
+struct CpuRenderer::TriangleOccluders {
     std::vector<uint32_t> first;
     std::vector<int> ids;
     std::span<const int> of(size_t l) const {
@@ -59,7 +59,7 @@ struct Renderer::TriangleOccluders {
 // somewhere on it (bit l of `lights` words) and those occluders. The first
 // worker thread to claim a triangle fills them; another that finds it being
 // filled computes its own copy.
-struct Renderer::TriangleLights {
+struct CpuRenderer::TriangleLights {
     struct PackedOccluders {
         std::unique_ptr<int[]> packed;
         std::span<const int> of(size_t l, size_t lights) const {
@@ -79,7 +79,7 @@ struct Renderer::TriangleLights {
 // neighbour faces away too, and no pixel that sees the camera side blends
 // its terms. The margin covers the view's change from vertex to vertex
 // (perspective) and the interpolated normals' own spread.
-std::vector<float> Renderer::rim_view_floors(const TriangleMesh& mesh) {
+std::vector<float> CpuRenderer::rim_view_floors(const TriangleMesh& mesh) {
     constexpr float kMargin = 0.05f;
     std::vector<float> min_cosine(mesh.vertex_count(), 1.0f);  // of the angle to the neighbours' normals
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
@@ -106,7 +106,18 @@ PixelShadows parse_pixel_shadows(const std::string& name) {
     throw_error("pixel shadows '{}': expected planes, all or off", name);
 }
 
-PartShaders Renderer::pixel_shading(const VertexColors& colors, const PosedScene& posed) const {
+Image CpuRenderer::backend_image(const VertexColors& colors, const PinholeCamera& camera,
+                                 const ImageFormationOptions& options) {
+    if (!terms_kept_ && (options_.pixel_highlights || std::find(pixel_parts_.begin(), pixel_parts_.end(), 1) !=
+                                                          pixel_parts_.end()))
+        throw_error("form_image: the last shade() kept no terms for the parts shaded per pixel "
+                    "(keep_image_terms(true) before it)");
+    if (!posed_) posed_ = std::make_unique<PosedScene>(scene_, time_);
+    posed_->set_time(time_);
+    return rsl::form_image(*posed_, camera, colors, options, pixel_shading(colors, *posed_));
+}
+
+PartShaders CpuRenderer::pixel_shading(const VertexColors& colors, const PosedScene& posed) const {
     RSL_CHECK_EQ(colors.parts.size(), scene_.parts.size());
     PartShaders shaders(scene_.parts.size());
     const size_t lights = environment_squares_.size() + light_positions_.size();
@@ -139,7 +150,7 @@ PartShaders Renderer::pixel_shading(const VertexColors& colors, const PosedScene
 // The other parts whose occluder field reaches `sphere` (from the frame's
 // sphere tree over the reaches): a ground's per-light lists hold every part
 // over it, a triangle lies in few reaches.
-void Renderer::occluders_near(const BoundingSphere& sphere, size_t part, std::vector<int>& out) const {
+void CpuRenderer::occluders_near(const BoundingSphere& sphere, size_t part, std::vector<int>& out) const {
     const OccluderLists& lists = frame_.occluder_lists();
     thread_local std::vector<int> found;
     found.clear();
@@ -154,7 +165,7 @@ void Renderer::occluders_near(const BoundingSphere& sphere, size_t part, std::ve
 // with the triangle's bounding sphere as the block. Conservative: a light
 // left out has F_l = 1 at every point of the triangle, and so has the
 // factor of an occluder left out of a light's list.
-void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask,
+void CpuRenderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask,
                                TriangleOccluders& occluders) const {
     const size_t lights = environment_squares_.size() + light_positions_.size();
     for (size_t word = 0; word < (lights + 63) / 64; ++word) mask[word] = 0;
@@ -193,7 +204,7 @@ void Renderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* cor
     occluders.first[lights] = uint32_t(occluders.ids.size());
 }
 
-Color Renderer::shade_pixel(const VertexColors& colors, const PosedScene& posed, TriangleLights* cache,
+Color CpuRenderer::shade_pixel(const VertexColors& colors, const PosedScene& posed, TriangleLights* cache,
                             const RayHit& hit, const Vec3& ray_direction) const {
     const size_t part = size_t(hit.instance);
     const TriangleMesh& mesh = scene_.parts[part].mesh;
@@ -289,7 +300,7 @@ Color Renderer::shade_pixel(const VertexColors& colors, const PosedScene& posed,
 
     Color sum(0);
     if (highlights) {
-        RSL_CHECK(lights <= size_t(kShadeBlock));  // Renderer::shade keeps no highlight terms for more
+        RSL_CHECK(lights <= size_t(kShadeBlock));  // CpuRenderer::shade keeps no highlight terms for more
         // The BRDF at the point: Σ I_l · B_l(x) · SVDF_l blended · F_l, all
         // the lights' BRDF averages in one batch (slot l = light l).
         set_lights_at_point(s, lights);

@@ -1,4 +1,5 @@
 #include "src/render/render_setup.h"
+#include "lightfit/scene_lights.h"
 
 #include <chrono>
 

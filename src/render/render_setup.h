@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "src/core/envmap.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 
 namespace rsl {
 

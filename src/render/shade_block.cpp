@@ -15,7 +15,7 @@
 #include "src/render/exact_visibility.h"
 #include "src/render/block_scratch.h"
 #include "src/render/ovdf_lookup.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/shading/frames.h"
 #include "src/shading/squares.h"
 #include "src/shading/ovdf_tables.h"
@@ -26,7 +26,7 @@ namespace rsl {
 // Per block and occluder, before its first lookup: whether the block lies
 // beyond the field's outer shell, and the part's bounding cone as the whole
 // block sees it (O(1): from the block's bounding sphere).
-void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int o, bool culling) const {
+void CpuRenderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int o, bool culling) const {
     BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
     b.stamp = s.stamp;
     b.outside = false;
@@ -54,7 +54,7 @@ void Renderer::prepare_occluder(BlockScratch& s, const BoundingSphere& block_sph
 
 // Each vertex's bounding cone of the part and its box sides, before the
 // first light that the block-level tests do not decide.
-OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool culling) const {
+OccluderVertexScratch& CpuRenderer::prepare_occluder_vertices(BlockScratch& s, int o, int n, bool culling) const {
     if (s.pool_used == s.pool.size()) s.pool.push_back(std::make_unique<OccluderVertexScratch>());  // warm-up only
     OccluderVertexScratch& v = *s.pool[s.pool_used++];
     s.occluders[size_t(o)].vertices = &v;
@@ -115,7 +115,7 @@ OccluderVertexScratch& Renderer::prepare_occluder_vertices(BlockScratch& s, int 
 // One occluder's factor for the block's queries of light l: the masks (its
 // bounding cone, the slab rule) and then the OVDF lookups, multiplied into
 // s.vis. Out of line so that the lookups inline into its loop.
-void Renderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l, int o, int n, int m,
+void CpuRenderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, int l, int o, int n, int m,
                                 RenderStats& counts) const {
     const PartPose& occluder = poses_[o];
     const bool is_environment = size_t(l) < environment_squares_.size();
@@ -205,7 +205,7 @@ inline void add_light(int m, const int* index, const float* vis, const float* ir
 
 // Point k of the block: its world position, shading frame and the view in
 // that frame (towards the camera).
-void Renderer::set_point(BlockScratch& s, int k, const Vec3& p, const Frame& f) const {
+void CpuRenderer::set_point(BlockScratch& s, int k, const Vec3& p, const Frame& f) const {
     s.px[k] = p.x, s.py[k] = p.y, s.pz[k] = p.z;
     s.xx[k] = f.x.x, s.xy[k] = f.x.y, s.xz[k] = f.x.z;
     s.yx[k] = f.y.x, s.yy[k] = f.y.y, s.yz[k] = f.y.z;
@@ -218,7 +218,7 @@ void Renderer::set_point(BlockScratch& s, int k, const Vec3& p, const Frame& f) 
 
 // Light l as each of the block's n points sees it (direction, square, its
 // integral) and its square's center in each point's local plane.
-void Renderer::set_light(BlockScratch& s, size_t l, int n) const {
+void CpuRenderer::set_light(BlockScratch& s, size_t l, int n) const {
     const size_t environment = environment_squares_.size();
     // The light as each vertex sees it.
     if (l < environment) {
@@ -231,22 +231,22 @@ void Renderer::set_light(BlockScratch& s, size_t l, int n) const {
 }
 
 // Slot k's light: a square (world direction, half-edge) and its integral × spot.
-void Renderer::put_light(BlockScratch& s, int k, const SquareLight& sq, float spot) const {
+void CpuRenderer::put_light(BlockScratch& s, int k, const SquareLight& sq, float spot) const {
     s.dx[k] = sq.direction.x, s.dy[k] = sq.direction.y, s.dz[k] = sq.direction.z;
     s.half[k] = sq.half_edge;
     s.ir[k] = spot * sq.integral.r, s.ig[k] = spot * sq.integral.g, s.ib[k] = spot * sq.integral.b;
 }
 
 // Slot k's light: local light i as the square its sphere makes at slot k's point, with the spot's cone.
-void Renderer::put_local_light(BlockScratch& s, int k, size_t i) const {
+void CpuRenderer::put_local_light(BlockScratch& s, int k, size_t i) const {
     const SquareLight sq =
-        sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), light_positions_[i], lights_[i].radius, light_radiance_[i]);
+        sphere_light_square(Vec3(s.px[k], s.py[k], s.pz[k]), light_positions_[i], local_lights_[i].radius, light_radiance_[i]);
     put_light(s, k, sq, shading::spot_cone_factor(light_axes_[i], -sq.direction, light_cones_[i].x, light_cones_[i].y));
 }
 
 // Each point's light direction in its local frame → the equal-area plane
 // point p = (x, y) / √(1 + z) of the square's center, and the local z.
-void Renderer::project_lights(BlockScratch& s, int n) const {
+void CpuRenderer::project_lights(BlockScratch& s, int n) const {
     for (int k = 0; k < n; ++k) {
         const float lx = s.dx[k] * s.xx[k] + s.dy[k] * s.xy[k] + s.dz[k] * s.xz[k];
         const float ly = s.dx[k] * s.yx[k] + s.dy[k] * s.yy[k] + s.dz[k] * s.yz[k];
@@ -259,7 +259,7 @@ void Renderer::project_lights(BlockScratch& s, int n) const {
 // Every light at the block's point 0: slot l holds light l (the point, its
 // frame and view copied), so that one BRDF batch serves all the lights of a
 // pixel. At most kShadeBlock lights.
-void Renderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
+void CpuRenderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
     const size_t environment = environment_squares_.size();
     for (size_t l = 0; l < lights; ++l) {
         const int k = int(l);
@@ -281,7 +281,7 @@ void Renderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
 // into s.index, s.qx/qy/qh (the square in the point's frame) and s.tx/ty
 // (in the table's frame), with their BRDF averages in s.br/bg/bb (and the
 // specular table's in s.spr/spg/spb). Returns their count m.
-int Renderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n,
+int CpuRenderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n,
                            const float* view_floor) const {
     const bool isotropic = table.isotropic();
     // Compaction: the view must be above the horizon (ρ = 0 otherwise, as
@@ -336,7 +336,7 @@ int Renderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTa
 // light (culling.h), or a given list: then `growth`, the lists' footprint
 // growth per entry, may be null, and the part-level light test is skipped
 // (it only saves time).
-void Renderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, int part_index, size_t l,
+void CpuRenderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, int part_index, size_t l,
                                    int n, int m, RenderStats& counts) const {
     const size_t slot = size_t(part_index) * (environment_squares_.size() + light_positions_.size()) + l;
     const size_t first = offsets_[slot];
@@ -344,7 +344,7 @@ void Renderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_
                         occluder_growth_.data() + first, l, n, m, counts);
 }
 
-void Renderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
+void CpuRenderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
                                    const float* growth, size_t l, int n, int m, RenderStats& counts) const {
     const bool vertex_culling = options_.occluder_culling;
     for (size_t e = 0; e < occluders.size(); ++e) {
@@ -364,7 +364,7 @@ void Renderer::shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_
 // an environment light, the part's bounding cone seen from the block, then
 // (as the per-part test; growth < 0: skipped) the light's cone against the
 // part's sphere, the block grown by `growth`.
-bool Renderer::block_may_be_shadowed(BlockScratch& s, const BoundingSphere& block_sphere, int o, float growth,
+bool CpuRenderer::block_may_be_shadowed(BlockScratch& s, const BoundingSphere& block_sphere, int o, float growth,
                                      size_t l) const {
     const bool vertex_culling = options_.occluder_culling;
     BlockScratch::BlockOccluder& b = s.occluders[size_t(o)];
@@ -379,7 +379,7 @@ bool Renderer::block_may_be_shadowed(BlockScratch& s, const BoundingSphere& bloc
            may_shadow_direction(grown, occluder.world_bounds, sq.direction, square_cone_half_angle(sq.half_edge));
 }
 
-void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) {
+void CpuRenderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) {
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
     const int part_index = block.part;
@@ -429,7 +429,7 @@ void Renderer::shade_block(const Block& block, VertexColors& out, RenderStats& c
     const size_t environment = environment_squares_.size();
     const size_t lights = environment + light_positions_.size();
     // A part shaded per pixel keeps each light's terms for image formation
-    // (pixel_shading.cpp; a textured one both layers', Renderer::shade sizes them).
+    // (pixel_shading.cpp; a textured one both layers', CpuRenderer::shade sizes them).
     PixelTerms* pixel = pixel_terms_[size_t(part_index)].occlusion.empty() ||
                                 (specular && pixel_terms_[size_t(part_index)].unshadowed_specular.empty())
                             ? nullptr

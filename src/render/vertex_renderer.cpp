@@ -65,10 +65,94 @@ void VertexRenderer::set_material_parameter(const std::string& material, const s
     library.set_parameter(m, key, value);
 }
 
-void VertexRenderer::check_local_lights(const Scene& scene, const std::vector<LocalLight>& lights) {
+namespace {
+
+void check_local_lights(const Scene& scene, const std::vector<LocalLight>& lights) {
     for (size_t i = 0; i < lights.size(); ++i)
         if (!(lights[i].radius > 0.0f))
             throw_file_error(scene.source, "local light {} with radius {} (expected > 0)", i, lights[i].radius);
+}
+
+// The fields checked against the scene's parts (an SVDF must have the
+// mesh's vertex count), one entry per part (missing ones null).
+PartFields checked_fields(const Scene& scene, PartFields fields) {
+    const size_t parts = scene.parts.size();
+    if (parts == 0) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
+    fields.self.resize(parts);
+    fields.occluder.resize(parts);
+    for (size_t p = 0; p < parts; ++p)
+        if (fields.self[p] && size_t(fields.self[p]->vertex_count()) != scene.parts[p].mesh.vertex_count())
+            throw_file_error(scene.source, "part '{}': its SVDF has {} vertices, the mesh {}", scene.parts[p].name,
+                             fields.self[p]->vertex_count(), scene.parts[p].mesh.vertex_count());
+    return fields;
+}
+
+}  // namespace
+
+VertexRenderer::VertexRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
+                               const RenderOptions& options)
+    : scene_(scene),
+      options_(options),
+      environment_(std::move(environment_lights)),
+      local_lights_(scene.lights),
+      fields_(checked_fields(scene, std::move(fields))),
+      library_(scene_material_library(scene, options)),
+      frame_(scene, fields_) {}
+
+void VertexRenderer::start() { set_local_lights(local_lights_); }
+
+void VertexRenderer::set_local_lights(std::vector<LocalLight> lights) {
+    check_local_lights(scene_, lights);
+    local_lights_ = std::move(lights);
+    frame_.reserve(environment_.light_count(), local_lights_.size());
+    lights_changed();
+    update_frame();
+}
+
+void VertexRenderer::set_environment_lights(EnvironmentLights lights) {
+    environment_ = std::move(lights);
+    frame_.reserve(environment_.light_count(), local_lights_.size());
+    lights_changed();
+    update_frame();
+}
+
+void VertexRenderer::set_time(float t) {
+    time_ = t;
+    view_rotation_ = Mat3(1.0f);
+    view_camera_.reset();
+    update_frame();
+}
+
+void VertexRenderer::set_view(float t, const Vec3& camera, const Mat3& environment_rotation) {
+    time_ = t;
+    view_rotation_ = environment_rotation;
+    view_camera_ = camera;
+    update_frame();
+}
+
+void VertexRenderer::update_frame() {
+    frame_.update(scene_, environment_, local_lights_, options_, time_, view_rotation_, view_camera_);
+    stats_.occluder_pairs = frame_.occluder_lists().pairs;
+    stats_.occluder_pairs_culled = frame_.occluder_lists().culled;
+    frame_changed();
+}
+
+VertexColors VertexRenderer::make_output() const {
+    VertexColors colors;
+    colors.scene_name = scene_.name;
+    colors.producer = "rsl-" + backend();
+    for (size_t p = 0; p < scene_.parts.size(); ++p)
+        colors.add_part(scene_.parts[p].name, scene_.parts[p].mesh.vertex_count(), library_.part_texture(int(p)));
+    return colors;
+}
+
+Image VertexRenderer::form_image(const VertexColors& colors, const PinholeCamera& camera,
+                                 const ImageFormationOptions& options) {
+    if (options.samples_per_side < 1) throw_error("image samples {}: expected at least 1", options.samples_per_side);
+    if (camera.width < 1 || camera.height < 1)
+        throw_error("image size {}×{}: expected at least one pixel", camera.width, camera.height);
+    RSL_CHECK_EQ(colors.parts.size(), scene_.parts.size());
+    return backend_image(colors, camera, options);
 }
 
 }  // namespace rsl

@@ -8,7 +8,7 @@
 #include "src/frame/error_metrics.h"
 #include "src/frame/image_formation.h"
 #include "src/gl/gl_renderer.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/test_support.h"
@@ -31,16 +31,16 @@ PixelPassImages render_pixel_pass_images(bool textured) {
     for (const PixelShadows mode : {PixelShadows::Off, PixelShadows::Planes}) {
         RenderOptions options;
         options.pixel_shadows = mode;
-        Renderer cpu(scene, lights, fields, options);
-        cpu.keep_pixel_terms(true);
+        CpuRenderer cpu(scene, lights, fields, options);
+        cpu.keep_image_terms(true);
         const VertexColors colors = cpu.shade();
         const Image cpu_image = form_image(truth.posed(), camera, colors, {}, cpu.pixel_shading(colors, truth.posed()));
         gl::GlRenderer gpu(scene, lights, fields, options);
         gpu.set_time(0.0f);
-        gpu.shade();
+        const VertexColors gpu_colors = gpu.shade();
         CHECK(gpu.per_pixel_part(0) == (mode == PixelShadows::Planes));  // the ground, a rectangle
         CHECK(!gpu.per_pixel_part(1));                                   // the box
-        Image gpu_image = gpu.form_image(camera);
+        Image gpu_image = gpu.form_image(gpu_colors, camera);
         REQUIRE(gpu_image.width == camera.width);
         REQUIRE(gpu_image.height == camera.height);
         REQUIRE(gpu_image.channels == 4);
@@ -95,8 +95,8 @@ TEST_CASE("The GPU's per-pixel pass draws a coarse glossy ball's highlights as t
     test::gl_context();
     const test::PixelTestSetting setting(test::coarse_glossy_ball());
     const auto& [scene, environment, fields, truth, camera, reference, lights] = setting;
-    Renderer cpu(scene, lights, fields, RenderOptions{});
-    cpu.keep_pixel_terms(true);
+    CpuRenderer cpu(scene, lights, fields, RenderOptions{});
+    cpu.keep_image_terms(true);
     const VertexColors colors = cpu.shade();
     const Image cpu_image = form_image(truth.posed(), camera, colors, {}, cpu.pixel_shading(colors, truth.posed()));
     double error[2] = {0, 0};
@@ -106,10 +106,10 @@ TEST_CASE("The GPU's per-pixel pass draws a coarse glossy ball's highlights as t
         options.pixel_highlights = highlights;
         gl::GlRenderer gpu(scene, lights, fields, options);
         gpu.set_time(0.0f);
-        gpu.shade();
+        const VertexColors gpu_colors = gpu.shade();
         CHECK(!gpu.per_pixel_part(0));  // the Lambert cube
         CHECK(gpu.per_pixel_part(1) == highlights);  // the ball, after the cube's vertices and indices
-        gpu_image = gpu.form_image(camera);
+        gpu_image = gpu.form_image(gpu_colors, camera);
         error[highlights] = compare_images(gpu_image, reference).pixels.relative_l2();
     }
     const double against_cpu = compare_images(gpu_image, cpu_image).pixels.relative_l2();
@@ -127,15 +127,15 @@ TEST_CASE("The GPU's per-pixel pass leaves out the corners enclosed by their own
     test::gl_context();
     const test::PixelTestSetting setting(test::lens_in_body());
     const auto& [scene, environment, fields, truth, camera, reference, lights] = setting;
-    Renderer cpu(scene, lights, fields, RenderOptions{});
-    cpu.keep_pixel_terms(true);
+    CpuRenderer cpu(scene, lights, fields, RenderOptions{});
+    cpu.keep_image_terms(true);
     const VertexColors colors = cpu.shade();
     const Image cpu_image = form_image(truth.posed(), camera, colors, {}, cpu.pixel_shading(colors, truth.posed()));
     gl::GlRenderer gpu(scene, lights, fields, RenderOptions{});
     gpu.set_time(0.0f);
-    gpu.shade();
+    const VertexColors gpu_colors = gpu.shade();
     REQUIRE(gpu.per_pixel_part(0));
-    const Image gpu_image = gpu.form_image(camera);
+    const Image gpu_image = gpu.form_image(gpu_colors, camera);
     const std::vector<uint8_t> enclosed = fields.self[0]->enclosed_vertices();
     const TriangleMesh& mesh = scene.parts[0].mesh;
     int band = 0;
@@ -159,16 +159,16 @@ TEST_CASE("The GPU's per-pixel pass with a textured ground and a glossy part mat
     scene.parts[1].material = int(scene.materials.size()) - 1;
     const test::PixelTestSetting setting(std::move(scene));
     const auto& [posed_scene, environment, fields, truth, camera, reference, lights] = setting;
-    Renderer cpu(posed_scene, lights, fields, RenderOptions{});
-    cpu.keep_pixel_terms(true);
+    CpuRenderer cpu(posed_scene, lights, fields, RenderOptions{});
+    cpu.keep_image_terms(true);
     const VertexColors colors = cpu.shade();
     const Image cpu_image = form_image(truth.posed(), camera, colors, {}, cpu.pixel_shading(colors, truth.posed()));
     gl::GlRenderer gpu(posed_scene, lights, fields, RenderOptions{});
     gpu.set_time(0.0f);
-    gpu.shade();
+    const VertexColors gpu_colors = gpu.shade();
     REQUIRE(gpu.per_pixel_part(0));  // the textured ground
     REQUIRE(gpu.per_pixel_part(1));  // the glossy box
-    const Image gpu_image = gpu.form_image(camera);
+    const Image gpu_image = gpu.form_image(gpu_colors, camera);
     const double against_cpu = compare_images(gpu_image, cpu_image).pixels.relative_l2();
     const double gpu_error = compare_images(gpu_image, reference).pixels.relative_l2();
     const double cpu_error = compare_images(cpu_image, reference).pixels.relative_l2();
@@ -178,15 +178,44 @@ TEST_CASE("The GPU's per-pixel pass with a textured ground and a glossy part mat
     CHECK(gpu_error < cpu_error + 0.005);
 }
 
-TEST_CASE("rsl render --gpu-image needs the GL backend and one sample per pixel", "[gl-renderer][bad-input]") {
-    // Refused before any work (no fit, no bake).
-    const std::string render = "render " + std::string(RSL_SOURCE_DIR) + "/assets/scenes/default.json ";
-    const auto [cpu, cpu_output] = test::run_rsl(render + "--gpu-image -o x.exr");
-    CHECK(cpu != 0);
-    CHECK_THAT(cpu_output, Catch::Contains("--gpu-image: images formed on the GPU need --backend gl"));
-    const auto [samples, samples_output] = test::run_rsl(render + "--backend gl --gpu-image --samples 2 -o x.exr");
-    CHECK(samples != 0);
-    CHECK_THAT(samples_output, Catch::Contains("--samples 2"));
+TEST_CASE("Both backends form the same image through VertexRenderer::form_image", "[gl-renderer][pixel-shadows]") {
+    // One call, the same defaults: the ground's shadows and the box per pixel
+    // on both, at one and at 2×2 samples per pixel (the GPU draws the image
+    // twice as large and resolves it), with and without a background.
+    test::gl_context();
+    const test::PixelTestSetting setting(test::box_over_coarse_ground(false));
+    const auto& [scene, environment, fields, truth, camera, reference, lights] = setting;
+    CpuRenderer cpu(scene, lights, fields, RenderOptions{});
+    gl::GlRenderer gpu(scene, lights, fields, RenderOptions{});
+    for (VertexRenderer* renderer : {static_cast<VertexRenderer*>(&cpu), static_cast<VertexRenderer*>(&gpu)}) {
+        renderer->keep_image_terms(true);
+        renderer->set_time(0.0f);
+    }
+    const VertexColors cpu_colors = cpu.shade();
+    const VertexColors gpu_colors = gpu.shade();
+    for (const int samples : {1, 2})
+        for (const bool background : {false, true}) {
+            ImageFormationOptions options;
+            options.samples_per_side = samples;
+            options.opaque_background = background;
+            options.background = Color(0.2f, 0.3f, 0.4f);
+            const Image cpu_image = cpu.form_image(cpu_colors, camera, options);
+            const Image gpu_image = gpu.form_image(gpu_colors, camera, options);
+            REQUIRE(gpu_image.width == camera.width);
+            REQUIRE(gpu_image.height == camera.height);
+            REQUIRE(gpu_image.channels == 4);
+            const double apart = compare_images(gpu_image, cpu_image).pixels.relative_l2();
+            INFO(samples << "x" << samples << " samples, background " << background << ": GPU vs CPU " << apart);
+            CHECK(apart < 0.02);
+            // The CPU's image is the free form_image with its pixel shaders.
+            const Image expected = form_image(truth.posed(), camera, cpu_colors, options,
+                                              cpu.pixel_shading(cpu_colors, truth.posed()));
+            CHECK(compare_images(cpu_image, expected).pixels.relative_l2() == 0.0);
+        }
+    // An image needs the terms its shade() kept.
+    cpu.keep_image_terms(false);
+    const VertexColors bare = cpu.shade();
+    CHECK_THROWS_WITH(cpu.form_image(bare, camera), Catch::Contains("keep_image_terms(true)"));
 }
 
 }  // namespace

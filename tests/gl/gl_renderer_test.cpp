@@ -4,12 +4,13 @@
 
 #include <filesystem>
 
+#include "lightfit/scene_lights.h"
 #include "src/render/occluder_shape.h"
 #include "src/core/scene_environment.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/gpu_layout.h"
 #include "assets/generate/pbr_scene.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
 #include "src/shading/shapes.h"
@@ -93,13 +94,13 @@ void check_against_cpu(const Scene& scene, const EnvironmentLights& lights, cons
                        const RenderOptions& options, const std::vector<float>& times, bool discrete_taps = false,
                        double l2_limit = 1e-5) {
     test::gl_context();
-    Renderer cpu(scene, lights, fields, options);
+    CpuRenderer cpu(scene, lights, fields, options);
     gl::GlRenderer gpu(scene, lights, fields, options);
     for (const float t : times) {
         cpu.set_time(t);
         gpu.set_time(t);
         const VertexColors expected = cpu.shade();
-        const VertexColors colors = gpu.shade_and_read();
+        const VertexColors colors = gpu.shade();
         // Both layers of textured parts (their diffuse in `parts`, at unit texture).
         bool cpu_layered = false, gl_layered = false;
         for (size_t p = 0; p < scene.parts.size(); ++p)
@@ -115,7 +116,7 @@ void check_against_cpu(const Scene& scene, const EnvironmentLights& lights, cons
             CHECK(d.relative_l2 < (discrete_taps ? 5e-4 : l2_limit));
             CHECK(d.over_tolerance <= d.vertices / 1000 + (discrete_taps ? 2 : 0));
         }
-        CHECK(gpu.frame().occluder_pairs() == cpu.stats().occluder_pairs);
+        CHECK(gpu.stats().occluder_pairs == cpu.stats().occluder_pairs);
     }
 }
 
@@ -136,7 +137,7 @@ TEST_CASE("GL shades a textured part in two layers as the CPU does", "[gl-render
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     test::gl_context();
     gl::GlRenderer gpu(scene, test::random_rsls(16, 3), fields, RenderOptions{});
-    const VertexColors colors = gpu.shade_and_read();
+    const VertexColors colors = gpu.shade();
     REQUIRE(colors.layered(0));  // the GL backend no longer refuses textured parts
     CHECK(!colors.layered(1));
     CHECK(colors.textures[0] == scene.materials[0].base_color_texture);
@@ -144,7 +145,7 @@ TEST_CASE("GL shades a textured part in two layers as the CPU does", "[gl-render
     // Without texture coordinates the part is refused, naming it.
     scene.parts[0].mesh.texcoords.clear();
     gl::GlRenderer bare(scene, test::random_rsls(8, 3), fields, RenderOptions{});
-    CHECK_THROWS_WITH(bare.shade_and_read(), Catch::Contains("ground"));
+    CHECK_THROWS_WITH(bare.shade(), Catch::Contains("ground"));
 }
 
 TEST_CASE("GL matches the CPU with hundreds of parts (occluder lists, no part limit)", "[gl-renderer]") {
@@ -272,12 +273,12 @@ TEST_CASE("GL material edits re-upload only the changed table and match the CPU"
     const Scene scene = moving_scene();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
     const RslSet lights = test::random_rsls(8, 5);
-    Renderer cpu(scene, lights, fields, RenderOptions{});
+    CpuRenderer cpu(scene, lights, fields, RenderOptions{});
     gl::GlRenderer gpu(scene, lights, fields, RenderOptions{});
     auto compare = [&](const char* what) {
         cpu.set_time(0.5f);
         gpu.set_time(0.5f);
-        const test::ColorDifference d = test::compare_colors(gpu.shade_and_read(), cpu.shade(), kTolerance);
+        const test::ColorDifference d = test::compare_colors(gpu.shade(), cpu.shade(), kTolerance);
         INFO(what << ": relative L2 " << d.relative_l2 << ", " << d.over_tolerance << " vertices over tolerance");
         CHECK(d.relative_l2 < 1e-5);
         CHECK(d.over_tolerance <= d.vertices / 1000);
@@ -293,7 +294,7 @@ TEST_CASE("GL material edits re-upload only the changed table and match the CPU"
     // The edited CPU renderer equals one built on the edited scene.
     Scene edited = scene;
     edited.materials[1].params["exponent"] = {80.0f};
-    Renderer fresh(edited, lights, fields, RenderOptions{});
+    CpuRenderer fresh(edited, lights, fields, RenderOptions{});
     fresh.set_time(0.5f);
     CHECK(test::compare_colors(cpu.shade(), fresh.shade(), 1e-7).max_relative == 0.0);
     // Swapping a part onto a table already uploaded uploads nothing.

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "src/gl/headless_context.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/frame/vertex_colors.h"
 #include "tests/render/render_test_scenes.h"
 

@@ -21,7 +21,7 @@ TEST_CASE("HeadlessGlRenderer shades like the CPU renderer", "[gl-renderer]") {
     scene.lights.push_back(light);
     const RslSet lights = test::random_rsls(6, 17);
     const RenderOptions options;
-    Renderer cpu(scene, lights, PartFields{}, options);
+    CpuRenderer cpu(scene, lights, PartFields{}, options);
     gl::HeadlessGlRenderer gpu(scene, lights, PartFields{}, options);
     CHECK(gpu.device().find("OpenGL") != std::string::npos);
     VertexColors colors = gpu.make_output();

@@ -21,7 +21,7 @@
 
 #include "src/core/error.h"
 #include "src/gl/gl_renderer.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/render/render_test_scenes.h"
 #include "tests/test_support.h"
@@ -225,7 +225,7 @@ TEST_CASE("shadow-mapped visibility matches the exact fraction under a half-plan
     gpu.set_toggles(options);
     gpu.shade(on);
     gl::GlRenderer fresh(scene, gpu.environment_lights(), PartFields{}, RenderOptions{});
-    const VertexColors expected = fresh.shade_and_read();
+    const VertexColors expected = fresh.shade();
     for (size_t p = 0; p < scene.parts.size(); ++p)
         for (size_t v = 0; v < expected.parts[p].size(); ++v)
             if (!(on.parts[p][v] == expected.parts[p][v]))
@@ -238,7 +238,7 @@ TEST_CASE("shadow maps: options out of range and the CPU renderer are refused", 
     RenderOptions options;
     options.shadow_maps.enabled = true;
     const RslSet lights = test::single_rsl(Vec3(0, 1, 0), 0.1f, Color(1.0f));
-    CHECK_THROWS_WITH(Renderer(scene, lights, PartFields{}, options), Catch::Contains("GL backend only"));
+    CHECK_THROWS_WITH(CpuRenderer(scene, lights, PartFields{}, options), Catch::Contains("GL backend only"));
     for (const int resolution : {8, 16384}) {
         options.shadow_maps.resolution = resolution;
         CHECK_THROWS_WITH(gl::GlRenderer(scene, lights, PartFields{}, options), Catch::Contains("outside 16..8192"));
@@ -249,12 +249,12 @@ TEST_CASE("shadow maps: options out of range and the CPU renderer are refused", 
     CHECK_THROWS_WITH(gpu.set_toggles(options), Catch::Contains("pcf_distance"));
     options.shadow_maps.pcf_distance = 0.1f;
     gpu.set_toggles(options);
-    const VertexColors colors = gpu.shade_and_read();
+    const VertexColors colors = gpu.shade();
     CHECK(colors.parts[0].size() == scene.parts[0].mesh.vertex_count());
     if (gpu.timings().clock) {  // this frame's times (timer queries report a frame late)
         CHECK(gpu.timings().shadow_ms > 0.0);
         CHECK(gpu.pass_times().find("shadow maps") != std::string::npos);
-        gpu.shade();  // nothing moved: the maps are reused
+        gpu.shade_on_device();  // nothing moved: the maps are reused
         CHECK(gpu.timings().shadow_ms == 0.0);
     }
 

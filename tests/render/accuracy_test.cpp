@@ -2,8 +2,9 @@
 // small scene (a sphere over a plane under a sky with a bright sun-like block).
 #include <catch2/catch.hpp>
 
+#include "lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
 
@@ -33,11 +34,11 @@ TEST_CASE("RSL renderer vs ground truth on a sphere over a plane", "[render][acc
     // (a missing cosine, a frame mix-up, a lost occluder) costs far more.
     const std::pair<int, double> cases[] = {{10, 0.08}, {30, 0.07}, {100, 0.06}};
     for (const auto& [k, bound] : cases) {
-        Renderer renderer(scene, fit_environment_lights(environment, k), fields, RenderOptions{});
+        CpuRenderer renderer(scene, fit_environment_lights(environment, k), fields, RenderOptions{});
         const double error = relative_l2(renderer.shade(), truth);
         RenderOptions no_visibility;
         no_visibility.self_visibility = no_visibility.occluders = false;
-        Renderer unshadowed(scene, fit_environment_lights(environment, k), fields, no_visibility);
+        CpuRenderer unshadowed(scene, fit_environment_lights(environment, k), fields, no_visibility);
         const double unshadowed_error = relative_l2(unshadowed.shade(), truth);
         INFO("K=" << k << ": relative L2 " << error << ", without visibility " << unshadowed_error);
         CHECK(error < bound);

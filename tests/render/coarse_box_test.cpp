@@ -6,8 +6,9 @@
 
 #include <filesystem>
 
+#include "lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
 
@@ -35,7 +36,7 @@ struct PartErrors {
 PartErrors render_against_truth(const Scene& scene, const CubeMap& environment, const RenderOptions& options) {
     const VertexColors truth = GroundTruth(scene, environment, 0.0f).shade_vertices();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    Renderer renderer(scene, fit_environment_lights(environment, options.environment_lights), fields, options);
+    CpuRenderer renderer(scene, fit_environment_lights(environment, options.environment_lights), fields, options);
     const VertexColors ours = renderer.shade();
     const VertexErrorReport report = compare_vertex_colors(ours, truth);
     return {report.total.relative_l2(), report.parts[1].relative_l2(), report.parts[2].relative_l2()};

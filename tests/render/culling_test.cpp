@@ -5,7 +5,7 @@
 #include <random>
 
 #include "src/render/culling.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/render/square_lights.h"
 #include "tests/render/render_test_scenes.h"
 
@@ -185,7 +185,7 @@ TEST_CASE("culling does not change the colours", "[render][culling]") {
     RenderOptions with, without;
     without.occluder_culling = false;
     without.fast_occluder_lookups = false;
-    Renderer culled(scene, lights, fields, with), full(scene, lights, fields, without);
+    CpuRenderer culled(scene, lights, fields, with), full(scene, lights, fields, without);
     for (float t : {0.0f}) {
         culled.set_time(t);
         full.set_time(t);
@@ -200,7 +200,7 @@ TEST_CASE("culling does not change the colours", "[render][culling]") {
         // The occluders matter in this scene.
         RenderOptions none;
         none.occluders = false;
-        Renderer unshadowed(scene, lights, fields, none);
+        CpuRenderer unshadowed(scene, lights, fields, none);
         const VertexColors c = unshadowed.shade();
         double change = 0;
         for (size_t v = 0; v < c.parts[0].size(); ++v) change += std::abs(c.parts[0][v].g - a.parts[0][v].g);

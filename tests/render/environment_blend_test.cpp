@@ -4,8 +4,9 @@
 // bound that the swapped weights fail) and against the linearity it rests on.
 #include <catch2/catch.hpp>
 
+#include "lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
 
@@ -74,7 +75,7 @@ TEST_CASE("a blended environment renders like the truth under the blended map", 
     const float w = s.scene.environment.blend_weight_at(s.t);
     REQUIRE(w == Approx(0.25f));
     const EnvironmentLights lights(fit_environment_lights(s.first, 60), fit_environment_lights(s.second, 60));
-    Renderer renderer(s.scene, lights, PartFields{}, RenderOptions{});
+    CpuRenderer renderer(s.scene, lights, PartFields{}, RenderOptions{});
     renderer.set_time(s.t);
     const VertexColors rendered = renderer.shade();
     CHECK(renderer.frame().blend().first == Approx(0.75f));
@@ -97,9 +98,9 @@ TEST_CASE("a blended frame is the weighted sum of the two sets' frames", "[rende
     const RslSet a = fit_environment_lights(s.first, 20), b = fit_environment_lights(s.second, 20);
     Scene unblended = s.scene;
     unblended.environment.second_file.clear();
-    Renderer both(s.scene, EnvironmentLights(a, b), PartFields{}, RenderOptions{});
-    Renderer only_a(unblended, a, PartFields{}, RenderOptions{}), only_b(unblended, b, PartFields{}, RenderOptions{});
-    for (Renderer* r : {&both, &only_a, &only_b}) r->set_time(s.t);
+    CpuRenderer both(s.scene, EnvironmentLights(a, b), PartFields{}, RenderOptions{});
+    CpuRenderer only_a(unblended, a, PartFields{}, RenderOptions{}), only_b(unblended, b, PartFields{}, RenderOptions{});
+    for (CpuRenderer* r : {&both, &only_a, &only_b}) r->set_time(s.t);
     const VertexColors mixed = both.shade(), ca = only_a.shade(), cb = only_b.shade();
     double worst = 0, scale = 0;
     for (size_t v = 0; v < mixed.parts[0].size(); ++v) {

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "tests/render/render_test_scenes.h"
 
 namespace rsl {
@@ -51,7 +51,7 @@ TEST_CASE("rendering loads fields from the cache and bakes only what is missing"
 
     const RslSet lights = test::single_rsl(glm::normalize(Vec3(0.3f, 1.0f, 0.2f)), 0.4f, Color(1.0f));
     RenderOptions options;
-    Renderer a(scene, lights, baked, options), b(scene, lights, loaded, options), c(scene, lights, reference, options);
+    CpuRenderer a(scene, lights, baked, options), b(scene, lights, loaded, options), c(scene, lights, reference, options);
     const VertexColors ca = a.shade(), cb = b.shade(), cc = c.shade();
     for (size_t p = 0; p < ca.parts.size(); ++p)
         for (size_t v = 0; v < ca.parts[p].size(); ++v) {

@@ -6,9 +6,10 @@
 
 #include <filesystem>
 
+#include "lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/ovdf_occluder.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
 #include "tests/test_support.h"
@@ -131,7 +132,7 @@ TEST_CASE("Instances share one field and render exactly as fields baked per part
     const RslSet lights = test::random_rsls(12, 7);
     RenderOptions options;
     const PartFields separate = fields_per_part(scene);
-    Renderer a(scene, lights, shared, options), b(scene, lights, separate, options), c(scene, lights, cached, options);
+    CpuRenderer a(scene, lights, shared, options), b(scene, lights, separate, options), c(scene, lights, cached, options);
     const VertexColors ca = a.shade(), cb = b.shade(), cc = c.shade();
     for (size_t p = 0; p < ca.parts.size(); ++p)
         for (size_t v = 0; v < ca.parts[p].size(); ++v) {
@@ -147,7 +148,7 @@ TEST_CASE("Instances share one field and render exactly as fields baked per part
     // frame differs.
     RenderOptions no_occluders;
     no_occluders.occluders = false;
-    CHECK(relative_l2(Renderer(scene, lights, shared, no_occluders).shade(), ca) > 0.01);
+    CHECK(relative_l2(CpuRenderer(scene, lights, shared, no_occluders).shade(), ca) > 0.01);
 }
 
 TEST_CASE("A rotated, scaled instance shades as a separately baked copy of its posed mesh", "[render][instances][accuracy]") {
@@ -188,11 +189,11 @@ TEST_CASE("A rotated, scaled instance shades as a separately baked copy of its p
     const CubeMap environment = test::sky_with_sun(16);
     const VertexColors truth = GroundTruth(instanced, environment, 0.0f).shade_vertices();
     const RslSet lights = fit_environment_lights(environment, 30);
-    const VertexColors from_instance = Renderer(instanced, lights, shared, RenderOptions{}).shade();
-    const VertexColors from_copy = Renderer(copy, lights, separate, RenderOptions{}).shade();
+    const VertexColors from_instance = CpuRenderer(instanced, lights, shared, RenderOptions{}).shade();
+    const VertexColors from_copy = CpuRenderer(copy, lights, separate, RenderOptions{}).shade();
     RenderOptions no_visibility;
     no_visibility.self_visibility = no_visibility.occluders = false;
-    const VertexColors unshadowed = Renderer(instanced, lights, shared, no_visibility).shade();
+    const VertexColors unshadowed = CpuRenderer(instanced, lights, shared, no_visibility).shade();
 
     // Per part: the moved instance (its self-shadowing, the shadows it
     // receives) and the ground (the moved instance's shadow, through the

@@ -7,10 +7,11 @@
 
 #include <filesystem>
 
+#include "lightfit/scene_lights.h"
 #include "lightfit/reconstruct.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/exact_visibility.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/test_support.h"
 
@@ -42,7 +43,7 @@ TEST_CASE("ray-traced many-light on the static bunny against the truth under the
     RenderOptions options;
     options.local_lights = false;
     options.exact_visibility = std::make_shared<ExactVisibility>(scene, 0.0f, ExactVisibilityMode::All, 4, true);
-    Renderer rays(scene, lights, PartFields{}, options);
+    CpuRenderer rays(scene, lights, PartFields{}, options);
     rays.set_time(0.0f);
     const VertexColors shaded = rays.shade();
     const double error = relative_l2(shaded, truth_under_rsls);
@@ -52,7 +53,7 @@ TEST_CASE("ray-traced many-light on the static bunny against the truth under the
     RenderOptions unshadowed_options = options;
     unshadowed_options.exact_visibility = nullptr;
     unshadowed_options.self_visibility = unshadowed_options.occluders = false;
-    Renderer unshadowed(scene, lights, PartFields{}, unshadowed_options);
+    CpuRenderer unshadowed(scene, lights, PartFields{}, unshadowed_options);
     unshadowed.set_time(0.0f);
     const double unshadowed_error = relative_l2(unshadowed.shade(), truth_under_rsls);
 

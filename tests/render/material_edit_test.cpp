@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/error.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "tests/render/render_test_scenes.h"
 
 namespace rsl {
@@ -31,7 +31,7 @@ Scene three_balls() {
 TEST_CASE("a material edit rebuilds its own table only and shades like a fresh renderer", "[render][materials]") {
     const Scene scene = three_balls();
     const RslSet lights = test::random_rsls(12, 9);
-    Renderer renderer(scene, lights, PartFields{}, RenderOptions{});
+    CpuRenderer renderer(scene, lights, PartFields{}, RenderOptions{});
     VertexRenderer& r = renderer;
     const BrdfTable* before[3];
     for (int p = 0; p < 3; ++p) before[p] = &r.materials().part_table(p);
@@ -47,7 +47,7 @@ TEST_CASE("a material edit rebuilds its own table only and shades like a fresh r
 
     Scene edited = scene;
     edited.materials[1].params["exponent"] = {60.0f};
-    Renderer fresh(edited, lights, PartFields{}, RenderOptions{});
+    CpuRenderer fresh(edited, lights, PartFields{}, RenderOptions{});
     for (float t : {0.0f, 0.5f}) {
         r.set_time(t);
         fresh.set_time(t);
@@ -59,7 +59,7 @@ TEST_CASE("a material edit rebuilds its own table only and shades like a fresh r
     r.set_part_material("ball0", "glossy");
     RenderOptions swapped;
     swapped.material_override["ball0"] = "glossy";
-    Renderer by_option(edited, lights, PartFields{}, swapped);
+    CpuRenderer by_option(edited, lights, PartFields{}, swapped);
     const VertexColors a = r.shade(), b = by_option.shade();
     CHECK(a.parts[0] == b.parts[0]);
 
@@ -67,7 +67,7 @@ TEST_CASE("a material edit rebuilds its own table only and shades like a fresh r
     CHECK_THROWS_WITH(r.set_material_parameter("glossy", "exponent", {-3.0f}), Catch::Contains("exponent"));
     CHECK_THROWS_WITH(r.set_material_parameter("nope", "exponent", {3.0f}), Catch::Contains("nope"));
     CHECK_THROWS_WITH(r.set_part_material("ball9", "glossy"), Catch::Contains("ball9"));
-    CHECK_THROWS_AS(Renderer(scene, lights, PartFields{}, [] {
+    CHECK_THROWS_AS(CpuRenderer(scene, lights, PartFields{}, [] {
                         RenderOptions o;
                         o.material_override["ball1"] = "missing";
                         return o;

@@ -4,11 +4,12 @@
 // compared with the Embree truth, per vertex and per pixel.
 #include <catch2/catch.hpp>
 
+#include "lightfit/scene_lights.h"
 #include "assets/generate/model.h"
 #include "assets/generate/pbr_scene.h"
 #include "src/frame/error_metrics.h"
 #include "src/frame/image_formation.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
 #include "tests/test_support.h"
@@ -101,7 +102,7 @@ TEST_CASE("gltf_pbr parts with a base colour texture: RSL renderer vs ground tru
     const GroundTruth truth(scene, environment, 0.0f);
     const VertexColors truth_vertices = truth.shade_vertices();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    Renderer renderer(scene, fit_environment_lights(environment, 30), fields, RenderOptions{});
+    CpuRenderer renderer(scene, fit_environment_lights(environment, 30), fields, RenderOptions{});
     const VertexColors colors = renderer.shade();
     for (size_t p = 0; p < scene.parts.size(); ++p) {
         CHECK(colors.layered(p) == (scene.parts[p].name == "ground"));

@@ -5,9 +5,10 @@
 // truth.
 #include <catch2/catch.hpp>
 
+#include "lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
 #include "src/frame/image_formation.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
 #include "tests/test_support.h"
@@ -29,8 +30,8 @@ Images render_images(bool exact_shapes, bool textured = false) {
         RenderOptions options;
         options.exact_shapes = exact_shapes;
         options.pixel_shadows = mode;
-        Renderer renderer(scene, lights, fields, options);
-        renderer.keep_pixel_terms(true);
+        CpuRenderer renderer(scene, lights, fields, options);
+        renderer.keep_image_terms(true);
         VertexColors colors = renderer.shade();
         const PartShaders shaders = renderer.pixel_shading(colors, truth.posed());
         CHECK(shaders.size() == 2);
@@ -102,9 +103,9 @@ TEST_CASE("A pixel at a receiver's vertex takes that vertex's colour", "[render]
     // (and elsewhere on a triangle the blend's colour where no edge crosses it).
     const Scene scene = test::box_over_coarse_ground();
     const CubeMap environment = test::sky_with_sun(16);
-    Renderer renderer(scene, fit_environment_lights(environment, 30), bake_part_fields(scene, FieldBakeOptions{}),
+    CpuRenderer renderer(scene, fit_environment_lights(environment, 30), bake_part_fields(scene, FieldBakeOptions{}),
                       RenderOptions{});
-    renderer.keep_pixel_terms(true);
+    renderer.keep_image_terms(true);
     const VertexColors colors = renderer.shade();
     const PosedScene posed(scene, 0.0f);
     const PartShaders shaders = renderer.pixel_shading(colors, posed);
@@ -151,8 +152,8 @@ TEST_CASE("Pixels at a receiver's vertices take their colours under several occl
         INFO("exact shapes " << exact_shapes);
         RenderOptions options;
         options.exact_shapes = exact_shapes;
-        Renderer renderer(scene, fit_environment_lights(environment, 30), fields, options);
-        renderer.keep_pixel_terms(true);
+        CpuRenderer renderer(scene, fit_environment_lights(environment, 30), fields, options);
+        renderer.keep_image_terms(true);
         const VertexColors colors = renderer.shade();
         const PartShaders shaders = renderer.pixel_shading(colors, posed);
         REQUIRE(shaders[0]);
@@ -189,8 +190,8 @@ TEST_CASE("Per-pixel highlights on a coarse glossy plane follow the per-pixel tr
         RenderOptions options;
         options.pixel_highlights = per_pixel;
         options.pixel_shadows = PixelShadows::Off;  // nothing casts a shadow: the highlights alone
-        Renderer renderer(scene, lights, PartFields{}, options);
-        renderer.keep_pixel_terms(true);
+        CpuRenderer renderer(scene, lights, PartFields{}, options);
+        renderer.keep_image_terms(true);
     const VertexColors colors = renderer.shade();
         const PartShaders shaders = renderer.pixel_shading(colors, truth.posed());
         REQUIRE(shaders.size() == 1);
@@ -234,9 +235,9 @@ namespace {
 TEST_CASE("Per-pixel highlights on a coarse ball's rim follow the per-pixel truth", "[render][pixel-highlights][accuracy]") {
     const test::PixelTestSetting setting(test::coarse_glossy_ball());
     const auto& [scene, environment, fields, truth, camera, reference, lights] = setting;
-    Renderer renderer(scene, lights, fields, RenderOptions{});
+    CpuRenderer renderer(scene, lights, fields, RenderOptions{});
     const VertexColors without_terms = renderer.shade();
-    renderer.keep_pixel_terms(true);
+    renderer.keep_image_terms(true);
     const VertexColors colors = renderer.shade();
     // Keeping the rim's terms changes no vertex colour (their BRDF averages are 0).
     CHECK(compare_vertex_colors(colors, without_terms).total.relative_l2() == 0.0);
@@ -308,8 +309,8 @@ TEST_CASE("Per-pixel highlights leave out the corners enclosed by their own part
         if (outside) CHECK(enclosed[v] == 0);
         inside += enclosed[v];
     }
-    Renderer renderer(scene, lights, fields, RenderOptions{});
-    renderer.keep_pixel_terms(true);
+    CpuRenderer renderer(scene, lights, fields, RenderOptions{});
+    renderer.keep_image_terms(true);
     const VertexColors colors = renderer.shade();
     const Image image = form_image(truth.posed(), camera, colors, {}, renderer.pixel_shading(colors, truth.posed()));
     // The pixels whose triangle has an enclosed corner.

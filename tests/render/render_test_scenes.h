@@ -4,12 +4,13 @@
 #include <memory>
 #include <random>
 
+#include "lightfit/scene_lights.h"
 #include "assets/generate/pbr_scene.h"
 #include "fields/svdf.h"
 #include "lightfit/rsl.h"
 #include "src/frame/image_formation.h"
 #include "src/render/part_fields.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/trace/trace_test_scenes.h"
 

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "src/frame/error_metrics.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
 
@@ -47,7 +47,7 @@ TEST_CASE("one part, one RSL: 2r²·I × BRDF average × SVDF average", "[render
 
     SECTION("without visibility") {
         PartFields fields;
-        Renderer renderer(scene, test::single_rsl(center, r, radiance), fields, RenderOptions{});
+        CpuRenderer renderer(scene, test::single_rsl(center, r, radiance), fields, RenderOptions{});
         const VertexColors colors = renderer.shade();
         REQUIRE(renderer.stats().lookups == scene.parts[0].mesh.vertex_count());
         for (const Color& c : colors.parts[0])
@@ -56,14 +56,14 @@ TEST_CASE("one part, one RSL: 2r²·I × BRDF average × SVDF average", "[render
     SECTION("with a self-visibility field of visible fraction 0.3") {
         PartFields fields;
         fields.self = {test::constant_svdf(int(scene.parts[0].mesh.vertex_count()), -0.4f * h)};
-        Renderer renderer(scene, test::single_rsl(center, r, radiance), fields, RenderOptions{});
+        CpuRenderer renderer(scene, test::single_rsl(center, r, radiance), fields, RenderOptions{});
         const VertexColors colors = renderer.shade();
         for (const Color& c : colors.parts[0])
             for (int ch = 0; ch < 3; ++ch) CHECK(c[ch] == Approx(0.3f * unshadowed[ch]).epsilon(2e-3));
 
         RenderOptions no_self;
         no_self.self_visibility = false;
-        Renderer off(scene, test::single_rsl(center, r, radiance), fields, no_self);
+        CpuRenderer off(scene, test::single_rsl(center, r, radiance), fields, no_self);
         const VertexColors off_colors = off.shade();
         for (const Color& c : off_colors.parts[0]) CHECK(c.r == Approx(unshadowed.r).epsilon(2e-3));
     }
@@ -81,7 +81,7 @@ TEST_CASE("one part, one RSL: 2r²·I × BRDF average × SVDF average", "[render
         fields.occluder = {nullptr, std::make_shared<LinearTestField>()};
         RenderOptions options;
         options.occluder_culling = false;
-        Renderer renderer(scene, test::single_rsl(center, r, radiance), fields, options);
+        CpuRenderer renderer(scene, test::single_rsl(center, r, radiance), fields, options);
         const VertexColors colors = renderer.shade();
         const TriangleMesh& mesh = scene.parts[0].mesh;
         for (size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -92,7 +92,7 @@ TEST_CASE("one part, one RSL: 2r²·I × BRDF average × SVDF average", "[render
         }
         RenderOptions no_occluders = options;
         no_occluders.occluders = false;
-        Renderer off(scene, test::single_rsl(center, r, radiance), fields, no_occluders);
+        CpuRenderer off(scene, test::single_rsl(center, r, radiance), fields, no_occluders);
         CHECK(off.shade().parts[0][0].g == Approx(unshadowed.g).epsilon(2e-3));
     }
 }
@@ -107,7 +107,7 @@ TEST_CASE("a sphere light is a per-vertex square of the cap's solid angle", "[re
     light.position = Vec3(0.3f, 0.8f, -0.2f);
     scene.lights.push_back(light);
     PartFields fields;
-    Renderer renderer(scene, RslSet{}, fields, RenderOptions{});
+    CpuRenderer renderer(scene, RslSet{}, fields, RenderOptions{});
     const VertexColors colors = renderer.shade();
     const Color radiance = light.power / (4.0f * kPi * kPi * light.radius * light.radius);
     const TriangleMesh& mesh = scene.parts[0].mesh;
@@ -146,12 +146,12 @@ TEST_CASE("a spot light's cone: the renderer's per-vertex sum against the ground
     PartFields fields;
     GroundTruthOptions options;
     options.environment = false;
-    const VertexColors rendered = Renderer(scene, RslSet{}, fields, RenderOptions{}).shade();
+    const VertexColors rendered = CpuRenderer(scene, RslSet{}, fields, RenderOptions{}).shade();
     const VertexColors truth = GroundTruth(scene, CubeMap(4), 0.0f, options).shade_vertices();
     // The same light without its cone.
     Scene point_scene = scene;
     point_scene.lights[0].spot = false;
-    const VertexColors rendered_point = Renderer(point_scene, RslSet{}, fields, RenderOptions{}).shade();
+    const VertexColors rendered_point = CpuRenderer(point_scene, RslSet{}, fields, RenderOptions{}).shade();
     const VertexColors truth_point = GroundTruth(point_scene, CubeMap(4), 0.0f, options).shade_vertices();
 
     const TriangleMesh& mesh = scene.parts[0].mesh;
@@ -243,13 +243,13 @@ TEST_CASE("rotating the environment by R equals rotating the scene by R⁻¹", "
     Scene turned_environment = scene;
     turned_environment.environment.rotation_axis = axis;
     turned_environment.environment.rotation_degrees = degrees;
-    Renderer a(turned_environment, lights, fields, options);
+    CpuRenderer a(turned_environment, lights, fields, options);
     const VertexColors expected = a.shade();
 
     // B: the environment as it is, the scene (parts, camera, lights) turned by R⁻¹.
     Scene turned_scene = scene;
     rotate_scene(turned_scene, glm::angleAxis(glm::radians(-degrees), axis));
-    Renderer b(turned_scene, lights, fields, options);
+    CpuRenderer b(turned_scene, lights, fields, options);
     const VertexColors colors = b.shade();
 
     // Every lookup sees the same local coordinates up to the float rounding of
@@ -275,7 +275,7 @@ TEST_CASE("rotating the environment by R equals rotating the scene by R⁻¹", "
     // Without the occluder fields nothing is discontinuous: float noise only.
     RenderOptions self_only = options;
     self_only.occluders = false;
-    Renderer a_self(turned_environment, lights, fields, self_only), b_self(turned_scene, lights, fields, self_only);
+    CpuRenderer a_self(turned_environment, lights, fields, self_only), b_self(turned_scene, lights, fields, self_only);
     const VertexColors ea = a_self.shade(), eb = b_self.shade();
     double self_error2 = 0, self_norm2 = 0;
     for (size_t p = 0; p < ea.parts.size(); ++p)
@@ -288,7 +288,7 @@ TEST_CASE("rotating the environment by R equals rotating the scene by R⁻¹", "
     // And the fields do matter: switching them off changes the colours.
     RenderOptions no_visibility = options;
     no_visibility.self_visibility = no_visibility.occluders = false;
-    Renderer bare(turned_environment, lights, fields, no_visibility);
+    CpuRenderer bare(turned_environment, lights, fields, no_visibility);
     const VertexColors unshadowed = bare.shade();
     double change2 = 0;
     for (size_t p = 0; p < expected.parts.size(); ++p)

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <random>
 
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/render/sphere_tree.h"
 #include "tests/render/render_test_scenes.h"
 
@@ -87,7 +87,7 @@ TEST_CASE("1,000 parts shade as with every occluder looked up", "[render][cullin
     }
     RenderOptions with, without;
     without.occluder_culling = false;
-    Renderer culled(scene, lights, fields, with), full(scene, lights, fields, without);
+    CpuRenderer culled(scene, lights, fields, with), full(scene, lights, fields, without);
     culled.set_time(0);
     full.set_time(0);
     const VertexColors a = culled.shade(), b = full.shade();
@@ -104,7 +104,7 @@ TEST_CASE("1,000 parts shade as with every occluder looked up", "[render][cullin
     // The occluders matter: without them the balls are brighter.
     RenderOptions none;
     none.occluders = false;
-    Renderer unshadowed(scene, lights, fields, none);
+    CpuRenderer unshadowed(scene, lights, fields, none);
     const VertexColors c = unshadowed.shade();
     for (size_t p = 1; p < a.parts.size(); ++p)
         for (size_t v = 0; v < a.parts[p].size(); ++v) shadowed += c.parts[p][v].g > a.parts[p][v].g + 1e-4f;

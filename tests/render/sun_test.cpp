@@ -5,9 +5,10 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "lightfit/scene_lights.h"
 #include "src/core/scene_environment.h"
 #include "src/frame/error_metrics.h"
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
 
@@ -62,7 +63,7 @@ TEST_CASE("a sun lights the scene and casts its shadow where the truth does", "[
     CHECK(suns_only.lights[0].center == sun.center);
     CHECK(sun_lights(scene).size() == 1);
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    const VertexColors rsl = Renderer(scene, lights, fields, RenderOptions{}).shade();
+    const VertexColors rsl = CpuRenderer(scene, lights, fields, RenderOptions{}).shade();
     const VertexColors truth = GroundTruth(scene, environment, 0.0f).shade_vertices();
     const VertexErrorReport report = compare_vertex_colors(rsl, truth);
     const ObjectErrorReport objects = object_errors(report);

@@ -40,51 +40,33 @@ namespace rsl {
 
 struct OccluderVertexScratch;  // shade_block.cpp
 
-class Renderer final : public VertexRenderer {
+class CpuRenderer final : public VertexRenderer {
 public:
-    // `scene` must outlive the renderer. `environment_lights` is the
-    // environment's RSL set (or the two sets of a blend) at rotation 0 (it is
-    // rotated by the environment's rotation at every set_time;
-    // fit_environment_lights makes it). `fields` may lack any field (that
-    // factor is then 1). The materials are the scene's with
-    // options.material_override applied.
-    Renderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields, const RenderOptions& options);
-    // Members refer to its own frame: neither copied nor moved.
-    Renderer(const Renderer&) = delete;
-    Renderer& operator=(const Renderer&) = delete;
+    // As VertexRenderer's constructor (vertex_renderer.h).
+    CpuRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
+                const RenderOptions& options);
 
     std::string backend() const override { return "cpu"; }
-    const Scene& scene() const override { return scene_; }
-
-    // Poses parts, rotates (and blends) the environment, moves lights and
-    // camera to time t, and recomputes the occluder lists (culling).
-    void set_time(float t) override;
-    void set_view(float t, const Vec3& camera, const Mat3& environment_rotation) override;
-    float time() const override { return time_; }
-
-    MaterialLibrary& materials() override { return library_; }
-    const MaterialLibrary& materials() const override { return library_; }
-    void set_environment_lights(EnvironmentLights lights) override;
-    const EnvironmentLights& environment_lights() const override { return rsls_; }
-    void set_local_lights(std::vector<LocalLight> lights) override;
-    const std::vector<LocalLight>& local_lights() const override { return lights_; }
 
     // Vertex colours of every part towards the camera; `out` must come from
     // make_output() (its buffers are reused, nothing is allocated).
     void shade(VertexColors& out) override;
     using VertexRenderer::shade;
-    VertexColors make_output() const override;
 
-    const RenderStats& stats() const override { return stats_; }
-    // The parts shaded per pixel (RenderOptions::pixel_shadows) that `colors`,
-    // this renderer's last shade(), holds untextured: their image takes the
-    // other parts' shadows at each pixel's point (pixel_shading.cpp).
-    PartShaders pixel_shading(const VertexColors& colors, const PosedScene& posed) const override;
-    void keep_pixel_terms(bool keep) override { keep_pixel_terms_ = keep; }
-    const RenderOptions& options() const { return options_; }
+    // The shaders of the parts shaded per pixel, from `colors` (the last
+    // shade()'s, with keep_image_terms on) for form_image at `posed` (the
+    // scene posed at time()): what form_image() uses (pixel_shading.cpp).
+    PartShaders pixel_shading(const VertexColors& colors, const PosedScene& posed) const;
     // Square lights of the environment at the current time (world space, blend-weighted).
     const std::vector<SquareLight>& environment_squares() const { return environment_squares_; }
-    const FrameSetup& frame() const { return frame_; }
+
+protected:
+    void lights_changed() override;
+    // The parts shaded per pixel (RenderOptions::pixel_shadows,
+    // pixel_highlights) take the other parts' shadows and their own BRDF at
+    // each pixel's point (pixel_shading.cpp); the rest blend vertex colours.
+    Image backend_image(const VertexColors& colors, const PinholeCamera& camera,
+                        const ImageFormationOptions& options) override;
 
 private:
     struct Block {
@@ -92,7 +74,6 @@ private:
         int begin, end;  // a range of the part's block_order_ (its vertices in compact blocks)
     };
     struct BlockScratch;  // shade_block.cpp
-    void update_frame();
     void sync_materials();
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts);
     void set_point(BlockScratch& s, int k, const Vec3& position, const Frame& frame) const;
@@ -128,12 +109,6 @@ private:
     void ovdf_factors(BlockScratch& s, OccluderVertexScratch& v, int light, int occluder, int n,
                       RenderStats& counts) const;  // ovdf_factors.cpp
 
-    const Scene& scene_;
-    RenderOptions options_;
-    EnvironmentLights rsls_;
-    std::vector<LocalLight> lights_;
-    PartFields fields_;
-    MaterialLibrary library_;
     // Per part: the table it is shaded with, refreshed from library_ before a
     // frame when a material's revision or a part's assignment changed.
     std::vector<const BrdfTable*> part_tables_;
@@ -152,12 +127,7 @@ private:
     // Per part: the fast split lookup of its OVDF (null: the field's own lookup).
     std::vector<std::unique_ptr<const OvdfLookup>> fast_lookups_;
 
-    float time_ = 0;
-    Mat3 view_rotation_{1.0f};
-    std::optional<Vec3> view_camera_;
-    // The frame at time_ (shared with the GL renderer); the names below are
-    // its fields as shade_block.cpp reads them.
-    FrameSetup frame_;
+    // The frame at time_ (VertexRenderer::frame_): its fields as shade_block.cpp reads them.
     const std::vector<PartPose>& poses_ = frame_.poses();
     const std::vector<SquareLight>& environment_squares_ = frame_.environment_squares();
     const std::vector<Vec3>& light_positions_ = frame_.light_positions();
@@ -171,7 +141,6 @@ private:
     const std::vector<int>& occluders_ = frame_.occluder_lists().occluders;
     const std::vector<size_t>& offsets_ = frame_.occluder_lists().offsets;
     const std::vector<float>& occluder_growth_ = frame_.occluder_lists().growth;
-    RenderStats stats_;
     // Sharp shadows on coarse receivers (RenderOptions::pixel_shadows): per
     // part shaded per pixel, the last shade()'s terms of every (vertex,
     // light), vertex-major: the light's share before the other parts'
@@ -185,7 +154,6 @@ private:
         std::vector<float> occlusion;           // either
         std::vector<float> self_visibility;     // highlights per pixel
     };
-    bool keep_pixel_terms_ = false;
     std::vector<char> pixel_parts_;  // per part: shadows per pixel
     // Per part and vertex, for highlights per pixel: a vertex that faces away
     // from the camera by less than this view cosine still keeps its terms,
@@ -198,26 +166,10 @@ private:
     // share of a pixel's self-visibility blend goes to the other corners.
     std::vector<std::vector<uint8_t>> enclosed_vertices_;
     std::vector<PixelTerms> pixel_terms_;
+    bool terms_kept_ = false;  // whether the last shade() kept the image's terms
+    // The scene posed at the image's time, whose hits the image's rays find
+    // (made at the first image).
+    std::unique_ptr<PosedScene> posed_;
 };
-
-// Checks `fields` against the scene's parts (an SVDF must have the mesh's
-// vertex count) and gives it one entry per part (missing ones null).
-void check_part_fields(const Scene& scene, PartFields& fields);
-
-// The environment map fitted with K RSLs (lightfit, default options); none
-// for a black map.
-RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face = true);
-
-// The sun's angular radius (0.267°): a glTF sun is a square of the sun's
-// solid angle, 2r² = π·α², so that its shadows are as hard as the sun's.
-inline constexpr float kSunAngularRadius = 0.00465f;
-// The scene's environment lights: its map (scene_environment_map) fitted with
-// K RSLs, then one RSL per sun — centred on the sun's direction in the map's
-// frame at the scene's start (it turns with environment.rotation), of the
-// sun's solid angle, its integral 2r²·I the sun's irradiance E. The ground
-// truth takes the same suns as directions of irradiance E (GroundTruth).
-RslSet fit_scene_lights(const Scene& scene, const CubeMap& environment, int lights, bool cross_face = true);
-// The suns' lights alone (what fit_scene_lights appends to the map's).
-std::vector<RotatableSquareLight> sun_lights(const Scene& scene);
 
 }  // namespace rsl

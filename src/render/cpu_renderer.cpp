@@ -1,12 +1,11 @@
 // Set-up and per-frame state of the CPU renderer; the per-block shading kernel
 // is in shade_block.cpp.
-#include "src/render/renderer.h"
+#include "src/render/cpu_renderer.h"
 
 #include <atomic>
 
 #include <tbb/parallel_for.h>
 
-#include "lightfit/decompose.h"
 #include "src/core/error.h"
 #include "src/render/occluder_shape.h"
 #include "src/render/ovdf_occluder.h"
@@ -17,65 +16,9 @@
 
 namespace rsl {
 
-RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face) {
-    if (environment.energy() == DVec3(0.0)) {  // a black map (a scene lit by suns alone): nothing to fit
-        RslSet none;
-        none.resolution = environment.resolution();
-        return none;
-    }
-    lightfit::DecomposeOptions options;
-    options.lights = lights;
-    options.cross_face = cross_face;
-    return lightfit::decompose(environment, options);
-}
-
-RslSet fit_scene_lights(const Scene& scene, const CubeMap& environment, int lights, bool cross_face) {
-    RslSet set = fit_environment_lights(environment, lights, cross_face);
-    const std::vector<RotatableSquareLight> suns = sun_lights(scene);
-    set.lights.insert(set.lights.end(), suns.begin(), suns.end());
-    return set;
-}
-
-std::vector<RotatableSquareLight> sun_lights(const Scene& scene) {
-    const float half_diagonal = kSunAngularRadius * std::sqrt(0.5f * kPi);  // 2r² = π·α²
-    std::vector<RotatableSquareLight> lights;
-    for (const SunLight& sun : scene.environment.suns) {
-        RotatableSquareLight light;
-        light.center = sun_direction_in_map(scene, sun);
-        light.half_diagonal = half_diagonal;
-        light.radiance = sun.irradiance / light.solid_angle();
-        lights.push_back(light);
-    }
-    return lights;
-}
-
-void check_part_fields(const Scene& scene, PartFields& fields) {
-    const size_t parts = scene.parts.size();
-    if (parts == 0) throw_file_error(scene.source, "scene '{}' has no parts", scene.name);
-    fields.self.resize(parts);
-    fields.occluder.resize(parts);
-    for (size_t p = 0; p < parts; ++p)
-        if (fields.self[p] && size_t(fields.self[p]->vertex_count()) != scene.parts[p].mesh.vertex_count())
-            throw_file_error(scene.source, "part '{}': its SVDF has {} vertices, the mesh {}", scene.parts[p].name,
-                             fields.self[p]->vertex_count(), scene.parts[p].mesh.vertex_count());
-}
-
-namespace {
-PartFields checked(const Scene& scene, PartFields fields) {
-    check_part_fields(scene, fields);
-    return fields;
-}
-}  // namespace
-
-Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
-                   const RenderOptions& options)
-    : scene_(scene),
-      options_(options),
-      rsls_(std::move(environment_lights)),
-      lights_(scene.lights),
-      fields_(checked(scene, std::move(fields))),
-      library_(scene_material_library(scene, options)),
-      frame_(scene, fields_) {
+CpuRenderer::CpuRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
+                         const RenderOptions& options)
+    : VertexRenderer(scene, std::move(environment_lights), std::move(fields), options) {
     // A GL baseline (docs/GPU.md "Shadow-mapped visibility"): there is no CPU version to fall back on.
     if (options.shadow_maps.enabled)
         throw_file_error(scene.source, "shadow-mapped visibility (RenderOptions::shadow_maps, --shadow-maps) "
@@ -113,51 +56,21 @@ Renderer::Renderer(const Scene& scene, EnvironmentLights environment_lights, Par
     part_specular_tables_.assign(parts, nullptr);
     synced_material_.assign(parts, -1);
     sync_materials();
-    set_local_lights(lights_);  // checks them, sizes the frame's buffers, poses at t = 0
+    start();
 }
 
-void Renderer::set_local_lights(std::vector<LocalLight> lights) {
-    check_local_lights(scene_, lights);
-    lights_ = std::move(lights);
+void CpuRenderer::lights_changed() {
     light_radiance_.clear();
     light_cones_.clear();
-    for (const LocalLight& light : lights_) {
+    for (const LocalLight& light : local_lights_) {
         light_radiance_.push_back(sphere_light_radiance(light));
         light_cones_.push_back(spot_cone_scale_offset(light));
     }
-    frame_.reserve(rsls_.light_count(), lights_.size());
-    update_frame();
-}
-
-void Renderer::set_environment_lights(EnvironmentLights lights) {
-    rsls_ = std::move(lights);
-    frame_.reserve(rsls_.light_count(), lights_.size());
-    update_frame();
-}
-
-void Renderer::set_time(float t) {
-    time_ = t;
-    view_rotation_ = Mat3(1.0f);
-    view_camera_.reset();
-    update_frame();
-}
-
-void Renderer::set_view(float t, const Vec3& camera, const Mat3& environment_rotation) {
-    time_ = t;
-    view_rotation_ = environment_rotation;
-    view_camera_ = camera;
-    update_frame();
-}
-
-void Renderer::update_frame() {
-    frame_.update(scene_, rsls_, lights_, options_, time_, view_rotation_, view_camera_);
-    stats_.occluder_pairs = frame_.occluder_lists().pairs;
-    stats_.occluder_pairs_culled = frame_.occluder_lists().culled;
 }
 
 // The library builds a table when a material is edited; here the parts only
 // pick up the pointers of what changed (no allocation, O(parts)).
-void Renderer::sync_materials() {
+void CpuRenderer::sync_materials() {
     const int materials = library_.material_count();
     if (synced_revision_.size() != size_t(materials)) synced_revision_.assign(size_t(materials), 0);
     for (size_t p = 0; p < part_tables_.size(); ++p) {
@@ -171,29 +84,21 @@ void Renderer::sync_materials() {
     for (int m = 0; m < materials; ++m) synced_revision_[size_t(m)] = library_.revision(m);
 }
 
-VertexColors Renderer::make_output() const {
-    VertexColors colors;
-    colors.scene_name = scene_.name;
-    colors.producer = "rsl-cpu";
-    for (size_t p = 0; p < scene_.parts.size(); ++p)
-        colors.add_part(scene_.parts[p].name, scene_.parts[p].mesh.vertex_count(), library_.part_texture(int(p)));
-    return colors;
-}
-
-void Renderer::shade(VertexColors& out) {
+void CpuRenderer::shade(VertexColors& out) {
     RSL_CHECK_EQ(out.parts.size(), scene_.parts.size());
     for (size_t p = 0; p < scene_.parts.size(); ++p) RSL_CHECK_EQ(out.parts[p].size(), scene_.parts[p].mesh.vertex_count());
     sync_materials();
     match_layers(library_, scene_, out);
     out.time = time_;
+    terms_kept_ = keep_image_terms_;
     // The terms image formation takes per pixel (pixel_shading.cpp), sized
     // once (again when the light count or a part's material changes).
     const size_t lights = environment_squares_.size() + light_positions_.size();
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
         const bool glossy = library_.desc(library_.part_material(int(p))).model != "lambert";
-        const bool highlights = keep_pixel_terms_ && options_.pixel_highlights && !options_.exact_visibility &&
+        const bool highlights = keep_image_terms_ && options_.pixel_highlights && !options_.exact_visibility &&
                                 glossy && !part_specular_tables_[p] && lights <= size_t(kShadeBlock);
-        const bool shadows = keep_pixel_terms_ && pixel_parts_[p];
+        const bool shadows = keep_image_terms_ && pixel_parts_[p];
         const size_t terms = scene_.parts[p].mesh.vertex_count() * lights;
         PixelTerms& t = pixel_terms_[p];
         t.unshadowed.resize(shadows ? terms : 0);
@@ -220,7 +125,7 @@ void Renderer::shade(VertexColors& out) {
     stats_.block_occluders_culled = block_culled.load();
     stats_.lookups = lookups.load();
     stats_.vertices = vertices.load();
-    stats_.lights = environment_squares_.size() + lights_.size();
+    stats_.lights = environment_squares_.size() + local_lights_.size();
 }
 
 }  // namespace rsl
