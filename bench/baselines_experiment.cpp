@@ -3,6 +3,7 @@
 // the RSL renderer share the truth's vertices, camera and image formation;
 // images are compared with compare_images (src/frame/error_metrics.h), the
 // same definition `rsl compare` uses.
+#include "src/cli/progress_display.h"
 #include "bench/baselines_experiment.h"
 #include "lightfit/scene_lights.h"
 
@@ -224,7 +225,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
         options.local_lights = false;
         options.environment_lights = args.rsl_lights.front();
         say("RSL: fitting lights and baking visibility fields...");
-        RenderSetup setup = prepare_render(scene_ptr, options, !args.quiet);
+        RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
         const size_t bytes = field_bytes(setup.fields);
         for (int lights : args.rsl_lights) {
             const auto fit_start = Clock::now();

@@ -53,7 +53,7 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
     if (options.quick) gl::use_quick_fields(scene->precompute);
     RenderOptions render;
     render.environment_lights = 30;
-    const RenderSetup setup = prepare_render(scene, render, false);
+    const RenderSetup setup = prepare_render(scene, render);
     gl::GlRenderer renderer(*scene, setup.environment_lights, setup.fields, render);
     const int frames = options.quick ? 4 : 24;
     const float duration = std::max(scene->animation.end - scene->animation.start, 1e-3f);

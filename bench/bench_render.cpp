@@ -43,7 +43,7 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     }
     RenderOptions render_options;
     render_options.environment_lights = c.lights;
-    const RenderSetup setup = prepare_render(scene, render_options, false);
+    const RenderSetup setup = prepare_render(scene, render_options);
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render_options);
     VertexColors colors = renderer->make_output();

@@ -120,7 +120,7 @@ void bench_factors(const BenchOptions& options) {
                 RenderOptions render_options;
                 render_options.environment_lights = k;
                 render_options.environment = false;  // fields only; the RSLs are `rsls`
-                const RenderSetup setup = prepare_render(scene, render_options, false);
+                const RenderSetup setup = prepare_render(scene, render_options);
                 render_options.environment = true;
                 start = Clock::now();
                 if (v.options) v.options(render_options, *scene, frame.time);

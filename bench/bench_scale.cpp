@@ -17,6 +17,7 @@
 
 #include <fmt/core.h>
 
+#include "src/cli/progress_display.h"
 #include "assets/generate/yard.h"
 #include "baselines/raster.h"
 #include "bench/bench.h"
@@ -83,7 +84,7 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
     if (reach > 0) scene->precompute.ovdf_outer_radius = reach;
     RenderOptions render_options;
     render_options.environment_lights = 30;
-    const RenderSetup setup = prepare_render(scene, render_options, true);
+    const RenderSetup setup = prepare_render(scene, render_options, {.progress = cli::drawn_progress(true)});
     size_t unique_fields = 0, unique_meshes = 0;
     const size_t ram = field_ram_bytes(setup.fields, unique_fields, unique_meshes);
     const std::unique_ptr<VertexRenderer> renderer =

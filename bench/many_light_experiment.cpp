@@ -3,6 +3,7 @@
 // set (rows of K other than baseline_lights fit their own), so the rows
 // differ in the visibility factor alone; errors are against the ground
 // truth under the scene's own environment.
+#include "src/cli/progress_display.h"
 #include "bench/many_light_experiment.h"
 #include "lightfit/scene_lights.h"
 
@@ -142,7 +143,7 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
     options.local_lights = false;
     options.environment_lights = args.baseline_lights;
     say("fitting lights and baking visibility fields...");
-    RenderSetup setup = prepare_render(scene_ptr, options, !args.quiet);
+    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
 
     GroundTruthOptions truth_options;
     truth_options.local_lights = false;

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <cmath>
 
+#include "src/cli/progress_display.h"
 #include "lightfit/scene_lights.h"
 #include "demos/contact_sheet.h"
 #include "demos/demo_runners.h"
@@ -37,7 +38,7 @@ DemoResult run_compare_demo(const DemoOptions& options) {
     std::shared_ptr<Scene> scene = load_demo_scene(options, "compare/scene.json");
     RenderOptions render;
     render.environment_lights = kLightCounts[0];
-    const RenderSetup setup = prepare_render(scene, render, options.progress);
+    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress)});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
     const float t = scene->animation.start;
     const int width = options.width > 0 ? options.width : 240;

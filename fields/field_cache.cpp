@@ -10,7 +10,6 @@
 
 #include "fields/field_file.h"
 #include "src/core/error.h"
-#include "src/core/progress_report.h"
 #include "src/shading/ovdf_inside.h"
 
 namespace rsl {
@@ -39,7 +38,7 @@ size_t model_bytes(const CpcaModel& m) {
 }
 
 // One field of one unique mesh: read from `out.file` when the file is there
-// and valid; otherwise baked (with progress on stderr) and written there. A
+// and valid; otherwise baked (reporting options.progress) and written there. A
 // file that is there but refused (corrupt, truncated, foreign) is worth a
 // warning even when quiet: it is being replaced. Stale files need none: any
 // change of mesh or parameters selects a different file name.
@@ -51,28 +50,24 @@ std::shared_ptr<const Field> load_or_bake(const FieldExpectation& expect, const 
                                                         const std::function<void(double)>&),
                                           void (*write)(const fs::path&, const Field&, uint64_t)) {
     const auto start = std::chrono::steady_clock::now();
-    const bool verbose = options.verbose;
     std::shared_ptr<const Field> field;
     if (fs::exists(out.file)) {
         try {
             field = std::make_shared<const Field>(read(out.file, expect));
             out.state = FieldState::Reused;
-            if (verbose) std::fprintf(stderr, "%s: cached %s\n", label.c_str(), out.file.string().c_str());
         } catch (const Error& e) {
             warn("refusing a cached field file, baking it again: {}", e.what());
         }
     }
     if (!field) {
-        ProgressReport progress(label, verbose);
         Stats stats;
         field = std::make_shared<const Field>(bake(mesh, params, &stats, [&](double x) {
-            progress.update(x);
             if (options.progress) options.progress(label, x);
         }));
         write(out.file, *field, *expect.mesh_hash);
         out.state = FieldState::Baked;
-        progress.finish(fmt::format("1:{:.1f} compression, rms {:.4f}", stats.compression.compression_ratio(),
-                                    stats.compression.rms_error));
+        out.compression_ratio = stats.compression.compression_ratio();
+        out.rms_error = stats.compression.rms_error;
     }
     if (options.progress) options.progress(label, 1.0);  // baked, or read from the cache
     out.seconds = seconds_since(start);

@@ -52,6 +52,9 @@ struct FieldOutcome {
     double seconds = 0;      // reading or baking
     size_t disk_bytes = 0;   // of the file
     size_t memory_bytes = 0; // of the field's arrays in RAM
+    // A baked field's compression (the tables' size over the compressed
+    // size) and its rms error; 0 for a field read from the cache.
+    double compression_ratio = 0, rms_error = 0;
 };
 
 struct UniqueFields {
@@ -78,10 +81,9 @@ FieldShard parse_field_shard(const std::string& text, const std::string& option 
 struct FieldCacheOptions {
     std::filesystem::path directory;  // empty: default_cache_directory(scene source)
     bool svdf_only = false;
-    bool verbose = true;  // progress and time left on stderr
-    // Also called with (what is baked, fraction of that bake), from the
-    // baking threads (thread-safe callbacks only); a field read from the
-    // cache reports 1 once.
+    // Called with (what is baked, fraction of that bake), from the baking
+    // threads (thread-safe callbacks only); a field read from the cache
+    // reports 1 once. Nothing is printed: the tools draw it.
     std::function<void(const std::string& what, double fraction)> progress;
     SvdfParams svdf;
     OvdfParams ovdf;

@@ -25,7 +25,7 @@ SetupReport bake_fields(const Scene& scene, const std::string& field_cache, cons
     options.progress = throttled(progress);
     const auto start = std::chrono::steady_clock::now();
     FieldLoadReport report;
-    load_part_fields(s, options, false, &report);
+    load_part_fields(s, options, &report);
     SetupReport setup;
     setup.fields_loaded = report.loaded, setup.fields_baked = report.baked;
     setup.bake_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

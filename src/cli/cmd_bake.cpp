@@ -4,6 +4,7 @@
 
 #include "fields/field_cache.h"
 #include "src/cli/command.h"
+#include "src/cli/progress_display.h"
 #include "src/cli/unique_meshes.h"
 #include "src/core/scene.h"
 
@@ -24,7 +25,8 @@ void run_bake(const BakeArgs& args) {
     options.shard = shard;
     if (!args.output.empty()) options.directory = args.output;
     options.svdf_only = args.svdf_only;
-    options.verbose = !args.quiet;
+    ProgressDisplay display(!args.quiet);
+    options.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
     if (args.clusters > 0) options.svdf.clusters = args.clusters;
     if (args.vectors > 0) options.svdf.vectors = args.vectors;
     if (args.supersampling > 0) options.svdf.supersampling = options.ovdf.supersampling = args.supersampling;
@@ -39,6 +41,11 @@ void run_bake(const BakeArgs& args) {
             if (o->state != FieldState::Skipped) fmt::print("{}\n", o->file.string());
         }
     if (args.quiet) return;
+    for (const UniqueFields& u : fields.unique)
+        for (const FieldOutcome* o : {&u.svdf_outcome, &u.ovdf_outcome})
+            if (o->state == FieldState::Baked)
+                display.note(fmt::format("{}: baked in {:.1f} s, 1:{:.1f} compression, rms {:.4f}",
+                                         o->file.filename().string(), o->seconds, o->compression_ratio, o->rms_error));
     const int baked = fields.count(FieldState::Baked), reused = fields.count(FieldState::Reused);
     fmt::print(stderr, "rsl bake: {} parts, {} unique mesh{}{}\n", scene.parts.size(), fields.unique.size(),
                fields.unique.size() == 1 ? "" : "es",

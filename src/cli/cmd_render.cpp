@@ -12,6 +12,7 @@
 
 #include "src/backend/make_renderer.h"
 #include "src/cli/command.h"
+#include "src/cli/progress_display.h"
 #include "src/core/error.h"
 #include "src/frame/image_formation.h"
 #include "src/render/render_setup.h"
@@ -90,8 +91,12 @@ void run_render(const RenderArgs& args) {
         options.shadow_maps.filter = args.shadow_filter == "pcf" ? ShadowFilter::Pcf : ShadowFilter::Pcss;
     }
 
-    const RenderSetup setup = prepare_render(args.scene, options, !args.quiet);
+    ProgressDisplay display(!args.quiet);
+    SetupOptions how;
+    how.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
+    const RenderSetup setup = prepare_render(args.scene, options, how);
     const Scene& scene = *setup.scene;
+    if (!args.quiet && setup.environment.resolution() > 0) display.note(describe_fit(setup));
     if (!args.quiet)
         fmt::print(stderr, "fields: {} loaded from the cache, {} baked ({:.1f} s)\n", setup.fields_loaded,
                    setup.fields_baked, setup.bake_seconds);

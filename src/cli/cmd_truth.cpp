@@ -2,6 +2,7 @@
 // (docs/TRUTH.md). Per-vertex exact direct lighting, written as .rslv, and the
 // image formed from it exactly as the RSL renderer forms its image (or, with
 // --per-pixel, the same integral at every pixel's hit point), as EXR + PNG.
+#include <algorithm>
 #include <chrono>
 
 #include <fmt/core.h>
@@ -9,7 +10,7 @@
 #include "src/cli/command.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
-#include "src/core/progress_report.h"
+#include "src/cli/progress_display.h"
 #include "src/core/scene.h"
 #include "src/core/scene_environment.h"
 #include "src/trace/ground_truth.h"
@@ -90,19 +91,22 @@ void run_truth(const TruthArgs& args) {
     const bool want_vertices = !args.per_pixel || !args.vertex_output.empty();
     const auto shade_start = Clock::now();
     VertexColors vertices;
+    ProgressDisplay display(!args.quiet);
+    // A ProgressCallback (done of total) drawn as job `what`.
+    const auto job = [&display](const std::string& what) {
+        return [&display, what](size_t done, size_t total) { display(what, double(done) / double(std::max<size_t>(total, 1))); };
+    };
     if (want_vertices) {
-        ProgressReport progress("truth: vertices", !args.quiet);
-        vertices = truth.shade_vertices(std::ref(progress));
-        progress.finish("");
+        vertices = truth.shade_vertices(job("truth: vertices"));
+        display("truth: vertices", 1.0);
     }
     Image image;
     if (args.per_pixel) {
-        ProgressReport progress("truth: pixels", !args.quiet);
         const PosedScene& posed = truth.posed();
         image = trace_image(posed, camera, formation,
                             [&](const RayHit& hit, const Vec3& dir) { return truth.shade_hit(hit, dir); },
-                            std::ref(progress));
-        progress.finish("");
+                            job("truth: pixels"));
+        display("truth: pixels", 1.0);
     } else {
         image = form_image(truth.posed(), camera, vertices, formation);
     }

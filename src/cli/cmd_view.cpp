@@ -2,6 +2,7 @@
 #ifdef RSL_HAVE_GL
 #include <memory>
 
+#include "src/cli/progress_display.h"
 #include "src/cli/command.h"
 #include "src/core/error.h"
 #include "src/gl/viewer.h"
@@ -50,6 +51,8 @@ RegisterCommand view_command({"view",
             options.panel = !args->no_panel;
             options.screenshot = args->screenshot;
             options.frames = args->frames;
+            ProgressDisplay display;
+            options.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
             gl::run_viewer(options);
         });
     }});

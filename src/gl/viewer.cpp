@@ -156,7 +156,9 @@ void run_viewer(const ViewerOptions& options) {
         light.position = scene->camera.target + Vec3(0.5f, 1.0f, 0.5f) * std::max(0.5f, 0.3f * bounds.radius);
         scene->lights.push_back(light);
     }
-    RenderSetup setup = prepare_render(scene, options.render, true);
+    SetupOptions how;
+    how.progress = options.progress;
+    RenderSetup setup = prepare_render(scene, options.render, how);
 
     Window window(options.width, options.height, "rsl view: " + scene->name);
     ImGuiSession imgui(window.window);

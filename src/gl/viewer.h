@@ -8,6 +8,8 @@
 // environment with another number of RSLs in a background thread, switches
 // each visibility factor, and shows fps and the GPU time of each pass.
 #include <filesystem>
+#include <functional>
+#include <string>
 
 #include "src/core/scene.h"
 #include "src/render/render_options.h"
@@ -27,6 +29,8 @@ struct ViewerOptions {
     // `screenshot` (PNG) and exit. frames = 0: interactive.
     std::filesystem::path screenshot;
     int frames = 0;
+    // Hears the fit's and the field bakes' progress (SetupOptions::progress).
+    std::function<void(const std::string& what, double fraction)> progress;
 };
 
 // Runs the viewer until the window closes (or the screenshot is written).

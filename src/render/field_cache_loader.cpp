@@ -7,13 +7,12 @@ namespace rsl {
 SvdfParams cache_svdf_params(const PrecomputeSettings& settings) { return svdf_params_from(settings); }
 OvdfParams cache_ovdf_params(const PrecomputeSettings& settings) { return ovdf_params_from(settings); }
 
-CachedFields load_or_bake_fields(const Scene& scene, bool occluders, bool progress,
+CachedFields load_or_bake_fields(const Scene& scene, bool occluders,
                                  const std::filesystem::path& cache_directory,
                                  const std::function<void(const std::string&, double)>& callback) {
     FieldCacheOptions options = default_field_options(scene);
     if (!cache_directory.empty()) options.directory = cache_directory;
     options.svdf_only = !occluders || scene.parts.size() < 2;  // a lone part shadows nobody
-    options.verbose = progress;
     options.progress = callback;
     const SceneFields fields = bake_or_load_fields(scene, options);
     CachedFields result;

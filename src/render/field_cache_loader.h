@@ -32,7 +32,7 @@ OvdfParams cache_ovdf_params(const PrecomputeSettings& settings);
 // empty beside the scene's source file (<scene folder>/.rsl-cache). OVDFs
 // only when `occluders` and the scene has more than one part. `callback`, when
 // given, hears every bake's progress (FieldCacheOptions::progress).
-CachedFields load_or_bake_fields(const Scene& scene, bool occluders, bool progress,
+CachedFields load_or_bake_fields(const Scene& scene, bool occluders,
                                  const std::filesystem::path& cache_directory = {},
                                  const std::function<void(const std::string&, double)>& callback = {});
 

@@ -38,11 +38,10 @@ PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options)
     return fields;
 }
 
-PartFields load_part_fields(const Scene& scene, const FieldBakeOptions& options, bool progress,
-                            FieldLoadReport* report) {
+PartFields load_part_fields(const Scene& scene, const FieldBakeOptions& options, FieldLoadReport* report) {
     if (scene.source.empty() && options.cache_directory.empty()) return bake_part_fields(scene, options);
     CachedFields cached =
-        load_or_bake_fields(scene, options.occluders, progress, options.cache_directory, options.progress);
+        load_or_bake_fields(scene, options.occluders, options.cache_directory, options.progress);
     PartFields fields;
     fields.self.resize(scene.parts.size());
     fields.occluder.resize(scene.parts.size());

@@ -3,7 +3,7 @@
 
 #include <chrono>
 
-#include "src/core/progress_report.h"
+#include <fmt/format.h>
 #include "src/core/error.h"
 #include "src/core/scene_environment.h"
 
@@ -31,18 +31,12 @@ CubeMap RenderSetup::environment_at(float t) const {
     return blend_environments(environment, second_environment, scene->environment.blend_weight_at(t));
 }
 
-RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options, bool progress) {
-    return prepare_render(std::make_shared<Scene>(load_scene(scene_path)), options, progress);
-}
-
-RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, bool progress) {
-    SetupOptions setup_options;
-    setup_options.print_progress = progress;
-    return prepare_render(std::move(scene), options, setup_options);
+RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options,
+                           const SetupOptions& how) {
+    return prepare_render(std::make_shared<Scene>(load_scene(scene_path)), options, how);
 }
 
 RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, const SetupOptions& how) {
-    const bool progress = how.print_progress;
     RenderSetup setup;
     setup.scene = std::move(scene);
     const Scene& s = *setup.scene;
@@ -58,10 +52,6 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
         }
         setup.fit_seconds = seconds_since(start);
         if (how.progress) how.progress("fit", 1.0);
-        if (progress)
-            std::fprintf(stderr, "%s: %zu RSLs fitted in %.2f s%s\n", describe_environment(s.environment).c_str(),
-                         setup.environment_lights.first.lights.size(), setup.fit_seconds,
-                         s.environment.second_file.empty() ? "" : " (and as many for the blend's second map)");
     }
     FieldBakeOptions bake;
     bake.self_visibility = options.self_visibility;
@@ -73,26 +63,21 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
         // The scene's field cache: reuse what `rsl bake` (or an earlier run)
         // wrote, bake only what is missing.
         FieldLoadReport report;
-        setup.fields = load_part_fields(s, bake, progress, &report);
+        setup.fields = load_part_fields(s, bake, &report);
         setup.fields_loaded = report.loaded, setup.fields_baked = report.baked;
     } else {
-        std::unique_ptr<ProgressReport> report;
-        std::string current;
-        if (progress)
-            bake.progress = [&](const std::string& what, double fraction) {
-                if (how.progress) how.progress(what, fraction);
-                if (what != current) {
-                    if (report) report->finish("");
-                    current = what;
-                    report = std::make_unique<ProgressReport>(what, true);
-                }
-                report->update(fraction);
-            };
         setup.fields = bake_part_fields(s, bake);
-        if (report) report->finish("");
     }
     setup.bake_seconds = seconds_since(start);
     return setup;
+}
+
+std::string describe_fit(const RenderSetup& setup) {
+    const Scene& s = *setup.scene;
+    if (setup.environment.resolution() == 0) return "no environment lights";
+    return fmt::format("{}: {} RSLs fitted in {:.2f} s{}", describe_environment(s.environment),
+                       setup.environment_lights.first.lights.size(), setup.fit_seconds,
+                       s.environment.second_file.empty() ? "" : " (and as many for the blend's second map)");
 }
 
 }  // namespace rsl

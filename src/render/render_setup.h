@@ -3,7 +3,7 @@
 // the scene, its environment as a cube map (two when the scene blends two
 // maps, `second_file`), the environment's RSL sets (one per map) and the
 // parts' visibility fields (from the scene's field cache, <scene folder>/
-// .rsl-cache, baking only what is missing, with progress on stderr).
+// .rsl-cache, baking only what is missing, reporting progress to a callback).
 // Shared by `rsl render`, `rsl bench render` and the error tables.
 #include <filesystem>
 #include <functional>
@@ -36,7 +36,6 @@ std::map<std::string, std::string> parse_material_overrides(const std::vector<st
 
 // How prepare_render reports and where it keeps the fields.
 struct SetupOptions {
-    bool print_progress = false;  // progress lines on stderr (the CLI)
     // Hears (what, fraction) of the fit ("fit", once done) and of every field
     // bake, from worker threads (FieldBakeOptions::progress).
     std::function<void(const std::string& what, double fraction)> progress;
@@ -47,9 +46,11 @@ struct SetupOptions {
 
 // Loads the scene and its environment, fits options.environment_lights RSLs,
 // bakes the fields the options switch on.
-RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options, bool progress);
+RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options,
+                           const SetupOptions& setup = {});
 // The same for a scene already in memory (its environment file is still read).
-RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, bool progress);
-RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, const SetupOptions& setup);
+RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, const SetupOptions& setup = {});
+// "sunsky.exr: 30 RSLs fitted in 0.12 s": the fit, as a tool prints it.
+std::string describe_fit(const RenderSetup& setup);
 
 }  // namespace rsl

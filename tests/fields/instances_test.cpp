@@ -66,7 +66,6 @@ std::vector<fs::path> rslf_files(const fs::path& dir) {
 FieldCacheOptions quiet_options(const Scene& scene, const fs::path& directory, FieldShard shard = {}) {
     FieldCacheOptions options = default_field_options(scene);
     options.directory = directory;
-    options.verbose = false;
     options.shard = shard;
     return options;
 }

@@ -29,10 +29,10 @@ TEST_CASE("rendering loads fields from the cache and bakes only what is missing"
     pre.ovdf_shells = 3, pre.ovdf_cube_resolution = 4, pre.ovdf_vdt_resolution = 8, pre.ovdf_vectors = 3;
 
     FieldLoadReport first, second;
-    const PartFields baked = load_part_fields(scene, FieldBakeOptions{}, false, &first);
+    const PartFields baked = load_part_fields(scene, FieldBakeOptions{}, &first);
     CHECK(first.baked == 4);  // SVDF and OVDF of both parts
     CHECK(first.loaded == 0);
-    const PartFields loaded = load_part_fields(scene, FieldBakeOptions{}, false, &second);
+    const PartFields loaded = load_part_fields(scene, FieldBakeOptions{}, &second);
     CHECK(second.baked == 0);
     CHECK(second.loaded == 4);
     CHECK(fs::exists(folder / ".rsl-cache"));
@@ -40,14 +40,14 @@ TEST_CASE("rendering loads fields from the cache and bakes only what is missing"
     // Changing a parameter selects other files: only that kind is baked again.
     scene.precompute.ovdf_shells = 4;
     FieldLoadReport third;
-    load_part_fields(scene, FieldBakeOptions{}, false, &third);
+    load_part_fields(scene, FieldBakeOptions{}, &third);
     CHECK(third.baked == 2);
     CHECK(third.loaded == 2);
     scene.precompute.ovdf_shells = 3;
 
     Scene in_memory = scene;
     in_memory.source.clear();
-    const PartFields reference = load_part_fields(in_memory, FieldBakeOptions{}, false);
+    const PartFields reference = load_part_fields(in_memory, FieldBakeOptions{});
 
     const RslSet lights = test::single_rsl(glm::normalize(Vec3(0.3f, 1.0f, 0.2f)), 0.4f, Color(1.0f));
     RenderOptions options;

@@ -110,7 +110,7 @@ TEST_CASE("Instances share one field and render exactly as fields baked per part
     scene.camera.position = Vec3(1, 3, 4);
 
     FieldLoadReport report;
-    const PartFields cached = load_part_fields(scene, FieldBakeOptions{}, false, &report);
+    const PartFields cached = load_part_fields(scene, FieldBakeOptions{}, &report);
     CHECK(report.baked == 6);  // ground, ball, step: one SVDF and one OVDF each, for 10 parts
     CHECK(report.loaded == 0);
     const PartFields shared = bake_part_fields(scene, FieldBakeOptions{});
