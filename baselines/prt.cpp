@@ -234,15 +234,4 @@ void HaarRenderer::render(const CubeMap& environment, int terms, std::vector<Col
     });
 }
 
-double relative_l2_error(const std::vector<Color>& a, const std::vector<Color>& b) {
-    RSL_CHECK_EQ(a.size(), b.size());
-    double diff = 0, norm = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-        const DVec3 d = DVec3(a[i]) - DVec3(b[i]);
-        diff += glm::dot(d, d);
-        norm += glm::dot(DVec3(b[i]), DVec3(b[i]));
-    }
-    return norm > 0 ? std::sqrt(diff / norm) : std::sqrt(diff);
-}
-
 }  // namespace rsl

@@ -107,7 +107,4 @@ private:
     haar::SparseLighting lighting_;
 };
 
-// ‖a − b‖₂ / ‖b‖₂ over RGB values.
-double relative_l2_error(const std::vector<Color>& a, const std::vector<Color>& b);
-
 }  // namespace rsl

@@ -164,7 +164,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
                           double precompute_s, size_t bytes) {
         MethodResult r;
         r.method = method, r.terms = terms;
-        r.vertex_error = relative_l2_error(flat, truth_flat);
+        r.vertex_error = relative_l2(flat, truth_flat);
         r.image = form_image(posed, camera, layout.to_colors(scene, flat, method, t));
         const ImageErrorReport errors = compare_images(r.image, results.front().image);
         r.image_error = errors.pixels.relative_l2(), r.image_h1 = errors.relative_h1();
@@ -181,7 +181,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
     prt_options.check_lighting = &environment;
     say("PRT precompute (SH + Haar transport)...");
     PrtPrecompute prt = precompute_prt(truth, environment, prt_options);
-    const double texel_sum_error = relative_l2_error(prt.texel_sum, truth_flat);
+    const double texel_sum_error = relative_l2(prt.texel_sum, truth_flat);
     say(fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, SH {:.1f}, Haar {:.1f}; transport vs truth {:.2e}",
                     prt.wall_seconds, prt.trace_cpu_seconds, prt.sh_cpu_seconds, prt.haar_cpu_seconds,
                     texel_sum_error));
@@ -217,7 +217,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
         HaarRenderer haar_renderer(unshadowed);
         for (int terms : args.haar_terms) {
             haar_renderer.render(environment, terms, flat);
-            unshadowed_errors.haar.push_back({terms, relative_l2_error(flat, unshadowed.texel_sum)});
+            unshadowed_errors.haar.push_back({terms, relative_l2(flat, unshadowed.texel_sum)});
         }
     }
     if (!args.no_rsl) {
@@ -245,7 +245,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
             CpuRenderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
             light_only.set_time(t);
             light_only.shade(colors);
-            unshadowed_errors.rsl.push_back({lights, relative_l2_error(flatten(colors), unshadowed.texel_sum)});
+            unshadowed_errors.rsl.push_back({lights, relative_l2(flatten(colors), unshadowed.texel_sum)});
         }
     }
     write_outputs(args, scene, results, prt, texel_sum_error, unshadowed_errors);

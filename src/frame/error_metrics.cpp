@@ -23,6 +23,13 @@ bool covered(const Image& image, int x, int y) { return image.channels < 4 || im
 
 }  // namespace
 
+double relative_l2(const std::vector<Color>& a, const std::vector<Color>& b) {
+    RSL_CHECK_EQ(a.size(), b.size());
+    ErrorStats stats;
+    for (size_t i = 0; i < a.size(); ++i) stats.add(a[i], b[i]);
+    return stats.relative_l2();
+}
+
 void ErrorStats::add(const Color& a, const Color& b) {
     const DVec3 d = DVec3(a) - DVec3(b);
     const double e2 = glm::dot(d, d), b2 = glm::dot(DVec3(b), DVec3(b));

@@ -26,6 +26,10 @@ struct ErrorStats {
     void merge(const ErrorStats& other);
 };
 
+// ‖a − b‖₂ / ‖b‖₂ over two equally long lists of RGB values (ErrorStats):
+// the one relative L2 error of every comparison, vertex lists and images alike.
+double relative_l2(const std::vector<Color>& a, const std::vector<Color>& b);
+
 struct VertexErrorReport {
     ErrorStats total;
     std::vector<std::string> part_names;

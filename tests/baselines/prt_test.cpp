@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "src/frame/error_metrics.h"
 #include "baselines/prt.h"
 
 using namespace rsl;
@@ -128,26 +129,26 @@ TEST_CASE("PRT transport reproduces the ground truth, and Haar with every term i
         options.haar_drop = 0.0f;
         options.block_vertices = 17;  // several blocks, one partial
         const PrtPrecompute prt = precompute_prt(truth, sky, options);
-        CHECK(relative_l2_error(prt.texel_sum, reference) < 1e-5);
+        CHECK(relative_l2(prt.texel_sum, reference) < 1e-5);
 
         HaarRenderer haar(prt);
         std::vector<Color> out;
         haar.render(sky, sky.texel_count(), out);
-        CHECK(relative_l2_error(out, reference) < 1e-4);
+        CHECK(relative_l2(out, reference) < 1e-4);
         // Few terms: a real approximation, with an error that the full set removes.
         haar.render(sky, 10, out);
-        const double error_10 = relative_l2_error(out, reference);
+        const double error_10 = relative_l2(out, reference);
         haar.render(sky, 200, out);
-        const double error_200 = relative_l2_error(out, reference);
+        const double error_200 = relative_l2(out, reference);
         CHECK(error_10 > 1e-3);
         CHECK(error_200 < error_10);
 
         // SH: the sun's hard shadow is beyond order 10, but order 10 beats order 3.
         const ShRenderer sh_renderer(prt, sky);
         sh_renderer.render(3, Mat3(1.0f), out);
-        const double sh_3 = relative_l2_error(out, reference);
+        const double sh_3 = relative_l2(out, reference);
         sh_renderer.render(10, Mat3(1.0f), out);
-        const double sh_10 = relative_l2_error(out, reference);
+        const double sh_10 = relative_l2(out, reference);
         CHECK(sh_10 < sh_3);
         CHECK(sh_10 > 1e-3);  // not exact: band-limited
     }
@@ -170,7 +171,7 @@ TEST_CASE("Haar transport dropping tiny coefficients stays close and stores fewe
     HaarRenderer renderer(sparse);
     std::vector<Color> out;
     renderer.render(sky, sky.texel_count(), out);
-    CHECK(relative_l2_error(out, full.texel_sum) < 1e-2);
+    CHECK(relative_l2(out, full.texel_sum) < 1e-2);
 }
 
 TEST_CASE("SH rendering with a turned environment matches re-projecting the turned map") {
@@ -186,10 +187,10 @@ TEST_CASE("SH rendering with a turned environment matches re-projecting the turn
     ShRenderer(prt, sky).render(5, turn, rotated);
     ShRenderer(prt, rotate(sky, turn)).render(5, Mat3(1.0f), reprojected);
     INFO("turned vs re-projected");
-    CHECK(relative_l2_error(rotated, reprojected) < 5e-3);
+    CHECK(relative_l2(rotated, reprojected) < 5e-3);
     // Turning the other way is visibly different: the check can fail.
     ShRenderer(prt, sky).render(5, glm::transpose(turn), rotated);
-    CHECK(relative_l2_error(rotated, reprojected) > 0.2);
+    CHECK(relative_l2(rotated, reprojected) > 0.2);
 }
 
 TEST_CASE("Unshadowed transport (no rays) is the shadowed one where nothing occludes, and brighter in shadows") {

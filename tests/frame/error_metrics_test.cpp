@@ -1,4 +1,5 @@
 // Error measures against hand-computed values.
+#include <cmath>
 #include <random>
 
 #include <fmt/core.h>
@@ -32,6 +33,28 @@ TEST_CASE("Relative L2, max and per-part errors over vertices", "[trace][error]"
     REQUIRE(r.total.relative_l2() == Approx(e * std::sqrt(n0 / (n0 + n1))).epsilon(1e-4));
     REQUIRE(r.total.max_error == Approx(e * max0).epsilon(1e-4));
     REQUIRE(r.total.count == 120);
+}
+
+TEST_CASE("One relative L2 for lists of colours, a zero reference included", "[trace][error]") {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> uni(-1.0f, 2.0f);
+    for (int trial = 0; trial < 50; ++trial) {
+        std::vector<Color> a(size_t(1 + trial * 7)), b(a.size());
+        double diff = 0, norm = 0;
+        for (size_t i = 0; i < a.size(); ++i) {
+            a[i] = Color(uni(rng), uni(rng), uni(rng));
+            b[i] = Color(uni(rng), uni(rng), uni(rng));
+            const DVec3 d = DVec3(a[i]) - DVec3(b[i]);
+            diff += glm::dot(d, d);
+            norm += glm::dot(DVec3(b[i]), DVec3(b[i]));
+        }
+        CHECK(relative_l2(a, b) == Approx(std::sqrt(diff / norm)).epsilon(1e-12));
+    }
+    // As ErrorStats: 0 when both are 0, infinite when only the reference is.
+    const std::vector<Color> zero(3, Color(0)), one(3, Color(1));
+    CHECK(relative_l2(zero, zero) == 0.0);
+    CHECK(std::isinf(relative_l2(one, zero)));
+    CHECK_THROWS(relative_l2(one, std::vector<Color>(2, Color(1))));
 }
 
 TEST_CASE("Image errors: covered pixels only, H1 ignores constant offsets", "[trace][error]") {
