@@ -13,8 +13,8 @@
 #include <fmt/format.h>
 #include <cmath>
 
-#include "src/cli/progress_display.h"
-#include "lightfit/scene_lights.h"
+#include "tools/rsl/progress_display.h"
+#include "src/lightfit/scene_lights.h"
 #include "demos/contact_sheet.h"
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"

@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <cmath>
 
-#include "src/cli/progress_display.h"
+#include "tools/rsl/progress_display.h"
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"
 #include "src/backend/make_renderer.h"

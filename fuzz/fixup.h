@@ -18,7 +18,7 @@ inline void fix_trailing_checksum(std::string& bytes) {
     std::memcpy(bytes.data() + bytes.size() - 8, &checksum, 8);
 }
 
-// A field file (fields/field_file.h): the parameter hash at byte 24 matches
+// A field file (src/fields/field_file.h): the parameter hash at byte 24 matches
 // the u32-length-prefixed parameter JSON at byte 32, then the checksum.
 inline void fix_field_file(std::string& bytes) {
     constexpr size_t kHashAt = 24, kLengthAt = 32;

@@ -1,10 +1,10 @@
-// Fuzzer of the field-file reader (.rslf, fields/field_file.h). The input's
+// Fuzzer of the field-file reader (.rslf, src/fields/field_file.h). The input's
 // parameter hash and checksum are made right first (fuzz/fixup.h), so that
 // mutations reach the parser; then the header is read as `rsl info` does and
 // the field as the renderer does, and an accepted field is looked up.
 #include <cmath>
 
-#include "fields/field_file.h"
+#include "src/fields/field_file.h"
 #include "fuzz/fixup.h"
 #include "fuzz/fuzz_support.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "fuzz/fuzz_support.h"
-#include "lightfit/decompose.h"
+#include "src/lightfit/decompose.h"
 #include "src/core/envmap.h"
 #include "src/core/image.h"
 

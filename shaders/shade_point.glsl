@@ -3,7 +3,7 @@
 //   Σ_lights  2r²·I  ×  BRDF-SAT average  ×  SVDF average  ×  Π_occluders OVDF average
 //
 // with the same arithmetic as the CPU renderer (src/render/shade_block.cpp,
-// src/brdf/brdf_table.cpp, fields/svdf.h, fields/ovdf.cpp), so that the two
+// src/brdf/brdf_table.cpp, src/fields/svdf.h, src/fields/ovdf.cpp), so that the two
 // agree to float rounding. Layout of every texture: src/gl/gpu_layout.h.
 // Two passes run it (shade_point): the vertex pass (shade_vertices.frag.glsl,
 // one fragment per vertex) and the per-pixel pass (shade_pixels.*.glsl, the
@@ -103,7 +103,7 @@ vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
     return max(sum * t.inv_full_area, vec3(0.0f));  // ≥ 0 as the CPU's: a tiny square's differences can cancel below 0
 }
 
-// ---- visibility distance tables (fields/vdt.h, svdf.h, ovdf.cpp) ----
+// ---- visibility distance tables (src/fields/vdt.h, svdf.h, ovdf.cpp) ----
 
 // The self-visibility shade_point multiplies each light by: g_self_corners
 // = 0: none (a flat rectangle, or the SVDF switched off); 1: the vertex's

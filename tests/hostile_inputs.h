@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "fields/field_file.h"
+#include "src/fields/field_file.h"
 #include "fuzz/fixup.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"

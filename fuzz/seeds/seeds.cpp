@@ -13,12 +13,12 @@
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <nlohmann/json.hpp>
 
-#include "assets/generate/environments.h"
-#include "assets/generate/model.h"
-#include "assets/generate/primitives.h"
-#include "fields/field_file.h"
-#include "fields/ovdf_spans.h"
-#include "fields/solid_pieces.h"
+#include "tools/assets/environments.h"
+#include "tools/assets/model.h"
+#include "tools/assets/primitives.h"
+#include "src/fields/field_file.h"
+#include "src/fields/ovdf_spans.h"
+#include "src/fields/solid_pieces.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/image.h"

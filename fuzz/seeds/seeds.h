@@ -1,7 +1,7 @@
 #pragma once
 // The fuzzers' seed corpora (docs/FUZZING.md), generated from the project's
 // own generators and writers: small environment maps from
-// assets/generate/environments, meshes from assets/generate/primitives, a
+// tools/assets/environments, meshes from tools/assets/primitives, a
 // two-node animated model through write_glb, the scene files of
 // assets/scenes with their paths pointed at small stand-ins, field files
 // baked on a small sphere, and vertex colours. Every seed is a valid input

@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "lightfit/scene_lights.h"
-#include "lightfit/reconstruct.h"
+#include "src/lightfit/scene_lights.h"
+#include "src/lightfit/reconstruct.h"
 #include "src/api/api_convert.h"
 #include "src/backend/make_renderer.h"
 #include "src/core/envmap.h"

@@ -159,14 +159,14 @@ struct AnimationRange {
     float start = 0, end = 0, fps = 24;
 };
 
-// Precomputation settings (fields/). Defaults follow the paper.
+// Precomputation settings (src/fields/). Defaults follow the paper.
 struct PrecomputeSettings {
     int svdf_resolution = 32;
     int svdf_clusters = 256;
     int svdf_vectors = 8;
     int svdf_supersampling = 4;  // rays per texel side
     int ovdf_shells = 16;
-    float ovdf_inner_radius = 0.0f;  // × bounding radius; 0: per mesh (fields/ovdf.h ovdf_params_for_mesh)
+    float ovdf_inner_radius = 0.0f;  // × bounding radius; 0: per mesh (src/fields/ovdf.h ovdf_params_for_mesh)
     float ovdf_outer_radius = 6.0f;
     int ovdf_cube_resolution = 32;
     int ovdf_vdt_resolution = 32;

@@ -507,7 +507,7 @@ private:
             const std::string w = "precompute.ovdf";
             check_keys(o, w, {"shells", "inner_radius", "outer_radius", "cube_resolution", "vdt_resolution", "vectors"});
             if (o.contains("shells")) p.ovdf_shells = int_at(o, "shells", w, 2, 256);
-            // "auto" (the default): chosen per mesh (fields/ovdf.h ovdf_params_for_mesh).
+            // "auto" (the default): chosen per mesh (src/fields/ovdf.h ovdf_params_for_mesh).
             if (o.contains("inner_radius")) {
                 if (o["inner_radius"].is_string() && o["inner_radius"] != "auto")
                     fail("precompute.ovdf.inner_radius", "must be a positive number or \"auto\"");

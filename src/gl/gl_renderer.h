@@ -34,7 +34,7 @@
 #include <memory>
 #include <vector>
 
-#include "lightfit/rsl.h"
+#include "src/lightfit/rsl.h"
 #include "src/core/scene.h"
 #include "src/gl/gl_objects.h"
 #include "src/gl/gpu_layout.h"

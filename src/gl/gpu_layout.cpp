@@ -88,7 +88,7 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
         g.face_s[f] = root2 * CubeMap::face_direction(f, 1, 0) - g.face_normal[f];
         g.face_t[f] = root2 * CubeMap::face_direction(f, 0, 1) - g.face_normal[f];
     }
-    // Instances share a field object (fields/field_cache.h): its tables go
+    // Instances share a field object (src/fields/field_cache.h): its tables go
     // up once, and every part that uses it points at the same records.
     std::map<const Svdf*, Vec4> svdf_records;
     std::map<const Ovdf*, std::array<Vec4, 5>> ovdf_records;

@@ -17,7 +17,7 @@
 //  SVDF / OVDF coefficients: per vertex / sample `stride` texels = [1, w₀ … w_{k−1}] padded,
 //    so a reconstruction is Σ_t dot(table_t, coefficients_t)
 //  OVDF sample frames: per (face, i, j) two texels, x and z (y = z × x); then
-//    per shell one texel (table zoom, cone radius, 0, 0) (fields/ovdf.h OvdfZoom);
+//    per shell one texel (table zoom, cone radius, 0, 0) (src/fields/ovdf.h OvdfZoom);
 //    then per sample (surface distance, occluded area), kSamplesPerTexel
 //    samples to a texel;
 //    then the radial spans, (enter, exit) of two lines to a texel. The

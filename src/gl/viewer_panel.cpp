@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <string>
 
-#include "lightfit/scene_lights.h"
+#include "src/lightfit/scene_lights.h"
 #include "src/core/error.h"
 #include "src/gl/viewer_state.h"
 #include "src/render/cpu_renderer.h"

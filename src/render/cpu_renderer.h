@@ -23,7 +23,7 @@
 #include <span>
 #include <vector>
 
-#include "lightfit/rsl.h"
+#include "src/lightfit/rsl.h"
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 #include "src/render/culling.h"

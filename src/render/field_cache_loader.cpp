@@ -1,6 +1,6 @@
 #include "src/render/field_cache_loader.h"
 
-#include "fields/field_cache.h"
+#include "src/fields/field_cache.h"
 
 namespace rsl {
 

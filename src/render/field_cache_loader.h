@@ -1,5 +1,5 @@
 #pragma once
-// The renderer's door to the fields stage's on-disk cache (fields/field_cache.h,
+// The renderer's door to the fields stage's on-disk cache (src/fields/field_cache.h,
 // the files `rsl bake` writes): load every unique mesh's valid cached
 // SVDF/OVDF and bake (then write) only the missing ones, with progress on
 // stderr. Parts that share a mesh (instances) share one field: the per-part
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "fields/ovdf.h"
-#include "fields/svdf.h"
+#include "src/fields/ovdf.h"
+#include "src/fields/svdf.h"
 #include "src/core/scene.h"
 
 namespace rsl {

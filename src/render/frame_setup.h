@@ -16,7 +16,7 @@
 #include <span>
 #include <vector>
 
-#include "lightfit/rsl.h"
+#include "src/lightfit/rsl.h"
 #include "src/core/scene.h"
 #include "src/render/culling.h"
 #include "src/render/part_fields.h"

@@ -20,11 +20,11 @@
 // frame or coefficients: a renderer locates a point fully, then completes
 // it with its terms, only when a narrower light needs the tables.
 //
-// It mirrors fields/ovdf.cpp (same formulas, same order of blending) and is
+// It mirrors src/fields/ovdf.cpp (same formulas, same order of blending) and is
 // pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp.
 
-#include "fields/ovdf.h"
-#include "fields/vdt.h"
+#include "src/fields/ovdf.h"
+#include "src/fields/vdt.h"
 #include "src/shading/ovdf_tables.h"
 #include "src/shading/ovdf_small_occluder.h"
 

@@ -1,11 +1,11 @@
 #pragma once
-// The compressed occluder field (fields/ovdf.h) as the renderer's OccluderField.
+// The compressed occluder field (src/fields/ovdf.h) as the renderer's OccluderField.
 #include <algorithm>
 #include <functional>
 #include <numbers>
 #include <memory>
 
-#include "fields/ovdf.h"
+#include "src/fields/ovdf.h"
 #include "src/render/part_fields.h"
 
 namespace rsl {

@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "fields/field_cache.h"
+#include "src/fields/field_cache.h"
 #include "src/render/field_cache_loader.h"
 #include "src/render/ovdf_occluder.h"
 

@@ -4,14 +4,14 @@
 // other parts, in its own frame).
 //
 // Occluder fields sit behind a small interface so that the renderer can use
-// the compressed OVDF (fields/ovdf.h) or, for measuring the OVDF's own error,
+// the compressed OVDF (src/fields/ovdf.h) or, for measuring the OVDF's own error,
 // an exact stand-in.
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "fields/svdf.h"
+#include "src/fields/svdf.h"
 #include "src/core/mesh.h"
 #include "src/core/scene.h"
 
@@ -35,7 +35,7 @@ public:
 };
 
 // Per part, but per unique mesh in memory: parts whose meshes are equal
-// (instances; fields/field_cache.h groups them) hold the same pointer, to a
+// (instances; src/fields/field_cache.h groups them) hold the same pointer, to a
 // field baked in the mesh's own frame, and each part's transform poses it.
 // PartFields is the name the renderer's API uses.
 struct RenderFields {

@@ -1,5 +1,5 @@
 #include "src/render/render_setup.h"
-#include "lightfit/scene_lights.h"
+#include "src/lightfit/scene_lights.h"
 
 #include <chrono>
 

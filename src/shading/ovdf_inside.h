@@ -1,7 +1,7 @@
 #pragma once
 // Whether a receiver lies inside an occluder's part (a joint's sunk
 // vertex): the radial spans first, then the blended surface distance
-// (fields/ovdf_spans.h, docs/design/FIELDS.md).
+// (src/fields/ovdf_spans.h, docs/design/FIELDS.md).
 #include "src/shading/interpolation.h"
 
 namespace rsl::shading {
@@ -21,7 +21,7 @@ RSL_CONST float kOvdfContactTolerance = 0.001f;
 RSL_SHARED bool ovdf_inside_part(float radius, float blended_surface_distance) {
     return blended_surface_distance < -kOvdfContactTolerance * radius;
 }
-// The radial spans (fields/ovdf_spans.h) decide that test first where they
+// The radial spans (src/fields/ovdf_spans.h) decide that test first where they
 // can. Along each radial line, coming in from outside the bounding sphere,
 // the bake records where the line first enters the part (`enter`, a
 // distance from the centre) and where it leaves that first solid span

@@ -1,6 +1,6 @@
 #pragma once
 // The occluder field's table lookup (shadow fields, Zhou et al. 2005;
-// fields/ovdf.h, docs/design/FIELDS.md): shells, cube faces, samples, the
+// src/fields/ovdf.h, docs/design/FIELDS.md): shells, cube faces, samples, the
 // bounding cone and its zoom, the distance bounds, and the cone's culling test.
 #include "src/shading/interpolation.h"
 
@@ -17,7 +17,7 @@ RSL_CONST int kCubeFaces = 6;
 // The natural log of a positive normal float to 1.2e-7 (absolute where
 // |log x| < 1, relative above; tests/fields/ovdf_test.cpp), the same
 // arithmetic in both renderers and, unlike the libraries' log, in a loop the
-// CPU vectorizes (its near-point locations, fields/ovdf_near.cpp). x = m·2^e
+// CPU vectorizes (its near-point locations, src/fields/ovdf_near.cpp). x = m·2^e
 // with m in [√½, √2): log x = e·ln 2 + 2·atanh(s), s = (m − 1)/(m + 1), |s| ≤
 // 0.172, whose series to s⁹ leaves 1e-9.
 RSL_SHARED float portable_log(float x) {
@@ -114,7 +114,7 @@ RSL_SHARED float ovdf_cone_radius(float distance, float radius) {
     return x / sqrt(1.0f + sqrt(1.0f - x * x));
 }
 // A shell's zoomed table: table point = zoom × plane point, so that the
-// bounding cone's edge maps to kOvdfZoomEdge (fields/ovdf.h). Inside the
+// bounding cone's edge maps to kOvdfZoomEdge (src/fields/ovdf.h). Inside the
 // bounding sphere there is no cone: the part may lie in any direction, the
 // ones away from its centre too (|p| up to √2, the antipode), so the table
 // is zoomed out by 1/√2 to hold the whole sphere of directions in its

@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "baselines/haar.h"
+#include "tools/baselines/haar.h"
 
 using namespace rsl;
 

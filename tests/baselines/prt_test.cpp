@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/frame/error_metrics.h"
-#include "baselines/prt.h"
+#include "tools/baselines/prt.h"
 
 using namespace rsl;
 

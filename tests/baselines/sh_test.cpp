@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "baselines/sh.h"
+#include "tools/baselines/sh.h"
 
 using namespace rsl;
 

@@ -1,4 +1,4 @@
-// The project's own assets (assets/generate): solids are closed with outward
+// The project's own assets (tools/assets): solids are closed with outward
 // analytic normals and the volumes of their formulas, the models have the
 // part and vertex counts the paper's scenes have, the animations move and
 // loop, the environments carry their energy where they should, the files
@@ -13,11 +13,11 @@
 #include <catch2/catch.hpp>
 #include <unistd.h>
 
-#include "assets/generate/environments.h"
-#include "assets/generate/generate_all.h"
-#include "assets/generate/kitchen.h"
-#include "assets/generate/primitives.h"
-#include "assets/generate/robot.h"
+#include "tools/assets/environments.h"
+#include "tools/assets/generate_all.h"
+#include "tools/assets/kitchen.h"
+#include "tools/assets/primitives.h"
+#include "tools/assets/robot.h"
 #include "src/core/atomic_file.h"
 #include "src/core/envmap.h"
 #include "src/core/image.h"

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "lightfit/decompose.h"
+#include "src/lightfit/decompose.h"
 #include "src/core/atomic_file.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"

@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "fields/field_file.h"
+#include "src/fields/field_file.h"
 #include "tests/core/gltf_builder.h"
 #include "tests/interrupted_run.h"
 #include "tests/test_support.h"

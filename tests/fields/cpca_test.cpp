@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fields/cpca.h"
+#include "src/fields/cpca.h"
 
 using namespace rsl;
 

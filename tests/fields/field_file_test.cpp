@@ -6,7 +6,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fields/field_file.h"
+#include "src/fields/field_file.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "tests/hostile_inputs.h"

@@ -8,8 +8,8 @@
 #include <map>
 #include <set>
 
-#include "fields/field_cache.h"
-#include "fields/field_file.h"
+#include "src/fields/field_cache.h"
+#include "src/fields/field_file.h"
 #include "tests/test_support.h"
 #include "tests/trace/trace_test_scenes.h"
 

@@ -1,4 +1,4 @@
-// Ovdf::locate_near (fields/ovdf_near.cpp), the vectorized near half of a
+// Ovdf::locate_near (src/fields/ovdf_near.cpp), the vectorized near half of a
 // receiver's location, against locate() and occluded_area_at() one point at
 // a time: which points are near (between the bounding sphere and the outer
 // shell), and there the same cone, blended occluded area and pole, over
@@ -11,8 +11,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "assets/generate/primitives.h"
-#include "fields/ovdf.h"
+#include "tools/assets/primitives.h"
+#include "src/fields/ovdf.h"
 #include "src/shading/ovdf_tables.h"
 
 using namespace rsl;

@@ -6,8 +6,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "assets/generate/primitives.h"
-#include "fields/ovdf.h"
+#include "tools/assets/primitives.h"
+#include "src/fields/ovdf.h"
 #include "src/core/hemisphere.h"
 #include "src/rays/ray_scene.h"
 #include "src/shading/ovdf_tables.h"
@@ -225,7 +225,7 @@ TriangleMesh thin_box(float a, float b) {
         mesh.normals.push_back(glm::normalize(mesh.positions.back()));
     }
     // Counter-clockwise seen from outside (a solid; clockwise would be a
-    // room's walls, fields/solid_pieces.h): -z, +z, -y, +y, -x, +x.
+    // room's walls, src/fields/solid_pieces.h): -z, +z, -y, +y, -x, +x.
     const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads)
         for (uint32_t i : {q[0], q[1], q[2], q[0], q[2], q[3]}) mesh.indices.push_back(i);

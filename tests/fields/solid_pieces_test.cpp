@@ -5,9 +5,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "assets/generate/primitives.h"
-#include "fields/ovdf.h"
-#include "fields/solid_pieces.h"
+#include "tools/assets/primitives.h"
+#include "src/fields/ovdf.h"
+#include "src/fields/solid_pieces.h"
 #include "src/shading/shading_core.h"
 
 using namespace rsl;
@@ -211,7 +211,7 @@ TEST_CASE("Solid pieces: open surfaces and glued pieces", "[solid_pieces]") {
 }
 
 
-// ---- the OVDF's radial spans (fields/ovdf_spans.h): the receiver's inside test ----
+// ---- the OVDF's radial spans (src/fields/ovdf_spans.h): the receiver's inside test ----
 
 namespace {
 

@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fields/svdf.h"
+#include "src/fields/svdf.h"
 #include "src/rays/ray_scene.h"
 
 using namespace rsl;

@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fields/vdt.h"
+#include "src/fields/vdt.h"
 
 using namespace rsl;
 

@@ -4,12 +4,12 @@
 
 #include <filesystem>
 
-#include "lightfit/scene_lights.h"
+#include "src/lightfit/scene_lights.h"
 #include "src/render/occluder_shape.h"
 #include "src/core/scene_environment.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/gpu_layout.h"
-#include "assets/generate/pbr_scene.h"
+#include "tools/assets/pbr_scene.h"
 #include "src/render/cpu_renderer.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/trace/trace_test_scenes.h"

@@ -11,9 +11,9 @@
 
 #include <fmt/format.h>
 
-#include "assets/generate/model.h"
-#include "assets/generate/pbr_scene.h"
-#include "assets/generate/primitives.h"
+#include "tools/assets/model.h"
+#include "tools/assets/pbr_scene.h"
+#include "tools/assets/primitives.h"
 #include "rsl/rsl.h"
 #include "src/core/image.h"
 #include "src/gl/viewer.h"

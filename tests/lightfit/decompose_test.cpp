@@ -7,7 +7,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "lightfit/decompose.h"
+#include "src/lightfit/decompose.h"
 
 using namespace rsl;
 using namespace rsl::lightfit;

@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "lightfit/rsl.h"
+#include "src/lightfit/rsl.h"
 #include "src/core/envmap.h"
 #include "src/core/image.h"
 #include "tests/test_support.h"

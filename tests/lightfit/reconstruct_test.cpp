@@ -3,9 +3,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "lightfit/decompose.h"
-#include "lightfit/reconstruct.h"
-#include "lightfit/square_fit.h"
+#include "src/lightfit/decompose.h"
+#include "src/lightfit/reconstruct.h"
+#include "src/lightfit/square_fit.h"
 
 using namespace rsl;
 using namespace rsl::lightfit;

@@ -4,7 +4,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "lightfit/square_fit.h"
+#include "src/lightfit/square_fit.h"
 
 using namespace rsl;
 using namespace rsl::lightfit;

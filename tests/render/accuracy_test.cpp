@@ -2,7 +2,7 @@
 // small scene (a sphere over a plane under a sky with a bright sun-like block).
 #include <catch2/catch.hpp>
 
-#include "lightfit/scene_lights.h"
+#include "src/lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"

@@ -6,7 +6,7 @@
 
 #include <filesystem>
 
-#include "lightfit/scene_lights.h"
+#include "src/lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"

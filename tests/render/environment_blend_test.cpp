@@ -4,7 +4,7 @@
 // bound that the swapped weights fail) and against the linearity it rests on.
 #include <catch2/catch.hpp>
 
-#include "lightfit/scene_lights.h"
+#include "src/lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"

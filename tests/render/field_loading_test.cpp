@@ -1,4 +1,4 @@
-// The renderer's fields from the scene's field cache (fields/field_cache.h):
+// The renderer's fields from the scene's field cache (src/fields/field_cache.h):
 // the first load bakes and writes every field, the second reads them all back,
 // and both shade exactly as fields baked in memory.
 #include <catch2/catch.hpp>

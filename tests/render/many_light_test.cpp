@@ -7,8 +7,8 @@
 
 #include <filesystem>
 
-#include "lightfit/scene_lights.h"
-#include "lightfit/reconstruct.h"
+#include "src/lightfit/scene_lights.h"
+#include "src/lightfit/reconstruct.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/exact_visibility.h"
 #include "src/render/cpu_renderer.h"

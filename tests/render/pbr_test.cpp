@@ -4,9 +4,9 @@
 // compared with the Embree truth, per vertex and per pixel.
 #include <catch2/catch.hpp>
 
-#include "lightfit/scene_lights.h"
-#include "assets/generate/model.h"
-#include "assets/generate/pbr_scene.h"
+#include "src/lightfit/scene_lights.h"
+#include "tools/assets/model.h"
+#include "tools/assets/pbr_scene.h"
 #include "src/frame/error_metrics.h"
 #include "src/frame/image_formation.h"
 #include "src/render/cpu_renderer.h"

@@ -5,7 +5,7 @@
 // truth.
 #include <catch2/catch.hpp>
 
-#include "lightfit/scene_lights.h"
+#include "src/lightfit/scene_lights.h"
 #include "src/frame/error_metrics.h"
 #include "src/frame/image_formation.h"
 #include "src/render/cpu_renderer.h"

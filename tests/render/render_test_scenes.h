@@ -4,10 +4,10 @@
 #include <memory>
 #include <random>
 
-#include "lightfit/scene_lights.h"
-#include "assets/generate/pbr_scene.h"
-#include "fields/svdf.h"
-#include "lightfit/rsl.h"
+#include "src/lightfit/scene_lights.h"
+#include "tools/assets/pbr_scene.h"
+#include "src/fields/svdf.h"
+#include "src/lightfit/rsl.h"
 #include "src/frame/image_formation.h"
 #include "src/render/part_fields.h"
 #include "src/render/cpu_renderer.h"

@@ -5,7 +5,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "lightfit/scene_lights.h"
+#include "src/lightfit/scene_lights.h"
 #include "src/core/scene_environment.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/cpu_renderer.h"

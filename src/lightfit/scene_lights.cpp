@@ -1,0 +1,42 @@
+#include "src/lightfit/scene_lights.h"
+
+#include <cmath>
+
+#include "src/lightfit/decompose.h"
+#include "src/core/scene_environment.h"
+
+namespace rsl {
+
+RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross_face) {
+    if (environment.energy() == DVec3(0.0)) {  // a black map (a scene lit by suns alone): nothing to fit
+        RslSet none;
+        none.resolution = environment.resolution();
+        return none;
+    }
+    lightfit::DecomposeOptions options;
+    options.lights = lights;
+    options.cross_face = cross_face;
+    return lightfit::decompose(environment, options);
+}
+
+RslSet fit_scene_lights(const Scene& scene, const CubeMap& environment, int lights, bool cross_face) {
+    RslSet set = fit_environment_lights(environment, lights, cross_face);
+    const std::vector<RotatableSquareLight> suns = sun_lights(scene);
+    set.lights.insert(set.lights.end(), suns.begin(), suns.end());
+    return set;
+}
+
+std::vector<RotatableSquareLight> sun_lights(const Scene& scene) {
+    const float half_diagonal = kSunAngularRadius * std::sqrt(0.5f * kPi);  // 2r² = π·α²
+    std::vector<RotatableSquareLight> lights;
+    for (const SunLight& sun : scene.environment.suns) {
+        RotatableSquareLight light;
+        light.center = sun_direction_in_map(scene, sun);
+        light.half_diagonal = half_diagonal;
+        light.radiance = sun.irradiance / light.solid_angle();
+        lights.push_back(light);
+    }
+    return lights;
+}
+
+}  // namespace rsl

@@ -1,0 +1,254 @@
+// The experiment behind `rsl baselines` (docs/BASELINES.md): one static frame
+// of a scene with every method against the ground truth. SH PRT, Haar PRT and
+// the RSL renderer share the truth's vertices, camera and image formation;
+// images are compared with compare_images (src/frame/error_metrics.h), the
+// same definition `rsl compare` uses.
+#include "tools/rsl/progress_display.h"
+#include "tools/bench/baselines_experiment.h"
+#include "src/lightfit/scene_lights.h"
+
+#include "tools/bench/experiment_support.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "tools/baselines/prt.h"
+#include "tools/baselines/raster.h"
+#include "src/core/atomic_file.h"
+#include "src/core/error.h"
+#include "src/frame/error_metrics.h"
+#include "src/frame/image_formation.h"
+#include "src/render/ovdf_occluder.h"
+#include "src/render/render_setup.h"
+#include "src/core/scene_environment.h"
+
+namespace rsl {
+namespace {
+
+using Clock = ExperimentClock;
+
+struct MethodResult {
+    std::string method;  // "truth", "sh", "haar", "rsl"
+    int terms = 0;
+    double vertex_error = 0, image_error = 0, image_h1 = 0;
+    double frame_ms = 0, precompute_s = 0;
+    size_t bytes = 0;
+    Image image;
+    std::string label() const { return method == "truth" ? "TRUTH" : fmt::format("{} {}", method, terms); }
+};
+
+size_t field_bytes(const PartFields& fields) {
+    size_t bytes = 0;
+    for (const auto& svdf : fields.self)
+        if (svdf) bytes += svdf->model.stored_bytes(false);
+    for (const auto& occluder : fields.occluder)
+        if (auto* ovdf = dynamic_cast<const OvdfOccluder*>(occluder.get())) bytes += ovdf->field().model.stored_bytes(false);
+    return bytes;
+}
+
+struct Diagnostics {
+    std::vector<std::pair<int, double>> haar, rsl;  // (terms, vertex error)
+};
+
+void write_outputs(const BaselinesExperiment& args, const Scene& scene, const std::vector<MethodResult>& results,
+                   const PrtPrecompute& prt, double texel_sum_error,
+                   const Diagnostics& unshadowed) {
+    const std::filesystem::path dir(args.output);
+    nlohmann::json json = {{"scene", scene.name}, {"source", scene.source.string()},
+                           {"environment", scene.environment.file.filename().string()},
+                           {"materials", args.diffuse ? "diffuse" : "scene"}, {"time", args.time},
+                           {"cube_resolution", scene.environment.resolution}, {"vertices", prt.layout.total()},
+                           {"shadow_rays", prt.rays}, {"transport_vs_truth_error", texel_sum_error},
+                           {"methods", nlohmann::json::array()}};
+    std::string table = fmt::format(
+        "Scene `{}`, environment `{}`, {} materials, t = {}, {} vertices, cube 6×{}².\n\n"
+        "| method | terms | vertex rel. L2 | image rel. L2 | image H1 | ms / frame | precompute s | memory MB |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        scene.name, scene.environment.file.filename().string(), args.diffuse ? "diffuse" : "scene (glossy)", args.time,
+        prt.layout.total(), scene.environment.resolution);
+    for (const MethodResult& r : results) {
+        json["methods"].push_back({{"method", r.method}, {"terms", r.terms}, {"vertex_error", r.vertex_error},
+                                   {"image_error", r.image_error}, {"image_h1_error", r.image_h1}, {"frame_ms", r.frame_ms},
+                                   {"precompute_seconds", r.precompute_s}, {"bytes", r.bytes}});
+        table += fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.4f} | {:.2f} | {:.1f} | {:.1f} |\n", r.method,
+                             r.terms, r.vertex_error, r.image_error, r.image_h1, r.frame_ms, r.precompute_s, double(r.bytes) / 1e6);
+        const std::string stem = r.method == "truth" ? "truth" : fmt::format("{}_{}", r.method, r.terms);
+        write_exr_and_png(dir / (stem + ".exr"), r.image, ToneMap{0.0f, true});
+    }
+    table += "\nWithout visibility (V = 1; RSL with SVDF and OVDF off) against the unshadowed truth, vertex rel. L2:\n";
+    for (const auto& [name, rows] : {std::pair{"haar", &unshadowed.haar}, std::pair{"rsl", &unshadowed.rsl}}) {
+        if (rows->empty()) continue;
+        json[fmt::format("{}_unshadowed_vertex_error", name)] = nlohmann::json::object();
+        table += fmt::format("- {}:", name);
+        for (const auto& [terms, error] : *rows) {
+            table += fmt::format(" {} → {:.4f};", terms, error);
+            json[fmt::format("{}_unshadowed_vertex_error", name)][std::to_string(terms)] = error;
+        }
+        table += "\n";
+    }
+    write_file_atomically(dir / "results.json", json.dump(2) + "\n");
+    write_file_atomically(dir / "table.md", table);
+
+    // Side by side: one exposure for all, from the truth's 99th luminance percentile.
+    std::vector<float> lum;
+    const Image& truth = results.front().image;
+    for (int y = 0; y < truth.height; ++y)
+        for (int x = 0; x < truth.width; ++x) lum.push_back(luminance(truth.rgb(x, y)));
+    std::nth_element(lum.begin(), lum.begin() + lum.size() * 99 / 100, lum.end());
+    const float gain = 0.9f / std::max(lum[lum.size() * 99 / 100], 1e-6f);
+    std::vector<Image> tiles;
+    std::vector<std::string> labels;
+    for (const MethodResult& r : results) {
+        tiles.push_back(r.image);
+        labels.push_back(r.method == "truth" ? "TRUTH"
+                                             : fmt::format("{} {}  {:.1f}%", r.method, r.terms, 100 * r.image_error));
+    }
+    write_png(dir / "sheet.png", raster::contact_sheet(tiles, labels, 4, gain));
+
+    std::vector<raster::Series> series = {{"SH", Color(0.85f, 0.2f, 0.1f), {}, {}, {}},
+                                          {"HAAR", Color(0.1f, 0.45f, 0.85f), {}, {}, {}},
+                                          {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}, {}}};
+    for (const MethodResult& r : results) {
+        const int s = r.method == "sh" ? 0 : r.method == "haar" ? 1 : r.method == "rsl" ? 2 : -1;
+        if (s < 0) continue;
+        series[s].x.push_back(r.terms);
+        series[s].y.push_back(std::max(r.image_error, 1e-6));
+    }
+    std::erase_if(series, [](const raster::Series& s) { return s.x.empty(); });
+    write_png(dir / "error_plot.png",
+              raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR TERMS, RSLS)", "IMAGE REL. L2 ERROR"));
+    fmt::print("{}\nwrote {}/table.md, results.json, sheet.png, error_plot.png\n", table, dir.string());
+}
+
+}  // namespace
+
+void run_baselines_experiment(const BaselinesExperiment& args) {
+    auto scene_ptr = std::make_shared<Scene>(load_scene(args.scene));
+    Scene& scene = *scene_ptr;
+    adapt_scene(scene, args.environment, args.resolution, args.diffuse);
+    const float t = args.time;
+    auto say = [&](const std::string& line) {
+        if (!args.quiet) fmt::print(stderr, "{}\n", line);
+    };
+    const auto load_start = Clock::now();
+    const CubeMap environment = scene_environment_map(scene, scene.environment.resolution);
+    say(fmt::format("environment {} as 6x{}^2 ({:.1f} s)", describe_environment(scene.environment), environment.resolution(),
+                    seconds_since(load_start)));
+
+    GroundTruthOptions truth_options;
+    truth_options.local_lights = false;
+    const GroundTruth truth(scene, environment, t, truth_options);
+    PosedScene posed(scene, t);
+    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, args.width, args.height);
+    const VertexLayout layout(scene);
+    auto flatten = [&](const VertexColors& colors) {
+        std::vector<Color> flat;
+        for (const auto& part : colors.parts) flat.insert(flat.end(), part.begin(), part.end());
+        return flat;
+    };
+
+    std::vector<MethodResult> results;
+    MethodResult reference;
+    reference.method = "truth";
+    auto truth_start = Clock::now();
+    const VertexColors truth_colors = truth.shade_vertices();
+    reference.frame_ms = 1e3 * seconds_since(truth_start);
+    reference.image = form_image(posed, camera, truth_colors);
+    const std::vector<Color> truth_flat = flatten(truth_colors);
+    say(fmt::format("ground truth: {:.1f} s", reference.frame_ms / 1e3));
+    results.push_back(reference);
+    auto add_result = [&](const std::string& method, int terms, const std::vector<Color>& flat, double frame_ms,
+                          double precompute_s, size_t bytes) {
+        MethodResult r;
+        r.method = method, r.terms = terms;
+        r.vertex_error = relative_l2(flat, truth_flat);
+        r.image = form_image(posed, camera, layout.to_colors(scene, flat, method, t));
+        const ImageErrorReport errors = compare_images(r.image, results.front().image);
+        r.image_error = errors.pixels.relative_l2(), r.image_h1 = errors.relative_h1();
+        r.frame_ms = frame_ms, r.precompute_s = precompute_s, r.bytes = bytes;
+        say(fmt::format("{} {}: vertex error {:.4f}, image error {:.4f} (H1 {:.4f}), {:.2f} ms", method, terms,
+                        r.vertex_error, r.image_error, r.image_h1, frame_ms));
+        results.push_back(std::move(r));
+    };
+
+    // SH and Haar share one pass of shadow rays.
+    PrtOptions prt_options;
+    prt_options.sh_order = *std::max_element(args.sh_orders.begin(), args.sh_orders.end());
+    prt_options.haar_drop = args.haar_drop;
+    prt_options.check_lighting = &environment;
+    say("PRT precompute (SH + Haar transport)...");
+    PrtPrecompute prt = precompute_prt(truth, environment, prt_options);
+    const double texel_sum_error = relative_l2(prt.texel_sum, truth_flat);
+    say(fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, SH {:.1f}, Haar {:.1f}; transport vs truth {:.2e}",
+                    prt.wall_seconds, prt.trace_cpu_seconds, prt.sh_cpu_seconds, prt.haar_cpu_seconds,
+                    texel_sum_error));
+    std::vector<Color> flat;
+    const Mat3 rotation = scene.environment.rotation_at(t);
+    {
+        const ShRenderer sh_renderer(prt, environment);
+        for (int order : args.sh_orders) {
+            const double ms = median_ms(args.repeats, [&] { sh_renderer.render(order, rotation, flat); });
+            const size_t bytes = prt.layout.total() * sh::coefficient_count(order) * 3 * sizeof(float);
+            add_result("sh", order * order, flat, ms, prt.trace_cpu_seconds + prt.sh_cpu_seconds, bytes);
+        }
+    }
+    {
+        HaarRenderer haar_renderer(prt);
+        for (int terms : args.haar_terms) {
+            const double ms = median_ms(args.repeats, [&] { haar_renderer.render(environment, terms, flat); });
+            add_result("haar", terms, flat, ms, prt.trace_cpu_seconds + prt.haar_cpu_seconds, prt.haar.bytes());
+        }
+    }
+    // Without visibility (V = 1 in the transport, fields off in RSL), against
+    // the unshadowed truth: the lighting approximations alone, like for like.
+    // The shadowed Haar transport is released first (it can be large).
+    prt.haar = {};
+    Diagnostics unshadowed_errors;
+    PrtOptions unshadowed_options;
+    unshadowed_options.sh = false;
+    unshadowed_options.haar_drop = args.haar_drop;
+    unshadowed_options.visibility = false;
+    unshadowed_options.check_lighting = &environment;
+    const PrtPrecompute unshadowed = precompute_prt(truth, environment, unshadowed_options);
+    {
+        HaarRenderer haar_renderer(unshadowed);
+        for (int terms : args.haar_terms) {
+            haar_renderer.render(environment, terms, flat);
+            unshadowed_errors.haar.push_back({terms, relative_l2(flat, unshadowed.texel_sum)});
+        }
+    }
+    if (!args.no_rsl) {
+        RenderOptions options;
+        options.local_lights = false;
+        options.environment_lights = args.rsl_lights.front();
+        say("RSL: fitting lights and baking visibility fields...");
+        RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
+        const size_t bytes = field_bytes(setup.fields);
+        for (int lights : args.rsl_lights) {
+            const auto fit_start = Clock::now();
+            RslSet set = lights == options.environment_lights ? setup.environment_lights.first
+                                                                : fit_scene_lights(*setup.scene, setup.environment, lights);
+            const double fit_s = lights == options.environment_lights ? setup.fit_seconds : seconds_since(fit_start);
+            options.environment_lights = lights;
+            CpuRenderer renderer(scene, std::move(set), setup.fields, options);
+            renderer.set_time(t);
+            VertexColors colors = renderer.make_output();
+            const double ms = median_ms(args.repeats, [&] { renderer.shade(colors); });
+            add_result("rsl", lights, flatten(colors), ms, setup.bake_seconds + fit_s, bytes);
+            // The same lights with every visibility factor off, against the
+            // unshadowed truth: the lighting + BRDF part of RSL's error.
+            RenderOptions no_shadows = options;
+            no_shadows.self_visibility = false, no_shadows.occluders = false;
+            CpuRenderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
+            light_only.set_time(t);
+            light_only.shade(colors);
+            unshadowed_errors.rsl.push_back({lights, relative_l2(flatten(colors), unshadowed.texel_sum)});
+        }
+    }
+    write_outputs(args, scene, results, prt, texel_sum_error, unshadowed_errors);
+}
+
+}  // namespace rsl

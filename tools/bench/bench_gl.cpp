@@ -1,0 +1,181 @@
+// `rsl bench gl`: the GPU renderer (headless EGL context) on the robot and
+// kitchen scenes at 30 RSLs: frames per second of the shading pass alone
+// (render-to-vertex-array + pack into the vertex buffer) and of the full frame
+// (plus the display pass into a 640×480 target, with and without the
+// per-pixel pass), and why the BRDF tables are stored in 32-bit rather than
+// 16-bit float.
+#ifdef RSL_HAVE_GL
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "src/fields/cpca.h"
+#include "tools/bench/bench.h"
+#include "src/gl/gl_renderer.h"
+#include "src/gl/headless_context.h"
+#include "src/gl/viewer.h"
+#include "src/render/render_setup.h"
+
+namespace rsl::bench {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// An offscreen colour + depth target for the display pass.
+struct DisplayTarget {
+    gl::Framebuffer fbo = gl::make_framebuffer();
+    gl::Renderbuffer color = gl::make_renderbuffer(), depth = gl::make_renderbuffer();
+    DisplayTarget(int width, int height) {
+        glBindRenderbuffer(GL_RENDERBUFFER, color.id());
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+        glBindRenderbuffer(GL_RENDERBUFFER, depth.id());
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color.id());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id());
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+};
+
+void bench_scene(const fs::path& path, const BenchOptions& options, const std::string& device) {
+    const std::string name = path.stem().string();
+    if (!fs::exists(path)) {
+        bench_emit({{"bench", "gl"}, {"case", name}, {"skipped", "missing " + path.string()}});
+        return;
+    }
+    auto scene = std::make_shared<Scene>(load_scene(path));
+    // The paper's settings take minutes to bake; --quick benches small fields
+    // (fewer PCA vectors: cheaper lookups, so faster than the full fields).
+    if (options.quick) gl::use_quick_fields(scene->precompute);
+    RenderOptions render;
+    render.environment_lights = 30;
+    const RenderSetup setup = prepare_render(scene, render);
+    gl::GlRenderer renderer(*scene, setup.environment_lights, setup.fields, render);
+    const int frames = options.quick ? 4 : 24;
+    const float duration = std::max(scene->animation.end - scene->animation.start, 1e-3f);
+    auto time_of = [&](int f) { return scene->animation.start + duration * float(f) / float(frames); };
+
+    renderer.set_time(time_of(0));
+    renderer.shade_on_device();  // warm-up: shader compilation happens at first use on some drivers
+    glFinish();
+    auto start = Clock::now();
+    for (int f = 0; f < frames; ++f) {
+        renderer.set_time(time_of(f));
+        renderer.shade_on_device();
+    }
+    glFinish();
+    const double shade_seconds = since(start) / frames;
+
+    // Full frames: the shading pass, then the display pass into a 640×480
+    // target, with the per-pixel pass (the default: grounds and glossy parts
+    // shaded per pixel, docs/GPU.md) and without it (every part the vertex
+    // colours' blend). Fewer frames: on a software rasterizer a frame with
+    // the per-pixel pass takes tens of seconds.
+    const int width = 640, height = 480;
+    DisplayTarget target(width, height);
+    const Camera& camera = scene->camera;
+    const int display_frames = options.quick ? 1 : 4;
+    auto time_frames = [&](bool per_pixel) {
+        RenderOptions toggles = render;
+        if (!per_pixel) toggles.pixel_shadows = PixelShadows::Off, toggles.pixel_highlights = false;
+        renderer.set_toggles(toggles);
+        const auto begin = Clock::now();
+        for (int f = 0; f < display_frames; ++f) {
+            const float t = time_of(f * frames / display_frames);
+            renderer.set_time(t);
+            renderer.shade_on_device();
+            glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.id());
+            glViewport(0, 0, width, height);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            const Mat4 view_projection =
+                glm::perspective(glm::radians(camera.fov_y_degrees), float(width) / height, 0.05f, 100.0f) *
+                glm::lookAt(camera.position_at(t), camera.target_at(t), camera.up);
+            renderer.draw(view_projection, 1.0f);
+        }
+        glFinish();
+        return since(begin) / display_frames;
+    };
+    const double blend_frame_seconds = time_frames(false);
+    const double frame_seconds = time_frames(true);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    bench_emit({{"bench", "gl"},
+                {"case", name + " 30 RSLs"},
+                {"device", device},
+                {"quick_fields", options.quick},
+                {"vertices", renderer.vertex_count()},
+                {"lights", renderer.stats().lights},
+                {"frames", frames},
+                {"shading_ms", 1e3 * shade_seconds},
+                {"shading_fps", 1.0 / shade_seconds},
+                {"display_frames", display_frames},
+                {"frame_ms", 1e3 * frame_seconds},
+                {"frame_fps", 1.0 / frame_seconds},
+                {"frame_vertex_blend_ms", 1e3 * blend_frame_seconds},
+                {"frame_vertex_blend_fps", 1.0 / blend_frame_seconds},
+                {"occluder_pairs", renderer.stats().occluder_pairs},
+                {"occluder_pairs_culled", renderer.stats().occluder_pairs_culled},
+                {"gpu_megabytes", double(renderer.gpu_bytes()) / (1 << 20)}});
+}
+
+// One-texel squares read from the SAT (four corner taps), against the
+// tabulated texel: the relative error of float storage and of half storage.
+void bench_sat_precision(const fs::path& path) {
+    if (!fs::exists(path)) return;
+    const Scene scene = load_scene(path);
+    for (const MaterialDesc& material : scene.materials) {
+        const auto table = BrdfTable::build(*make_brdf(material));
+        const int n = table->grid().n, stride = n + 1;
+        const std::vector<float>& sat = table->sat_data();
+        std::vector<double> float_errors, half_errors;
+        for (int s = 0; s < table->slice_count(); ++s)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    const Color texel = table->texel(s, i, j);
+                    for (int c = 0; c < 3; ++c) {
+                        if (!(texel[c] > 1e-3f * table->offset(s)[c])) continue;  // below the horizon / negligible
+                        auto corner = [&](int a, int b, bool half) {
+                            const float v = sat[((size_t(s) * stride + b) * stride + a) * 3 + c];
+                            return double(half ? round_to_half(v) : v);
+                        };
+                        for (const bool half : {false, true}) {
+                            const double integral = corner(i + 1, j + 1, half) - corner(i, j + 1, half) -
+                                                    corner(i + 1, j, half) + corner(i, j, half) +
+                                                    double(table->offset(s)[c]);  // offset·(area 1)
+                            const double error = std::abs(integral - texel[c]) / texel[c];
+                            (half ? half_errors : float_errors).push_back(error);
+                        }
+                    }
+                }
+        auto percentile = [](std::vector<double>& v, double q) {
+            if (v.empty()) return 0.0;
+            const size_t k = std::min(v.size() - 1, size_t(q * double(v.size())));
+            std::nth_element(v.begin(), v.begin() + k, v.end());
+            return v[k];
+        };
+        bench_emit({{"bench", "gl"},
+                    {"case", "BRDF SAT storage " + material.name + " (" + material.model + ")"},
+                    {"texel_values", float_errors.size()},
+                    {"float32_median_relative_error", percentile(float_errors, 0.5)},
+                    {"float32_p99_relative_error", percentile(float_errors, 0.99)},
+                    {"float16_median_relative_error", percentile(half_errors, 0.5)},
+                    {"float16_p99_relative_error", percentile(half_errors, 0.99)}});
+    }
+}
+
+RegisterBenchmark gl_benchmark({"gl", "GPU renderer: robot and kitchen fps (shading pass, full frame), SAT precision",
+    [](const BenchOptions& options) {
+        gl::HeadlessContext context;
+        const std::string device = context.description();
+        const fs::path& scenes = options.scenes;
+        bench_sat_precision(scenes / "robot.json");
+        bench_scene(scenes / "robot.json", options, device);
+        bench_scene(scenes / "kitchen.json", options, device);
+    }});
+
+}  // namespace
+}  // namespace rsl::bench
+#endif  // RSL_HAVE_GL

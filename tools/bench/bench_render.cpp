@@ -1,0 +1,158 @@
+// `rsl bench render`: frames per second of the CPU RSL renderer — shading
+// alone and with image formation — and its speed-up over the ground truth on
+// the same frame, measured in the same run; plus the error against it.
+// `rsl bench render-accuracy`: the error table of docs/RESULTS.md.
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+#include <fmt/core.h>
+
+#include "tools/bench/bench.h"
+#include "tools/bench/render_bench_cases.h"
+#include "src/backend/make_renderer.h"
+#include "src/render/render_setup.h"
+#include "src/frame/error_metrics.h"
+#include "src/trace/ground_truth.h"
+#include "src/frame/image_formation.h"
+
+namespace rsl::bench {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+template <class F>
+double median_seconds(int repeats, F&& f) {
+    std::vector<double> times;
+    for (int i = 0; i < repeats; ++i) {
+        const auto start = Clock::now();
+        f();
+        times.push_back(since(start));
+    }
+    std::sort(times.begin(), times.end());
+    return times[times.size() / 2];
+}
+
+void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
+    const auto scene = load_bench_scene(c, options);
+    if (!scene) {
+        bench_emit({{"bench", "render"}, {"case", c.name}, {"skipped", "missing shared assets"}});
+        return;
+    }
+    RenderOptions render_options;
+    render_options.environment_lights = c.lights;
+    const RenderSetup setup = prepare_render(scene, render_options);
+    const std::unique_ptr<VertexRenderer> renderer =
+        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render_options);
+    VertexColors colors = renderer->make_output();
+    renderer->set_time(c.time);
+    renderer->shade(colors);  // warm-up: thread-local scratch, caches
+    const int repeats = options.quick ? 2 : 5;
+    const double shade_seconds = median_seconds(repeats, [&] {
+        renderer->set_time(c.time);
+        renderer->shade(colors);
+    });
+    const int width = options.quick ? 160 : scene->camera.width, height = options.quick ? 120 : scene->camera.height;
+    PosedScene posed(*scene, c.time);
+    const PinholeCamera camera = PinholeCamera::at_time(scene->camera, c.time, width, height);
+    Image image;
+    const double image_seconds = median_seconds(repeats, [&] { image = form_image(posed, camera, colors); });
+    // `rsl render`'s image: shading that keeps the per-pixel terms, then the
+    // image with per-pixel shadows and highlights (docs/RENDERER.md).
+    renderer->keep_image_terms(true);
+    renderer->shade(colors);
+    const double shade_pixel_terms_seconds = median_seconds(repeats, [&] {
+        renderer->set_time(c.time);
+        renderer->shade(colors);
+    });
+    const double image_per_pixel_seconds = median_seconds(repeats, [&] { renderer->form_image(colors, camera); });
+    renderer->keep_image_terms(false);
+    renderer->shade(colors);  // the colours and stats of the frame as measured first
+
+    // The same frame with parts of the work switched off or done the slower
+    // way, in the same run: where the time goes, and the split OVDF lookup's
+    // gain over the field's own lookup (src/fields/ovdf.h).
+    auto variant_seconds = [&](auto&& configure) {
+        RenderOptions o = render_options;
+        configure(o);
+        const std::unique_ptr<VertexRenderer> r = make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, o);
+        VertexColors out = r->make_output();
+        r->set_time(c.time);
+        r->shade(out);
+        return median_seconds(repeats, [&] { r->shade(out); });
+    };
+    const double field_lookup_seconds = variant_seconds([](RenderOptions& o) { o.fast_occluder_lookups = false; });
+    const double self_only_seconds = variant_seconds([](RenderOptions& o) { o.occluders = false; });
+    const double brdf_only_seconds = variant_seconds([](RenderOptions& o) { o.occluders = o.self_visibility = false; });
+
+    // The map the renderer's RSLs stand for at c.time (blended when the scene blends two).
+    GroundTruth truth(*scene, setup.environment_at(c.time), c.time);
+    auto start = Clock::now();
+    const VertexColors reference = truth.shade_vertices();
+    const double truth_seconds = since(start);
+    const VertexErrorReport error = compare_vertex_colors(colors, reference);
+    const ObjectErrorReport objects = object_errors(error);
+    const RenderStats& stats = renderer->stats();
+    bench_emit({{"bench", "render"},
+                {"case", c.name},
+                {"vertices", stats.vertices},
+                {"parts", scene->parts.size()},
+                {"lights", stats.lights},
+                {"second_map_weight", setup.environment_lights.blends() ? scene->environment.blend_weight_at(c.time) : 0.0f},
+                {"lookups", stats.lookups},
+                {"occluder_pairs", stats.occluder_pairs},
+                {"occluder_pairs_culled", stats.occluder_pairs_culled},
+                {"block_occluders_culled", stats.block_occluders_culled},
+                {"occluder_lookups", stats.occluder_lookups},
+                {"shade_seconds_field_lookups", field_lookup_seconds},
+                {"shade_seconds_self_only", self_only_seconds},
+                {"shade_seconds_brdf_only", brdf_only_seconds},
+                {"bake_seconds", setup.bake_seconds},
+                {"fields_loaded", setup.fields_loaded},
+                {"fields_baked", setup.fields_baked},
+                {"fit_seconds", setup.fit_seconds},
+                {"shade_seconds", shade_seconds},
+                {"fps_shading", 1.0 / shade_seconds},
+                {"image_seconds", image_seconds},
+                {"image", fmt::format("{}x{}", width, height)},
+                {"fps_with_image", 1.0 / (shade_seconds + image_seconds)},
+                {"shade_seconds_pixel_terms", shade_pixel_terms_seconds},
+                {"image_seconds_per_pixel", image_per_pixel_seconds},
+                {"truth_seconds", truth_seconds},
+                {"speedup_shading", truth_seconds / shade_seconds},
+                {"speedup_with_image", (truth_seconds + image_seconds) / (shade_seconds + image_seconds)},
+                {"relative_l2_vs_truth", error.total.relative_l2()},
+                {"objects_relative_l2_vs_truth", objects.objects.relative_l2()},
+                {"worst_part", objects.worst_part},
+                {"worst_part_relative_l2_vs_truth", objects.worst}});
+}
+
+void bench_render(const BenchOptions& options) {
+    for (const RenderBenchCase& c : render_speed_cases(options.quick)) bench_case(c, options);
+}
+
+RegisterBenchmark render_benchmark({"render",
+    "CPU RSL renderer: fps (shading, with image formation) and speed-up over the ground truth", bench_render});
+
+void bench_render_accuracy(const BenchOptions& options) {
+    for (const AccuracyRow& row : render_accuracy_table(options, options.quick))
+        bench_emit(accuracy_row_json(row));
+}
+
+RegisterBenchmark render_accuracy_benchmark({"render-accuracy",
+    "Per-vertex relative L2 error of the RSL renderer vs the ground truth (docs/RESULTS.md); slow",
+    bench_render_accuracy});
+
+void bench_render_accuracy_goal(const BenchOptions& options) {
+    for (const AccuracyRow& row : render_accuracy_goal_rows(options, options.quick))
+        bench_emit(accuracy_row_json(row));
+}
+
+RegisterBenchmark render_goal_benchmark({"render-goal",
+    "The accuracy goal rows: glossy robot under grace, t = 0/0.5/1, K = 10-100, the scene's own field settings",
+    bench_render_accuracy_goal});
+
+}  // namespace
+}  // namespace rsl::bench

@@ -1,0 +1,249 @@
+// The experiment behind `rsl baselines --many-light` (docs/BASELINES.md,
+// "Many lights"). Every row shades the same static frame with the same RSL
+// set (rows of K other than baseline_lights fit their own), so the rows
+// differ in the visibility factor alone; errors are against the ground
+// truth under the scene's own environment.
+#include "tools/rsl/progress_display.h"
+#include "tools/bench/many_light_experiment.h"
+#include "src/lightfit/scene_lights.h"
+
+#include <cmath>
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "tools/baselines/raster.h"
+#include "tools/bench/experiment_support.h"
+#include "src/backend/make_renderer.h"
+#include "src/core/atomic_file.h"
+#include "src/core/error.h"
+#include "src/frame/error_metrics.h"
+#include "src/frame/image_formation.h"
+#include "src/render/exact_visibility.h"
+#include "src/render/render_setup.h"
+#include "src/trace/ground_truth.h"
+
+namespace rsl {
+namespace {
+
+struct Row {
+    std::string method;   // "rsl", "rsl-gl", "rays", "rays-budget", "shadow-map"
+    int setting = 0;      // K, S or the map's resolution
+    int lights = 0;       // K shaded
+    double frame_ms = 0;  // median shading time of one frame (GL: colours read back)
+    uint64_t rays = 0;    // shadow rays per frame (ray-traced rows)
+    double vertex_error = 0, objects_error = 0, worst_error = 0, image_error = 0;
+    std::string worst_part;
+    Image image;
+    std::string label() const {
+        if (method == "rsl" || method == "rsl-gl") return fmt::format("{} K={}", method, setting);
+        if (method == "rays") return fmt::format("rays S={}", setting);
+        if (method == "rays-budget") return fmt::format("rays budget S={}", setting);
+        return fmt::format("shadow map {}", setting);
+    }
+};
+
+Row make_row(const std::string& method, int setting, int lights) {
+    Row row;
+    row.method = method, row.setting = setting, row.lights = lights;
+    return row;
+}
+
+// The side S whose S² rays per (vertex, light) pair fit `budget` rays for
+// `pairs` pairs; at least 1 (a budget below one ray a pair is exceeded).
+int samples_for_budget(uint64_t budget, uint64_t pairs) {
+    if (pairs == 0) return 1;
+    const double per_pair = double(budget) / double(pairs);
+    return std::clamp(int(std::floor(std::sqrt(per_pair))), 1, ExactVisibility::kMaxSamplesPerSide);
+}
+
+void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
+                   double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
+    const std::filesystem::path dir(args.output);
+    nlohmann::json json = {{"scene", scene.name},
+                           {"source", scene.source.string()},
+                           {"environment", scene.environment.file.filename().string()},
+                           {"time", args.time},
+                           {"vertices", vertices},
+                           {"truth_ms", truth_ms},
+                           {"receivers", args.receivers},
+                           {"gl_device", gl_device},
+                           {"methods", nlohmann::json::array()}};
+    std::string table = fmt::format(
+        "Scene `{}`, environment `{}`, t = {}, {} vertices; truth {:.0f} ms. Errors: relative L2 against the "
+        "truth (objects: all parts but {}). GL rows: {}.\n\n"
+        "| method | K | ms / frame | rays / frame | vertices | objects | worst part | image |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | --- | ---: |\n",
+        scene.name, scene.environment.file.filename().string(), args.time, vertices, truth_ms,
+        fmt::format("{}", fmt::join(args.receivers, ", ")), gl_device);
+    for (const Row& r : rows) {
+        json["methods"].push_back({{"method", r.method}, {"setting", r.setting}, {"lights", r.lights},
+                                   {"frame_ms", r.frame_ms}, {"rays", r.rays}, {"vertex_error", r.vertex_error},
+                                   {"objects_error", r.objects_error}, {"worst_part", r.worst_part},
+                                   {"worst_part_error", r.worst_error}, {"image_error", r.image_error}});
+        table += fmt::format("| {} | {} | {:.1f} | {} | {:.4f} | {:.4f} | {} {:.4f} | {:.4f} |\n", r.label(), r.lights,
+                             r.frame_ms, r.rays ? fmt::format("{:.2f} M", double(r.rays) / 1e6) : std::string("–"),
+                             r.vertex_error, r.objects_error, r.worst_part, r.worst_error, r.image_error);
+        write_exr_and_png(dir / (r.label() + ".exr"), r.image, ToneMap{0.0f, true});
+    }
+    write_exr_and_png(dir / "truth.exr", truth_image, ToneMap{0.0f, true});
+    write_file_atomically(dir / "results.json", json.dump(2) + "\n");
+    write_file_atomically(dir / "table.md", table);
+
+    // One exposure for all tiles, from the truth's 99th luminance percentile.
+    std::vector<float> lum;
+    for (int y = 0; y < truth_image.height; ++y)
+        for (int x = 0; x < truth_image.width; ++x) lum.push_back(luminance(truth_image.rgb(x, y)));
+    std::nth_element(lum.begin(), lum.begin() + lum.size() * 99 / 100, lum.end());
+    const float gain = 0.9f / std::max(lum[lum.size() * 99 / 100], 1e-6f);
+    std::vector<Image> tiles{truth_image};
+    std::vector<std::string> labels{"TRUTH"};
+    for (const Row& r : rows) {
+        tiles.push_back(r.image);
+        labels.push_back(fmt::format("{}  {:.0f} MS  {:.1f}%", r.label(), r.frame_ms, 100 * r.objects_error));
+    }
+    write_png(dir / "sheet.png", raster::contact_sheet(tiles, labels, 4, gain));
+
+    // Pareto: the objects' error against frame time, one curve per method.
+    const std::vector<std::pair<std::string, Color>> families = {{"rsl", Color(0.1f, 0.6f, 0.2f)},
+                                                                 {"rsl-gl", Color(0.5f, 0.8f, 0.2f)},
+                                                                 {"rays", Color(0.85f, 0.2f, 0.1f)},
+                                                                 {"rays-budget", Color(0.9f, 0.6f, 0.1f)},
+                                                                 {"shadow-map", Color(0.1f, 0.45f, 0.85f)}};
+    std::vector<raster::Series> series;
+    for (const auto& [family, color] : families) {
+        raster::Series s{family, color, {}, {}, {}};
+        for (const Row& r : rows)
+            if (r.method == family) {
+                s.x.push_back(std::max(r.frame_ms, 1e-3)), s.y.push_back(std::max(r.objects_error, 1e-6));
+                s.labels.push_back(fmt::format("{}{}", family.starts_with("rsl") ? "K" : family.starts_with("rays") ? "S" : "",
+                                               r.setting));
+            }
+        if (!s.x.empty()) series.push_back(std::move(s));
+    }
+    write_png(dir / "pareto.png", raster::line_plot(series, fmt::format("MS PER FRAME ({})", scene.name),
+                                                    "OBJECTS REL. L2 ERROR", 640, 420, true));
+    fmt::print("{}\nwrote {}/table.md, results.json, pareto.png, sheet.png\n", table, dir.string());
+}
+
+}  // namespace
+
+void run_many_light_experiment(const ManyLightExperiment& args) {
+    auto scene_ptr = std::make_shared<Scene>(load_scene(args.scene));
+    Scene& scene = *scene_ptr;
+    adapt_scene(scene, args.environment, args.resolution, false);
+    // One map: every row shades one RSL set (lights_for), so the truth must
+    // not blend in a second map the rows do not see.
+    scene.environment.second_file.clear();
+    const float t = args.time;
+    auto say = [&](const std::string& line) {
+        if (!args.quiet) fmt::print(stderr, "{}\n", line);
+    };
+    RenderOptions options;
+    options.local_lights = false;
+    options.environment_lights = args.baseline_lights;
+    say("fitting lights and baking visibility fields...");
+    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
+
+    GroundTruthOptions truth_options;
+    truth_options.local_lights = false;
+    const GroundTruth truth(scene, setup.environment_at(t), t, truth_options);
+    const auto truth_start = ExperimentClock::now();
+    const VertexColors truth_colors = truth.shade_vertices();
+    const double truth_ms = 1e3 * seconds_since(truth_start);
+    const PosedScene posed(scene, t);
+    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, args.width, args.height);
+    const Image truth_image = form_image(posed, camera, truth_colors);
+    say(fmt::format("ground truth: {:.1f} s", truth_ms / 1e3));
+
+    std::vector<Row> rows;
+    // Times `repeats` frames of a renderer posed at t and measures its colours.
+    auto measure = [&](Row row, VertexRenderer& renderer) {
+        renderer.set_time(t);
+        VertexColors colors = renderer.make_output();
+        renderer.shade(colors);  // warm-up: per-thread scratch, GL programs and textures
+        // set_time in the frame: what a moving scene pays each frame (the
+        // occluder lists; the shadow maps are redrawn only after it).
+        row.frame_ms = median_ms(args.repeats, [&] {
+            renderer.set_time(t);
+            renderer.shade(colors);
+        });
+        row.rays = renderer.stats().shadow_rays;
+        const VertexErrorReport report = compare_vertex_colors(colors, truth_colors);
+        const ObjectErrorReport objects = object_errors(report, args.receivers);
+        row.vertex_error = report.total.relative_l2();
+        row.objects_error = objects.objects.relative_l2();
+        row.worst_part = objects.worst_part, row.worst_error = objects.worst;
+        row.image = form_image(posed, camera, colors);
+        row.image_error = compare_images(row.image, truth_image).pixels.relative_l2();
+        say(fmt::format("{}: {:.1f} ms{}, error: vertices {:.4f}, objects {:.4f}, worst {} {:.4f}, image {:.4f}",
+                        row.label(), row.frame_ms, row.rays ? fmt::format(", {} rays", row.rays) : std::string(),
+                        row.vertex_error, row.objects_error, row.worst_part, row.worst_error, row.image_error));
+        rows.push_back(std::move(row));
+    };
+    auto lights_for = [&](int k) {
+        return k == args.baseline_lights ? setup.environment_lights.first
+                                         : fit_scene_lights(*setup.scene, setup.environment, k, options.cross_face_lights);
+    };
+
+    for (int k : args.rsl_lights) {
+        RenderOptions o = options;
+        o.environment_lights = k;
+        CpuRenderer renderer(scene, lights_for(k), setup.fields, o);
+        measure(make_row("rsl", k, k), renderer);
+    }
+    // Ray-traced many-light: the fields unused, every visibility factor by rays.
+    auto ray_row = [&](const std::string& method, int samples) {
+        RenderOptions o = options;
+        o.exact_visibility = std::make_shared<ExactVisibility>(scene, t, ExactVisibilityMode::All, samples, true);
+        CpuRenderer renderer(scene, lights_for(args.baseline_lights), PartFields{}, o);
+        measure(make_row(method, samples, args.baseline_lights), renderer);
+        return rows.back().rays;
+    };
+    uint64_t rays_at_one = 0;
+    for (int samples : args.ray_samples) {
+        const uint64_t rays = ray_row("rays", samples);
+        if (samples == 1) rays_at_one = rays;
+    }
+    if (args.ray_budget > 0) {
+        if (rays_at_one == 0) {  // the pairs that need rays, from one frame at S = 1
+            RenderOptions o = options;
+            o.exact_visibility = std::make_shared<ExactVisibility>(scene, t, ExactVisibilityMode::All, 1, true);
+            CpuRenderer probe(scene, lights_for(args.baseline_lights), PartFields{}, o);
+            probe.set_time(t);
+            probe.shade();
+            rays_at_one = probe.stats().shadow_rays;
+        }
+        const int samples = samples_for_budget(args.ray_budget, rays_at_one);
+        say(fmt::format("ray budget {}: {} pairs need rays, so S = {}", args.ray_budget, rays_at_one, samples));
+        ray_row("rays-budget", samples);
+    }
+    // The GL rows: the fields' sum on the GPU path, and shadow maps.
+    std::string gl_device = "none asked for";
+    if (!args.gl_lights.empty() || !args.shadow_map_resolutions.empty()) {
+        try {
+            for (int k : args.gl_lights) {
+                RenderOptions o = options;
+                o.environment_lights = k;
+                const auto renderer = make_renderer(Backend::Gl, scene, lights_for(k), setup.fields, o);
+                gl_device = renderer->device();
+                measure(make_row("rsl-gl", k, k), *renderer);
+            }
+            for (int resolution : args.shadow_map_resolutions) {
+                RenderOptions o = options;
+                o.shadow_maps.enabled = true;
+                o.shadow_maps.resolution = resolution;
+                o.shadow_maps.filter = ShadowFilter::Pcss;
+                const auto renderer = make_renderer(Backend::Gl, scene, lights_for(args.baseline_lights), setup.fields, o);
+                gl_device = renderer->device();
+                measure(make_row("shadow-map", resolution, args.baseline_lights), *renderer);
+            }
+        } catch (const Error& e) {
+            gl_device = fmt::format("skipped ({})", e.what());
+            say("GL rows " + gl_device);
+        }
+    }
+    write_outputs(args, scene, truth_colors.vertex_count(), truth_image, truth_ms, rows, gl_device);
+}
+
+}  // namespace rsl

@@ -1,0 +1,85 @@
+// `rsl bench [NAMES...]`: run registered benchmarks, JSON lines on stdout.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include <fmt/core.h>
+
+#include "tools/assets/yard.h"
+#include "tools/bench/bench.h"
+#include "tools/rsl/command.h"
+#include "src/core/atomic_file.h"
+#include "src/core/error.h"
+
+namespace rsl::cli {
+
+// The benchmarks and their registry live in bench/ (library rsl_bench).
+using bench::BenchOptions;
+using bench::Benchmark;
+using bench::bench_emit;
+using bench::bench_results;
+using bench::benchmark_registry;
+
+namespace {
+struct BenchArgs {
+    std::vector<std::string> names;
+    bool quick = false;
+    bool list = false;
+    std::string json_out;
+    std::string shared = std::string(RSL_SOURCE_DIR) + "/../shared/assets";
+    std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
+    std::string scenes = std::string(RSL_SOURCE_DIR) + "/assets/scenes";
+    std::string output = "bench-out";
+    std::vector<int> parts;
+    std::vector<float> reaches;
+};
+
+RegisterCommand bench_command({"bench",
+    "Run benchmarks; one JSON object per result line on stdout (timings, rates, memory, errors).",
+    90, [](CLI::App& app) {
+        auto args = std::make_shared<BenchArgs>();
+        app.add_option("names", args->names, "Benchmarks to run (default: all); see --list");
+        app.add_flag("--list", args->list, "List the benchmarks and exit");
+        app.add_flag("--quick", args->quick, "Smaller cases (smoke test)");
+        app.add_option("--json-out", args->json_out, "Also write all results as a JSON array to this file");
+        app.add_option("--shared-assets", args->shared, "Folder of real probes/meshes (optional)")->capture_default_str();
+        app.add_option("--generated-assets", args->generated, "The project's generated assets")->capture_default_str();
+        app.add_option("--scenes", args->scenes, "The project's scene files")->capture_default_str();
+        app.add_option("--out", args->output, "Folder for plots and generated scenes")->capture_default_str();
+        app.add_option("--parts", args->parts, "scale: yard instance counts (default 8,32,64,128,256,1024)")
+            ->delimiter(',')
+            ->check(CLI::Range(1, 4096));
+        app.add_option("--reaches", args->reaches,
+                       fmt::format("scale: OVDF outer radii in bounding radii to compare (default: the yard's {:g})",
+                                   assets::kYardOvdfReach))
+            ->delimiter(',')
+            ->check(CLI::Range(1.5, 100.0));
+        app.callback([args] {
+            auto& registry = benchmark_registry();
+            std::sort(registry.begin(), registry.end(),
+                      [](const Benchmark& a, const Benchmark& b) { return a.name < b.name; });
+            if (args->list) {
+                for (auto& b : registry) fmt::print("{:<16} {}\n", b.name, b.description);
+                return;
+            }
+            for (auto& name : args->names)
+                if (std::none_of(registry.begin(), registry.end(), [&](auto& b) { return b.name == name; }))
+                    throw_error("unknown benchmark '{}' (see rsl bench --list)", name);
+            BenchOptions options{args->quick, args->shared, args->generated, args->scenes, args->output, args->parts,
+                                 args->reaches};
+            bench_emit({{"bench", "machine"},
+                        {"hardware_threads", std::thread::hardware_concurrency()},
+                        {"quick", args->quick}});
+            for (auto& b : registry) {
+                if (!args->names.empty() &&
+                    std::find(args->names.begin(), args->names.end(), b.name) == args->names.end())
+                    continue;
+                b.run(options);
+            }
+            if (!args->json_out.empty())
+                write_file_atomically(args->json_out, nlohmann::json(bench_results()).dump(2));
+        });
+    }});
+}  // namespace
+}  // namespace rsl::cli

@@ -1,0 +1,197 @@
+// `rsl render SCENE --time T -o out.exr`: the CPU runtime renderer
+// (docs/design/RENDERER.md), or with --backend gl the GPU one (docs/GPU.md).
+// Per-vertex colours from the RSL sum and the image the renderer forms of
+// them (VertexRenderer::form_image: the same picture on either backend),
+// written as EXR + PNG, and optionally as per-vertex .rslv for `rsl compare`.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include <fmt/core.h>
+
+#include "src/backend/make_renderer.h"
+#include "tools/rsl/command.h"
+#include "tools/rsl/progress_display.h"
+#include "src/core/error.h"
+#include "src/frame/image_formation.h"
+#include "src/render/render_setup.h"
+
+namespace rsl::cli {
+namespace {
+
+struct RenderArgs {
+    std::string scene;
+    float time = 0;
+    std::string frames;
+    int lights = 30;
+    bool same_face = false;
+    std::string backend = "cpu";
+    bool no_self = false, no_occluders = false, no_culling = false, exact_shapes = true;
+    std::string pixel_shadows = "planes";
+    bool pixel_highlights = true;
+    std::vector<std::string> materials;
+    std::string output;
+    std::string vertex_output;
+    int width = 0, height = 0;
+    int samples = 1;
+    float exposure = 0;
+    bool quiet = false;
+    int shadow_maps = 0;  // 0: off; else the resolution (GL only)
+    std::string shadow_filter = "pcss";
+};
+
+// "A:B:STEP" → the times A, A + STEP, … ≤ B (inclusive within rounding).
+std::vector<float> parse_frames(const std::string& text) {
+    float a = 0, b = 0, step = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%f:%f:%f%c", &a, &b, &step, &tail) != 3 || !(step > 0) || b < a)
+        throw_error("--frames '{}': expected START:END:STEP with STEP > 0 and END ≥ START", text);
+    std::vector<float> times;
+    for (int i = 0;; ++i) {
+        const float t = a + float(i) * step;
+        if (t > b + 1e-4f * step) break;
+        times.push_back(t);
+    }
+    return times;
+}
+
+// out.exr, frame 7 → out.0007.exr
+std::filesystem::path numbered(const std::filesystem::path& path, int frame) {
+    std::filesystem::path result = path;
+    result.replace_filename(fmt::format("{}.{:04d}{}", path.stem().string(), frame, path.extension().string()));
+    return result;
+}
+
+void run_render(const RenderArgs& args) {
+    const Backend backend = parse_backend(args.backend);
+    if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
+    if (args.samples < 1) throw_error("--samples {}: expected at least 1", args.samples);
+    const std::filesystem::path output(args.output);
+    if (output.extension() != ".exr") throw_error("-o {}: expected an .exr path (a .png preview is written beside it)", args.output);
+
+    RenderOptions options;
+    options.environment_lights = args.lights;
+    options.cross_face_lights = !args.same_face;
+    options.self_visibility = !args.no_self;
+    options.occluders = !args.no_occluders;
+    options.occluder_culling = !args.no_culling;
+    options.exact_shapes = args.exact_shapes;
+    options.pixel_shadows = parse_pixel_shadows(args.pixel_shadows);
+    options.pixel_highlights = args.pixel_highlights;
+    options.material_override = parse_material_overrides(args.materials);
+    if (args.shadow_maps != 0) {  // before the fit and the bake: a bad value costs nothing
+        if (args.shadow_maps < ShadowMapOptions::kMinResolution || args.shadow_maps > ShadowMapOptions::kMaxResolution)
+            throw_error("--shadow-maps {}: expected a resolution of {}..{} texels", args.shadow_maps,
+                        ShadowMapOptions::kMinResolution, ShadowMapOptions::kMaxResolution);
+        if (backend == Backend::Cpu)
+            throw_error("--shadow-maps: shadow-mapped visibility is a GL baseline (add --backend gl)");
+        options.shadow_maps.enabled = true;
+        options.shadow_maps.resolution = args.shadow_maps;
+        options.shadow_maps.filter = args.shadow_filter == "pcf" ? ShadowFilter::Pcf : ShadowFilter::Pcss;
+    }
+
+    ProgressDisplay display(!args.quiet);
+    SetupOptions how;
+    how.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
+    const RenderSetup setup = prepare_render(args.scene, options, how);
+    const Scene& scene = *setup.scene;
+    if (!args.quiet && setup.environment.resolution() > 0) display.note(describe_fit(setup));
+    if (!args.quiet)
+        fmt::print(stderr, "fields: {} loaded from the cache, {} baked ({:.1f} s)\n", setup.fields_loaded,
+                   setup.fields_baked, setup.bake_seconds);
+    // Every backend shades the same per-vertex sum; image formation is shared.
+    const std::unique_ptr<VertexRenderer> renderer =
+        make_renderer(backend, scene, setup.environment_lights, setup.fields, options);
+    if (!args.quiet && backend != Backend::Cpu) fmt::print(stderr, "{}\n", renderer->device());
+    if (!args.quiet && setup.environment_lights.blends())
+        fmt::print(stderr, "environment: {} blended with {} over a {} s period (docs/SCENE_FORMAT.md)\n",
+                   scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
+                   scene.environment.blend_period_seconds);
+
+    const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
+    const int width = args.width > 0 ? args.width : scene.camera.width;
+    const int height = args.height > 0 ? args.height : scene.camera.height;
+    VertexColors colors = renderer->make_output();
+    renderer->keep_image_terms(true);  // every frame forms an image
+    ImageFormationOptions formation;
+    formation.samples_per_side = args.samples;
+    // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
+    // so that the two PNGs of one frame come out alike. For a strict visual
+    // comparison give both the same non-zero --exposure.
+    const ToneMap tone{args.exposure, args.exposure == 0.0f};
+    for (size_t f = 0; f < times.size(); ++f) {
+        const float t = times[f];
+        const auto start = std::chrono::steady_clock::now();
+        renderer->set_time(t);
+        renderer->shade(colors);
+        const auto shaded = std::chrono::steady_clock::now();
+        const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, width, height);
+        const Image image = renderer->form_image(colors, camera, formation);
+        const auto formed = std::chrono::steady_clock::now();
+        const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
+        write_exr_and_png(exr, image, tone);
+        if (!args.vertex_output.empty())
+            write_vertex_colors(times.size() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output), colors);
+        const double shading_ms = 1e3 * std::chrono::duration<double>(shaded - start).count();
+        const double image_ms = 1e3 * std::chrono::duration<double>(formed - shaded).count();
+        const RenderStats& stats = renderer->stats();
+        const std::string blend = setup.environment_lights.blends()
+                                      ? fmt::format(", second map {:.0f}%", 100.0f * scene.environment.blend_weight_at(t))
+                                      : "";
+        fmt::print("t={:.3f}: {} vertices x {} lights{}, {} shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} "
+                   "culled) -> {}\n",
+                   t, colors.vertex_count(), stats.lights, blend, renderer->backend(), shading_ms, image_ms,
+                   stats.occluder_pairs, stats.occluder_pairs_culled, exr.string());
+        if (const std::string passes = renderer->pass_times(); !passes.empty()) fmt::print("  GPU passes: {}\n", passes);
+    }
+}
+
+RegisterCommand render_command({"render",
+    "Render a scene with the RSL runtime (multi-product shading of moving parts, local lights).", 30,
+    [](CLI::App& app) {
+        auto args = std::make_shared<RenderArgs>();
+        app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
+        auto* time = app.add_option("--time,-t", args->time, "Time in seconds")->capture_default_str();
+        auto* frames = app.add_option("--frames", args->frames, "START:END:STEP: numbered frames OUT.NNNN.exr");
+        time->excludes(frames);
+        app.add_option("--lights,-k", args->lights, "Number of environment RSLs fitted to the map (each glTF sun adds one of its own)")->capture_default_str();
+        app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer)")
+            ->check(CLI::IsMember({"cpu", "gl"}))->capture_default_str();
+        app.add_flag("--same-face", args->same_face, "Fit light regions within one cube face only (the paper's rule)");
+        app.add_flag("--no-self", args->no_self, "Switch self-visibility (SVDF) off");
+        app.add_flag("--no-occluders", args->no_occluders, "Switch the other parts' shadows (OVDF) off");
+        app.add_flag("--no-culling", args->no_culling, "Look every occluder up (for checking the culling)");
+        app.add_flag("--exact-shapes,!--no-exact-shapes", args->exact_shapes,
+                     "Parts that are one flat rectangle (a ground) or one box shadow the others from their shape, "
+                     "not their OVDF: exact near contacts, about 5% slower (default on; docs/RENDERER.md)");
+        app.add_option("--pixel-shadows", args->pixel_shadows,
+                       "Which parts take the other parts' shadows per pixel in the image, where a shadow edge "
+                       "crosses a triangle (sharp shadows on coarse receivers; per-vertex colours unchanged; "
+                       "either backend): planes (flat rectangles: grounds, floors), all "
+                       "(the gl backend: as planes), or off")
+            ->check(CLI::IsMember({"planes", "all", "off"}))->capture_default_str();
+        app.add_flag("--pixel-highlights,!--no-pixel-highlights", args->pixel_highlights,
+                     "Glossy parts take each light's BRDF average at every pixel's own normal and view in the "
+                     "image, so that highlights between vertices show (default on; per-vertex colours unchanged; "
+                     "either backend)");
+        app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
+        app.add_option("-o,--output", args->output, "Image to write (.exr; a .png preview beside it)")->required();
+        app.add_option("--vertex-out", args->vertex_output, "Per-vertex colours (.rslv) for `rsl compare`");
+        app.add_option("--width", args->width, "Image width (default: the scene camera's)");
+        app.add_option("--height", args->height, "Image height (default: the scene camera's)");
+        app.add_option("--samples", args->samples, "S: SxS primary rays per pixel")->capture_default_str();
+        app.add_option("--exposure", args->exposure, "PNG exposure in stops (default 0: automatic, as rsl truth)")->capture_default_str();
+        auto* shadow_maps = app.add_option("--shadow-maps", args->shadow_maps,
+            "RES: the shadow-mapped baseline (gl backend): environment lights' visibility from one RESxRES "
+            "depth map each (16..8192) instead of the SVDF/OVDF fields (docs/GPU.md)");
+        app.add_option("--shadow-filter", args->shadow_filter,
+                       "With --shadow-maps: pcss (blocker search; default) or pcf (fixed occluder distance, "
+                       "0.1 x the scene's radius)")
+            ->check(CLI::IsMember({"pcf", "pcss"}))->needs(shadow_maps)->capture_default_str();
+        app.add_flag("--quiet,-q", args->quiet, "No progress lines");
+        app.callback([args] { run_render(*args); });
+    }});
+
+}  // namespace
+}  // namespace rsl::cli

@@ -1,0 +1,62 @@
+// rsl view SCENE: the interactive GPU viewer (src/gl/viewer.h).
+#ifdef RSL_HAVE_GL
+#include <memory>
+
+#include "tools/rsl/progress_display.h"
+#include "tools/rsl/command.h"
+#include "src/core/error.h"
+#include "src/gl/viewer.h"
+#include "src/render/render_setup.h"
+
+namespace rsl::cli {
+namespace {
+
+struct ViewArgs {
+    std::string scene, screenshot;
+    int lights = 30, frames = 0, width = 1280, height = 720;
+    float time = 0, exposure = 0;
+    bool quick = false, no_panel = false;
+    std::vector<std::string> materials;
+};
+
+RegisterCommand view_command({"view",
+    "Open a window on a scene, rendered on the GPU: orbit, turn the environment, swap and edit BRDFs, move a light.",
+    35, [](CLI::App& app) {
+        auto args = std::make_shared<ViewArgs>();
+        app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
+        app.add_option("--lights,-k", args->lights, "Number of environment RSLs at start")->capture_default_str();
+        app.add_option("--time,-t", args->time, "Start time in seconds")->capture_default_str();
+        auto* exposure = app.add_option("--exposure", args->exposure, "Exposure in stops (default: automatic)");
+        app.add_option("--width", args->width, "Window width")->capture_default_str();
+        app.add_option("--height", args->height, "Window height")->capture_default_str();
+        app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
+        app.add_flag("--quick-fields", args->quick,
+                     "Bake small visibility fields (seconds instead of minutes; coarser shadows)");
+        app.add_flag("--no-panel", args->no_panel, "Hide the control panel (H toggles it)");
+        app.add_option("--screenshot", args->screenshot, "Write the last frame to this PNG and exit (with --frames)");
+        app.add_option("--frames", args->frames, "Render N frames (playing the animation), then exit");
+        app.callback([args, exposure] {
+            if (args->lights < 1) throw_error("--lights {}: expected at least 1", args->lights);
+            if (!args->screenshot.empty() && args->frames < 1) throw_error("--screenshot needs --frames N (N ≥ 1)");
+            gl::ViewerOptions options;
+            options.scene = args->scene;
+            options.render.environment_lights = args->lights;
+            options.render.material_override = parse_material_overrides(args->materials);
+            options.quick_fields = args->quick;
+            options.start_time = args->time;
+            options.exposure = args->exposure;
+            options.auto_exposure = exposure->count() == 0;
+            options.width = args->width;
+            options.height = args->height;
+            options.panel = !args->no_panel;
+            options.screenshot = args->screenshot;
+            options.frames = args->frames;
+            ProgressDisplay display;
+            options.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
+            gl::run_viewer(options);
+        });
+    }});
+
+}  // namespace
+}  // namespace rsl::cli
+#endif  // RSL_HAVE_GL
