@@ -1,5 +1,5 @@
 #pragma once
-// What every libFuzzer harness of fuzz/ shares (docs/FUZZING.md). A harness
+// What every libFuzzer harness of fuzz/ shares (docs/design/FUZZING.md). A harness
 // hands the input to the real reader through a file (the readers take
 // paths) and runs it under run_reader: an rsl::Error is the reader refusing
 // bad input, which is what it should do; any other exception, a crash, a

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (fuzz/, clang-14, ASan + UBSan) and runs them
-# (docs/FUZZING.md).
+# (docs/design/FUZZING.md).
 #   scripts/fuzz.sh [READER|all] [SECONDS] [JOBS]
 #     READER: hdr exr obj gltf glb scene rslf rslv (default: all, one after another)
 #     SECONDS: per fuzzer (default 60); JOBS: fuzzers run at once (default 1)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The sanitizer pass of CI (docs/FUZZING.md): one clang-14 build with
+# The sanitizer pass of CI (docs/design/FUZZING.md): one clang-14 build with
 # AddressSanitizer and UBSan (RSL_FUZZ=ON, so the same build holds the
 # fuzzers), the test suite run in it, then every fuzzer for a short time.
 # Any sanitizer report fails its test or fuzzer (UBSan does not recover).

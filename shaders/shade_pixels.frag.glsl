@@ -1,5 +1,5 @@
 #version 330 core
-// The per-pixel pass (docs/GPU.md "Per-pixel pass"): each pixel of a part
+// The per-pixel pass (docs/design/GPU_DESIGN.md "Per-pixel pass"): each pixel of a part
 // shaded per pixel takes the whole sum at the point it sees (shade_point.glsl):
 // every light's square in the pixel's own frame, the BRDF averages at its own
 // view, sphere lights from its own position, and the other parts' occluder

@@ -1,6 +1,6 @@
 #version 330 core
 // The per-pixel pass (RenderOptions::pixel_shadows and pixel_highlights,
-// docs/GPU.md "Per-pixel pass"): a part shaded per pixel drawn from the camera, its world
+// docs/design/GPU_DESIGN.md "Per-pixel pass"): a part shaded per pixel drawn from the camera, its world
 // position, normal and tangent interpolated for shade_pixels.frag.glsl.
 // Normals and tangents come from the vertex rectangle (gl_VertexID counts
 // the draw's base vertex, so it is the vertex's texel), the pose from the

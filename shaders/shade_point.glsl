@@ -18,7 +18,7 @@
 // stays here is data access: texelFetch and the loops over it.
 //
 // With u_shadow_maps (RenderOptions::shadow_maps, a competitor baseline;
-// docs/GPU.md "Shadow-mapped visibility") every environment light's
+// docs/design/GPU_DESIGN.md "Shadow-mapped visibility") every environment light's
 // visibility comes from its depth map instead (shadow_visible_fraction).
 
 uniform sampler2D u_positions;     // vertex rectangle: part-space position, part

@@ -1,7 +1,7 @@
 #version 330 core
 // The environment seen through each pixel: the view ray's direction d in the
 // world, the map's radiance L(Rᵀ d) (its content at d has turned by R, as the
-// renderer's lights have; docs/CONVENTIONS.md), the nearest texel of each map
+// renderer's lights have; docs/design/CONVENTIONS.md), the nearest texel of each map
 // blended as the renderer blends their lights; exposure and the sRGB curve
 // (srgb.glsl) as the display pass.
 in vec2 v_ndc;

@@ -1,5 +1,5 @@
 #pragma once
-// The hostile inputs of issue 20 — what mutation fuzzing (docs/FUZZING.md)
+// The hostile inputs of issue 20 — what mutation fuzzing (docs/design/FUZZING.md)
 // and a hostile user's review found — built the way the fuzzer made them:
 // flipped bits, a corrupted header field, an out-of-range number. The
 // regression tests (tests/core/hostile_input_test.cpp,

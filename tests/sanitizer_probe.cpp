@@ -1,7 +1,7 @@
 // Deliberate undefined behaviour and a heap overflow, for the sanitized
 // build only (RSL_SANITIZE): its ctest cases check that each sanitizer
 // reports and ends the program with a failure, so that a sanitizer that
-// silently stopped working would fail CI too (docs/FUZZING.md).
+// silently stopped working would fail CI too (docs/design/FUZZING.md).
 #include <cstdio>
 #include <limits>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The fuzzers' seed corpora (docs/FUZZING.md), generated from the project's
+// The fuzzers' seed corpora (docs/design/FUZZING.md), generated from the project's
 // own generators and writers: small environment maps from
 // tools/assets/environments, meshes from tools/assets/primitives, a
 // two-node animated model through write_glb, the scene files of

@@ -18,7 +18,7 @@
 // (construction, shade, render_image, truth) run on every core. Progress
 // callbacks are called from worker threads, one call at a time.
 //
-// Conventions (docs/CONVENTIONS.md): right-handed world, y up; colours are
+// Conventions (docs/design/CONVENTIONS.md): right-handed world, y up; colours are
 // linear RGB radiance; images have row 0 at the top.
 #include <array>
 #include <cstddef>
@@ -58,7 +58,7 @@ struct Mesh {
 };
 
 // A BRDF by model name and parameters, as in a scene file's "materials"
-// (docs/SCENE_FORMAT.md, docs/BRDF.md): e.g. {"floor", "lambert",
+// (docs/SCENE_FORMAT.md, docs/design/BRDF.md): e.g. {"floor", "lambert",
 // {{"albedo", {0.5, 0.5, 0.5}}}}; `file` for measured (MERL) BRDFs.
 struct Material {
     std::string name;
@@ -74,7 +74,7 @@ struct SphereLight {
     Float3 power{1, 1, 1};
 };
 
-// A rotatable square light ⟨c, r, I⟩ (docs/METHOD.md): radiance I over a
+// A rotatable square light ⟨c, r, I⟩ (docs/design/METHOD.md): radiance I over a
 // square of solid angle 2r² around the unit direction c, at the environment's
 // rotation 0.
 struct SquareLight {
@@ -89,7 +89,7 @@ struct Camera {
     int width = 640, height = 480;  // the default image size
 };
 
-// Field precomputation (docs/FIELDS.md); the defaults are the paper's.
+// Field precomputation (docs/design/FIELDS.md); the defaults are the paper's.
 struct Precompute {
     int svdf_resolution = 32, svdf_clusters = 256, svdf_vectors = 8, svdf_supersampling = 4;
     int ovdf_shells = 16;
@@ -157,7 +157,7 @@ using Progress = std::function<void(const std::string& what, double fraction)>;
 
 struct RenderSettings {
     int lights = 30;                 // K: square lights fitted to the environment
-    bool cross_face_lights = true;   // regions may cross cube-face borders (docs/LIGHTFIT.md)
+    bool cross_face_lights = true;   // regions may cross cube-face borders (docs/design/LIGHTFIT.md)
     bool self_visibility = true;     // the SVDF factor
     bool occluders = true;           // the other parts' shadows (OVDF)
     // Which parts' images take the other parts' shadows per pixel where a

@@ -59,7 +59,7 @@ LocalLight to_local_light(const SphereLight& l) {
 SphereLight to_sphere_light(const LocalLight& l) { return {to_float3(l.position), l.radius, to_float3(l.power)}; }
 
 VertexColors to_api(const ::rsl::VertexColors& layered) {
-    // The API's colours have no layers: textured parts at unit texture (docs/RENDERER.md).
+    // The API's colours have no layers: textured parts at unit texture (docs/design/RENDERER.md).
     const ::rsl::VertexColors colors = layered.at_unit_texture();
     VertexColors out;
     out.part_names = colors.part_names;

@@ -1,5 +1,5 @@
 #pragma once
-// Closed-form BRDF models (docs/BRDF.md gives each formula and parameter).
+// Closed-form BRDF models (docs/design/BRDF.md gives each formula and parameter).
 // Every model is reciprocal and, within the parameter ranges make_brdf
 // accepts, has directional albedo ≤ 1 (both checked by tests/brdf).
 // The constructors do not validate: make_brdf does, naming the material.

@@ -3,7 +3,7 @@
 // shading frame (z = normal, x = tangent for anisotropic models), *without*
 // the cosine: renderers fold in cos θ_i themselves.
 //
-// Models and their parameters are described in docs/BRDF.md; the concrete
+// Models and their parameters are described in docs/design/BRDF.md; the concrete
 // classes are in analytic.h (closed-form models) and merl.h (measured).
 #include <memory>
 #include <string>

@@ -1,9 +1,9 @@
 #pragma once
-// BRDF summed-area tables (RSL paper §4.2; frames and measure of docs/METHOD.md).
+// BRDF summed-area tables (RSL paper §4.2; frames and measure of docs/design/METHOD.md).
 //
 // A table holds, for each tabulated view direction (a "slice"), the texel
 // averages of ρ·cosθ_i on the equal-area N×N grid of light directions
-// (TexelSampler) and their summed-area table. Layout (docs/BRDF.md):
+// (TexelSampler) and their summed-area table. Layout (docs/design/BRDF.md):
 //   isotropic models: V slices in the VIEW-ALIGNED frame (the view has azimuth
 //     0, i.e. lies in the +y half of the y-z plane; see to_view_aligned), at
 //     view plane radii |p(ω_o)| = (k + ½)/V, k = 0..V−1 (a 3D table);

@@ -1,5 +1,5 @@
 // make_brdf: scene material → model, with every parameter validated and every
-// error naming the material and the parameter (docs/BRDF.md lists them).
+// error naming the material and the parameter (docs/design/BRDF.md lists them).
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -80,7 +80,7 @@ private:
 constexpr float kMaxExponent = 1e5f;  // beyond this the lobe is narrower than any table texel by far
 constexpr float kMaxRoughness = 1.0f;
 // gltf_pbr: glTF allows roughness 0 (a mirror); α = roughness² stops here, a
-// lobe already far narrower than a table texel (docs/BRDF.md).
+// lobe already far narrower than a table texel (docs/design/BRDF.md).
 constexpr float kMinGltfAlpha = 1e-3f;
 
 std::shared_ptr<const Brdf> build(const MaterialDesc& m, ParamReader& p, BrdfLobe lobe) {

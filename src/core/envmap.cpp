@@ -1,4 +1,4 @@
-// Environment maps: the lat-long and cube conventions (docs/CONVENTIONS.md),
+// Environment maps: the lat-long and cube conventions (docs/design/CONVENTIONS.md),
 // exact texel solid angles, and energy-preserving resampling between
 // lat-long images, cube maps, rotated cube maps and OpenEXR cube strips.
 #include "src/core/envmap.h"

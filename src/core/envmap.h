@@ -2,7 +2,7 @@
 // Environment maps. Everything downstream works on a cube map of 6×N×N texels
 // with exact per-texel solid angles.
 //
-// World convention (docs/CONVENTIONS.md, pinned by tests/core/envmap_test.cpp):
+// World convention (docs/design/CONVENTIONS.md, pinned by tests/core/envmap_test.cpp):
 // right-handed, +Y up. A latitude-longitude image has row 0 at the top (+Y)
 // and its columns span longitude φ ∈ [0, 2π) left to right. In continuous
 // image coordinates u, v ∈ [0, 1] (pixel (x, y) of a W×H map has its center at

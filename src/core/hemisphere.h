@@ -30,7 +30,7 @@ inline constexpr float kSolidAnglePerPlaneArea = 2.0f;
 
 // An RSL of half-diagonal r has solid angle 2r²; in the plane it becomes an
 // axis-aligned square of the same measure: area r², so half-edge h = r / 2.
-// (The paper prints edge √2·r, which does not preserve measure; see docs/METHOD.md.)
+// (The paper prints edge √2·r, which does not preserve measure; see docs/design/METHOD.md.)
 using shading::square_half_edge_for_rsl;
 inline float rsl_solid_angle(float half_diagonal) { return 2.0f * half_diagonal * half_diagonal; }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Vector types and the orthonormal frames used everywhere (see docs/CONVENTIONS.md).
+// Vector types and the orthonormal frames used everywhere (see docs/design/CONVENTIONS.md).
 #include <cmath>
 #include <numbers>
 

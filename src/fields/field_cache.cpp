@@ -125,7 +125,7 @@ SvdfParams svdf_params_from(const PrecomputeSettings& s) {
     p.vectors = s.svdf_vectors;
     // The scene's supersampling is rays per texel side everywhere; ours is
     // adaptive (boundary texels only), where 2 already places edges below a
-    // texel (docs/FIELDS.md).
+    // texel (docs/design/FIELDS.md).
     p.supersampling = std::max(1, std::min(s.svdf_supersampling, 2));
     return p;
 }

@@ -10,7 +10,7 @@
 // orthogonal to z. Within a face this is smooth (z stays within 55° of the
 // face normal, which is orthogonal to s), so neighbouring samples' frames
 // agree up to the angle between them; it jumps at face edges, where blending
-// reads each sample in its own frame anyway (docs/FIELDS.md).
+// reads each sample in its own frame anyway (docs/design/FIELDS.md).
 //
 // Zoomed tables: seen from a sample at distance d > R, the part lies within
 // the cone of half-angle asin(R/d) around the pole, the disk |p| < e(d) =
@@ -87,7 +87,7 @@ struct OvdfParams {
 // slow change of the part's silhouette with viewpoint is interpolated. Read in
 // each sample's own frame, the image slides by the angle between the sample
 // directions (up to half a cube texel, uncorrected at face edges): measured in
-// tests/fields/ovdf_test.cpp and docs/FIELDS.md.
+// tests/fields/ovdf_test.cpp and docs/design/FIELDS.md.
 enum class OvdfBlend : uint8_t {
     AlignedCoefficients = 0,  // per shell: blend the four samples' PCA coefficients, one
                               // reconstruction (four aligned lookups where they straddle segments)
@@ -228,7 +228,7 @@ private:
 // room's floor and counter, a chair (under its seat), a bowl, a ring —
 // receivers can stand anywhere inside the sphere, and a lookup inside the
 // inner shell is clamped to it: a chair 0.03–0.2 R from a room's centre was
-// looked up on shells 0.4 R away, 98% of its error (docs/FIELDS.md). There
+// looked up on shells 0.4 R away, 98% of its error (docs/design/FIELDS.md). There
 // the same shells continue inwards at the same ratio down to 0.03 R or
 // below (geometric spacing; the others stop at 0.03 R), so that the part's
 // field is as fine near its surface as a solid part's.

@@ -16,7 +16,7 @@ std::vector<float> trace_svdf_tables(const TriangleMesh& mesh, const SvdfParams&
                                      const std::function<void(double)>& progress) {
     // A vertex on the seam where one piece of the mesh stands on another
     // sees the open half of its hemisphere, as the truth's vertices do
-    // (docs/TRUTH.md, "Vertices on another part's surface").
+    // (docs/design/TRUTH.md, "Vertices on another part's surface").
     RayScene scene(/*origins_outside_surfaces=*/true);
     scene.add_instance(scene.add_mesh(mesh), Mat4(1.0f));
     scene.commit();

@@ -1,5 +1,5 @@
 #pragma once
-// Visibility distance tables (RSL paper §4.3; docs/METHOD.md "visibility distance
+// Visibility distance tables (RSL paper §4.3; docs/design/METHOD.md "visibility distance
 // tables").
 //
 // A visibility map is an N×N table over the equal-area plane [-1, 1]² (see

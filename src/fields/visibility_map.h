@@ -17,7 +17,7 @@
 // nearest traced texel along the radial direction: the BRDF factor is zero
 // below the horizon, so the visibility average that matters for a square
 // straddling the horizon is the one over its above-horizon part, which the
-// extension reproduces best (measured by `rsl bench fields`, docs/FIELDS.md).
+// extension reproduces best (measured by `rsl bench fields`, docs/design/FIELDS.md).
 #include <cstdint>
 #include <vector>
 
@@ -88,7 +88,7 @@ void trace_coverage(const RayScene& scene, const HemisphereSampling& sampling, c
                     const Frame& frame, BelowHorizon below_horizon, VisibilityScratch& scratch,
                     float* coverage);
 
-// The frame a vertex's tables live in (docs/METHOD.md: z = normal, x = tangent).
+// The frame a vertex's tables live in (docs/design/METHOD.md: z = normal, x = tangent).
 inline Frame vertex_frame(const TriangleMesh& mesh, size_t v) {
     const Vec3 t = v < mesh.tangents.size() ? Vec3(mesh.tangents[v]) : Vec3(0);
     return Frame::from_normal_tangent(mesh.normals[v], t);

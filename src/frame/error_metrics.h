@@ -1,5 +1,5 @@
 #pragma once
-// Errors of a result A against a reference B (docs/METHOD.md "Ground truth and
+// Errors of a result A against a reference B (docs/design/METHOD.md "Ground truth and
 // error"): relative L2 over vertices (RGB) or over covered pixels, maximum
 // error, per-part breakdown, and for images an H1-type error on gradients.
 #include <string>
@@ -63,7 +63,7 @@ ObjectErrorReport object_errors(const VertexErrorReport& report,
                                 const std::vector<std::string>& receivers = kDefaultReceivers);
 
 // The one image error of the project (`rsl compare`, the demos, the
-// baselines' tables; docs/TRUTH.md "Errors"): the pixels that count are those
+// baselines' tables; docs/design/TRUTH.md "Errors"): the pixels that count are those
 // the reference B covers (alpha > 0; all pixels when B has no alpha), so a
 // result is measured where the truth has a surface, and every method compared
 // with one truth is measured over the same pixels.

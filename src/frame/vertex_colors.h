@@ -13,7 +13,7 @@
 //   f32 ×3   version 2: the specular layer per vertex of every layered part, in order
 //   u64      FNV-1a 64 checksum of every preceding byte
 //
-// Textured parts (a base colour texture, docs/RENDERER.md "Textures") are
+// Textured parts (a base colour texture, docs/design/RENDERER.md "Textures") are
 // layered: `parts` holds their diffuse sum at unit texture and `specular`
 // the specular sum; an image multiplies the first by the texture per pixel.
 // Files without layered parts are written as version 1, as before.

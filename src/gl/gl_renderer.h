@@ -24,7 +24,7 @@
 // of the tables' layout, e.g. isotropic → anisotropic, re-packs them all).
 //
 // A competitor baseline rides along (RenderOptions::shadow_maps, GL only;
-// docs/GPU.md "Shadow-mapped visibility"): with it enabled, each frame first
+// docs/design/GPU_DESIGN.md "Shadow-mapped visibility"): with it enabled, each frame first
 // draws one depth map per environment RSL (shadow_maps.h), and the shading
 // pass takes every environment light's visibility from its map, filtered
 // over the light's square (PCF or PCSS), instead of SVDF × Π OVDF; local

@@ -1,5 +1,5 @@
 #pragma once
-// How the GPU renderer lays its data out in textures (docs/GPU.md), built on
+// How the GPU renderer lays its data out in textures (docs/design/GPU_DESIGN.md), built on
 // the CPU without any GL call so that the layout can be tested by itself.
 //
 // Flat arrays go into RGBA "array textures" (gl_objects.h): element i at texel

@@ -1,6 +1,6 @@
 #pragma once
 // The depth pass of the shadow-mapped many-light baseline
-// (RenderOptions::shadow_maps; docs/GPU.md, "Shadow-mapped visibility"): a
+// (RenderOptions::shadow_maps; docs/design/GPU_DESIGN.md, "Shadow-mapped visibility"): a
 // competitor to the RSL visibility, not part of the RSL method.
 //
 // Per environment square light, one orthographic depth map along the

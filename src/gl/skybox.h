@@ -2,7 +2,7 @@
 // The viewer's background: the environment map (and a blend's second map) as
 // a cube-map texture, drawn behind the scene, turned as the renderer turns
 // its lights. Texels are the CubeMap's own (OpenGL face order and (s, t)
-// orientation, docs/CONVENTIONS.md), sampled nearest: the background shows
+// orientation, docs/design/CONVENTIONS.md), sampled nearest: the background shows
 // exactly the radiance the renderer's lights were fitted to.
 #include "src/core/envmap.h"
 #include "src/gl/gl_objects.h"

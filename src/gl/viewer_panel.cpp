@@ -117,7 +117,7 @@ void viewer_panel(ViewerState& state) {
         changed |= ImGui::Checkbox("self-visibility (SVDF)", &o.self_visibility);
         changed |= ImGui::Checkbox("other parts' shadows (OVDF)", &o.occluders);
         changed |= ImGui::Checkbox("occluder culling", &o.occluder_culling);
-        // The per-pixel pass (docs/GPU.md): grounds' sharp shadows, glossy parts' highlights.
+        // The per-pixel pass (docs/design/GPU_DESIGN.md): grounds' sharp shadows, glossy parts' highlights.
         bool ground_pixels = o.pixel_shadows != PixelShadows::Off;
         if (ImGui::Checkbox("shadows per pixel on grounds", &ground_pixels)) {
             o.pixel_shadows = ground_pixels ? PixelShadows::Planes : PixelShadows::Off;

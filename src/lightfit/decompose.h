@@ -32,7 +32,7 @@ struct DecomposeOptions {
     // then driven by the error; `lights` stays a lower bound.
     double max_error = 0;
     bool cross_face = true;    // merge across cube-face borders (the paper: same face only)
-    MergeCost cost = MergeCost::kErrorIncrease;  // lower reconstruction error on the probes (docs/LIGHTFIT.md)
+    MergeCost cost = MergeCost::kErrorIncrease;  // lower reconstruction error on the probes (docs/design/LIGHTFIT.md)
     FitOptions merge_fit{.refine_center = false};  // fits that rank candidate merges
     FitOptions final_fit{};                        // the fits of the final regions
 };

@@ -1,5 +1,5 @@
 #pragma once
-// Rotatable square lights (RSL paper §4.1; docs/METHOD.md "Rotatable square lights").
+// Rotatable square lights (RSL paper §4.1; docs/design/METHOD.md "Rotatable square lights").
 //
 // An RSL ⟨c, r, I⟩ is a square of uniform radiance I centred on the unit
 // direction c with half-diagonal r. "Square" means: in the fitting chart at c
@@ -43,7 +43,7 @@ struct RslSet {
     void rotate(const Mat3& rotation);
 };
 
-// JSON (see docs/LIGHTFIT.md for the format). Saving is atomic; loading
+// JSON (see docs/design/LIGHTFIT.md for the format). Saving is atomic; loading
 // validates every field and throws rsl::Error naming the file and the field.
 void save_rsl_set(const std::filesystem::path& path, const RslSet& set);
 RslSet load_rsl_set(const std::filesystem::path& path);

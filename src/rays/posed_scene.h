@@ -28,7 +28,7 @@ public:
     const RayScene& rays() const { return rays_; }
     // A part's ray offset: scaled by its own posed size, not the scene's, as
     // its SVDF's bake (which traces the part alone) scales it, so that no
-    // ground elsewhere changes where its rays start (docs/TRUTH.md, "Ray offsets").
+    // ground elsewhere changes where its rays start (docs/design/TRUTH.md, "Ray offsets").
     RayOffset offset(int part) const { return RayOffset{rays_.instance_diagonal(part)}; }
 
     const Mat4& part_transform(int part) const { return transforms_[part]; }
@@ -38,7 +38,7 @@ public:
     // A vertex on the border of its surface (a box's face along the ground it
     // stands on) moves by the ray offset into its own triangles, so that it
     // is shaded as its face next to the border, not as a point lying on the
-    // other part, whose triangles every ray would hit at t = 0 (docs/TRUTH.md).
+    // other part, whose triangles every ray would hit at t = 0 (docs/design/TRUTH.md).
     SurfacePoint vertex(int part, int vertex) const;
     // World-space point of a primary-ray hit: barycentric position, shading
     // normal and tangent; rays leave on the geometric normal's side that faces

@@ -22,7 +22,7 @@ struct RayHit {
 };
 
 // Self-intersection offset for a ray leaving a surface point p on the side of
-// the unit normal n (see docs/TRUTH.md). The offset is scale-aware: a fixed
+// the unit normal n (see docs/design/TRUTH.md). The offset is scale-aware: a fixed
 // fraction of the scene's size (so a contact between parts leaks only at that
 // scale) plus a few float ULPs of |p| (so points far from the origin, whose
 // coordinates are coarse, still leave their own surface).
@@ -45,7 +45,7 @@ struct RayOffset {
 // along the ground it stands on), else 0: the mean of the directions to its
 // triangles' centroids, where those do not cancel. Rays of such a vertex
 // start one ray offset along it, so that it is shaded as its face next to
-// the border, not as a point on the other part (docs/TRUTH.md); the truth
+// the border, not as a point on the other part (docs/design/TRUTH.md); the truth
 // (PosedScene::vertex) and the SVDF bake both do. Defined in posed_scene.cpp.
 std::vector<Vec3> border_inward_directions(const TriangleMesh& mesh);
 
@@ -57,11 +57,11 @@ public:
     // offset scaled by the hit part's own size (instance_diagonal), not the
     // scene's: a part's self-shadowing must not depend on how large a ground
     // stands elsewhere in the scene, nor differ from its SVDF's bake, which
-    // traces the part alone (docs/TRUTH.md, "Ray offsets"). An origin
+    // traces the part alone (docs/design/TRUTH.md, "Ray offsets"). An origin
     // that lies on another part's surface — a vertex on the seam where two
     // parts touch — then counts as just outside that part, as the renderer's
     // exact shapes count it; a ray that enters the part there is still
-    // blocked (docs/TRUTH.md, "Vertices on another part's surface"). The
+    // blocked (docs/design/TRUTH.md, "Vertices on another part's surface"). The
     // truth's scenes (PosedScene) and the SVDF bake, which trace from
     // vertices, set it; the OVDF bake, which traces from points in space,
     // does not.

@@ -19,7 +19,7 @@ namespace rsl {
 CpuRenderer::CpuRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
                          const RenderOptions& options)
     : VertexRenderer(scene, std::move(environment_lights), std::move(fields), options) {
-    // A GL baseline (docs/GPU.md "Shadow-mapped visibility"): there is no CPU version to fall back on.
+    // A GL baseline (docs/design/GPU_DESIGN.md "Shadow-mapped visibility"): there is no CPU version to fall back on.
     if (options.shadow_maps.enabled)
         throw_file_error(scene.source, "shadow-mapped visibility (RenderOptions::shadow_maps, --shadow-maps) "
                                        "exists on the GL backend only; the CPU renderer has none");

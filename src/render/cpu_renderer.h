@@ -1,5 +1,5 @@
 #pragma once
-// The CPU runtime renderer (RSL paper §3, Eq. 3–5; docs/METHOD.md "The rendering
+// The CPU runtime renderer (RSL paper §3, Eq. 3–5; docs/design/METHOD.md "The rendering
 // sum"): per vertex, per square light (the environment's RSLs, rotated with
 // the environment, and every sphere light as a per-vertex square),
 //

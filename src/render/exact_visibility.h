@@ -1,7 +1,7 @@
 #pragma once
 // Diagnostic only: visibility factors computed exactly, by rays, in place of
 // the fields, so that each approximation of the renderer can be switched off
-// against the ground truth (docs/RESULTS.md, "Where the error comes from").
+// against the ground truth (docs/journal/results-history.md, "Where the error comes from").
 //
 // The exact visible fraction of a square light at a vertex is the share of an
 // S×S grid of points of the square (in the vertex's equal-area plane, the

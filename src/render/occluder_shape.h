@@ -5,7 +5,7 @@
 // taps against the shape (shading::shape_visible_fraction) in place of the
 // part's OVDF. Near such a part the OVDF blends samples from both sides of a
 // face: a box resting on the ground came out 15–30% too dark on its sides,
-// and the box under another 9% off (docs/RENDERER.md, "Occluders of exact
+// and the box under another 9% off (docs/design/RENDERER.md, "Occluders of exact
 // shape").
 #include <optional>
 

@@ -1,5 +1,5 @@
 // Sharp shadows on coarse receivers (RenderOptions::pixel_shadows,
-// docs/RENDERER.md "Per-pixel shadows"). A part's vertex colour is
+// docs/design/RENDERER.md "Per-pixel shadows"). A part's vertex colour is
 //
 //   Σ_l U_l(v) · F_l(v),  U_l = 2r²I × BRDF average × SVDF average,
 //                         F_l = Π_occluders OVDF average,

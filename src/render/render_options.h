@@ -1,6 +1,6 @@
 #pragma once
 // What the CPU runtime renderer computes and which approximations it uses
-// (docs/RENDERER.md). Every toggle exists so that one factor of the product
+// (docs/design/RENDERER.md). Every toggle exists so that one factor of the product
 // can be switched off and measured against the ground truth.
 #include <map>
 #include <memory>
@@ -12,7 +12,7 @@ namespace rsl {
 
 class ExactVisibility;  // src/render/exact_visibility.h
 
-// A competitor baseline, GL backend only (docs/GPU.md, "Shadow-mapped
+// A competitor baseline, GL backend only (docs/design/GPU_DESIGN.md, "Shadow-mapped
 // visibility"): every environment RSL's visibility factor (what replaces
 // SVDF × Π OVDF) comes from an orthographic depth map along the light's
 // centre, filtered over the light's square; local lights keep the fields.
@@ -35,7 +35,7 @@ PixelShadows parse_pixel_shadows(const std::string& name);
 
 struct RenderOptions {
     int environment_lights = 30;     // K: RSLs fitted to the environment map
-    bool cross_face_lights = true;   // fit regions across cube-face borders (docs/LIGHTFIT.md)
+    bool cross_face_lights = true;   // fit regions across cube-face borders (docs/design/LIGHTFIT.md)
     bool environment = true;         // shade with the environment's RSLs
     bool local_lights = true;        // shade with the scene's sphere lights
     bool self_visibility = true;     // multiply by the SVDF average
@@ -49,9 +49,9 @@ struct RenderOptions {
     // (src/render/occluder_shape.h). On by default: near a ground or a box
     // the OVDF blends samples from both sides of a face (15-30% dark on a
     // box resting on the ground); the taps cost the bunny and the robot about
-    // 5% of their frame (docs/RENDERER.md).
+    // 5% of their frame (docs/design/RENDERER.md).
     bool exact_shapes = true;
-    // Sharp shadows on coarse receivers (docs/RENDERER.md "Per-pixel
+    // Sharp shadows on coarse receivers (docs/design/RENDERER.md "Per-pixel
     // shadows"): in images, the parts shaded per pixel take the other parts'
     // occluder factor at each pixel's point, on the triangles where it
     // differs between the corners (elsewhere, and per vertex, nothing
@@ -61,7 +61,7 @@ struct RenderOptions {
     // View-dependent highlights between vertices: in images, glossy parts
     // (every material but Lambert; untextured) take the BRDF average of each
     // light at each pixel's own normal and view, with the vertices' SVDF and
-    // occluder factors blended (docs/RENDERER.md "Per-pixel highlights").
+    // occluder factors blended (docs/design/RENDERER.md "Per-pixel highlights").
     bool pixel_highlights = true;
     // Per-part material override: part name → material name (scene materials).
     std::map<std::string, std::string> material_override;

@@ -1,6 +1,6 @@
 #pragma once
 // Lights as the runtime sees them: squares in a vertex's local hemisphere
-// (docs/METHOD.md "Rotatable square lights", "Local lights").
+// (docs/design/METHOD.md "Rotatable square lights", "Local lights").
 //
 // An environment RSL ⟨c, r, I⟩ is the same for every vertex: solid angle 2r²,
 // light integral 2r²·I, and in the local equal-area plane an axis-aligned
@@ -56,7 +56,7 @@ inline SquareLight sphere_light_square(const Vec3& x, const Vec3& center, float 
 // face's plane outwards; a square of half-edge h around L does so when some
 // s_a·L_a ≥ sin β(h), β = square_cone_half_angle(h). Then the factor is
 // exactly 1, whatever the OVDF's interpolation says (both renderers apply it,
-// with and without culling; docs/RENDERER.md). The formulas are the shading
+// with and without culling; docs/design/RENDERER.md). The formulas are the shading
 // core's (shared with the GPU); clears_box_face_scaled is the world form.
 using shading::box_side;
 using shading::clears_box_face;

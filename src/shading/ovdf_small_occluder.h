@@ -28,7 +28,7 @@ namespace rsl::shading {
 // rounding there, with it. It needs no table: the renderers skip the blend
 // of PCA coefficients and rows, which in a yard of 128 parts was most of the
 // other parts' shadows (86% of the lookups had cone < h). Against the truth it is as accurate as the tables, or slightly
-// more (docs/RESULTS.md "Small occluders"); tests/fields/ovdf_test.cpp pins
+// more (docs/journal/results-history.md "Small occluders"); tests/fields/ovdf_test.cpp pins
 // it against exact caps and a traced bar.
 //
 // The rule's weight: 1 for cone ≤ h, 0 (the tables alone) from cone ≥ 1.25 h,

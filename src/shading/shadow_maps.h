@@ -8,7 +8,7 @@ namespace rsl::shading {
 // RSL_GLSL_BEGIN
 
 // Not part of the RSL sum: a competitor's visibility factor for environment
-// lights (RenderOptions::shadow_maps, docs/GPU.md "Shadow-mapped visibility").
+// lights (RenderOptions::shadow_maps, docs/design/GPU_DESIGN.md "Shadow-mapped visibility").
 // One orthographic depth map per light along its centre direction L, over a
 // sphere that holds the posed scene; the filter's taps are the light
 // square's own directions (the grid of exact_visibility.h), each moved across

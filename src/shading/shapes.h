@@ -11,7 +11,7 @@ namespace rsl::shading {
 // A ground or a wall is one flat rectangle, and its shadow is known exactly:
 // a ray leaves the receiver and crosses the rectangle's plane or not. Its
 // OVDF, sampled on shells, blends samples from both sides of the plane and
-// comes out far too dark near it (docs/RENDERER.md, "Occluders of exact shape").
+// comes out far too dark near it (docs/design/RENDERER.md, "Occluders of exact shape").
 // Coordinates are the rectangle's own: (s, t) across it from its centre,
 // height along its normal; the rectangle is |s| ≤ half.x, |t| ≤ half.y.
 

@@ -9,7 +9,7 @@ namespace rsl::shading {
 // RSL_GLSL_BEGIN
 
 // An RSL of half-diagonal r (solid angle 2r²) is the plane square of area r²:
-// half-edge r / 2 (measure preserving; docs/METHOD.md "Rotatable square lights").
+// half-edge r / 2 (measure preserving; docs/design/METHOD.md "Rotatable square lights").
 RSL_SHARED float square_half_edge_for_rsl(float half_diagonal) { return 0.5f * half_diagonal; }
 // A square of solid angle Ω has plane area Ω / 2.
 RSL_SHARED float half_edge_for_solid_angle(float solid_angle) { return 0.5f * sqrt(0.5f * solid_angle); }

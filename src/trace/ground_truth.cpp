@@ -1,5 +1,5 @@
 // Ground-truth shading: every environment texel and every sphere light, with
-// shadow rays in coherent per-point batches (docs/TRUTH.md).
+// shadow rays in coherent per-point batches (docs/design/TRUTH.md).
 #include "src/trace/ground_truth.h"
 
 #include "src/core/scene_environment.h"

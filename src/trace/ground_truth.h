@@ -1,7 +1,7 @@
 #pragma once
 // The reference every error figure is measured against: direct lighting from
 // the whole environment map and every local light, with a shadow ray per
-// sample against all parts in their current poses (docs/TRUTH.md).
+// sample against all parts in their current poses (docs/design/TRUTH.md).
 //
 //   B(x, ω_o) = Σ_k L_k ρ(ω_k, ω_o) cos θ_k V(x, ω_k) Ω_k        (every cube-map texel k)
 //             + Σ_suns E_s ρ(ω_s, ω_o) cos θ_s V(x, ω_s)           (glTF suns: irradiance E_s)

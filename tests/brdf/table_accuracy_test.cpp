@@ -133,7 +133,7 @@ TEST_CASE("The default tables resolve a glossy lobe under a sun-sized square", "
     // The robot's steel (Phong, n = 40) lit by the sun's RSL (half-edge
     // 0.011): squares near the mirror direction, where a 9° lobe covers a
     // few texels of a 32² table and the box reconstruction was off by the
-    // better part of the torso's error under the sun (docs/BRDF.md, "Table
+    // better part of the torso's error under the sun (docs/design/BRDF.md, "Table
     // resolution"). Measured energy error: 32² 0.065, 64² 0.019.
     const auto brdf = make_brdf(material("phong", {{"kd", {0.25f}}, {"ks", {0.5f}}, {"exponent", {40.0f}}}));
     const auto table = BrdfTable::build(*brdf);  // the default options

@@ -91,7 +91,7 @@ TEST_CASE("An out-of-range JSON number names the file, line, column and key, and
     fs::remove_all(dir);
 }
 
-// ---- found by the fuzzers of fuzz/ (docs/FUZZING.md)
+// ---- found by the fuzzers of fuzz/ (docs/design/FUZZING.md)
 
 TEST_CASE("EXR headers that make OpenEXR allocate more than the file holds are refused first", "[bad-input][fuzz]") {
     const fs::path dir = test::scratch_dir("hostile_exr_header");

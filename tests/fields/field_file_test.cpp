@@ -96,7 +96,7 @@ TEST_CASE("corrupt, truncated, foreign and stale field files are refused by name
 }
 
 TEST_CASE("A field file with a right checksum but NaN or infinite numbers is refused", "[field_file][bad-input][fuzz]") {
-    // Found by fuzz_rslf (docs/FUZZING.md): the reader checked the bytes, not
+    // Found by fuzz_rslf (docs/design/FUZZING.md): the reader checked the bytes, not
     // the numbers, and NaN tables made every lookup NaN.
     const fs::path dir = test::scratch_dir("field_file_nan");
     for (size_t at : {size_t(0), size_t(5)}) {

@@ -473,7 +473,7 @@ TEST_CASE("OVDF counts a receiver on the part's surface as outside it", "[ovdf]"
 }
 
 TEST_CASE("OVDF darkens a receiver sunk 0.0008 R into the part along its radial line", "[ovdf]") {
-    // The robot's knee (docs/RESULTS.md, "The span margin, again"): shin
+    // The robot's knee (docs/journal/results-history.md, "The span margin, again"): shin
     // vertices 0.0005–0.0008 R inside the thigh along their radial lines,
     // which meet the thigh at cos 0.3, are black in the truth, while its
     // glint vertex 0.0005 R inside is lit. Here points under a box's top face,

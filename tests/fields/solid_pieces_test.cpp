@@ -118,7 +118,7 @@ TEST_CASE("Solid pieces: a solid with small holes is still solid inside", "[soli
     // handle are open tubes whose ends lie inside the body. A probe from
     // inside may leave through such a hole; the point is still inside, and
     // a shell sample there traced from inside darkened the ground beside the
-    // teapot's base in blots (docs/FIELDS.md). Here: a sphere with two
+    // teapot's base in blots (docs/design/FIELDS.md). Here: a sphere with two
     // holes, each the triangles around a vertex on a coordinate axis. (The
     // rule lets two probes escape: with three holes, a point that sees one
     // along each of three probes' directions reads outside — the limit of

@@ -1,4 +1,4 @@
-// The shadow-mapped baseline (RenderOptions::shadow_maps, docs/GPU.md
+// The shadow-mapped baseline (RenderOptions::shadow_maps, docs/design/GPU_DESIGN.md
 // "Shadow-mapped visibility") against the exact visible fraction of a light's
 // square under a half-plane occluder, computed analytically.
 //

@@ -52,7 +52,7 @@ void check_against_truth(const Images& images) {
     CHECK(compare_vertex_colors(images.vertex_colors_planes, images.vertex_colors_off).total.relative_l2() == 0.0);
     // Measured: per vertex 6.5% (box as exact shape) and 6.2% (its OVDF),
     // per pixel 3.8% and 3.4% (3.9% for the box as exact shape against the
-    // truth whose ray offsets scale with each part, docs/TRUTH.md); a seam
+    // truth whose ray offsets scale with each part, docs/design/TRUTH.md); a seam
     // where the shadow crosses a triangle whose corners are all lit left 4.3%,
     // and without the per-pixel pass the ratio is 1.
     CHECK(per_pixel < 0.65 * per_vertex);

@@ -181,7 +181,7 @@ TEST_CASE("a spot light's cone: the renderer's per-vertex sum against the ground
     CHECK(full > 50);
     CHECK(edge > 200);
     // And the renderer against the truth: the square-light error of the point
-    // light (the BRDF table's texels, docs/RENDERER.md), no more.
+    // light (the BRDF table's texels, docs/design/RENDERER.md), no more.
     const double error = compare_vertex_colors(rendered, truth).total.relative_l2();
     const double point_error = compare_vertex_colors(rendered_point, truth_point).total.relative_l2();
     INFO("relative L2: spot " << error << ", point " << point_error);

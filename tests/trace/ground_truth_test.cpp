@@ -260,7 +260,7 @@ int check_seam_as_lifted(const Scene& touching, const Scene& lifted, int part, S
 TEST_CASE("A box standing on the ground: its vertices along the seam are shaded as its faces next to it", "[trace][truth]") {
     // Vertices on the seam lie on the ground's triangles; without the nudge
     // into their own face every ray hits the ground at t = 0 and they come
-    // out black (docs/TRUTH.md). Reference: the same box lifted by 1e-4,
+    // out black (docs/design/TRUTH.md). Reference: the same box lifted by 1e-4,
     // where nothing is degenerate.
     // The box off the ground's grid lines.
     const Scene touching = unit_box_on_ground(8, Vec3(0.05f, 0.5f, 0.1f)),

@@ -15,7 +15,7 @@ namespace rsl::assets {
 inline constexpr float kYardLoopSeconds = 4.0f;
 inline constexpr int kYardMaxInstances = 4096;
 // The OVDF's outer radius, in bounding radii. Measured with `rsl bench
-// scale --reaches` (docs/RESULTS.md "The reach, once more"): the ground's
+// scale --reaches` (docs/journal/results-history.md "The reach, once more"): the ground's
 // long shadows need the reach (the all-vertex error's growth from N = 8 to
 // 64: +1.04 points at 10R, +0.89 at 16R, +0.81 at 20R), and each step costs
 // frame time (yard-128 at 16R about 1.1x the 10R frame); 6 and 4 cut the

@@ -1,7 +1,7 @@
 // `rsl bench brdf`: BRDF table build times per model (iso and aniso), square
 // lookups per second (single and batched), the float storage's precision, and
 // the square approximation's own error (the RSL's true spherical region vs the
-// plane square that replaces it). docs/BRDF.md quotes these numbers.
+// plane square that replaces it). docs/design/BRDF.md quotes these numbers.
 #include <algorithm>
 #include <chrono>
 #include <random>

@@ -1,5 +1,5 @@
 // `rsl bench fields`: SVDF/OVDF bake times, compression ratios and errors,
-// lookups per second, and the compression/error trade-off (docs/FIELDS.md).
+// lookups per second, and the compression/error trade-off (docs/design/FIELDS.md).
 #include <chrono>
 #include <filesystem>
 #include <random>

@@ -72,7 +72,7 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
 
     // Full frames: the shading pass, then the display pass into a 640×480
     // target, with the per-pixel pass (the default: grounds and glossy parts
-    // shaded per pixel, docs/GPU.md) and without it (every part the vertex
+    // shaded per pixel, docs/design/GPU_DESIGN.md) and without it (every part the vertex
     // colours' blend). Fewer frames: on a software rasterizer a frame with
     // the per-pixel pass takes tens of seconds.
     const int width = 640, height = 480;

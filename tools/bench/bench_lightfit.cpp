@@ -1,6 +1,6 @@
 // `rsl bench lightfit`: decomposition time (6×32×32 → 30 and 6×64×64 → 100
 // RSLs; the paper: ~2 minutes for 6×32×32) and the relative L2 error of the
-// reconstructed environment as K grows, for each merge rule (docs/LIGHTFIT.md).
+// reconstructed environment as K grows, for each merge rule (docs/design/LIGHTFIT.md).
 #include <algorithm>
 #include <chrono>
 #include <filesystem>

@@ -60,7 +60,7 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     Image image;
     const double image_seconds = median_seconds(repeats, [&] { image = form_image(posed, camera, colors); });
     // `rsl render`'s image: shading that keeps the per-pixel terms, then the
-    // image with per-pixel shadows and highlights (docs/RENDERER.md).
+    // image with per-pixel shadows and highlights (docs/design/RENDERER.md).
     renderer->keep_image_terms(true);
     renderer->shade(colors);
     const double shade_pixel_terms_seconds = median_seconds(repeats, [&] {

@@ -71,7 +71,7 @@ RegisterCommand bake_command({"bake",
         app.add_option("--shells", args->shells, "OVDF shells around the part (default: scene setting, 16)");
         app.add_option("--shard", args->shard,
                        "I/N: bake only shard I (0 <= I < N) of the unique fields, for N processes or machines "
-                       "sharing the cache folder (docs/FIELDS.md)");
+                       "sharing the cache folder (docs/design/FIELDS.md)");
         app.add_flag("-q,--quiet", args->quiet, "No progress output (warnings still go to stderr)");
         app.footer(
             "Cache: one .rslf file per unique mesh and field kind, named <svdf|ovdf>-<key>.rslf, where the key "

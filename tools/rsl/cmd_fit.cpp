@@ -1,5 +1,5 @@
 // `rsl fit ENV --lights K -o lights.json [--preview fit.png]`: decompose an
-// environment map into rotatable square lights (docs/LIGHTFIT.md).
+// environment map into rotatable square lights (docs/design/LIGHTFIT.md).
 #include <chrono>
 
 #include <fmt/core.h>

@@ -164,7 +164,7 @@ RegisterCommand render_command({"render",
         app.add_flag("--no-culling", args->no_culling, "Look every occluder up (for checking the culling)");
         app.add_flag("--exact-shapes,!--no-exact-shapes", args->exact_shapes,
                      "Parts that are one flat rectangle (a ground) or one box shadow the others from their shape, "
-                     "not their OVDF: exact near contacts, about 5% slower (default on; docs/RENDERER.md)");
+                     "not their OVDF: exact near contacts, about 5% slower (default on; docs/design/RENDERER.md)");
         app.add_option("--pixel-shadows", args->pixel_shadows,
                        "Which parts take the other parts' shadows per pixel in the image, where a shadow edge "
                        "crosses a triangle (sharp shadows on coarse receivers; per-vertex colours unchanged; "

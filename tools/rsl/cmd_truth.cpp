@@ -1,5 +1,5 @@
 // `rsl truth SCENE --time T -o out.exr`: the Embree ground truth
-// (docs/TRUTH.md). Per-vertex exact direct lighting, written as .rslv, and the
+// (docs/design/TRUTH.md). Per-vertex exact direct lighting, written as .rslv, and the
 // image formed from it exactly as the RSL renderer forms its image (or, with
 // --per-pixel, the same integral at every pixel's hit point), as EXR + PNG.
 #include <algorithm>
