@@ -53,9 +53,9 @@ struct Diagnostics {
     std::vector<std::pair<int, double>> haar, rsl;  // (terms, vertex error)
 };
 
-void write_outputs(const BaselinesExperiment& args, const Scene& scene, const std::vector<MethodResult>& results,
-                   const PrtPrecompute& prt, double texel_sum_error,
-                   const Diagnostics& unshadowed) {
+// Output phase: results.json, table.md and every method's EXR and PNG; returns the table.
+std::string write_results(const BaselinesExperiment& args, const Scene& scene, const std::vector<MethodResult>& results,
+                          const PrtPrecompute& prt, double texel_sum_error, const Diagnostics& unshadowed) {
     const std::filesystem::path dir(args.output);
     nlohmann::json json = {{"scene", scene.name}, {"source", scene.source.string()},
                            {"environment", scene.environment.file.filename().string()},
@@ -91,8 +91,11 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
     }
     write_file_atomically(dir / "results.json", json.dump(2) + "\n");
     write_file_atomically(dir / "table.md", table);
+    return table;
+}
 
-    // Side by side: one exposure for all, from the truth's 99th luminance percentile.
+// Output phase: sheet.png, side by side: one exposure for all, from the truth's 99th luminance percentile.
+void write_contact_sheet(const std::filesystem::path& dir, const std::vector<MethodResult>& results) {
     std::vector<float> lum;
     const Image& truth = results.front().image;
     for (int y = 0; y < truth.height; ++y)
@@ -107,7 +110,10 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
                                              : fmt::format("{} {}  {:.1f}%", r.method, r.terms, 100 * r.image_error));
     }
     write_png(dir / "sheet.png", raster::contact_sheet(tiles, labels, 4, gain));
+}
 
+// Output phase: error_plot.png, the image error against the terms, one curve per method.
+void write_error_plot(const std::filesystem::path& dir, const std::vector<MethodResult>& results) {
     std::vector<raster::Series> series = {{"SH", Color(0.85f, 0.2f, 0.1f), {}, {}, {}},
                                           {"HAAR", Color(0.1f, 0.45f, 0.85f), {}, {}, {}},
                                           {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}, {}}};
@@ -120,6 +126,16 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
     std::erase_if(series, [](const raster::Series& s) { return s.x.empty(); });
     write_png(dir / "error_plot.png",
               raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR TERMS, RSLS)", "IMAGE REL. L2 ERROR"));
+}
+
+// Every output file of the experiment, then the table on stdout.
+void write_outputs(const BaselinesExperiment& args, const Scene& scene, const std::vector<MethodResult>& results,
+                   const PrtPrecompute& prt, double texel_sum_error,
+                   const Diagnostics& unshadowed) {
+    const std::filesystem::path dir(args.output);
+    const std::string table = write_results(args, scene, results, prt, texel_sum_error, unshadowed);
+    write_contact_sheet(dir, results);
+    write_error_plot(dir, results);
     fmt::print("{}\nwrote {}/table.md, results.json, sheet.png, error_plot.png\n", table, dir.string());
 }
 
