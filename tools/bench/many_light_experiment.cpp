@@ -57,8 +57,9 @@ int samples_for_budget(uint64_t budget, uint64_t pairs) {
     return std::clamp(int(std::floor(std::sqrt(per_pair))), 1, ExactVisibility::kMaxSamplesPerSide);
 }
 
-void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
-                   double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
+// Output phase: results.json, table.md and every row's and the truth's EXR and PNG; returns the table.
+std::string write_results(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
+                          double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
     const std::filesystem::path dir(args.output);
     nlohmann::json json = {{"scene", scene.name},
                            {"source", scene.source.string()},
@@ -89,8 +90,11 @@ void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t v
     write_exr_and_png(dir / "truth.exr", truth_image, ToneMap{0.0f, true});
     write_file_atomically(dir / "results.json", json.dump(2) + "\n");
     write_file_atomically(dir / "table.md", table);
+    return table;
+}
 
-    // One exposure for all tiles, from the truth's 99th luminance percentile.
+// Output phase: sheet.png, the truth and every row at one exposure, from the truth's 99th luminance percentile.
+void write_contact_sheet(const std::filesystem::path& dir, const Image& truth_image, const std::vector<Row>& rows) {
     std::vector<float> lum;
     for (int y = 0; y < truth_image.height; ++y)
         for (int x = 0; x < truth_image.width; ++x) lum.push_back(luminance(truth_image.rgb(x, y)));
@@ -103,8 +107,10 @@ void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t v
         labels.push_back(fmt::format("{}  {:.0f} MS  {:.1f}%", r.label(), r.frame_ms, 100 * r.objects_error));
     }
     write_png(dir / "sheet.png", raster::contact_sheet(tiles, labels, 4, gain));
+}
 
-    // Pareto: the objects' error against frame time, one curve per method.
+// Output phase: pareto.png, the objects' error against frame time, one curve per method.
+void write_pareto_plot(const std::filesystem::path& dir, const Scene& scene, const std::vector<Row>& rows) {
     const std::vector<std::pair<std::string, Color>> families = {{"rsl", Color(0.1f, 0.6f, 0.2f)},
                                                                  {"rsl-gl", Color(0.5f, 0.8f, 0.2f)},
                                                                  {"rays", Color(0.85f, 0.2f, 0.1f)},
@@ -123,6 +129,15 @@ void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t v
     }
     write_png(dir / "pareto.png", raster::line_plot(series, fmt::format("MS PER FRAME ({})", scene.name),
                                                     "OBJECTS REL. L2 ERROR", 640, 420, true));
+}
+
+// Every output file of the experiment, then the table on stdout.
+void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
+                   double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
+    const std::filesystem::path dir(args.output);
+    const std::string table = write_results(args, scene, vertices, truth_image, truth_ms, rows, gl_device);
+    write_contact_sheet(dir, truth_image, rows);
+    write_pareto_plot(dir, scene, rows);
     fmt::print("{}\nwrote {}/table.md, results.json, pareto.png, sheet.png\n", table, dir.string());
 }
 
