@@ -62,6 +62,171 @@ void check_index(const Scene& scene, size_t size, const char* what) {
                          what, size);
 }
 
+// The records of the fields packed so far, by field object: instances share
+// a field object (src/fields/field_cache.h), whose tables go up once and
+// whose records every part that uses it points at.
+struct SharedFieldRecords {
+    std::map<const Svdf*, Vec4> svdf;
+    std::map<const Ovdf*, std::array<Vec4, 5>> ovdf;
+    std::map<const Svdf*, std::vector<uint8_t>> enclosed;
+};
+
+// The part record's slots of an OVDF, in the order the records cache them.
+constexpr int kOvdfSlots[5] = {kSlotOvdfCenter, kSlotOvdfBases, kSlotOvdfShells, kSlotOvdfGrid, kSlotOvdfRecords};
+
+// Phase: the cube faces' normal and (s, t) axes, as Ovdf::prepare.
+void pack_face_frames(PackedGeometry& g) {
+    const float root2 = std::sqrt(2.0f);
+    for (int f = 0; f < 6; ++f) {  // as Ovdf::prepare
+        g.face_normal[f] = CubeMap::face_direction(f, 0, 0);
+        g.face_s[f] = root2 * CubeMap::face_direction(f, 1, 0) - g.face_normal[f];
+        g.face_t[f] = root2 * CubeMap::face_direction(f, 0, 1) - g.face_normal[f];
+    }
+}
+
+// Part phase: the record's first vertex, bounding box and (with exact_shapes) occluder shape.
+void write_part_shape(const TriangleMesh& mesh, bool exact_shapes, PackedGeometry& g, Vec4* record) {
+    const int first = int(g.positions.size());
+    g.first_vertex.push_back(first);
+    record[kSlotVertices] = Vec4(float(first), 0, 0, 0);
+    const Bounds box = mesh.bounds();
+    record[kSlotBoxLow] = Vec4(box.lo, 0.0f);
+    record[kSlotBoxHigh] = Vec4(box.hi, 0.0f);
+    if (exact_shapes) {
+        const OccluderShape shape = find_occluder_shape(mesh);
+        record[kSlotShape] = Vec4(shape.center, float(shape.kind));
+        record[kSlotShapeS] = Vec4(shape.s, 0.0f);
+        record[kSlotShapeT] = Vec4(shape.t, 0.0f);
+        record[kSlotShapeNormal] = Vec4(shape.normal, 0.0f);
+        record[kSlotShapeLow] = Vec4(shape.lo, 0.0f);
+        record[kSlotShapeHigh] = Vec4(shape.hi, 0.0f);
+    }
+}
+
+// Part phase: the SVDF's slot, its tables and coefficients appended the first time the field is seen.
+void pack_part_svdf(const Svdf& svdf, PackedGeometry& g, SharedFieldRecords& shared, Vec4* record) {
+    if (shared.svdf.count(&svdf)) {
+        record[kSlotSvdf] = shared.svdf[&svdf];
+        return;
+    }
+    const CpcaModel& m = svdf.model;
+    const int stride = cpca_stride(m.vectors);
+    g.max_stride = std::max(g.max_stride, stride);
+    const size_t tables = append_tables(m, g.svdf_tables, g.svdf_tables_half);
+    const size_t coefficients = append_coefficients(m, g.svdf_coefficients);
+    record[kSlotSvdf] = Vec4(float(tables), float(coefficients), float(svdf.resolution()), float(stride));
+    shared.svdf[&svdf] = record[kSlotSvdf];
+}
+
+// Part phase: the mesh's vertices as texels, with part index, SVDF cluster and enclosed flag.
+void append_part_vertices(const TriangleMesh& mesh, size_t p, const Svdf* svdf, PackedGeometry& g,
+                          SharedFieldRecords& shared) {
+    // The tangent's w: 1 where the SVDF finds the vertex enclosed (the per-pixel pass's corners).
+    const std::vector<uint8_t>* enclosed = nullptr;
+    if (svdf) {
+        auto [it, added] = shared.enclosed.try_emplace(svdf);
+        if (added) it->second = svdf->enclosed_vertices();
+        enclosed = &it->second;
+    }
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        g.positions.push_back(Vec4(mesh.positions[v], float(p)));
+        const float cluster = svdf ? float(svdf->model.assignment[v]) : -1.0f;
+        g.normals.push_back(Vec4(mesh.normals[v], cluster));
+        const float enclosed_flag = enclosed && (*enclosed)[v] ? 1.0f : 0.0f;
+        g.tangents.push_back(Vec4(mesh.tangents.empty() ? Vec3(0.0f) : Vec3(mesh.tangents[v]), enclosed_flag));
+    }
+}
+
+// Throws unless every sample of the OVDF is clustered by its segment: the
+// shader computes a sample's cluster as its segment (as the bake assigns it).
+void check_clustered_by_segment(const Scene& scene, size_t p, const Ovdf& o) {
+    const OvdfParams& op = o.params;
+    const int n = op.cube_resolution;
+    for (int shell = 0; shell < op.shells; ++shell)
+        for (int face = 0; face < 6; ++face)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i)
+                    if (o.model.assignment[o.sample_index(shell, face, i, j)] != o.segment_of(shell, face, i, j))
+                        throw_file_error(scene.source, "GL renderer: OVDF of part '{}' is not clustered by segment",
+                                         scene.parts[p].name);
+}
+
+// Where an OVDF's blocks start in PackedGeometry::ovdf_frames.
+struct OvdfFrameBlocks {
+    size_t frames = 0, zoom_records = 0, surfaces = 0, spans = 0;
+};
+
+// OVDF phase: its sample frames, shell zooms, surface distances and occluded
+// areas, and radial spans, each block appended to `out` in turn.
+OvdfFrameBlocks append_ovdf_frames(const Ovdf& o, std::vector<Vec4>& out) {
+    const OvdfParams& op = o.params;
+    const int n = op.cube_resolution;
+    OvdfFrameBlocks blocks;
+    blocks.frames = start_block(out);
+    for (int face = 0; face < shading::kCubeFaces; ++face)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const Frame& frame = o.sample_frame(face, i, j);
+                out.push_back(Vec4(frame.x, 0.0f));  // kOvdfFrameTexels
+                out.push_back(Vec4(frame.z, 0.0f));
+            }
+    blocks.zoom_records = start_block(out);
+    for (int shell = 0; shell < op.shells; ++shell)  // after the frames: (zoom, cone, 0, 0)
+        out.push_back(Vec4(o.shell_zoom(shell).zoom, o.shell_zoom(shell).cone, 0.0f, 0.0f));
+    // Then the samples' surface distances and occluded areas, two samples
+    // to a texel (1: outside, and no area bound, for a field without them).
+    blocks.surfaces = start_block(out);
+    const size_t samples = op.sample_count();
+    for (size_t s = 0; s < samples; s += kSamplesPerTexel) {
+        Vec4 texel(1.0f, shading::kOvdfNoAreaBound, 1.0f, shading::kOvdfNoAreaBound);
+        for (size_t c = 0; c < kSamplesPerTexel && s + c < samples; ++c) {
+            if (!o.surface_distance.empty()) texel[int(2 * c)] = o.surface_distance[s + c];
+            if (!o.occluded_area.empty()) texel[int(2 * c + 1)] = o.occluded_area[s + c];
+        }
+        out.push_back(texel);
+    }
+    // Then the radial spans, two lines (enter, exit) to a texel.
+    blocks.spans = start_block(out);
+    for (size_t k = 0; k < o.radial_span.size(); k += 4) {
+        Vec4 texel(0.0f);
+        for (size_t c = 0; c < 4 && k + c < o.radial_span.size(); ++c) texel[int(c)] = o.radial_span[k + c];
+        out.push_back(texel);
+    }
+    return blocks;
+}
+
+// Part phase: the occluder field's OVDF slots, its tables, coefficients and
+// frames appended the first time the field is seen; none without a field.
+void pack_part_ovdf(const Scene& scene, size_t p, const OccluderField* field, PackedGeometry& g,
+                    SharedFieldRecords& shared, Vec4* record) {
+    if (!field) return;
+    const auto* occluder = dynamic_cast<const OvdfOccluder*>(field);
+    if (!occluder)
+        throw_file_error(scene.source, "GL renderer: part '{}' has an occluder field that is not an OVDF",
+                         scene.parts[p].name);
+    const Ovdf& o = occluder->field();
+    if (const auto it = shared.ovdf.find(&o); it != shared.ovdf.end()) {
+        for (int k = 0; k < 5; ++k) record[kOvdfSlots[k]] = it->second[size_t(k)];
+        return;
+    }
+    const OvdfParams& op = o.params;
+    const int n = op.cube_resolution;
+    check_clustered_by_segment(scene, p, o);
+    const int stride = cpca_stride(o.model.vectors);
+    g.max_stride = std::max(g.max_stride, stride);
+    const size_t tables = append_tables(o.model, g.ovdf_tables, g.ovdf_tables_half);
+    const size_t coefficients = append_coefficients(o.model, g.ovdf_coefficients);
+    const OvdfFrameBlocks blocks = append_ovdf_frames(o, g.ovdf_frames);
+    record[kSlotOvdfCenter] = Vec4(o.center, o.radius);
+    record[kSlotOvdfBases] =
+        Vec4(float(tables), float(coefficients), float(blocks.frames), o.shell_radius(op.shells - 1));
+    record[kSlotOvdfShells] = Vec4(float(op.shells), float(int(op.spacing)), op.inner_radius, op.outer_radius);
+    record[kSlotOvdfGrid] = Vec4(float(n), float(op.vdt_resolution), float(stride), float(op.segments_per_side));
+    record[kSlotOvdfRecords] = Vec4(float(blocks.zoom_records), float(blocks.surfaces), float(blocks.spans),
+                                    o.radial_span.empty() ? 0.0f : float(o.span_resolution));
+    for (int k = 0; k < 5; ++k) shared.ovdf[&o][size_t(k)] = record[kOvdfSlots[k]];
+}
+
 }  // namespace
 
 std::string shader_layout_constants() {
@@ -82,126 +247,17 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
     PackedGeometry g;
     const size_t parts = scene.parts.size();
     g.part_static.assign(parts * kPartStride, Vec4(0.0f));
-    const float root2 = std::sqrt(2.0f);
-    for (int f = 0; f < 6; ++f) {  // as Ovdf::prepare
-        g.face_normal[f] = CubeMap::face_direction(f, 0, 0);
-        g.face_s[f] = root2 * CubeMap::face_direction(f, 1, 0) - g.face_normal[f];
-        g.face_t[f] = root2 * CubeMap::face_direction(f, 0, 1) - g.face_normal[f];
-    }
-    // Instances share a field object (src/fields/field_cache.h): its tables go
-    // up once, and every part that uses it points at the same records.
-    std::map<const Svdf*, Vec4> svdf_records;
-    std::map<const Ovdf*, std::array<Vec4, 5>> ovdf_records;
-    std::map<const Svdf*, std::vector<uint8_t>> enclosed_of;
+    pack_face_frames(g);
+    SharedFieldRecords shared;
     for (size_t p = 0; p < parts; ++p) {
         const TriangleMesh& mesh = scene.parts[p].mesh;
         Vec4* record = &g.part_static[p * kPartStride];
-        const int first = int(g.positions.size());
-        g.first_vertex.push_back(first);
-        record[kSlotVertices] = Vec4(float(first), 0, 0, 0);
-        const Bounds box = mesh.bounds();
-        record[kSlotBoxLow] = Vec4(box.lo, 0.0f);
-        record[kSlotBoxHigh] = Vec4(box.hi, 0.0f);
-        if (exact_shapes) {
-            const OccluderShape shape = find_occluder_shape(mesh);
-            record[kSlotShape] = Vec4(shape.center, float(shape.kind));
-            record[kSlotShapeS] = Vec4(shape.s, 0.0f);
-            record[kSlotShapeT] = Vec4(shape.t, 0.0f);
-            record[kSlotShapeNormal] = Vec4(shape.normal, 0.0f);
-            record[kSlotShapeLow] = Vec4(shape.lo, 0.0f);
-            record[kSlotShapeHigh] = Vec4(shape.hi, 0.0f);
-        }
-
+        write_part_shape(mesh, exact_shapes, g, record);
         const Svdf* svdf = p < fields.self.size() ? fields.self[p].get() : nullptr;
-        if (svdf && svdf_records.count(svdf)) {
-            record[kSlotSvdf] = svdf_records[svdf];
-        } else if (svdf) {
-            const CpcaModel& m = svdf->model;
-            const int stride = cpca_stride(m.vectors);
-            g.max_stride = std::max(g.max_stride, stride);
-            const size_t tables = append_tables(m, g.svdf_tables, g.svdf_tables_half);
-            const size_t coefficients = append_coefficients(m, g.svdf_coefficients);
-            record[kSlotSvdf] = Vec4(float(tables), float(coefficients), float(svdf->resolution()), float(stride));
-            svdf_records[svdf] = record[kSlotSvdf];
-        }
-        // The tangent's w: 1 where the SVDF finds the vertex enclosed (the per-pixel pass's corners).
-        const std::vector<uint8_t>* enclosed = nullptr;
-        if (svdf) {
-            auto [it, added] = enclosed_of.try_emplace(svdf);
-            if (added) it->second = svdf->enclosed_vertices();
-            enclosed = &it->second;
-        }
-        for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-            g.positions.push_back(Vec4(mesh.positions[v], float(p)));
-            const float cluster = svdf ? float(svdf->model.assignment[v]) : -1.0f;
-            g.normals.push_back(Vec4(mesh.normals[v], cluster));
-            const float enclosed_flag = enclosed && (*enclosed)[v] ? 1.0f : 0.0f;
-            g.tangents.push_back(Vec4(mesh.tangents.empty() ? Vec3(0.0f) : Vec3(mesh.tangents[v]), enclosed_flag));
-        }
-
+        if (svdf) pack_part_svdf(*svdf, g, shared, record);
+        append_part_vertices(mesh, p, svdf, g, shared);
         const OccluderField* field = p < fields.occluder.size() ? fields.occluder[p].get() : nullptr;
-        if (!field) continue;
-        const auto* occluder = dynamic_cast<const OvdfOccluder*>(field);
-        if (!occluder)
-            throw_file_error(scene.source, "GL renderer: part '{}' has an occluder field that is not an OVDF",
-                             scene.parts[p].name);
-        const Ovdf& o = occluder->field();
-        const int kOvdfSlots[5] = {kSlotOvdfCenter, kSlotOvdfBases, kSlotOvdfShells, kSlotOvdfGrid, kSlotOvdfRecords};
-        if (const auto it = ovdf_records.find(&o); it != ovdf_records.end()) {
-            for (int k = 0; k < 5; ++k) record[kOvdfSlots[k]] = it->second[size_t(k)];
-            continue;
-        }
-        const OvdfParams& op = o.params;
-        const int n = op.cube_resolution;
-        // The shader computes a sample's cluster as its segment (as the bake assigns it).
-        for (int shell = 0; shell < op.shells; ++shell)
-            for (int face = 0; face < 6; ++face)
-                for (int j = 0; j < n; ++j)
-                    for (int i = 0; i < n; ++i)
-                        if (o.model.assignment[o.sample_index(shell, face, i, j)] != o.segment_of(shell, face, i, j))
-                            throw_file_error(scene.source, "GL renderer: OVDF of part '{}' is not clustered by segment",
-                                             scene.parts[p].name);
-        const int stride = cpca_stride(o.model.vectors);
-        g.max_stride = std::max(g.max_stride, stride);
-        const size_t tables = append_tables(o.model, g.ovdf_tables, g.ovdf_tables_half);
-        const size_t coefficients = append_coefficients(o.model, g.ovdf_coefficients);
-        const size_t frames = start_block(g.ovdf_frames);
-        for (int face = 0; face < shading::kCubeFaces; ++face)
-            for (int j = 0; j < n; ++j)
-                for (int i = 0; i < n; ++i) {
-                    const Frame& frame = o.sample_frame(face, i, j);
-                    g.ovdf_frames.push_back(Vec4(frame.x, 0.0f));  // kOvdfFrameTexels
-                    g.ovdf_frames.push_back(Vec4(frame.z, 0.0f));
-                }
-        const size_t zoom_records = start_block(g.ovdf_frames);
-        for (int shell = 0; shell < op.shells; ++shell)  // after the frames: (zoom, cone, 0, 0)
-            g.ovdf_frames.push_back(Vec4(o.shell_zoom(shell).zoom, o.shell_zoom(shell).cone, 0.0f, 0.0f));
-        // Then the samples' surface distances and occluded areas, two samples
-        // to a texel (1: outside, and no area bound, for a field without them).
-        const size_t surfaces = start_block(g.ovdf_frames);
-        const size_t samples = op.sample_count();
-        for (size_t s = 0; s < samples; s += kSamplesPerTexel) {
-            Vec4 texel(1.0f, shading::kOvdfNoAreaBound, 1.0f, shading::kOvdfNoAreaBound);
-            for (size_t c = 0; c < kSamplesPerTexel && s + c < samples; ++c) {
-                if (!o.surface_distance.empty()) texel[int(2 * c)] = o.surface_distance[s + c];
-                if (!o.occluded_area.empty()) texel[int(2 * c + 1)] = o.occluded_area[s + c];
-            }
-            g.ovdf_frames.push_back(texel);
-        }
-        // Then the radial spans, two lines (enter, exit) to a texel.
-        const size_t spans = start_block(g.ovdf_frames);
-        for (size_t k = 0; k < o.radial_span.size(); k += 4) {
-            Vec4 texel(0.0f);
-            for (size_t c = 0; c < 4 && k + c < o.radial_span.size(); ++c) texel[int(c)] = o.radial_span[k + c];
-            g.ovdf_frames.push_back(texel);
-        }
-        record[kSlotOvdfCenter] = Vec4(o.center, o.radius);
-        record[kSlotOvdfBases] = Vec4(float(tables), float(coefficients), float(frames), o.shell_radius(op.shells - 1));
-        record[kSlotOvdfShells] = Vec4(float(op.shells), float(int(op.spacing)), op.inner_radius, op.outer_radius);
-        record[kSlotOvdfGrid] = Vec4(float(n), float(op.vdt_resolution), float(stride), float(op.segments_per_side));
-        record[kSlotOvdfRecords] = Vec4(float(zoom_records), float(surfaces), float(spans),
-                                        o.radial_span.empty() ? 0.0f : float(o.span_resolution));
-        for (int k = 0; k < 5; ++k) ovdf_records[&o][size_t(k)] = record[kOvdfSlots[k]];
+        pack_part_ovdf(scene, p, field, g, shared, record);
     }
     g.first_vertex.push_back(int(g.positions.size()));
     // A vertex's part and first vertex are float texels too (the tables'

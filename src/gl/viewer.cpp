@@ -143,9 +143,9 @@ void write_screenshot(const std::filesystem::path& path, int width, int height) 
     });
 }
 
-}  // namespace
-
-void run_viewer(const ViewerOptions& options) {
+// Set-up phase: the scene, with quick fields if asked for and a light to move
+// around if it has none.
+std::shared_ptr<Scene> load_viewer_scene(const ViewerOptions& options) {
     auto scene = std::make_shared<Scene>(load_scene(options.scene));
     if (options.quick_fields) use_quick_fields(scene->precompute);
     if (scene->lights.empty()) {  // a light to move around
@@ -156,22 +156,23 @@ void run_viewer(const ViewerOptions& options) {
         light.position = scene->camera.target + Vec3(0.5f, 1.0f, 0.5f) * std::max(0.5f, 0.3f * bounds.radius);
         scene->lights.push_back(light);
     }
-    SetupOptions how;
-    how.progress = options.progress;
-    RenderSetup setup = prepare_render(scene, options.render, how);
+    return scene;
+}
 
-    Window window(options.width, options.height, "rsl view: " + scene->name);
-    ImGuiSession imgui(window.window);
-    GlRenderer renderer(*scene, setup.environment_lights, setup.fields, options.render);
-    std::fprintf(stderr, "%s\n", context_description().c_str());
+// Set-up phase: the skybox of the environment (and its second map), or none without one.
+std::unique_ptr<Skybox> make_skybox(const RenderSetup& setup) {
     std::unique_ptr<Skybox> skybox;
     if (setup.environment.resolution() > 0)
         skybox = std::make_unique<Skybox>(setup.environment, setup.second_environment.resolution() > 0
                                                                   ? &setup.second_environment
                                                                   : nullptr);
+    return skybox;
+}
 
-    ViewerState state;
-    state.scene = scene.get();
+// Set-up phase: the viewer's state from the options, the setup and the scene's camera.
+void init_state(ViewerState& state, const ViewerOptions& options, Scene& scene, RenderSetup& setup,
+                GlRenderer& renderer) {
+    state.scene = &scene;
     state.environment = &setup.environment;
     if (setup.second_environment.resolution() > 0) state.second_environment = &setup.second_environment;
     state.renderer = &renderer;
@@ -180,12 +181,108 @@ void run_viewer(const ViewerOptions& options) {
     state.time = options.start_time;
     state.exposure = options.exposure;
     state.panel = options.panel;
-    state.camera.target = scene->camera.target;
-    const Vec3 offset = scene->camera.position - scene->camera.target;
+    state.camera.target = scene.camera.target;
+    const Vec3 offset = scene.camera.position - scene.camera.target;
     state.camera.distance = glm::length(offset);
     state.camera.yaw = std::atan2(offset.x, offset.z);
     state.camera.pitch = std::asin(std::clamp(offset.y / std::max(state.camera.distance, 1e-6f), -1.0f, 1.0f));
-    state.camera.fov_y_degrees = scene->camera.fov_y_degrees;
+    state.camera.fov_y_degrees = scene.camera.fov_y_degrees;
+}
+
+// Frame phase: the animation's step dt and the smoothed frame time; `last` becomes now.
+float advance_frame_clock(const ViewerOptions& options, const Scene& scene, ViewerState& state,
+                          std::chrono::steady_clock::time_point& last) {
+    const auto now = std::chrono::steady_clock::now();
+    // Screenshot mode plays at the scene's frame rate, whatever the speed.
+    const float dt = options.frames > 0 ? 1.0f / std::max(scene.animation.fps, 1.0f)
+                                        : std::chrono::duration<float>(now - last).count();
+    const double ms = std::chrono::duration<double, std::milli>(now - last).count();
+    state.frame_ms = 0.9 * state.frame_ms + 0.1 * ms;
+    state.fps = state.frame_ms > 0 ? 1e3 / state.frame_ms : 0;
+    last = now;
+    return dt;
+}
+
+// Frame phase: ImGui's new frame, the user's input and panel, then the animation's time.
+void update_from_user(GLFWwindow* window, Input& input, ViewerState& state, const Scene& scene, float dt,
+                      float duration, int frame) {
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    handle_input(window, input, state, dt);
+    viewer_panel(state);
+    apply_pending(state);
+    if (state.playing && frame > 0)
+        state.time = scene.animation.start + std::fmod(state.time - scene.animation.start + dt, duration);
+}
+
+// Where the frame is seen from: the environment's turn by the user and the camera's eye.
+struct ViewPose {
+    Mat3 turn;
+    Vec3 eye;
+};
+
+// Frame phase: the pose of this frame's view, from the user's state.
+ViewPose view_pose(const ViewerState& state) {
+    const Mat3 turn = Mat3(glm::rotate(Mat4(1.0f), glm::radians(state.environment_degrees), Vec3(0, 1, 0)));
+    const Vec3 eye = state.camera.eye();
+    return {turn, eye};
+}
+
+// Frame phase: the renderer shades the vertices at the pose; the first frame
+// sets the automatic exposure from them.
+void shade_view(GlRenderer& renderer, const ViewPose& pose, const ViewerOptions& options, int frame,
+                ViewerState& state) {
+    renderer.set_view(state.time, pose.eye, pose.turn);
+    renderer.shade_on_device();
+    if (frame == 0 && options.auto_exposure) {
+        VertexColors colors = renderer.make_output();
+        renderer.read_colors(colors);
+        state.exposure = automatic_exposure(colors);
+    }
+}
+
+// Frame phase: the skybox, the shaded scene and the panel into the window's framebuffer.
+void draw_frame(GlRenderer& renderer, Skybox* skybox, const Scene& scene, const ViewerState& state,
+                const ViewPose& pose, int width, int height) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    glClearColor(0.05f, 0.05f, 0.06f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const float aspect = float(width) / float(std::max(height, 1));
+    const Mat4 projection = glm::perspective(glm::radians(state.camera.fov_y_degrees), aspect,
+                                             0.01f * state.camera.distance, 100.0f * state.camera.distance);
+    const Mat4 view = glm::lookAt(pose.eye, state.camera.target, Vec3(0, 1, 0));
+    if (skybox) {
+        // The environment as the renderer turns its lights (FrameSetup):
+        // the viewer's turn after the scene's rotation at t.
+        const EnvironmentDesc& environment = scene.environment;
+        const float weight = environment.second_file.empty() ? 0.0f : environment.blend_weight_at(state.time);
+        skybox->draw(projection * view, pose.eye, pose.turn * environment.rotation_at(state.time), weight,
+                     std::exp2(state.exposure));
+    }
+    renderer.draw(projection * view, std::exp2(state.exposure));
+    glDisable(GL_DEPTH_TEST);
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+}  // namespace
+
+void run_viewer(const ViewerOptions& options) {
+    const std::shared_ptr<Scene> scene = load_viewer_scene(options);
+    SetupOptions how;
+    how.progress = options.progress;
+    RenderSetup setup = prepare_render(scene, options.render, how);
+
+    Window window(options.width, options.height, "rsl view: " + scene->name);
+    ImGuiSession imgui(window.window);
+    GlRenderer renderer(*scene, setup.environment_lights, setup.fields, options.render);
+    std::fprintf(stderr, "%s\n", context_description().c_str());
+    const std::unique_ptr<Skybox> skybox = make_skybox(setup);
+
+    ViewerState state;
+    init_state(state, options, *scene, setup, renderer);
 
     Input input;
     glfwGetCursorPos(window.window, &input.last_x, &input.last_y);
@@ -193,56 +290,14 @@ void run_viewer(const ViewerOptions& options) {
     auto last = std::chrono::steady_clock::now();
     for (int frame = 0; !glfwWindowShouldClose(window.window); ++frame) {
         glfwPollEvents();
-        const auto now = std::chrono::steady_clock::now();
-        // Screenshot mode plays at the scene's frame rate, whatever the speed.
-        const float dt = options.frames > 0 ? 1.0f / std::max(scene->animation.fps, 1.0f)
-                                            : std::chrono::duration<float>(now - last).count();
-        const double ms = std::chrono::duration<double, std::milli>(now - last).count();
-        state.frame_ms = 0.9 * state.frame_ms + 0.1 * ms;
-        state.fps = state.frame_ms > 0 ? 1e3 / state.frame_ms : 0;
-        last = now;
-
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        handle_input(window.window, input, state, dt);
-        viewer_panel(state);
-        apply_pending(state);
-        if (state.playing && frame > 0)
-            state.time = scene->animation.start + std::fmod(state.time - scene->animation.start + dt, duration);
+        const float dt = advance_frame_clock(options, *scene, state, last);
+        update_from_user(window.window, input, state, *scene, dt, duration, frame);
 
         int width, height;
         glfwGetFramebufferSize(window.window, &width, &height);
-        const Mat3 turn = Mat3(glm::rotate(Mat4(1.0f), glm::radians(state.environment_degrees), Vec3(0, 1, 0)));
-        const Vec3 eye = state.camera.eye();
-        renderer.set_view(state.time, eye, turn);
-        renderer.shade_on_device();
-        if (frame == 0 && options.auto_exposure) {
-            VertexColors colors = renderer.make_output();
-            renderer.read_colors(colors);
-            state.exposure = automatic_exposure(colors);
-        }
-
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glViewport(0, 0, width, height);
-        glClearColor(0.05f, 0.05f, 0.06f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        const float aspect = float(width) / float(std::max(height, 1));
-        const Mat4 projection = glm::perspective(glm::radians(state.camera.fov_y_degrees), aspect,
-                                                 0.01f * state.camera.distance, 100.0f * state.camera.distance);
-        const Mat4 view = glm::lookAt(eye, state.camera.target, Vec3(0, 1, 0));
-        if (skybox) {
-            // The environment as the renderer turns its lights (FrameSetup):
-            // the viewer's turn after the scene's rotation at t.
-            const EnvironmentDesc& environment = scene->environment;
-            const float weight = environment.second_file.empty() ? 0.0f : environment.blend_weight_at(state.time);
-            skybox->draw(projection * view, eye, turn * environment.rotation_at(state.time), weight,
-                         std::exp2(state.exposure));
-        }
-        renderer.draw(projection * view, std::exp2(state.exposure));
-        glDisable(GL_DEPTH_TEST);
-        ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        const ViewPose pose = view_pose(state);
+        shade_view(renderer, pose, options, frame, state);
+        draw_frame(renderer, skybox.get(), *scene, state, pose, width, height);
 
         if (options.frames > 0 && frame + 1 >= options.frames) {
             if (!options.screenshot.empty()) write_screenshot(options.screenshot, width, height);

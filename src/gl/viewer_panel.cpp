@@ -48,6 +48,96 @@ void material_editor(ViewerState& state, int material) {
     ImGui::PopID();
 }
 
+// Panel section: frame rate, GPU pass times and the renderer's counts.
+void timings_section(ViewerState& state) {
+    const PassTimings t = state.renderer->timings();
+    ImGui::Text("%.1f fps, %.2f ms/frame", state.fps, state.frame_ms);
+    ImGui::Text("GPU%s: shading %.2f ms, pack %.2f ms, display %.2f ms", t.clock ? " (clock, software GL)" : "",
+                t.shade_ms, t.pack_ms, t.display_ms);
+    if (t.shadow_ms > 0) ImGui::Text("shadow maps %.2f ms", t.shadow_ms);  // the shadow-map baseline's depth pass
+    ImGui::Text("%d vertices, %zu lights, occluder pairs %zu (%zu culled)", state.renderer->vertex_count(),
+                state.renderer->stats().lights, state.renderer->stats().occluder_pairs,
+                state.renderer->stats().occluder_pairs_culled);
+}
+
+// Starts fitting state.rsl_count RSLs to the environment (and its second
+// map) in the background; apply_pending hands them to the renderer.
+void start_refit(ViewerState& state) {
+    const CubeMap* environment = state.environment;
+    const CubeMap* second = state.second_environment;
+    // The suns join each set, taken here: the fit runs while the scene may change.
+    const std::vector<RotatableSquareLight> suns = sun_lights(*state.scene);
+    const int count = state.rsl_count;
+    state.refit_count = count;
+    state.refit = std::async(std::launch::async, [environment, second, count, suns] {
+        const auto with_suns = [&](const CubeMap& map) {
+            RslSet set = fit_environment_lights(map, count);
+            set.lights.insert(set.lights.end(), suns.begin(), suns.end());
+            return set;
+        };
+        return EnvironmentLights(with_suns(*environment), second ? with_suns(*second) : RslSet{});
+    });
+}
+
+// Panel section: play and time, environment turn, exposure, the RSL count and the first local light.
+void animation_and_lighting_section(ViewerState& state) {
+    if (!ImGui::CollapsingHeader("Animation and lighting", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::Checkbox("play (space)", &state.playing);
+    ImGui::SameLine();
+    ImGui::SliderFloat("t", &state.time, state.scene->animation.start, std::max(state.scene->animation.end, 1e-3f));
+    ImGui::SliderFloat("environment turn", &state.environment_degrees, -180.0f, 180.0f, "%.0f deg");
+    ImGui::SliderFloat("exposure", &state.exposure, -6.0f, 6.0f, "%.1f stops");
+    if (state.environment && state.environment->resolution() > 0) {
+        ImGui::SliderInt("RSLs", &state.rsl_count, 1, 100);
+        if (ImGui::IsItemDeactivatedAfterEdit() && !state.refit.valid()) start_refit(state);
+        if (state.refit.valid()) ImGui::Text("fitting %d RSLs...", state.refit_count);
+        else ImGui::Text("%zu RSLs in use", state.renderer->environment_lights().light_count());
+    }
+    if (!state.scene->lights.empty()) {
+        LocalLight& light = state.scene->lights.front();
+        if (ImGui::DragFloat3("light (shift+drag)", &light.position.x, 0.01f)) {
+            light.path.reset();
+            light.node = -1;  // a glTF light leaves its node (position and axis hold its pose at the start)
+            state.lights_dirty = true;
+        }
+    }
+}
+
+// Panel section: the renderer's toggles of lights and visibility factors.
+void visibility_section(ViewerState& state) {
+    if (!ImGui::CollapsingHeader("Visibility factors", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    RenderOptions& o = state.toggles;
+    bool changed = ImGui::Checkbox("environment RSLs", &o.environment);
+    changed |= ImGui::Checkbox("local lights", &o.local_lights);
+    changed |= ImGui::Checkbox("self-visibility (SVDF)", &o.self_visibility);
+    changed |= ImGui::Checkbox("other parts' shadows (OVDF)", &o.occluders);
+    changed |= ImGui::Checkbox("occluder culling", &o.occluder_culling);
+    // The per-pixel pass (docs/design/GPU_DESIGN.md): grounds' sharp shadows, glossy parts' highlights.
+    bool ground_pixels = o.pixel_shadows != PixelShadows::Off;
+    if (ImGui::Checkbox("shadows per pixel on grounds", &ground_pixels)) {
+        o.pixel_shadows = ground_pixels ? PixelShadows::Planes : PixelShadows::Off;
+        changed = true;
+    }
+    changed |= ImGui::Checkbox("highlights per pixel", &o.pixel_highlights);
+    if (changed) state.renderer->set_toggles(o);
+}
+
+// Panel section: each part's material, then every material's parameters.
+void materials_section(ViewerState& state) {
+    if (!ImGui::CollapsingHeader("Materials")) return;
+    MaterialLibrary& library = state.renderer->materials();
+    for (int p = 0; p < library.part_count(); ++p) {
+        const int current = library.part_material(p);
+        if (ImGui::BeginCombo(state.scene->parts[p].name.c_str(), library.desc(current).name.c_str())) {
+            for (int m = 0; m < library.material_count(); ++m)
+                if (ImGui::Selectable(library.desc(m).name.c_str(), m == current)) library.assign(p, m);
+            ImGui::EndCombo();
+        }
+    }
+    ImGui::Separator();
+    for (int m = 0; m < library.material_count(); ++m) material_editor(state, m);
+}
+
 }  // namespace
 
 void apply_pending(ViewerState& state) {
@@ -65,80 +155,10 @@ void viewer_panel(ViewerState& state) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
     ImGui::Begin("rsl view");
-    const PassTimings t = state.renderer->timings();
-    ImGui::Text("%.1f fps, %.2f ms/frame", state.fps, state.frame_ms);
-    ImGui::Text("GPU%s: shading %.2f ms, pack %.2f ms, display %.2f ms", t.clock ? " (clock, software GL)" : "",
-                t.shade_ms, t.pack_ms, t.display_ms);
-    if (t.shadow_ms > 0) ImGui::Text("shadow maps %.2f ms", t.shadow_ms);  // the shadow-map baseline's depth pass
-    ImGui::Text("%d vertices, %zu lights, occluder pairs %zu (%zu culled)", state.renderer->vertex_count(),
-                state.renderer->stats().lights, state.renderer->stats().occluder_pairs,
-                state.renderer->stats().occluder_pairs_culled);
-
-    if (ImGui::CollapsingHeader("Animation and lighting", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::Checkbox("play (space)", &state.playing);
-        ImGui::SameLine();
-        ImGui::SliderFloat("t", &state.time, state.scene->animation.start, std::max(state.scene->animation.end, 1e-3f));
-        ImGui::SliderFloat("environment turn", &state.environment_degrees, -180.0f, 180.0f, "%.0f deg");
-        ImGui::SliderFloat("exposure", &state.exposure, -6.0f, 6.0f, "%.1f stops");
-        if (state.environment && state.environment->resolution() > 0) {
-            ImGui::SliderInt("RSLs", &state.rsl_count, 1, 100);
-            if (ImGui::IsItemDeactivatedAfterEdit() && !state.refit.valid()) {
-                const CubeMap* environment = state.environment;
-                const CubeMap* second = state.second_environment;
-                // The suns join each set, taken here: the fit runs while the scene may change.
-                const std::vector<RotatableSquareLight> suns = sun_lights(*state.scene);
-                const int count = state.rsl_count;
-                state.refit_count = count;
-                state.refit = std::async(std::launch::async, [environment, second, count, suns] {
-                    const auto with_suns = [&](const CubeMap& map) {
-                        RslSet set = fit_environment_lights(map, count);
-                        set.lights.insert(set.lights.end(), suns.begin(), suns.end());
-                        return set;
-                    };
-                    return EnvironmentLights(with_suns(*environment), second ? with_suns(*second) : RslSet{});
-                });
-            }
-            if (state.refit.valid()) ImGui::Text("fitting %d RSLs...", state.refit_count);
-            else ImGui::Text("%zu RSLs in use", state.renderer->environment_lights().light_count());
-        }
-        if (!state.scene->lights.empty()) {
-            LocalLight& light = state.scene->lights.front();
-            if (ImGui::DragFloat3("light (shift+drag)", &light.position.x, 0.01f)) {
-                light.path.reset();
-                light.node = -1;  // a glTF light leaves its node (position and axis hold its pose at the start)
-                state.lights_dirty = true;
-            }
-        }
-    }
-    if (ImGui::CollapsingHeader("Visibility factors", ImGuiTreeNodeFlags_DefaultOpen)) {
-        RenderOptions& o = state.toggles;
-        bool changed = ImGui::Checkbox("environment RSLs", &o.environment);
-        changed |= ImGui::Checkbox("local lights", &o.local_lights);
-        changed |= ImGui::Checkbox("self-visibility (SVDF)", &o.self_visibility);
-        changed |= ImGui::Checkbox("other parts' shadows (OVDF)", &o.occluders);
-        changed |= ImGui::Checkbox("occluder culling", &o.occluder_culling);
-        // The per-pixel pass (docs/design/GPU_DESIGN.md): grounds' sharp shadows, glossy parts' highlights.
-        bool ground_pixels = o.pixel_shadows != PixelShadows::Off;
-        if (ImGui::Checkbox("shadows per pixel on grounds", &ground_pixels)) {
-            o.pixel_shadows = ground_pixels ? PixelShadows::Planes : PixelShadows::Off;
-            changed = true;
-        }
-        changed |= ImGui::Checkbox("highlights per pixel", &o.pixel_highlights);
-        if (changed) state.renderer->set_toggles(o);
-    }
-    if (ImGui::CollapsingHeader("Materials")) {
-        MaterialLibrary& library = state.renderer->materials();
-        for (int p = 0; p < library.part_count(); ++p) {
-            const int current = library.part_material(p);
-            if (ImGui::BeginCombo(state.scene->parts[p].name.c_str(), library.desc(current).name.c_str())) {
-                for (int m = 0; m < library.material_count(); ++m)
-                    if (ImGui::Selectable(library.desc(m).name.c_str(), m == current)) library.assign(p, m);
-                ImGui::EndCombo();
-            }
-        }
-        ImGui::Separator();
-        for (int m = 0; m < library.material_count(); ++m) material_editor(state, m);
-    }
+    timings_section(state);
+    animation_and_lighting_section(state);
+    visibility_section(state);
+    materials_section(state);
     ImGui::End();
 }
 

@@ -57,6 +57,81 @@ struct HaarBlockBuilder {
     }
 };
 
+
+// Checking phase: Haar's power-of-two resolution and the block size.
+void check_prt_options(const Scene& scene, int n, const PrtOptions& options) {
+    if (options.haar && !haar::is_power_of_two(n))
+        throw_file_error(scene.source, "Haar PRT needs a power-of-two cube resolution, the environment has {}", n);
+    RSL_CHECK_GE(options.block_vertices, 1);
+    RSL_CHECK_LE(options.block_vertices, 65536);
+}
+
+// Block phase: the block of vertices [first, last) gets its rows from the builder.
+void finish_haar_block(const HaarBlockBuilder& builder, size_t first, size_t last, int texels, HaarBlock& block) {
+    block.first_vertex = first;
+    block.vertex_count = int(last - first);
+    builder.finish(block, texels);
+}
+
+// Set-up phase: sizes the outputs that `options` asks for (SH coefficients,
+// texel sums, Haar blocks); returns the SH texel basis, timed, when SH is on.
+std::unique_ptr<sh::TexelBasis> prepare_outputs(PrtPrecompute& prt, const PrtOptions& options, int n,
+                                                size_t vertices, size_t block_count) {
+    std::unique_ptr<sh::TexelBasis> basis;
+    if (options.sh) {
+        const auto start = Clock::now();
+        basis = std::make_unique<sh::TexelBasis>(n, options.sh_order);
+        prt.sh_cpu_seconds += seconds_since(start);
+        prt.sh.order = options.sh_order;
+        prt.sh.rgb.assign(vertices * sh::coefficient_count(options.sh_order) * 3, 0.0f);
+    }
+    if (options.check_lighting) {
+        RSL_CHECK_EQ(options.check_lighting->resolution(), n);
+        prt.texel_sum.assign(vertices, Color(0.0f));
+    }
+    if (options.haar) {
+        prt.haar.resolution = n;
+        prt.haar.blocks.resize(block_count);
+    }
+    return basis;
+}
+
+// Vertex phase: Σ_k L_k f_k Ω_k of one vertex's transport f under `lighting`.
+Color lit_texel_sum(const CubeMap& lighting, const CubeMap& environment, const std::vector<Color>& f, int texels) {
+    DVec3 sum(0.0);
+    for (int k = 0; k < texels; ++k)
+        sum += DVec3(lighting.radiance(k) * f[k]) * double(environment.solid_angle(k));
+    return Color(sum);
+}
+
+// Vertex phase: T_i = Σ_k f_k A_ki over the texels with nonzero transport,
+// added to the vertex's SH coefficients T.
+void project_on_sh(const std::vector<Color>& f, int texels, const sh::TexelBasis& basis, int coefficients, float* T) {
+    for (int k = 0; k < texels; ++k) {
+        const Color fk = f[k];
+        if (fk.r == 0.0f && fk.g == 0.0f && fk.b == 0.0f) continue;
+        const float* a = basis.texel(k);
+        for (int i = 0; i < coefficients; ++i) {
+            T[3 * i] += fk.r * a[i];
+            T[3 * i + 1] += fk.g * a[i];
+            T[3 * i + 2] += fk.b * a[i];
+        }
+    }
+}
+
+// Vertex phase: the transport times the texels' solid angles, Haar-transformed
+// per face into g, and its kept coefficients added to the block's builder.
+void add_haar_vertex(const std::vector<Color>& f, const CubeMap& environment, int n, int texels, int local_vertex,
+                     float drop, std::vector<float>& g, std::vector<float>& haar_scratch, HaarBlockBuilder& builder) {
+    for (int k = 0; k < texels; ++k) {
+        const Color gk = f[k] * environment.solid_angle(k);
+        g[3 * k] = gk.r, g[3 * k + 1] = gk.g, g[3 * k + 2] = gk.b;
+    }
+    for (int face = 0; face < 6; ++face)
+        haar::forward_face(g.data() + size_t(face) * n * n * 3, n, 3, haar_scratch.data());
+    builder.add_vertex(local_vertex, g.data(), texels, drop);
+}
+
 }  // namespace
 
 size_t HaarTransport::entries() const {
@@ -76,10 +151,7 @@ size_t HaarTransport::bytes() const {
 PrtPrecompute precompute_prt(const GroundTruth& truth, const CubeMap& environment, const PrtOptions& options) {
     const Scene& scene = truth.posed().scene();
     const int n = environment.resolution();
-    if (options.haar && !haar::is_power_of_two(n))
-        throw_file_error(scene.source, "Haar PRT needs a power-of-two cube resolution, the environment has {}", n);
-    RSL_CHECK_GE(options.block_vertices, 1);
-    RSL_CHECK_LE(options.block_vertices, 65536);
+    check_prt_options(scene, n, options);
     const auto wall_start = Clock::now();
 
     PrtPrecompute prt(VertexLayout{scene});
@@ -89,23 +161,8 @@ PrtPrecompute precompute_prt(const GroundTruth& truth, const CubeMap& environmen
     const int texels = sampler.texel_count();
     const size_t vertices = prt.layout.total();
 
-    std::unique_ptr<sh::TexelBasis> basis;
-    if (options.sh) {
-        const auto start = Clock::now();
-        basis = std::make_unique<sh::TexelBasis>(n, options.sh_order);
-        prt.sh_cpu_seconds += seconds_since(start);
-        prt.sh.order = options.sh_order;
-        prt.sh.rgb.assign(vertices * sh::coefficient_count(options.sh_order) * 3, 0.0f);
-    }
-    if (options.check_lighting) {
-        RSL_CHECK_EQ(options.check_lighting->resolution(), n);
-        prt.texel_sum.assign(vertices, Color(0.0f));
-    }
     const size_t block_count = (vertices + options.block_vertices - 1) / options.block_vertices;
-    if (options.haar) {
-        prt.haar.resolution = n;
-        prt.haar.blocks.resize(block_count);
-    }
+    const std::unique_ptr<sh::TexelBasis> basis = prepare_outputs(prt, options, n, vertices, block_count);
 
     std::mutex totals_mutex;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, block_count, 1), [&](const tbb::blocked_range<size_t>& range) {
@@ -124,46 +181,23 @@ PrtPrecompute precompute_prt(const GroundTruth& truth, const CubeMap& environmen
                 const auto [part, vertex] = prt.layout.locate(v);
                 rays += sampler.sample(part, vertex, f.data(), scratch);
                 trace_s += seconds_since(t0);
-                if (options.check_lighting) {
-                    DVec3 sum(0.0);
-                    for (int k = 0; k < texels; ++k)
-                        sum += DVec3(options.check_lighting->radiance(k) * f[k]) * double(environment.solid_angle(k));
-                    prt.texel_sum[v] = Color(sum);
-                }
+                if (options.check_lighting)
+                    prt.texel_sum[v] = lit_texel_sum(*options.check_lighting, environment, f, texels);
                 if (options.sh) {
                     t0 = Clock::now();
-                    // T_i = Σ_k f_k A_ki over the texels with nonzero transport.
-                    float* T = &prt.sh.rgb[v * coefficients * 3];
-                    for (int k = 0; k < texels; ++k) {
-                        const Color fk = f[k];
-                        if (fk.r == 0.0f && fk.g == 0.0f && fk.b == 0.0f) continue;
-                        const float* a = basis->texel(k);
-                        for (int i = 0; i < coefficients; ++i) {
-                            T[3 * i] += fk.r * a[i];
-                            T[3 * i + 1] += fk.g * a[i];
-                            T[3 * i + 2] += fk.b * a[i];
-                        }
-                    }
+                    project_on_sh(f, texels, *basis, coefficients, &prt.sh.rgb[v * coefficients * 3]);
                     sh_s += seconds_since(t0);
                 }
                 if (options.haar) {
                     t0 = Clock::now();
-                    for (int k = 0; k < texels; ++k) {
-                        const Color gk = f[k] * environment.solid_angle(k);
-                        g[3 * k] = gk.r, g[3 * k + 1] = gk.g, g[3 * k + 2] = gk.b;
-                    }
-                    for (int face = 0; face < 6; ++face)
-                        haar::forward_face(g.data() + size_t(face) * n * n * 3, n, 3, haar_scratch.data());
-                    builder.add_vertex(int(v - first), g.data(), texels, options.haar_drop);
+                    add_haar_vertex(f, environment, n, texels, int(v - first), options.haar_drop, g, haar_scratch,
+                                    builder);
                     haar_s += seconds_since(t0);
                 }
             }
             if (options.haar) {
                 const auto t0 = Clock::now();
-                HaarBlock& block = prt.haar.blocks[b];
-                block.first_vertex = first;
-                block.vertex_count = int(last - first);
-                builder.finish(block, texels);
+                finish_haar_block(builder, first, last, texels, prt.haar.blocks[b]);
                 haar_s += seconds_since(t0);
             }
         }

@@ -53,9 +53,9 @@ struct Diagnostics {
     std::vector<std::pair<int, double>> haar, rsl;  // (terms, vertex error)
 };
 
-void write_outputs(const BaselinesExperiment& args, const Scene& scene, const std::vector<MethodResult>& results,
-                   const PrtPrecompute& prt, double texel_sum_error,
-                   const Diagnostics& unshadowed) {
+// Output phase: results.json, table.md and every method's EXR and PNG; returns the table.
+std::string write_results(const BaselinesExperiment& args, const Scene& scene, const std::vector<MethodResult>& results,
+                          const PrtPrecompute& prt, double texel_sum_error, const Diagnostics& unshadowed) {
     const std::filesystem::path dir(args.output);
     nlohmann::json json = {{"scene", scene.name}, {"source", scene.source.string()},
                            {"environment", scene.environment.file.filename().string()},
@@ -91,8 +91,11 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
     }
     write_file_atomically(dir / "results.json", json.dump(2) + "\n");
     write_file_atomically(dir / "table.md", table);
+    return table;
+}
 
-    // Side by side: one exposure for all, from the truth's 99th luminance percentile.
+// Output phase: sheet.png, side by side: one exposure for all, from the truth's 99th luminance percentile.
+void write_contact_sheet(const std::filesystem::path& dir, const std::vector<MethodResult>& results) {
     std::vector<float> lum;
     const Image& truth = results.front().image;
     for (int y = 0; y < truth.height; ++y)
@@ -107,7 +110,10 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
                                              : fmt::format("{} {}  {:.1f}%", r.method, r.terms, 100 * r.image_error));
     }
     write_png(dir / "sheet.png", raster::contact_sheet(tiles, labels, 4, gain));
+}
 
+// Output phase: error_plot.png, the image error against the terms, one curve per method.
+void write_error_plot(const std::filesystem::path& dir, const std::vector<MethodResult>& results) {
     std::vector<raster::Series> series = {{"SH", Color(0.85f, 0.2f, 0.1f), {}, {}, {}},
                                           {"HAAR", Color(0.1f, 0.45f, 0.85f), {}, {}, {}},
                                           {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}, {}}};
@@ -120,7 +126,185 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
     std::erase_if(series, [](const raster::Series& s) { return s.x.empty(); });
     write_png(dir / "error_plot.png",
               raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR TERMS, RSLS)", "IMAGE REL. L2 ERROR"));
+}
+
+// Every output file of the experiment, then the table on stdout.
+void write_outputs(const BaselinesExperiment& args, const Scene& scene, const std::vector<MethodResult>& results,
+                   const PrtPrecompute& prt, double texel_sum_error,
+                   const Diagnostics& unshadowed) {
+    const std::filesystem::path dir(args.output);
+    const std::string table = write_results(args, scene, results, prt, texel_sum_error, unshadowed);
+    write_contact_sheet(dir, results);
+    write_error_plot(dir, results);
     fmt::print("{}\nwrote {}/table.md, results.json, sheet.png, error_plot.png\n", table, dir.string());
+}
+
+// Prints one progress line to stderr unless the run is quiet.
+void say(const BaselinesExperiment& args, const std::string& line) {
+    if (!args.quiet) fmt::print(stderr, "{}\n", line);
+}
+
+// Every part's vertex colours as one list, parts in order.
+std::vector<Color> flatten(const VertexColors& colors) {
+    std::vector<Color> flat;
+    for (const auto& part : colors.parts) flat.insert(flat.end(), part.begin(), part.end());
+    return flat;
+}
+
+// The frame every method is measured in and the rows measured so far, the
+// truth's first: each method's colours become a row against the truth.
+struct Measurements {
+    Measurements(const BaselinesExperiment& args, const Scene& scene, float t)
+        : args(args), scene(scene), t(t), posed(scene, t),
+          camera(PinholeCamera::at_time(scene.camera, t, args.width, args.height)), layout(scene) {}
+
+    const BaselinesExperiment& args;
+    const Scene& scene;
+    const float t;
+    PosedScene posed;
+    const PinholeCamera camera;
+    const VertexLayout layout;
+    std::vector<Color> truth_flat;
+    std::vector<MethodResult> results;
+
+    // Adds one method's row: errors of its vertex colours and image against the truth's, and its costs.
+    void add_result(const std::string& method, int terms, const std::vector<Color>& flat, double frame_ms,
+                    double precompute_s, size_t bytes) {
+        MethodResult r;
+        r.method = method, r.terms = terms;
+        r.vertex_error = relative_l2(flat, truth_flat);
+        r.image = form_image(posed, camera, layout.to_colors(scene, flat, method, t));
+        const ImageErrorReport errors = compare_images(r.image, results.front().image);
+        r.image_error = errors.pixels.relative_l2(), r.image_h1 = errors.relative_h1();
+        r.frame_ms = frame_ms, r.precompute_s = precompute_s, r.bytes = bytes;
+        say(args, fmt::format("{} {}: vertex error {:.4f}, image error {:.4f} (H1 {:.4f}), {:.2f} ms", method, terms,
+                              r.vertex_error, r.image_error, r.image_h1, frame_ms));
+        results.push_back(std::move(r));
+    }
+};
+
+// Phase: the scene's environment map at the scene's resolution, timed.
+CubeMap load_environment(const BaselinesExperiment& args, const Scene& scene) {
+    const auto load_start = Clock::now();
+    CubeMap environment = scene_environment_map(scene, scene.environment.resolution);
+    say(args, fmt::format("environment {} as 6x{}^2 ({:.1f} s)", describe_environment(scene.environment),
+                          environment.resolution(), seconds_since(load_start)));
+    return environment;
+}
+
+// Phase: the ground truth's vertex colours and image, the first row.
+void measure_truth(const GroundTruth& truth, Measurements& m) {
+    MethodResult reference;
+    reference.method = "truth";
+    auto truth_start = Clock::now();
+    const VertexColors truth_colors = truth.shade_vertices();
+    reference.frame_ms = 1e3 * seconds_since(truth_start);
+    reference.image = form_image(m.posed, m.camera, truth_colors);
+    m.truth_flat = flatten(truth_colors);
+    say(m.args, fmt::format("ground truth: {:.1f} s", reference.frame_ms / 1e3));
+    m.results.push_back(reference);
+}
+
+// The shadowed PRT transport and how far its texel sum is from the truth.
+struct ShadowedPrt {
+    PrtPrecompute prt;
+    double texel_sum_error = 0;
+};
+
+// Phase: SH and Haar transport from one shared pass of shadow rays.
+ShadowedPrt precompute_shadowed_prt(const GroundTruth& truth, const CubeMap& environment, const Measurements& m) {
+    const BaselinesExperiment& args = m.args;
+    PrtOptions prt_options;
+    prt_options.sh_order = *std::max_element(args.sh_orders.begin(), args.sh_orders.end());
+    prt_options.haar_drop = args.haar_drop;
+    prt_options.check_lighting = &environment;
+    say(args, "PRT precompute (SH + Haar transport)...");
+    ShadowedPrt shadowed{precompute_prt(truth, environment, prt_options)};
+    const PrtPrecompute& prt = shadowed.prt;
+    shadowed.texel_sum_error = relative_l2(prt.texel_sum, m.truth_flat);
+    say(args, fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, SH {:.1f}, Haar {:.1f}; transport vs truth {:.2e}",
+                          prt.wall_seconds, prt.trace_cpu_seconds, prt.sh_cpu_seconds, prt.haar_cpu_seconds,
+                          shadowed.texel_sum_error));
+    return shadowed;
+}
+
+// Phase: one row per SH order and per Haar term count, rendered from the
+// shadowed transport into `flat`.
+void measure_prt_methods(const PrtPrecompute& prt, const CubeMap& environment, Measurements& m,
+                         std::vector<Color>& flat) {
+    const BaselinesExperiment& args = m.args;
+    const Mat3 rotation = m.scene.environment.rotation_at(m.t);
+    {
+        const ShRenderer sh_renderer(prt, environment);
+        for (int order : args.sh_orders) {
+            const double ms = median_ms(args.repeats, [&] { sh_renderer.render(order, rotation, flat); });
+            const size_t bytes = prt.layout.total() * sh::coefficient_count(order) * 3 * sizeof(float);
+            m.add_result("sh", order * order, flat, ms, prt.trace_cpu_seconds + prt.sh_cpu_seconds, bytes);
+        }
+    }
+    {
+        HaarRenderer haar_renderer(prt);
+        for (int terms : args.haar_terms) {
+            const double ms = median_ms(args.repeats, [&] { haar_renderer.render(environment, terms, flat); });
+            m.add_result("haar", terms, flat, ms, prt.trace_cpu_seconds + prt.haar_cpu_seconds, prt.haar.bytes());
+        }
+    }
+}
+
+// Phase: the transport without visibility (V = 1), and the Haar rows'
+// errors from it against its own unshadowed texel sum.
+PrtPrecompute measure_unshadowed_haar(const BaselinesExperiment& args, const GroundTruth& truth,
+                                      const CubeMap& environment, std::vector<Color>& flat,
+                                      Diagnostics& unshadowed_errors) {
+    PrtOptions unshadowed_options;
+    unshadowed_options.sh = false;
+    unshadowed_options.haar_drop = args.haar_drop;
+    unshadowed_options.visibility = false;
+    unshadowed_options.check_lighting = &environment;
+    PrtPrecompute unshadowed = precompute_prt(truth, environment, unshadowed_options);
+    {
+        HaarRenderer haar_renderer(unshadowed);
+        for (int terms : args.haar_terms) {
+            haar_renderer.render(environment, terms, flat);
+            unshadowed_errors.haar.push_back({terms, relative_l2(flat, unshadowed.texel_sum)});
+        }
+    }
+    return unshadowed;
+}
+
+// Phase: RSL rows, one per light count (fields baked once), each also shaded
+// with every visibility factor off against the unshadowed truth.
+void measure_rsl(const std::shared_ptr<Scene>& scene_ptr, const PrtPrecompute& unshadowed, Measurements& m,
+                 Diagnostics& unshadowed_errors) {
+    const BaselinesExperiment& args = m.args;
+    Scene& scene = *scene_ptr;
+    const float t = m.t;
+    RenderOptions options;
+    options.local_lights = false;
+    options.environment_lights = args.rsl_lights.front();
+    say(args, "RSL: fitting lights and baking visibility fields...");
+    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
+    const size_t bytes = field_bytes(setup.fields);
+    for (int lights : args.rsl_lights) {
+        const auto fit_start = Clock::now();
+        RslSet set = lights == options.environment_lights ? setup.environment_lights.first
+                                                            : fit_scene_lights(*setup.scene, setup.environment, lights);
+        const double fit_s = lights == options.environment_lights ? setup.fit_seconds : seconds_since(fit_start);
+        options.environment_lights = lights;
+        CpuRenderer renderer(scene, std::move(set), setup.fields, options);
+        renderer.set_time(t);
+        VertexColors colors = renderer.make_output();
+        const double ms = median_ms(args.repeats, [&] { renderer.shade(colors); });
+        m.add_result("rsl", lights, flatten(colors), ms, setup.bake_seconds + fit_s, bytes);
+        // The same lights with every visibility factor off, against the
+        // unshadowed truth: the lighting + BRDF part of RSL's error.
+        RenderOptions no_shadows = options;
+        no_shadows.self_visibility = false, no_shadows.occluders = false;
+        CpuRenderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
+        light_only.set_time(t);
+        light_only.shade(colors);
+        unshadowed_errors.rsl.push_back({lights, relative_l2(flatten(colors), unshadowed.texel_sum)});
+    }
 }
 
 }  // namespace
@@ -130,125 +314,26 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
     Scene& scene = *scene_ptr;
     adapt_scene(scene, args.environment, args.resolution, args.diffuse);
     const float t = args.time;
-    auto say = [&](const std::string& line) {
-        if (!args.quiet) fmt::print(stderr, "{}\n", line);
-    };
-    const auto load_start = Clock::now();
-    const CubeMap environment = scene_environment_map(scene, scene.environment.resolution);
-    say(fmt::format("environment {} as 6x{}^2 ({:.1f} s)", describe_environment(scene.environment), environment.resolution(),
-                    seconds_since(load_start)));
+    const CubeMap environment = load_environment(args, scene);
 
     GroundTruthOptions truth_options;
     truth_options.local_lights = false;
     const GroundTruth truth(scene, environment, t, truth_options);
-    PosedScene posed(scene, t);
-    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, args.width, args.height);
-    const VertexLayout layout(scene);
-    auto flatten = [&](const VertexColors& colors) {
-        std::vector<Color> flat;
-        for (const auto& part : colors.parts) flat.insert(flat.end(), part.begin(), part.end());
-        return flat;
-    };
-
-    std::vector<MethodResult> results;
-    MethodResult reference;
-    reference.method = "truth";
-    auto truth_start = Clock::now();
-    const VertexColors truth_colors = truth.shade_vertices();
-    reference.frame_ms = 1e3 * seconds_since(truth_start);
-    reference.image = form_image(posed, camera, truth_colors);
-    const std::vector<Color> truth_flat = flatten(truth_colors);
-    say(fmt::format("ground truth: {:.1f} s", reference.frame_ms / 1e3));
-    results.push_back(reference);
-    auto add_result = [&](const std::string& method, int terms, const std::vector<Color>& flat, double frame_ms,
-                          double precompute_s, size_t bytes) {
-        MethodResult r;
-        r.method = method, r.terms = terms;
-        r.vertex_error = relative_l2(flat, truth_flat);
-        r.image = form_image(posed, camera, layout.to_colors(scene, flat, method, t));
-        const ImageErrorReport errors = compare_images(r.image, results.front().image);
-        r.image_error = errors.pixels.relative_l2(), r.image_h1 = errors.relative_h1();
-        r.frame_ms = frame_ms, r.precompute_s = precompute_s, r.bytes = bytes;
-        say(fmt::format("{} {}: vertex error {:.4f}, image error {:.4f} (H1 {:.4f}), {:.2f} ms", method, terms,
-                        r.vertex_error, r.image_error, r.image_h1, frame_ms));
-        results.push_back(std::move(r));
-    };
+    Measurements m(args, scene, t);
+    measure_truth(truth, m);
 
     // SH and Haar share one pass of shadow rays.
-    PrtOptions prt_options;
-    prt_options.sh_order = *std::max_element(args.sh_orders.begin(), args.sh_orders.end());
-    prt_options.haar_drop = args.haar_drop;
-    prt_options.check_lighting = &environment;
-    say("PRT precompute (SH + Haar transport)...");
-    PrtPrecompute prt = precompute_prt(truth, environment, prt_options);
-    const double texel_sum_error = relative_l2(prt.texel_sum, truth_flat);
-    say(fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, SH {:.1f}, Haar {:.1f}; transport vs truth {:.2e}",
-                    prt.wall_seconds, prt.trace_cpu_seconds, prt.sh_cpu_seconds, prt.haar_cpu_seconds,
-                    texel_sum_error));
+    ShadowedPrt shadowed = precompute_shadowed_prt(truth, environment, m);
     std::vector<Color> flat;
-    const Mat3 rotation = scene.environment.rotation_at(t);
-    {
-        const ShRenderer sh_renderer(prt, environment);
-        for (int order : args.sh_orders) {
-            const double ms = median_ms(args.repeats, [&] { sh_renderer.render(order, rotation, flat); });
-            const size_t bytes = prt.layout.total() * sh::coefficient_count(order) * 3 * sizeof(float);
-            add_result("sh", order * order, flat, ms, prt.trace_cpu_seconds + prt.sh_cpu_seconds, bytes);
-        }
-    }
-    {
-        HaarRenderer haar_renderer(prt);
-        for (int terms : args.haar_terms) {
-            const double ms = median_ms(args.repeats, [&] { haar_renderer.render(environment, terms, flat); });
-            add_result("haar", terms, flat, ms, prt.trace_cpu_seconds + prt.haar_cpu_seconds, prt.haar.bytes());
-        }
-    }
+    measure_prt_methods(shadowed.prt, environment, m, flat);
     // Without visibility (V = 1 in the transport, fields off in RSL), against
     // the unshadowed truth: the lighting approximations alone, like for like.
     // The shadowed Haar transport is released first (it can be large).
-    prt.haar = {};
+    shadowed.prt.haar = {};
     Diagnostics unshadowed_errors;
-    PrtOptions unshadowed_options;
-    unshadowed_options.sh = false;
-    unshadowed_options.haar_drop = args.haar_drop;
-    unshadowed_options.visibility = false;
-    unshadowed_options.check_lighting = &environment;
-    const PrtPrecompute unshadowed = precompute_prt(truth, environment, unshadowed_options);
-    {
-        HaarRenderer haar_renderer(unshadowed);
-        for (int terms : args.haar_terms) {
-            haar_renderer.render(environment, terms, flat);
-            unshadowed_errors.haar.push_back({terms, relative_l2(flat, unshadowed.texel_sum)});
-        }
-    }
-    if (!args.no_rsl) {
-        RenderOptions options;
-        options.local_lights = false;
-        options.environment_lights = args.rsl_lights.front();
-        say("RSL: fitting lights and baking visibility fields...");
-        RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
-        const size_t bytes = field_bytes(setup.fields);
-        for (int lights : args.rsl_lights) {
-            const auto fit_start = Clock::now();
-            RslSet set = lights == options.environment_lights ? setup.environment_lights.first
-                                                                : fit_scene_lights(*setup.scene, setup.environment, lights);
-            const double fit_s = lights == options.environment_lights ? setup.fit_seconds : seconds_since(fit_start);
-            options.environment_lights = lights;
-            CpuRenderer renderer(scene, std::move(set), setup.fields, options);
-            renderer.set_time(t);
-            VertexColors colors = renderer.make_output();
-            const double ms = median_ms(args.repeats, [&] { renderer.shade(colors); });
-            add_result("rsl", lights, flatten(colors), ms, setup.bake_seconds + fit_s, bytes);
-            // The same lights with every visibility factor off, against the
-            // unshadowed truth: the lighting + BRDF part of RSL's error.
-            RenderOptions no_shadows = options;
-            no_shadows.self_visibility = false, no_shadows.occluders = false;
-            CpuRenderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
-            light_only.set_time(t);
-            light_only.shade(colors);
-            unshadowed_errors.rsl.push_back({lights, relative_l2(flatten(colors), unshadowed.texel_sum)});
-        }
-    }
-    write_outputs(args, scene, results, prt, texel_sum_error, unshadowed_errors);
+    const PrtPrecompute unshadowed = measure_unshadowed_haar(args, truth, environment, flat, unshadowed_errors);
+    if (!args.no_rsl) measure_rsl(scene_ptr, unshadowed, m, unshadowed_errors);
+    write_outputs(args, scene, m.results, shadowed.prt, shadowed.texel_sum_error, unshadowed_errors);
 }
 
 }  // namespace rsl

@@ -35,6 +35,100 @@ double median_seconds(int repeats, F&& f) {
     return times[times.size() / 2];
 }
 
+// What one case measures, in seconds: the renderer's frame, its variants' and the truth's.
+struct CaseTimings {
+    double shade = 0, image = 0, shade_pixel_terms = 0, image_per_pixel = 0;
+    int width = 0, height = 0;
+    double field_lookups = 0, self_only = 0, brdf_only = 0;
+    double truth = 0;
+};
+
+// Timing phase: shading, image formation, and `rsl render`'s image (shading
+// that keeps the per-pixel terms, then the image with them); `colors` ends as
+// the frame as measured first.
+CaseTimings time_renderer(VertexRenderer& renderer, const Scene& scene, const RenderBenchCase& c, int repeats,
+                          bool quick, VertexColors& colors) {
+    CaseTimings timings;
+    timings.shade = median_seconds(repeats, [&] {
+        renderer.set_time(c.time);
+        renderer.shade(colors);
+    });
+    timings.width = quick ? 160 : scene.camera.width, timings.height = quick ? 120 : scene.camera.height;
+    PosedScene posed(scene, c.time);
+    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, c.time, timings.width, timings.height);
+    Image image;
+    timings.image = median_seconds(repeats, [&] { image = form_image(posed, camera, colors); });
+    // `rsl render`'s image: shading that keeps the per-pixel terms, then the
+    // image with per-pixel shadows and highlights (docs/design/RENDERER.md).
+    renderer.keep_image_terms(true);
+    renderer.shade(colors);
+    timings.shade_pixel_terms = median_seconds(repeats, [&] {
+        renderer.set_time(c.time);
+        renderer.shade(colors);
+    });
+    timings.image_per_pixel = median_seconds(repeats, [&] { renderer.form_image(colors, camera); });
+    renderer.keep_image_terms(false);
+    renderer.shade(colors);  // the colours and stats of the frame as measured first
+    return timings;
+}
+
+// Timing phase: the same frame with parts of the work switched off or done
+// the slower way, in the same run: where the time goes, and the split OVDF
+// lookup's gain over the field's own lookup (src/fields/ovdf.h).
+void time_variants(const Scene& scene, const RenderSetup& setup, const RenderOptions& render_options,
+                   const RenderBenchCase& c, int repeats, CaseTimings& timings) {
+    auto variant_seconds = [&](auto&& configure) {
+        RenderOptions o = render_options;
+        configure(o);
+        const std::unique_ptr<VertexRenderer> r = make_renderer(Backend::Cpu, scene, setup.environment_lights, setup.fields, o);
+        VertexColors out = r->make_output();
+        r->set_time(c.time);
+        r->shade(out);
+        return median_seconds(repeats, [&] { r->shade(out); });
+    };
+    timings.field_lookups = variant_seconds([](RenderOptions& o) { o.fast_occluder_lookups = false; });
+    timings.self_only = variant_seconds([](RenderOptions& o) { o.occluders = false; });
+    timings.brdf_only = variant_seconds([](RenderOptions& o) { o.occluders = o.self_visibility = false; });
+}
+
+// Report phase: the case's one line of the benchmark's output.
+void emit_case(const RenderBenchCase& c, const Scene& scene, const RenderSetup& setup, const RenderStats& stats,
+               const CaseTimings& timings, const VertexErrorReport& error, const ObjectErrorReport& objects) {
+    const double shade_seconds = timings.shade, image_seconds = timings.image, truth_seconds = timings.truth;
+    bench_emit({{"bench", "render"},
+                {"case", c.name},
+                {"vertices", stats.vertices},
+                {"parts", scene.parts.size()},
+                {"lights", stats.lights},
+                {"second_map_weight", setup.environment_lights.blends() ? scene.environment.blend_weight_at(c.time) : 0.0f},
+                {"lookups", stats.lookups},
+                {"occluder_pairs", stats.occluder_pairs},
+                {"occluder_pairs_culled", stats.occluder_pairs_culled},
+                {"block_occluders_culled", stats.block_occluders_culled},
+                {"occluder_lookups", stats.occluder_lookups},
+                {"shade_seconds_field_lookups", timings.field_lookups},
+                {"shade_seconds_self_only", timings.self_only},
+                {"shade_seconds_brdf_only", timings.brdf_only},
+                {"bake_seconds", setup.bake_seconds},
+                {"fields_loaded", setup.fields_loaded},
+                {"fields_baked", setup.fields_baked},
+                {"fit_seconds", setup.fit_seconds},
+                {"shade_seconds", shade_seconds},
+                {"fps_shading", 1.0 / shade_seconds},
+                {"image_seconds", image_seconds},
+                {"image", fmt::format("{}x{}", timings.width, timings.height)},
+                {"fps_with_image", 1.0 / (shade_seconds + image_seconds)},
+                {"shade_seconds_pixel_terms", timings.shade_pixel_terms},
+                {"image_seconds_per_pixel", timings.image_per_pixel},
+                {"truth_seconds", truth_seconds},
+                {"speedup_shading", truth_seconds / shade_seconds},
+                {"speedup_with_image", (truth_seconds + image_seconds) / (shade_seconds + image_seconds)},
+                {"relative_l2_vs_truth", error.total.relative_l2()},
+                {"objects_relative_l2_vs_truth", objects.objects.relative_l2()},
+                {"worst_part", objects.worst_part},
+                {"worst_part_relative_l2_vs_truth", objects.worst}});
+}
+
 void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     const auto scene = load_bench_scene(c, options);
     if (!scene) {
@@ -50,83 +144,17 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     renderer->set_time(c.time);
     renderer->shade(colors);  // warm-up: thread-local scratch, caches
     const int repeats = options.quick ? 2 : 5;
-    const double shade_seconds = median_seconds(repeats, [&] {
-        renderer->set_time(c.time);
-        renderer->shade(colors);
-    });
-    const int width = options.quick ? 160 : scene->camera.width, height = options.quick ? 120 : scene->camera.height;
-    PosedScene posed(*scene, c.time);
-    const PinholeCamera camera = PinholeCamera::at_time(scene->camera, c.time, width, height);
-    Image image;
-    const double image_seconds = median_seconds(repeats, [&] { image = form_image(posed, camera, colors); });
-    // `rsl render`'s image: shading that keeps the per-pixel terms, then the
-    // image with per-pixel shadows and highlights (docs/design/RENDERER.md).
-    renderer->keep_image_terms(true);
-    renderer->shade(colors);
-    const double shade_pixel_terms_seconds = median_seconds(repeats, [&] {
-        renderer->set_time(c.time);
-        renderer->shade(colors);
-    });
-    const double image_per_pixel_seconds = median_seconds(repeats, [&] { renderer->form_image(colors, camera); });
-    renderer->keep_image_terms(false);
-    renderer->shade(colors);  // the colours and stats of the frame as measured first
-
-    // The same frame with parts of the work switched off or done the slower
-    // way, in the same run: where the time goes, and the split OVDF lookup's
-    // gain over the field's own lookup (src/fields/ovdf.h).
-    auto variant_seconds = [&](auto&& configure) {
-        RenderOptions o = render_options;
-        configure(o);
-        const std::unique_ptr<VertexRenderer> r = make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, o);
-        VertexColors out = r->make_output();
-        r->set_time(c.time);
-        r->shade(out);
-        return median_seconds(repeats, [&] { r->shade(out); });
-    };
-    const double field_lookup_seconds = variant_seconds([](RenderOptions& o) { o.fast_occluder_lookups = false; });
-    const double self_only_seconds = variant_seconds([](RenderOptions& o) { o.occluders = false; });
-    const double brdf_only_seconds = variant_seconds([](RenderOptions& o) { o.occluders = o.self_visibility = false; });
+    CaseTimings timings = time_renderer(*renderer, *scene, c, repeats, options.quick, colors);
+    time_variants(*scene, setup, render_options, c, repeats, timings);
 
     // The map the renderer's RSLs stand for at c.time (blended when the scene blends two).
     GroundTruth truth(*scene, setup.environment_at(c.time), c.time);
     auto start = Clock::now();
     const VertexColors reference = truth.shade_vertices();
-    const double truth_seconds = since(start);
+    timings.truth = since(start);
     const VertexErrorReport error = compare_vertex_colors(colors, reference);
     const ObjectErrorReport objects = object_errors(error);
-    const RenderStats& stats = renderer->stats();
-    bench_emit({{"bench", "render"},
-                {"case", c.name},
-                {"vertices", stats.vertices},
-                {"parts", scene->parts.size()},
-                {"lights", stats.lights},
-                {"second_map_weight", setup.environment_lights.blends() ? scene->environment.blend_weight_at(c.time) : 0.0f},
-                {"lookups", stats.lookups},
-                {"occluder_pairs", stats.occluder_pairs},
-                {"occluder_pairs_culled", stats.occluder_pairs_culled},
-                {"block_occluders_culled", stats.block_occluders_culled},
-                {"occluder_lookups", stats.occluder_lookups},
-                {"shade_seconds_field_lookups", field_lookup_seconds},
-                {"shade_seconds_self_only", self_only_seconds},
-                {"shade_seconds_brdf_only", brdf_only_seconds},
-                {"bake_seconds", setup.bake_seconds},
-                {"fields_loaded", setup.fields_loaded},
-                {"fields_baked", setup.fields_baked},
-                {"fit_seconds", setup.fit_seconds},
-                {"shade_seconds", shade_seconds},
-                {"fps_shading", 1.0 / shade_seconds},
-                {"image_seconds", image_seconds},
-                {"image", fmt::format("{}x{}", width, height)},
-                {"fps_with_image", 1.0 / (shade_seconds + image_seconds)},
-                {"shade_seconds_pixel_terms", shade_pixel_terms_seconds},
-                {"image_seconds_per_pixel", image_per_pixel_seconds},
-                {"truth_seconds", truth_seconds},
-                {"speedup_shading", truth_seconds / shade_seconds},
-                {"speedup_with_image", (truth_seconds + image_seconds) / (shade_seconds + image_seconds)},
-                {"relative_l2_vs_truth", error.total.relative_l2()},
-                {"objects_relative_l2_vs_truth", objects.objects.relative_l2()},
-                {"worst_part", objects.worst_part},
-                {"worst_part_relative_l2_vs_truth", objects.worst}});
+    emit_case(c, *scene, setup, renderer->stats(), timings, error, objects);
 }
 
 void bench_render(const BenchOptions& options) {

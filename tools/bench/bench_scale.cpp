@@ -74,14 +74,82 @@ struct ScaleRow {
     double error_all = -1, error_objects = -1;  // five-frame means; −1: no truth at this N
 };
 
-ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
-    // One folder per N, so its field cache (.rsl-cache) holds exactly this scene's fields.
-    const fs::path dir = options.output / "scale" / fmt::format("yard-{}", instances);
+// Set-up phase: the yard of `instances` written into `dir` and loaded, its OVDF reach set when given.
+std::shared_ptr<Scene> write_and_load_yard(const BenchOptions& options, const fs::path& dir, int instances,
+                                           float reach) {
     fs::create_directories(dir);
     const fs::path environment = fs::absolute(options.generated_assets / "sunsky.exr");
     const fs::path scene_file = assets::write_yard(dir, instances, environment.string());
     auto scene = std::make_shared<Scene>(load_scene(scene_file));
     if (reach > 0) scene->precompute.ovdf_outer_radius = reach;
+    return scene;
+}
+
+// What the timed frames measured: per-frame milliseconds (sorted) and counts summed over the frames.
+struct FrameTimings {
+    std::vector<double> shade, setup_ms;
+    size_t lookups = 0, candidates = 0, entries = 0;
+};
+
+// Timing phase: five frames of the loop, each timed for set_time (poses, culling lists) and shade.
+FrameTimings time_frames(VertexRenderer& renderer, VertexColors& colors) {
+    FrameTimings timings;
+    std::vector<double>& shade = timings.shade;
+    std::vector<double>& setup_ms = timings.setup_ms;
+    for (const float t : kFrameTimes) {
+        auto start = BenchClock::now();
+        renderer.set_time(t);
+        setup_ms.push_back(1e3 * seconds_since(start));
+        start = BenchClock::now();
+        renderer.shade(colors);
+        shade.push_back(1e3 * seconds_since(start));
+        timings.lookups += renderer.stats().occluder_lookups;
+        const auto* cpu = dynamic_cast<const CpuRenderer*>(&renderer);
+        if (cpu) timings.candidates += cpu->frame().occluder_lists().candidates, timings.entries += cpu->frame().occluder_lists().occluders.size();
+    }
+    std::sort(shade.begin(), shade.end());
+    std::sort(setup_ms.begin(), setup_ms.end());
+    return timings;
+}
+
+// Truth phase: the error at each of the timed frames, and its mean over them,
+// added to `row`: with eight parts the objects' error alone moves between
+// 1.5% and 4.9% from frame to frame (the parts tumble into other poses under
+// the sun), so one frame says little about how the error grows with N.
+void add_truth_errors(VertexRenderer& renderer, VertexColors& colors, const Scene& scene, const RenderSetup& setup,
+                      nlohmann::json& row) {
+    std::vector<double> all, objects;
+    double worst = -1, worst_time = 0, truth_seconds = 0;
+    std::string worst_part;
+    for (const float t : kFrameTimes) {
+        renderer.set_time(t);
+        renderer.shade(colors);
+        GroundTruth truth(scene, setup.environment_at(t), t);
+        const auto start = BenchClock::now();
+        const VertexColors reference = truth.shade_vertices();
+        truth_seconds += seconds_since(start);
+        const VertexErrorReport error = compare_vertex_colors(colors, reference);
+        const ObjectErrorReport by_part = object_errors(error);
+        all.push_back(error.total.relative_l2());
+        objects.push_back(by_part.objects.relative_l2());
+        if (by_part.worst > worst) worst = by_part.worst, worst_part = by_part.worst_part, worst_time = t;
+    }
+    auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size()); };
+    row["truth_seconds"] = truth_seconds;
+    row["error_times"] = kFrameTimes;
+    row["relative_l2_vs_truth"] = mean(all);  // the mean over the frames
+    row["objects_relative_l2"] = mean(objects);
+    row["relative_l2_per_frame"] = all;
+    row["objects_relative_l2_per_frame"] = objects;
+    row["worst_part"] = worst_part;  // the worst part of any frame
+    row["worst_part_relative_l2"] = worst;
+    row["worst_part_time"] = worst_time;
+}
+
+ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
+    // One folder per N, so its field cache (.rsl-cache) holds exactly this scene's fields.
+    const fs::path dir = options.output / "scale" / fmt::format("yard-{}", instances);
+    const std::shared_ptr<Scene> scene = write_and_load_yard(options, dir, instances, reach);
     RenderOptions render_options;
     render_options.environment_lights = 30;
     const RenderSetup setup = prepare_render(scene, render_options, {.progress = cli::drawn_progress(true)});
@@ -92,22 +160,9 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
     VertexColors colors = renderer->make_output();
     renderer->set_time(0.0f);
     renderer->shade(colors);  // warm-up: per-thread scratch, list capacity
-    // Five frames of the loop, each timed for set_time (poses, culling lists) and shade.
-    std::vector<double> shade, setup_ms;
-    size_t lookups = 0, candidates = 0, entries = 0;
-    for (const float t : kFrameTimes) {
-        auto start = BenchClock::now();
-        renderer->set_time(t);
-        setup_ms.push_back(1e3 * seconds_since(start));
-        start = BenchClock::now();
-        renderer->shade(colors);
-        shade.push_back(1e3 * seconds_since(start));
-        lookups += renderer->stats().occluder_lookups;
-        const auto* cpu = dynamic_cast<const CpuRenderer*>(renderer.get());
-        if (cpu) candidates += cpu->frame().occluder_lists().candidates, entries += cpu->frame().occluder_lists().occluders.size();
-    }
-    std::sort(shade.begin(), shade.end());
-    std::sort(setup_ms.begin(), setup_ms.end());
+    const FrameTimings timings = time_frames(*renderer, colors);
+    const std::vector<double>& shade = timings.shade;
+    const std::vector<double>& setup_ms = timings.setup_ms;
     const RenderStats& stats = renderer->stats();
     const double parts = double(scene->parts.size());
     nlohmann::json row{{"bench", "scale"},
@@ -128,41 +183,10 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
                        {"set_time_ms", setup_ms[kFrameTimes.size() / 2]},
                        {"fps_shading", 1e3 / shade[kFrameTimes.size() / 2]},
                        {"ns_per_vertex", 1e6 * shade[kFrameTimes.size() / 2] / double(stats.vertices)},
-                       {"ovdf_lookups_per_frame", lookups / kFrameTimes.size()},
-                       {"candidates_per_receiver", double(candidates) / double(kFrameTimes.size()) / parts},
-                       {"occluders_per_receiver_light", double(entries) / double(kFrameTimes.size()) / parts / double(std::max<size_t>(1, stats.lights))}};
-    if (instances <= kTruthLimit) {
-        // The error at each of the timed frames, and its mean over them: with
-        // eight parts the objects' error alone moves between 1.5% and 4.9%
-        // from frame to frame (the parts tumble into other poses under the
-        // sun), so one frame says little about how the error grows with N.
-        std::vector<double> all, objects;
-        double worst = -1, worst_time = 0, truth_seconds = 0;
-        std::string worst_part;
-        for (const float t : kFrameTimes) {
-            renderer->set_time(t);
-            renderer->shade(colors);
-            GroundTruth truth(*scene, setup.environment_at(t), t);
-            const auto start = BenchClock::now();
-            const VertexColors reference = truth.shade_vertices();
-            truth_seconds += seconds_since(start);
-            const VertexErrorReport error = compare_vertex_colors(colors, reference);
-            const ObjectErrorReport by_part = object_errors(error);
-            all.push_back(error.total.relative_l2());
-            objects.push_back(by_part.objects.relative_l2());
-            if (by_part.worst > worst) worst = by_part.worst, worst_part = by_part.worst_part, worst_time = t;
-        }
-        auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size()); };
-        row["truth_seconds"] = truth_seconds;
-        row["error_times"] = kFrameTimes;
-        row["relative_l2_vs_truth"] = mean(all);  // the mean over the frames
-        row["objects_relative_l2"] = mean(objects);
-        row["relative_l2_per_frame"] = all;
-        row["objects_relative_l2_per_frame"] = objects;
-        row["worst_part"] = worst_part;  // the worst part of any frame
-        row["worst_part_relative_l2"] = worst;
-        row["worst_part_time"] = worst_time;
-    }
+                       {"ovdf_lookups_per_frame", timings.lookups / kFrameTimes.size()},
+                       {"candidates_per_receiver", double(timings.candidates) / double(kFrameTimes.size()) / parts},
+                       {"occluders_per_receiver_light", double(timings.entries) / double(kFrameTimes.size()) / parts / double(std::max<size_t>(1, stats.lights))}};
+    if (instances <= kTruthLimit) add_truth_errors(*renderer, colors, *scene, setup, row);
     bench_emit(row);
     ScaleRow result{instances, int(scene->parts.size()), scene->precompute.ovdf_outer_radius,
                     shade[kFrameTimes.size() / 2]};

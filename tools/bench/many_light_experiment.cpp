@@ -57,8 +57,9 @@ int samples_for_budget(uint64_t budget, uint64_t pairs) {
     return std::clamp(int(std::floor(std::sqrt(per_pair))), 1, ExactVisibility::kMaxSamplesPerSide);
 }
 
-void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
-                   double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
+// Output phase: results.json, table.md and every row's and the truth's EXR and PNG; returns the table.
+std::string write_results(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
+                          double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
     const std::filesystem::path dir(args.output);
     nlohmann::json json = {{"scene", scene.name},
                            {"source", scene.source.string()},
@@ -89,8 +90,11 @@ void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t v
     write_exr_and_png(dir / "truth.exr", truth_image, ToneMap{0.0f, true});
     write_file_atomically(dir / "results.json", json.dump(2) + "\n");
     write_file_atomically(dir / "table.md", table);
+    return table;
+}
 
-    // One exposure for all tiles, from the truth's 99th luminance percentile.
+// Output phase: sheet.png, the truth and every row at one exposure, from the truth's 99th luminance percentile.
+void write_contact_sheet(const std::filesystem::path& dir, const Image& truth_image, const std::vector<Row>& rows) {
     std::vector<float> lum;
     for (int y = 0; y < truth_image.height; ++y)
         for (int x = 0; x < truth_image.width; ++x) lum.push_back(luminance(truth_image.rgb(x, y)));
@@ -103,8 +107,10 @@ void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t v
         labels.push_back(fmt::format("{}  {:.0f} MS  {:.1f}%", r.label(), r.frame_ms, 100 * r.objects_error));
     }
     write_png(dir / "sheet.png", raster::contact_sheet(tiles, labels, 4, gain));
+}
 
-    // Pareto: the objects' error against frame time, one curve per method.
+// Output phase: pareto.png, the objects' error against frame time, one curve per method.
+void write_pareto_plot(const std::filesystem::path& dir, const Scene& scene, const std::vector<Row>& rows) {
     const std::vector<std::pair<std::string, Color>> families = {{"rsl", Color(0.1f, 0.6f, 0.2f)},
                                                                  {"rsl-gl", Color(0.5f, 0.8f, 0.2f)},
                                                                  {"rays", Color(0.85f, 0.2f, 0.1f)},
@@ -123,42 +129,81 @@ void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t v
     }
     write_png(dir / "pareto.png", raster::line_plot(series, fmt::format("MS PER FRAME ({})", scene.name),
                                                     "OBJECTS REL. L2 ERROR", 640, 420, true));
+}
+
+// Every output file of the experiment, then the table on stdout.
+void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
+                   double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
+    const std::filesystem::path dir(args.output);
+    const std::string table = write_results(args, scene, vertices, truth_image, truth_ms, rows, gl_device);
+    write_contact_sheet(dir, truth_image, rows);
+    write_pareto_plot(dir, scene, rows);
     fmt::print("{}\nwrote {}/table.md, results.json, pareto.png, sheet.png\n", table, dir.string());
 }
 
-}  // namespace
+// Prints one progress line to stderr unless the run is quiet.
+void say(const ManyLightExperiment& args, const std::string& line) {
+    if (!args.quiet) fmt::print(stderr, "{}\n", line);
+}
 
-void run_many_light_experiment(const ManyLightExperiment& args) {
+// Phase: the scene at the experiment's environment and resolution.
+std::shared_ptr<Scene> load_experiment_scene(const ManyLightExperiment& args) {
     auto scene_ptr = std::make_shared<Scene>(load_scene(args.scene));
     Scene& scene = *scene_ptr;
     adapt_scene(scene, args.environment, args.resolution, false);
     // One map: every row shades one RSL set (lights_for), so the truth must
     // not blend in a second map the rows do not see.
     scene.environment.second_file.clear();
-    const float t = args.time;
-    auto say = [&](const std::string& line) {
-        if (!args.quiet) fmt::print(stderr, "{}\n", line);
-    };
-    RenderOptions options;
-    options.local_lights = false;
-    options.environment_lights = args.baseline_lights;
-    say("fitting lights and baking visibility fields...");
-    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
+    return scene_ptr;
+}
 
+// The ground truth's vertex colours and the time they took.
+struct TruthColors {
+    VertexColors colors;
+    double ms = 0;
+};
+
+// Phase: the ground truth's vertex colours under the environment at t, timed.
+TruthColors shade_truth(const ManyLightExperiment& args, const Scene& scene, const RenderSetup& setup) {
+    const float t = args.time;
     GroundTruthOptions truth_options;
     truth_options.local_lights = false;
     const GroundTruth truth(scene, setup.environment_at(t), t, truth_options);
     const auto truth_start = ExperimentClock::now();
-    const VertexColors truth_colors = truth.shade_vertices();
-    const double truth_ms = 1e3 * seconds_since(truth_start);
-    const PosedScene posed(scene, t);
-    const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, args.width, args.height);
-    const Image truth_image = form_image(posed, camera, truth_colors);
-    say(fmt::format("ground truth: {:.1f} s", truth_ms / 1e3));
+    TruthColors result{truth.shade_vertices()};
+    result.ms = 1e3 * seconds_since(truth_start);
+    return result;
+}
 
+// What every row is measured against (the truth, its frame and image) and
+// the rows measured so far.
+struct RowMeasurer {
+    RowMeasurer(const ManyLightExperiment& args, Scene& scene, const RenderSetup& setup, const RenderOptions& options,
+                TruthColors truth)
+        : args(args), scene(scene), setup(setup), options(options), t(args.time), truth_colors(std::move(truth.colors)),
+          truth_ms(truth.ms), posed(scene, t), camera(PinholeCamera::at_time(scene.camera, t, args.width, args.height)),
+          truth_image(form_image(posed, camera, truth_colors)) {}
+
+    const ManyLightExperiment& args;
+    Scene& scene;
+    const RenderSetup& setup;
+    const RenderOptions& options;
+    const float t;
+    const VertexColors truth_colors;
+    const double truth_ms;
+    const PosedScene posed;
+    const PinholeCamera camera;
+    const Image truth_image;
     std::vector<Row> rows;
+
+    // The RSL set of k lights: the baseline's as fitted by the setup, other k fitted here.
+    RslSet lights_for(int k) const {
+        return k == args.baseline_lights ? setup.environment_lights.first
+                                         : fit_scene_lights(*setup.scene, setup.environment, k, options.cross_face_lights);
+    }
+
     // Times `repeats` frames of a renderer posed at t and measures its colours.
-    auto measure = [&](Row row, VertexRenderer& renderer) {
+    void measure(Row row, VertexRenderer& renderer) {
         renderer.set_time(t);
         VertexColors colors = renderer.make_output();
         renderer.shade(colors);  // warm-up: per-thread scratch, GL programs and textures
@@ -176,74 +221,106 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
         row.worst_part = objects.worst_part, row.worst_error = objects.worst;
         row.image = form_image(posed, camera, colors);
         row.image_error = compare_images(row.image, truth_image).pixels.relative_l2();
-        say(fmt::format("{}: {:.1f} ms{}, error: vertices {:.4f}, objects {:.4f}, worst {} {:.4f}, image {:.4f}",
-                        row.label(), row.frame_ms, row.rays ? fmt::format(", {} rays", row.rays) : std::string(),
-                        row.vertex_error, row.objects_error, row.worst_part, row.worst_error, row.image_error));
+        say(args, fmt::format("{}: {:.1f} ms{}, error: vertices {:.4f}, objects {:.4f}, worst {} {:.4f}, image {:.4f}",
+                              row.label(), row.frame_ms, row.rays ? fmt::format(", {} rays", row.rays) : std::string(),
+                              row.vertex_error, row.objects_error, row.worst_part, row.worst_error, row.image_error));
         rows.push_back(std::move(row));
-    };
-    auto lights_for = [&](int k) {
-        return k == args.baseline_lights ? setup.environment_lights.first
-                                         : fit_scene_lights(*setup.scene, setup.environment, k, options.cross_face_lights);
-    };
-
-    for (int k : args.rsl_lights) {
-        RenderOptions o = options;
-        o.environment_lights = k;
-        CpuRenderer renderer(scene, lights_for(k), setup.fields, o);
-        measure(make_row("rsl", k, k), renderer);
     }
-    // Ray-traced many-light: the fields unused, every visibility factor by rays.
-    auto ray_row = [&](const std::string& method, int samples) {
+
+    // Ray-traced many-light: the fields unused, every visibility factor by
+    // rays of `samples`² per pair; returns the row's rays per frame.
+    uint64_t measure_ray_row(const std::string& method, int samples) {
         RenderOptions o = options;
         o.exact_visibility = std::make_shared<ExactVisibility>(scene, t, ExactVisibilityMode::All, samples, true);
         CpuRenderer renderer(scene, lights_for(args.baseline_lights), PartFields{}, o);
         measure(make_row(method, samples, args.baseline_lights), renderer);
         return rows.back().rays;
-    };
+    }
+};
+
+// Phase: one CPU RSL row per K of rsl_lights.
+void measure_rsl_rows(RowMeasurer& m) {
+    for (int k : m.args.rsl_lights) {
+        RenderOptions o = m.options;
+        o.environment_lights = k;
+        CpuRenderer renderer(m.scene, m.lights_for(k), m.setup.fields, o);
+        m.measure(make_row("rsl", k, k), renderer);
+    }
+}
+
+// Phase: the ray-traced rows, one per S of ray_samples, then the one whose S
+// fits the ray budget.
+void measure_ray_rows(RowMeasurer& m) {
+    const ManyLightExperiment& args = m.args;
     uint64_t rays_at_one = 0;
     for (int samples : args.ray_samples) {
-        const uint64_t rays = ray_row("rays", samples);
+        const uint64_t rays = m.measure_ray_row("rays", samples);
         if (samples == 1) rays_at_one = rays;
     }
     if (args.ray_budget > 0) {
         if (rays_at_one == 0) {  // the pairs that need rays, from one frame at S = 1
-            RenderOptions o = options;
-            o.exact_visibility = std::make_shared<ExactVisibility>(scene, t, ExactVisibilityMode::All, 1, true);
-            CpuRenderer probe(scene, lights_for(args.baseline_lights), PartFields{}, o);
-            probe.set_time(t);
+            RenderOptions o = m.options;
+            o.exact_visibility = std::make_shared<ExactVisibility>(m.scene, m.t, ExactVisibilityMode::All, 1, true);
+            CpuRenderer probe(m.scene, m.lights_for(args.baseline_lights), PartFields{}, o);
+            probe.set_time(m.t);
             probe.shade();
             rays_at_one = probe.stats().shadow_rays;
         }
         const int samples = samples_for_budget(args.ray_budget, rays_at_one);
-        say(fmt::format("ray budget {}: {} pairs need rays, so S = {}", args.ray_budget, rays_at_one, samples));
-        ray_row("rays-budget", samples);
+        say(args, fmt::format("ray budget {}: {} pairs need rays, so S = {}", args.ray_budget, rays_at_one, samples));
+        m.measure_ray_row("rays-budget", samples);
     }
-    // The GL rows: the fields' sum on the GPU path, and shadow maps.
+}
+
+// Phase: the GL rows, the fields' sum on the GPU path and shadow maps;
+// returns the GL device, or why the rows were skipped.
+std::string measure_gl_rows(RowMeasurer& m) {
+    const ManyLightExperiment& args = m.args;
     std::string gl_device = "none asked for";
     if (!args.gl_lights.empty() || !args.shadow_map_resolutions.empty()) {
         try {
             for (int k : args.gl_lights) {
-                RenderOptions o = options;
+                RenderOptions o = m.options;
                 o.environment_lights = k;
-                const auto renderer = make_renderer(Backend::Gl, scene, lights_for(k), setup.fields, o);
+                const auto renderer = make_renderer(Backend::Gl, m.scene, m.lights_for(k), m.setup.fields, o);
                 gl_device = renderer->device();
-                measure(make_row("rsl-gl", k, k), *renderer);
+                m.measure(make_row("rsl-gl", k, k), *renderer);
             }
             for (int resolution : args.shadow_map_resolutions) {
-                RenderOptions o = options;
+                RenderOptions o = m.options;
                 o.shadow_maps.enabled = true;
                 o.shadow_maps.resolution = resolution;
                 o.shadow_maps.filter = ShadowFilter::Pcss;
-                const auto renderer = make_renderer(Backend::Gl, scene, lights_for(args.baseline_lights), setup.fields, o);
+                const auto renderer =
+                    make_renderer(Backend::Gl, m.scene, m.lights_for(args.baseline_lights), m.setup.fields, o);
                 gl_device = renderer->device();
-                measure(make_row("shadow-map", resolution, args.baseline_lights), *renderer);
+                m.measure(make_row("shadow-map", resolution, args.baseline_lights), *renderer);
             }
         } catch (const Error& e) {
             gl_device = fmt::format("skipped ({})", e.what());
-            say("GL rows " + gl_device);
+            say(args, "GL rows " + gl_device);
         }
     }
-    write_outputs(args, scene, truth_colors.vertex_count(), truth_image, truth_ms, rows, gl_device);
+    return gl_device;
+}
+
+}  // namespace
+
+void run_many_light_experiment(const ManyLightExperiment& args) {
+    const std::shared_ptr<Scene> scene_ptr = load_experiment_scene(args);
+    Scene& scene = *scene_ptr;
+    RenderOptions options;
+    options.local_lights = false;
+    options.environment_lights = args.baseline_lights;
+    say(args, "fitting lights and baking visibility fields...");
+    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
+
+    RowMeasurer m(args, scene, setup, options, shade_truth(args, scene, setup));
+    say(args, fmt::format("ground truth: {:.1f} s", m.truth_ms / 1e3));
+    measure_rsl_rows(m);
+    measure_ray_rows(m);
+    const std::string gl_device = measure_gl_rows(m);
+    write_outputs(args, scene, m.truth_colors.vertex_count(), m.truth_image, m.truth_ms, m.rows, gl_device);
 }
 
 }  // namespace rsl

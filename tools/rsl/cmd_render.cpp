@@ -63,13 +63,17 @@ std::filesystem::path numbered(const std::filesystem::path& path, int frame) {
     return result;
 }
 
-void run_render(const RenderArgs& args) {
-    const Backend backend = parse_backend(args.backend);
+// Checking phase: the light and sample counts and the output's extension; returns the output path.
+std::filesystem::path check_render_args(const RenderArgs& args) {
     if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
     if (args.samples < 1) throw_error("--samples {}: expected at least 1", args.samples);
     const std::filesystem::path output(args.output);
     if (output.extension() != ".exr") throw_error("-o {}: expected an .exr path (a .png preview is written beside it)", args.output);
+    return output;
+}
 
+// Options phase: the renderer's options from the arguments, shadow maps checked before the fit and the bake.
+RenderOptions render_options(const RenderArgs& args, Backend backend) {
     RenderOptions options;
     options.environment_lights = args.lights;
     options.cross_face_lights = !args.same_face;
@@ -90,6 +94,66 @@ void run_render(const RenderArgs& args) {
         options.shadow_maps.resolution = args.shadow_maps;
         options.shadow_maps.filter = args.shadow_filter == "pcf" ? ShadowFilter::Pcf : ShadowFilter::Pcss;
     }
+    return options;
+}
+
+// Report phase: the renderer's device (GPU backends) and the environment's blend, unless quiet.
+void report_renderer(const RenderArgs& args, Backend backend, const RenderSetup& setup, const VertexRenderer& renderer) {
+    const Scene& scene = *setup.scene;
+    if (!args.quiet && backend != Backend::Cpu) fmt::print(stderr, "{}\n", renderer.device());
+    if (!args.quiet && setup.environment_lights.blends())
+        fmt::print(stderr, "environment: {} blended with {} over a {} s period (docs/SCENE_FORMAT.md)\n",
+                   scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
+                   scene.environment.blend_period_seconds);
+}
+
+// Frame phase: shades and forms every frame, writes its EXR + PNG (and vertex
+// colours), and prints one line of timings per frame.
+void render_frames(const RenderArgs& args, const RenderSetup& setup, VertexRenderer& renderer,
+                   const std::filesystem::path& output) {
+    const Scene& scene = *setup.scene;
+    const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
+    const int width = args.width > 0 ? args.width : scene.camera.width;
+    const int height = args.height > 0 ? args.height : scene.camera.height;
+    VertexColors colors = renderer.make_output();
+    renderer.keep_image_terms(true);  // every frame forms an image
+    ImageFormationOptions formation;
+    formation.samples_per_side = args.samples;
+    // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
+    // so that the two PNGs of one frame come out alike. For a strict visual
+    // comparison give both the same non-zero --exposure.
+    const ToneMap tone{args.exposure, args.exposure == 0.0f};
+    for (size_t f = 0; f < times.size(); ++f) {
+        const float t = times[f];
+        const auto start = std::chrono::steady_clock::now();
+        renderer.set_time(t);
+        renderer.shade(colors);
+        const auto shaded = std::chrono::steady_clock::now();
+        const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, width, height);
+        const Image image = renderer.form_image(colors, camera, formation);
+        const auto formed = std::chrono::steady_clock::now();
+        const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
+        write_exr_and_png(exr, image, tone);
+        if (!args.vertex_output.empty())
+            write_vertex_colors(times.size() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output), colors);
+        const double shading_ms = 1e3 * std::chrono::duration<double>(shaded - start).count();
+        const double image_ms = 1e3 * std::chrono::duration<double>(formed - shaded).count();
+        const RenderStats& stats = renderer.stats();
+        const std::string blend = setup.environment_lights.blends()
+                                      ? fmt::format(", second map {:.0f}%", 100.0f * scene.environment.blend_weight_at(t))
+                                      : "";
+        fmt::print("t={:.3f}: {} vertices x {} lights{}, {} shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} "
+                   "culled) -> {}\n",
+                   t, colors.vertex_count(), stats.lights, blend, renderer.backend(), shading_ms, image_ms,
+                   stats.occluder_pairs, stats.occluder_pairs_culled, exr.string());
+        if (const std::string passes = renderer.pass_times(); !passes.empty()) fmt::print("  GPU passes: {}\n", passes);
+    }
+}
+
+void run_render(const RenderArgs& args) {
+    const Backend backend = parse_backend(args.backend);
+    const std::filesystem::path output = check_render_args(args);
+    const RenderOptions options = render_options(args, backend);
 
     ProgressDisplay display(!args.quiet);
     SetupOptions how;
@@ -103,48 +167,8 @@ void run_render(const RenderArgs& args) {
     // Every backend shades the same per-vertex sum; image formation is shared.
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(backend, scene, setup.environment_lights, setup.fields, options);
-    if (!args.quiet && backend != Backend::Cpu) fmt::print(stderr, "{}\n", renderer->device());
-    if (!args.quiet && setup.environment_lights.blends())
-        fmt::print(stderr, "environment: {} blended with {} over a {} s period (docs/SCENE_FORMAT.md)\n",
-                   scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
-                   scene.environment.blend_period_seconds);
-
-    const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
-    const int width = args.width > 0 ? args.width : scene.camera.width;
-    const int height = args.height > 0 ? args.height : scene.camera.height;
-    VertexColors colors = renderer->make_output();
-    renderer->keep_image_terms(true);  // every frame forms an image
-    ImageFormationOptions formation;
-    formation.samples_per_side = args.samples;
-    // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
-    // so that the two PNGs of one frame come out alike. For a strict visual
-    // comparison give both the same non-zero --exposure.
-    const ToneMap tone{args.exposure, args.exposure == 0.0f};
-    for (size_t f = 0; f < times.size(); ++f) {
-        const float t = times[f];
-        const auto start = std::chrono::steady_clock::now();
-        renderer->set_time(t);
-        renderer->shade(colors);
-        const auto shaded = std::chrono::steady_clock::now();
-        const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, width, height);
-        const Image image = renderer->form_image(colors, camera, formation);
-        const auto formed = std::chrono::steady_clock::now();
-        const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
-        write_exr_and_png(exr, image, tone);
-        if (!args.vertex_output.empty())
-            write_vertex_colors(times.size() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output), colors);
-        const double shading_ms = 1e3 * std::chrono::duration<double>(shaded - start).count();
-        const double image_ms = 1e3 * std::chrono::duration<double>(formed - shaded).count();
-        const RenderStats& stats = renderer->stats();
-        const std::string blend = setup.environment_lights.blends()
-                                      ? fmt::format(", second map {:.0f}%", 100.0f * scene.environment.blend_weight_at(t))
-                                      : "";
-        fmt::print("t={:.3f}: {} vertices x {} lights{}, {} shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} "
-                   "culled) -> {}\n",
-                   t, colors.vertex_count(), stats.lights, blend, renderer->backend(), shading_ms, image_ms,
-                   stats.occluder_pairs, stats.occluder_pairs_culled, exr.string());
-        if (const std::string passes = renderer->pass_times(); !passes.empty()) fmt::print("  GPU passes: {}\n", passes);
-    }
+    report_renderer(args, backend, setup, *renderer);
+    render_frames(args, setup, *renderer, output);
 }
 
 RegisterCommand render_command({"render",
