@@ -164,7 +164,7 @@ void run_render(const RenderArgs& args) {
     if (!args.quiet)
         fmt::print(stderr, "fields: {} loaded from the cache, {} baked ({:.1f} s)\n", setup.fields_loaded,
                    setup.fields_baked, setup.bake_seconds);
-    // Every backend shades the same per-vertex sum; image formation is shared.
+    // Every backend shades the same per-vertex sum and forms the same image.
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(backend, scene, setup.environment_lights, setup.fields, options);
     report_renderer(args, backend, setup, *renderer);
