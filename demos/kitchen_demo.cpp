@@ -30,7 +30,7 @@ DemoResult run_kitchen_demo(const DemoOptions& options) {
         throw_file_error(scene->source, "the kitchen demo needs environment.second_file (the map it changes to)");
     RenderOptions render;
     if (options.quick) render.environment_lights = kQuickLights;
-    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress)});
+    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render);
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());

@@ -56,7 +56,7 @@ DemoResult run_materials_demo(const DemoOptions& options) {
     if (swept.empty()) throw_file_error(scene->source, "no part named orb*: nothing to sweep");
     RenderOptions render;
     if (options.quick) render.environment_lights = kQuickLights;
-    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress)});
+    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
 
     const int frames = options.frames > 0 ? options.frames : 12;

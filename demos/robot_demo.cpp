@@ -22,7 +22,7 @@ DemoResult run_robot_demo(const DemoOptions& options) {
     std::shared_ptr<Scene> scene = load_demo_scene(options, "robot/scene.json");
     RenderOptions render;
     if (options.quick) render.environment_lights = kQuickLights;
-    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress)});
+    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render);
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());

@@ -283,7 +283,7 @@ void measure_rsl(const std::shared_ptr<Scene>& scene_ptr, const PrtPrecompute& u
     options.local_lights = false;
     options.environment_lights = args.rsl_lights.front();
     say(args, "RSL: fitting lights and baking visibility fields...");
-    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
+    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet), .field_cache = {}});
     const size_t bytes = field_bytes(setup.fields);
     for (int lights : args.rsl_lights) {
         const auto fit_start = Clock::now();

@@ -152,7 +152,7 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
     const std::shared_ptr<Scene> scene = write_and_load_yard(options, dir, instances, reach);
     RenderOptions render_options;
     render_options.environment_lights = 30;
-    const RenderSetup setup = prepare_render(scene, render_options, {.progress = cli::drawn_progress(true)});
+    const RenderSetup setup = prepare_render(scene, render_options, {.progress = cli::drawn_progress(true), .field_cache = {}});
     size_t unique_fields = 0, unique_meshes = 0;
     const size_t ram = field_ram_bytes(setup.fields, unique_fields, unique_meshes);
     const std::unique_ptr<VertexRenderer> renderer =

@@ -313,7 +313,7 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
     options.local_lights = false;
     options.environment_lights = args.baseline_lights;
     say(args, "fitting lights and baking visibility fields...");
-    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet)});
+    RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet), .field_cache = {}});
 
     RowMeasurer m(args, scene, setup, options, shade_truth(args, scene, setup));
     say(args, fmt::format("ground truth: {:.1f} s", m.truth_ms / 1e3));

@@ -43,7 +43,9 @@ void run_bake(const BakeArgs& args) {
     if (args.quiet) return;
     for (const UniqueFields& u : fields.unique)
         for (const FieldOutcome* o : {&u.svdf_outcome, &u.ovdf_outcome})
-            if (o->state == FieldState::Baked)
+            if (o->state == FieldState::Reused)
+                display.note(fmt::format("cached {}", o->file.string()));
+            else if (o->state == FieldState::Baked)
                 display.note(fmt::format("{}: baked in {:.1f} s, 1:{:.1f} compression, rms {:.4f}",
                                          o->file.filename().string(), o->seconds, o->compression_ratio, o->rms_error));
     const int baked = fields.count(FieldState::Baked), reused = fields.count(FieldState::Reused);

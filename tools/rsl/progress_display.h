@@ -28,15 +28,17 @@ public:
     ~ProgressDisplay() { end_line(); }
 
     // Job `what` is `fraction` done ([0, 1]; 1 ends it). Thread-safe: the
-    // libraries call it from their worker threads.
+    // libraries call it from their worker threads. A job whose first report
+    // is its end (a field read from the cache) draws nothing: the tool says
+    // what it found.
     void operator()(const std::string& what, double fraction) {
         if (!enabled_) return;
         std::lock_guard<std::mutex> lock(mutex_);
         const double now = seconds();
-        auto [job, started] = jobs_.try_emplace(what, Job{now, -1.0, false});
+        fraction = std::clamp(fraction, 0.0, 1.0);
+        auto [job, started] = jobs_.try_emplace(what, Job{now, -1.0, fraction >= 1.0});
         Job& j = job->second;
         if (j.done) return;
-        fraction = std::clamp(fraction, 0.0, 1.0);
         const double elapsed = now - j.start;
         if (fraction >= 1.0) {
             j.done = true;
