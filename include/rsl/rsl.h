@@ -162,7 +162,7 @@ struct RenderSettings {
     bool occluders = true;           // the other parts' shadows (OVDF)
     // Which parts' images take the other parts' shadows per pixel where a
     // shadow edge crosses a triangle, as `rsl render --pixel-shadows`:
-    // "planes" (flat rectangles: grounds, floors), "all" or "off". The cpu
+    // "planes" (flat rectangles: grounds, floors), "all" or "off". Every
     // backend's render_image(); form_image() draws the colours it is given.
     std::string pixel_shadows = "planes";
     // Glossy parts' images take the BRDF at each pixel's own normal and view

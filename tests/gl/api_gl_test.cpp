@@ -66,11 +66,13 @@ TEST_CASE("the API's gl-current backend fills a GL colour buffer of the caller's
     }
 }
 
-TEST_CASE("the API's gl backend renders the CPU's image; gl-current without a context is refused", "[gl-api]") {
+TEST_CASE("the API's gl backend renders the CPU's colours and image; gl-current without a context is refused", "[gl-api]") {
     const api::Scene scene = api_scene("api-gl-own");
     api::RenderSettings settings;
     settings.lights = 8;
-    settings.pixel_shadows = "off";  // render_image forms the gl backend's image on the CPU: compare the vertex pipelines' images
+    // Each backend forms its own image (the GL one rasterizes): with the
+    // per-pixel passes off, the two images compare the vertex pipelines.
+    settings.pixel_shadows = "off";
     settings.pixel_highlights = false;
     api::Renderer cpu(scene, settings);
     settings.backend = "gl";
