@@ -58,15 +58,8 @@ RSL_SHARED SquareTaps square_taps(vec2 c, float half_edge, int n) {
     return t;
 }
 
-// Linear interpolation between v view samples at (k + ½)/v: t = u·v − ½,
-// clamped to the first and last sample; the lower sample and the upper weight.
-RSL_SHARED LerpPair sample_lerp(float t, int v) {
-    float x = clamp(t, 0.0f, float(v - 1));
-    LerpPair s;
-    s.lower = min(int(x), v - 2);
-    s.upper_weight = x - float(s.lower);
-    return s;
-}
+// The v view samples lie at (k + ½)/v: a view coordinate u is sample
+// position t = u·v − ½ (sample_lerp).
 // Isotropic tables: the view's slice coordinate, linear in its plane radius √(1 − cos θ_o).
 RSL_SHARED float isotropic_view_coordinate(float view_z, int v) {
     return sqrt(clamp(1.0f - view_z, 0.0f, 1.0f)) * float(v) - 0.5f;

@@ -13,6 +13,15 @@ struct LerpPair {
     int lower;
     float upper_weight;
 };
+// Between `count` ≥ 2 samples at positions 0, 1, …, count − 1: position t
+// clamped to the first and last sample.
+RSL_SHARED LerpPair sample_lerp(float t, int count) {
+    float x = clamp(t, 0.0f, float(count - 1));
+    LerpPair s;
+    s.lower = min(int(x), count - 2);
+    s.upper_weight = x - float(s.lower);
+    return s;
+}
 
 // Bilinear taps between texel centres of an n×n table over [-1, 1]²; the
 // edge value is held outside the outermost centres. Texels (i, j), (i+1, j),

@@ -46,13 +46,7 @@ RSL_SHARED float ovdf_shell_coordinate(int spacing, int shells, float inner, flo
 }
 // The two shells around a shell coordinate (clamped inside): the lower one
 // and the upper one's weight.
-RSL_SHARED LerpPair ovdf_shell_pair(float coordinate, int shells) {
-    float u = clamp(coordinate, 0.0f, float(shells - 1));
-    LerpPair s;
-    s.lower = min(int(u), shells - 2);
-    s.upper_weight = u - float(s.lower);
-    return s;
-}
+RSL_SHARED LerpPair ovdf_shell_pair(float coordinate, int shells) { return sample_lerp(coordinate, shells); }
 
 // The cube face whose normal is nearest to the unit direction (the first on
 // ties), and the cosine to it.
