@@ -23,7 +23,7 @@ gl::GlRenderer& caller_context_renderer(Backend backend, VertexRenderer& rendere
 void Renderer::shade_gl() {
     gl::GlRenderer& renderer = caller_context_renderer(state_->backend, *state_->renderer);
     state_->update_frame();
-    renderer.shade();
+    renderer.shade_on_device();  // nothing is read back
 }
 
 unsigned Renderer::gl_color_buffer() const {

@@ -2,6 +2,7 @@
 // and the images they form offscreen (draw_image: `rsl render --backend gl`,
 // the tests that hold the per-pixel pass to the CPU's).
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 
 #include "src/core/error.h"
@@ -205,9 +206,20 @@ Image GlRenderer::backend_image(const VertexColors& colors, const PinholeCamera&
     // The display pass draws `colors` as shaded on the device: they must be
     // the last shade()'s (the CPU's image reads the same colours from them).
     RSL_CHECK_EQ(colors.vertex_count(), size_t(vertex_count_));
+    if (!shaded_current_frame_) throw_error("form_image: the image needs a shade() of the current frame");
     // S×S samples per pixel: the image S times as large, whose pixel centres
     // are the CPU's sample positions, averaged (resolve_samples).
     const int s = options.samples_per_side;
+    GLint max_texture = 0, max_renderbuffer = 0, max_viewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_renderbuffer);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
+    const int64_t limit = std::min({int64_t(max_texture), int64_t(max_renderbuffer), int64_t(max_viewport[0]),
+                                    int64_t(max_viewport[1])});
+    if (int64_t(camera.width) * s > limit || int64_t(camera.height) * s > limit)
+        throw_error("an image of {}×{} pixels at {}×{} samples is drawn {}×{} on the GPU; this driver draws at most "
+                    "{} pixels a side (fewer samples, a smaller image, or the cpu backend)",
+                    camera.width, camera.height, s, s, int64_t(camera.width) * s, int64_t(camera.height) * s, limit);
     PinholeCamera fine = camera;
     fine.width *= s;
     fine.height *= s;

@@ -301,6 +301,7 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
 
 void GlRenderer::frame_changed() {
     shadow_maps_stale_ = true;  // poses or lights may have moved
+    shaded_current_frame_ = false;
     pack_occluder_lists(frame_.occluder_lists(), occluder_list_texels_);
     stats_.lights = frame_.environment_squares().size() + frame_.light_positions().size();
     stats_.vertices = size_t(vertex_count_);
@@ -368,6 +369,7 @@ void GlRenderer::shade_on_device() {
     query_pending_[frame_parity_] = !clock_timing_;
     drew_[frame_parity_] = false;
     check_gl("the shading pass");
+    shaded_current_frame_ = true;
 }
 
 void GlRenderer::bind_shading_inputs(const Program& program) {

@@ -114,7 +114,8 @@ protected:
     // large for S×S samples and resolved to one pixel each.
     Image backend_image(const VertexColors& colors, const PinholeCamera& camera,
                         const ImageFormationOptions& options) override;
-    // The shadow maps are stale, the frame's occluder lists flattened for the shader.
+    // The shadow maps and the shaded colours are stale, the frame's occluder
+    // lists flattened for the shader.
     void frame_changed() override;
 
 private:
@@ -159,6 +160,9 @@ private:
     MaterialUploads uploads_;
     // The frame's occluder lists as the shader walks them (pack_occluder_lists).
     std::vector<uint32_t> occluder_list_texels_;
+    // Whether the colour buffer holds the current frame's shading (the
+    // display pass draws it with the current frame's poses and lights).
+    bool shaded_current_frame_ = false;
     int vertex_count_ = 0, rect_height_ = 1;
     std::vector<int> first_vertex_;
     std::vector<Vec4> part_records_;

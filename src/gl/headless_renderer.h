@@ -6,6 +6,7 @@
 #include <string>
 
 #include "src/gl/gl_renderer.h"
+#include "src/core/error.h"
 #include "src/gl/headless_context.h"
 
 namespace rsl::gl {
@@ -23,7 +24,13 @@ public:
         : GlRenderer(scene, std::move(environment_lights), std::move(fields), options) {}
     // The renderer's GL objects are deleted in this context (GlRenderer is
     // destroyed after this body runs, the context after it).
-    ~HeadlessGlRenderer() override { context.make_current(); }
+    ~HeadlessGlRenderer() override {
+        try {
+            context.make_current();
+        } catch (const Error& e) {
+            warn("deleting the GL renderer's objects without its context: {}", e.what());
+        }
+    }
 
     // "GPU: EGL surfaceless: OpenGL 4.5 (Core Profile) Mesa … on llvmpipe …"
     std::string device() const override { return "GPU: " + context.description(); }
@@ -32,6 +39,19 @@ public:
         GlRenderer::shade(out);
     }
     using GlRenderer::shade;
+    // GlRenderer's own calls that reach the GPU, in this context.
+    void shade_on_device() {
+        context.make_current();
+        GlRenderer::shade_on_device();
+    }
+    void read_colors(VertexColors& out) {
+        context.make_current();
+        GlRenderer::read_colors(out);
+    }
+    void draw(const Mat4& view_projection, float exposure) {
+        context.make_current();
+        GlRenderer::draw(view_projection, exposure);
+    }
 
 protected:
     Image backend_image(const VertexColors& colors, const PinholeCamera& camera,

@@ -90,6 +90,7 @@ void CpuRenderer::shade(VertexColors& out) {
     sync_materials();
     match_layers(library_, scene_, out);
     out.time = time_;
+    shaded_current_frame_ = true;
     terms_kept_ = keep_image_terms_;
     // The terms image formation takes per pixel (pixel_shading.cpp), sized
     // once (again when the light count or a part's material changes).

@@ -62,6 +62,8 @@ public:
 
 protected:
     void lights_changed() override;
+    // The kept terms are of the last frame: an image needs a new shade().
+    void frame_changed() override { shaded_current_frame_ = false; }
     // The parts shaded per pixel (RenderOptions::pixel_shadows,
     // pixel_highlights) take the other parts' shadows and their own BRDF at
     // each pixel's point (pixel_shading.cpp); the rest blend vertex colours.
@@ -166,7 +168,9 @@ private:
     // share of a pixel's self-visibility blend goes to the other corners.
     std::vector<std::vector<uint8_t>> enclosed_vertices_;
     std::vector<PixelTerms> pixel_terms_;
-    bool terms_kept_ = false;  // whether the last shade() kept the image's terms
+    // form_image's preconditions: a shade() since the frame last changed,
+    // which kept the image's terms.
+    bool shaded_current_frame_ = false, terms_kept_ = false;
     // The scene posed at the image's time, whose hits the image's rays find
     // (made at the first image).
     std::unique_ptr<PosedScene> posed_;

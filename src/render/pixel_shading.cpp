@@ -108,12 +108,15 @@ PixelShadows parse_pixel_shadows(const std::string& name) {
 
 Image CpuRenderer::backend_image(const VertexColors& colors, const PinholeCamera& camera,
                                  const ImageFormationOptions& options) {
+    if (!shaded_current_frame_) throw_error("form_image: the image needs a shade() of the current frame");
     if (!terms_kept_ && (options_.pixel_highlights || std::find(pixel_parts_.begin(), pixel_parts_.end(), 1) !=
                                                           pixel_parts_.end()))
         throw_error("form_image: the last shade() kept no terms for the parts shaded per pixel "
                     "(keep_image_terms(true) before it)");
-    if (!posed_) posed_ = std::make_unique<PosedScene>(scene_, time_);
-    posed_->set_time(time_);
+    if (!posed_)
+        posed_ = std::make_unique<PosedScene>(scene_, time_);
+    else
+        posed_->set_time(time_);
     return rsl::form_image(*posed_, camera, colors, options, pixel_shading(colors, *posed_));
 }
 

@@ -212,10 +212,16 @@ TEST_CASE("Both backends form the same image through VertexRenderer::form_image"
                                               cpu.pixel_shading(cpu_colors, truth.posed()));
             CHECK(compare_images(cpu_image, expected).pixels.relative_l2() == 0.0);
         }
-    // An image needs the terms its shade() kept.
+    // An image needs the terms its shade() kept ...
     cpu.keep_image_terms(false);
     const VertexColors bare = cpu.shade();
     CHECK_THROWS_WITH(cpu.form_image(bare, camera), Catch::Contains("keep_image_terms(true)"));
+    // ... and a shade() of the current frame: a frame moved on since is refused.
+    cpu.keep_image_terms(true);
+    cpu.set_time(0.5f);
+    gpu.set_time(0.5f);
+    CHECK_THROWS_WITH(cpu.form_image(cpu_colors, camera), Catch::Contains("shade() of the current frame"));
+    CHECK_THROWS_WITH(gpu.form_image(gpu_colors, camera), Catch::Contains("shade() of the current frame"));
 }
 
 }  // namespace

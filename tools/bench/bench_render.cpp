@@ -66,6 +66,7 @@ CaseTimings time_renderer(VertexRenderer& renderer, const Scene& scene, const Re
         renderer.set_time(c.time);
         renderer.shade(colors);
     });
+    renderer.form_image(colors, camera);  // warm-up: the posed scene's ray structure is built at the first image
     timings.image_per_pixel = median_seconds(repeats, [&] { renderer.form_image(colors, camera); });
     renderer.keep_image_terms(false);
     renderer.shade(colors);  // the colours and stats of the frame as measured first

@@ -161,9 +161,8 @@ void run_render(const RenderArgs& args) {
     const RenderSetup setup = prepare_render(args.scene, options, how);
     const Scene& scene = *setup.scene;
     if (!args.quiet && setup.environment.resolution() > 0) display.note(describe_fit(setup));
-    if (!args.quiet)
-        fmt::print(stderr, "fields: {} loaded from the cache, {} baked ({:.1f} s)\n", setup.fields_loaded,
-                   setup.fields_baked, setup.bake_seconds);
+    display.note(fmt::format("fields: {} loaded from the cache, {} baked ({:.1f} s)", setup.fields_loaded,
+                             setup.fields_baked, setup.bake_seconds));
     // Every backend shades the same per-vertex sum and forms the same image.
     const std::unique_ptr<VertexRenderer> renderer =
         make_renderer(backend, scene, setup.environment_lights, setup.fields, options);

@@ -52,7 +52,8 @@ public:
         if (fraction > 0.02) line += ", ~" + std::to_string(int(elapsed * (1.0 - fraction) / fraction + 0.5)) + " s left";
         draw(line, !terminal_);
     }
-    // A line of its own (a job's summary), after any line being redrawn.
+    // A line of its own (a job's summary); on a terminal it takes the place
+    // of the line being redrawn, which the job's next report draws again.
     void note(const std::string& line) {
         if (!enabled_) return;
         std::lock_guard<std::mutex> lock(mutex_);
