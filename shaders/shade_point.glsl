@@ -5,8 +5,9 @@
 // with the same arithmetic as the CPU renderer (src/render/shade_block.cpp,
 // src/brdf/brdf_table.cpp, src/fields/svdf.h, src/fields/ovdf.cpp), so that the two
 // agree to float rounding. Layout of every texture: src/gl/gpu_layout.h.
-// Two passes run it (shade_point): the vertex pass (shade_vertices.frag.glsl,
-// one fragment per vertex) and the per-pixel pass (shade_pixels.*.glsl, the
+// Two passes run it: the vertex pass (shade_blocks.comp.glsl, one
+// invocation per vertex, which takes its functions apart to share the
+// light-independent half of each lookup) and the per-pixel pass (shade_pixels.*.glsl, the
 // parts shaded per pixel drawn from the camera). The host prepends, in
 // order (gl_objects.cpp shading_prelude, shade_point_prelude): MAX_STRIDE
 // (texels of a CPCA row), the layout constants of src/gl/gpu_layout.h
@@ -148,30 +149,45 @@ float ovdf_row(int tables, int stride, int dims, int segment, int texel, vec4 w[
     return value;
 }
 
-// Ovdf::visible_fraction (AlignedCoefficients) as OvdfLookup computes it:
-// point and unit light in the occluder's frame.
-float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
+// The light-independent half of an OVDF lookup at a receiver point in the
+// occluder's frame (OvdfLookup::locate): where the point lies among the
+// shells and cube samples, whether it is inside the part, and the samples'
+// blended occluded area. The vertex pass locates each (vertex, occluder)
+// once for all its lights.
+const int kOvdfOutside = 0;  // beyond the outer shell: 1 for every light
+const int kOvdfInside = 1;   // inside the part: 0 for every light
+const int kOvdfLocated = 2;
+struct OvdfReceiver {
+    int kind;
+    vec3 dir;     // unit, from the part's center to the point
+    float cone;   // the part's bounding cone seen from the point (plane radius)
+    int s0;       // the shells s0, s0 + 1 and the weight of the upper one
+    float fs;
+    CubeFace face;
+    SampleTaps at;
+    float occluded_area;  // Ovdf::occluded_area_at: the bound of ovdf_area_bound
+};
+
+OvdfReceiver ovdf_locate(int part, vec3 point) {
+    OvdfReceiver r;
+    r.kind = kOvdfOutside;
     vec4 center = part_texel(part, kSlotOvdfCenter);
     vec4 bases = part_texel(part, kSlotOvdfBases);
     vec3 v = point - center.xyz;
     float d = length(v);
-    if (d >= bases.w) return 1.0f;
-    vec3 dir = d > 0.0f ? v / d : vec3(0.0f, 0.0f, 1.0f);
-    // The receiver's own bounding cone (the CPU's per-vertex test,
-    // OvdfLookup::unshadowed): the lookup gives 1 beyond it.
-    float cone = ovdf_zoom(d, center.w).cone;
-    if (ovdf_unshadowed(dot(light, -dir), cone, h)) return 1.0f;
+    if (d >= bases.w) return r;
+    r.dir = d > 0.0f ? v / d : vec3(0.0f, 0.0f, 1.0f);
+    r.cone = ovdf_zoom(d, center.w).cone;
     vec4 shells = part_texel(part, kSlotOvdfShells);
     vec4 grid = part_texel(part, kSlotOvdfGrid);
     vec4 records = part_texel(part, kSlotOvdfRecords);
-    int shell_count = int(shells.x), n = int(grid.x), vdt_n = int(grid.y), stride = int(grid.z), m = int(grid.w);
+    int shell_count = int(shells.x), n = int(grid.x);
     LerpPair pair = ovdf_shell_pair(
         ovdf_shell_coordinate(int(shells.y), shell_count, shells.z, shells.w, d / center.w), shell_count);
-    int s0 = pair.lower;
-    float fs = pair.upper_weight;
-    CubeFace face = cube_face(dir, u_face_normal);
-    SampleTaps at = ovdf_sample_taps(dir, face.cosine, u_face_s[face.face], u_face_t[face.face], n);
-    int tables = int(bases.x), coefficients = int(bases.y), dims = vdt_n * vdt_n;
+    r.s0 = pair.lower;
+    r.fs = pair.upper_weight;
+    r.face = cube_face(r.dir, u_face_normal);
+    r.at = ovdf_sample_taps(r.dir, r.face.cosine, u_face_s[r.face.face], u_face_t[r.face.face], n);
     // A receiver inside the part sees nothing (Ovdf::receiver_inside): its
     // radial span decides where it can, else the samples' blended surface
     // distance (Ovdf::surface_distance_at).
@@ -187,41 +203,56 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
         }
         span_inside = ovdf_span_inside(d, span, center.w);
     }
-    if (span_inside == 1) return 0.0f;
-    // The samples' blended surface distance and occluded area
-    // (Ovdf::occluded_area_at: the bound of ovdf_area_bound).
+    r.kind = kOvdfInside;
+    if (span_inside == 1) return r;
+    // The samples' blended surface distance and occluded area.
     int surface_base = int(records.y);
     float surface = 0.0f;
-    float occluded_area = 0.0f;
+    r.occluded_area = 0.0f;
     for (int k = 0; k < 2; ++k) {
-        float ws = k == 0 ? 1.0f - fs : fs;
+        float ws = k == 0 ? 1.0f - r.fs : r.fs;
         if (ws == 0.0f) continue;
         vec2 value = vec2(0.0f);
         for (int q = 0; q < 4; ++q) {
-            int sample = ovdf_sample_index(s0 + k, face.face, at.i[q], at.j[q], n);
-            vec4 texel = fetch(u_ovdf_frames, surface_base + sample / kSamplesPerTexel);
-            value += at.weight[q] * ((sample % kSamplesPerTexel) == 0 ? texel.xy : texel.zw);
+            int sample_at = ovdf_sample_index(r.s0 + k, r.face.face, r.at.i[q], r.at.j[q], n);
+            vec4 texel = fetch(u_ovdf_frames, surface_base + sample_at / kSamplesPerTexel);
+            value += r.at.weight[q] * ((sample_at % kSamplesPerTexel) == 0 ? texel.xy : texel.zw);
         }
         surface += ws * value.x;
-        occluded_area += ws * value.y;
+        r.occluded_area += ws * value.y;
     }
-    if (d < center.w && span_inside < 0 && ovdf_inside_part(center.w, surface)) return 0.0f;
+    if (d < center.w && span_inside < 0 && ovdf_inside_part(center.w, surface)) return r;
+    r.kind = kOvdfLocated;
+    return r;
+}
+
+// The light's half (OvdfLookup::visible_fraction) for a unit light in the
+// occluder's frame and a square of half-edge h: the small-occluder rule
+// where the square is wider than the part's cone, else the tables.
+float ovdf_receiver_fraction(int part, OvdfReceiver r, vec3 light, float h) {
+    if (r.kind == kOvdfOutside) return 1.0f;
+    if (r.kind == kOvdfInside) return 0.0f;
     // A part narrower than the square: the small-occluder rule, which needs
     // neither the pole frame nor the tables (the light's radius from the pole
     // as the CPU's OvdfLookup takes it).
-    float small_weight = ovdf_small_occluder_weight(cone, h, occluded_area);
-    float small = small_weight > 0.0f
-                      ? ovdf_small_occluder_fraction(ovdf_pole_radial(dot(light, normalize(-dir))), occluded_area, cone, h)
-                      : 1.0f;
+    float small_weight = ovdf_small_occluder_weight(r.cone, h, r.occluded_area);
+    float small = small_weight > 0.0f ? ovdf_small_occluder_fraction(ovdf_pole_radial(dot(light, normalize(-r.dir))),
+                                                                       r.occluded_area, r.cone, h)
+                                      : 1.0f;
     if (small_weight >= 1.0f) return small;
+    vec4 bases = part_texel(part, kSlotOvdfBases);
+    vec4 grid = part_texel(part, kSlotOvdfGrid);
+    vec4 records = part_texel(part, kSlotOvdfRecords);
+    int n = int(grid.x), vdt_n = int(grid.y), stride = int(grid.z), m = int(grid.w);
+    int tables = int(bases.x), coefficients = int(bases.y), dims = vdt_n * vdt_n;
     // The receiver's own pole frame, twisted by the face rule like its
     // samples: one plane point for all eight samples.
-    vec2 lp = lookup_plane_point(frame_to_local(frame_from_normal_tangent(-dir, u_face_s[face.face]), light));
+    vec2 lp = lookup_plane_point(frame_to_local(frame_from_normal_tangent(-r.dir, u_face_s[r.face.face]), light));
     float radial = length(lp);
     float distance = 0.0f;
     for (int k = 0; k < 2; ++k) {
-        int shell = s0 + k;
-        float ws = k == 0 ? 1.0f - fs : fs;
+        int shell = r.s0 + k;
+        float ws = k == 0 ? 1.0f - r.fs : r.fs;
         if (ws == 0.0f) continue;
         // The shell's zoomed table (OvdfZoom), one record per shell.
         vec4 record = fetch(u_ovdf_frames, int(records.x) + shell);
@@ -229,36 +260,51 @@ float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
         zoom.zoom = record.x;
         zoom.cone = record.y;
         BilinearTaps taps = bilinear_taps(vdt_n, zoom.zoom * lp);
-        int segment = ovdf_segment_of(shell, face.face, at.i[0], at.j[0], n, m);
+        int segment = ovdf_segment_of(shell, r.face.face, r.at.i[0], r.at.j[0], n, m);
         float value = 0.0f;  // × ws, table units
-        if (segment == ovdf_segment_of(shell, face.face, at.i[3], at.j[3], n, m)) {
+        if (segment == ovdf_segment_of(shell, r.face.face, r.at.i[3], r.at.j[3], n, m)) {
             // Reconstruction is linear in the coefficients: blend them first.
             vec4 c[MAX_STRIDE];
             for (int t = 0; t < stride; ++t) c[t] = vec4(0.0f);
             for (int q = 0; q < 4; ++q) {
-                int sample = ovdf_sample_index(shell, face.face, at.i[q], at.j[q], n);
-                for (int t = 0; t < stride; ++t) c[t] += at.weight[q] * fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
+                int sample_at = ovdf_sample_index(shell, r.face.face, r.at.i[q], r.at.j[q], n);
+                for (int t = 0; t < stride; ++t)
+                    c[t] += r.at.weight[q] * fetch(u_ovdf_coefficients, coefficients + sample_at * stride + t);
             }
             c[0].x = 1.0f;  // the mean's weight (the blend weights sum to 1)
             for (int t = 0; t < 4; ++t) value += taps.weight[t] * ovdf_row(tables, stride, dims, segment, taps.index[t], c);
         } else {  // the four samples straddle segments: four reconstructions
             for (int q = 0; q < 4; ++q) {
-                if (at.weight[q] == 0.0f) continue;
-                int sample = ovdf_sample_index(shell, face.face, at.i[q], at.j[q], n);
-                int sample_segment = ovdf_segment_of(shell, face.face, at.i[q], at.j[q], n, m);
+                if (r.at.weight[q] == 0.0f) continue;
+                int sample_at = ovdf_sample_index(shell, r.face.face, r.at.i[q], r.at.j[q], n);
+                int segment_at = ovdf_segment_of(shell, r.face.face, r.at.i[q], r.at.j[q], n, m);
                 vec4 c[MAX_STRIDE];
-                for (int t = 0; t < stride; ++t) c[t] = fetch(u_ovdf_coefficients, coefficients + sample * stride + t);
+                for (int t = 0; t < stride; ++t) c[t] = fetch(u_ovdf_coefficients, coefficients + sample_at * stride + t);
                 float reconstructed = 0.0f;
                 for (int t = 0; t < 4; ++t)
-                    reconstructed += taps.weight[t] * ovdf_row(tables, stride, dims, sample_segment, taps.index[t], c);
-                value += at.weight[q] * reconstructed;
+                    reconstructed += taps.weight[t] * ovdf_row(tables, stride, dims, segment_at, taps.index[t], c);
+                value += r.at.weight[q] * reconstructed;
             }
         }
         distance += ovdf_weighted_plane_distance(ws * value, ws, zoom, radial);
     }
-    float by_tables = ovdf_area_bound(visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, cone), h),
-                                      occluded_area, h);
+    float by_tables = ovdf_area_bound(visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, r.cone), h),
+                                      r.occluded_area, h);
     return ovdf_fade_small_occluder(by_tables, small, small_weight);
+}
+
+// Ovdf::visible_fraction (AlignedCoefficients) as OvdfLookup computes it:
+// point and unit light in the occluder's frame; the per-pixel pass's lookup.
+float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
+    vec4 center = part_texel(part, kSlotOvdfCenter);
+    vec3 v = point - center.xyz;
+    float d = length(v);
+    if (d >= part_texel(part, kSlotOvdfBases).w) return 1.0f;
+    // The receiver's own bounding cone (the CPU's per-vertex test,
+    // OvdfLookup::unshadowed): the lookup gives 1 beyond it.
+    vec3 dir = d > 0.0f ? v / d : vec3(0.0f, 0.0f, 1.0f);
+    if (ovdf_unshadowed(dot(light, -dir), ovdf_zoom(d, center.w).cone, h)) return 1.0f;
+    return ovdf_receiver_fraction(part, ovdf_locate(part, point), light, h);
 }
 
 // The exact shadow of a part that is a rectangle or a box

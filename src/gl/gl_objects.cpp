@@ -139,6 +139,34 @@ Program build_program(const std::string& vertex, const std::string& fragment, co
     return program;
 }
 
+Program build_compute_program(const std::string& compute, const std::string& defines) {
+    const GLuint cs = compile(GL_COMPUTE_SHADER, compute, defines);
+    Program program(glCreateProgram());
+    glAttachShader(program.id(), cs);
+    glLinkProgram(program.id());
+    glDeleteShader(cs);
+    GLint ok = 0;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+        throw Error(fmt::format("shaders/{}: link failed:\n{}", compute, log));
+    }
+    return program;
+}
+
+void require_gl_version(int major, int minor, const std::string& what) {
+    GLint have_major = 0, have_minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &have_major);
+    glGetIntegerv(GL_MINOR_VERSION, &have_minor);
+    if (have_major > major || (have_major == major && have_minor >= minor)) return;
+    throw Error(fmt::format("{} needs OpenGL {}.{} or newer (compute shaders and storage buffers); the current "
+                            "context is {}",
+                            what, major, minor, context_description()));
+}
+
 namespace {
 
 // Sizes `array` for `texels` elements; throws when the driver's largest

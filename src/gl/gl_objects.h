@@ -1,8 +1,7 @@
 #pragma once
 // Move-only owners of OpenGL objects, and the few helpers every pass uses:
 // shader programs built from embedded sources, and flat arrays stored in 2D
-// textures (GL 3.3 has no storage buffers, and 2D textures are the one kind
-// every driver sizes generously).
+// textures (2D textures are the one kind every driver sizes generously).
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -70,6 +69,14 @@ GLuint compile_shader(GLenum type, const std::string& source, const std::string&
 // `defines` (e.g. "#define MAX_PARTS 32\n") go right after the #version line.
 // Throws rsl::Error with the driver's log, naming the shader file.
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines = "");
+
+// Compiles and links the embedded compute shader shaders/<compute>, `defines`
+// after its #version line; throws rsl::Error with the driver's log.
+Program build_compute_program(const std::string& compute, const std::string& defines = "");
+
+// Throws rsl::Error naming `what`, the version needed and the current
+// context's (context_description) when the context is older than major.minor.
+void require_gl_version(int major, int minor, const std::string& what);
 
 // What the shading pass gets before its own text: the layout constants
 // (gpu_layout.h shader_layout_constants) and the shading core's GLSL part

@@ -7,7 +7,7 @@
 #include "src/brdf/material_library.h"
 #include "src/core/error.h"
 #include "src/render/occluder_shape.h"
-#include "src/render/cpu_renderer.h"
+#include "src/render/ovdf_occluder.h"
 #include "src/core/sphere_light.h"
 
 namespace rsl::gl {
@@ -36,35 +36,27 @@ size_t texel_bytes(const ArrayTexture& array, size_t bytes_per_texel) {
 
 }  // namespace
 
-namespace {
-}  // namespace
-
 GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,
                        const RenderOptions& options)
     : VertexRenderer(scene, std::move(environment_lights), std::move(fields), options) {
-
+    require_gl_version(4, 3, "the GL renderer");
     const PackedGeometry geometry = pack_geometry(scene, fields_, options_.exact_shapes);
-    const std::string defines = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride) + shading_prelude();
-    shade_program_ = build_program("fullscreen.vert.glsl", "shade_vertices.frag.glsl", defines + shade_point_prelude());
+    vertex_pass_defines_ = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride);
+    face_normal_.assign(geometry.face_normal.begin(), geometry.face_normal.end());
+    face_s_.assign(geometry.face_s.begin(), geometry.face_s.end());
+    face_t_.assign(geometry.face_t.begin(), geometry.face_t.end());
     display_program_ = build_program("display.vert.glsl", "display.frag.glsl", srgb_prelude());
     pixel_program_ = build_program("shade_pixels.vert.glsl", "shade_pixels.frag.glsl",
-                                   defines + shade_point_prelude() + srgb_prelude());
-    const char* samplers[kUnitCount] = {"u_positions",       "u_normals",           "u_tangents",
-                                        "u_parts",           "u_lights",            "u_occluder_lists",
-                                        "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
-                                        "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
-                                        "u_ovdf_frames",     "u_shadow_depths",     "u_base_color",
-                                        "u_indices"};
-    for (const Program* program : {&shade_program_, &pixel_program_}) {
-        glUseProgram(program->id());
-        for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(*program, samplers[unit]), unit);
-        glUniform3fv(uniform(*program, "u_face_normal"), 6, &geometry.face_normal[0].x);
-        glUniform3fv(uniform(*program, "u_face_s"), 6, &geometry.face_s[0].x);
-        glUniform3fv(uniform(*program, "u_face_t"), 6, &geometry.face_t[0].x);
-    }
-    for (const Part& part : scene_.parts) {
+                                   vertex_pass_defines_ + shading_prelude() + shade_point_prelude() + srgb_prelude());
+    set_sampler_units(pixel_program_);
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        const Part& part = scene_.parts[p];
         rectangle_parts_.push_back(find_rectangle(part.mesh) ? 1 : 0);
         part_bounds_.push_back(part.mesh.bounds());
+        const OccluderField* field = p < fields_.occluder.size() ? fields_.occluder[p].get() : nullptr;
+        local_reach_.push_back(field ? field->reach() : BoundingSphere{});
+        const Ovdf* split = split_lookup_field(field, options_.fast_occluder_lookups);
+        split_fields_.push_back(split ? BoundingSphere{split->center, split->radius} : BoundingSphere{});
     }
     upload_geometry(geometry);
     upload_all_tables();
@@ -75,6 +67,31 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     check_shadow_map_options(options_.shadow_maps);
     check_gl("creating the GL renderer");
     start();
+}
+
+void GlRenderer::set_sampler_units(const Program& program) {
+    const char* samplers[kUnitCount] = {"u_positions",       "u_normals",           "u_tangents",
+                                        "u_parts",           "u_lights",            "u_occluder_lists",
+                                        "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
+                                        "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
+                                        "u_ovdf_frames",     "u_shadow_depths",     "u_base_color",
+                                        "u_indices"};
+    glUseProgram(program.id());
+    for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(program, samplers[unit]), unit);
+    glUniform3fv(uniform(program, "u_face_normal"), 6, &face_normal_[0].x);
+    glUniform3fv(uniform(program, "u_face_s"), 6, &face_s_[0].x);
+    glUniform3fv(uniform(program, "u_face_t"), 6, &face_t_[0].x);
+}
+
+void GlRenderer::build_vertex_pass(size_t light_words) {
+    const std::string defines = vertex_pass_defines_ +
+                                fmt::format("#define SHADE_BLOCK {}\n#define LIGHT_WORDS {}\n#define LAYERED {}\n", kShadeBlock,
+                                            light_words, layered_ ? 1 : 0) +
+                                shading_prelude() + shade_point_prelude();
+    vertex_pass_ = build_compute_program("shade_blocks.comp.glsl", defines);
+    set_sampler_units(vertex_pass_);
+    vertex_pass_light_words_ = light_words;
+    vertex_pass_layered_ = layered_;
 }
 
 GlRenderer::~GlRenderer() = default;
@@ -105,28 +122,28 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     parts_ = make_array_texture(part_records_);
     lights_ = make_array_texture({Vec4(0.0f)});
 
-    // The render targets (diffuse or only layer; specular layer of textured
-    // parts) and the buffer that carries them to the display pass.
-    target_fbo_ = make_framebuffer();
-    glBindFramebuffer(GL_FRAMEBUFFER, target_fbo_.id());
-    for (Texture* target : {&target_, &specular_target_}) {
-        *target = make_texture();
-        glBindTexture(GL_TEXTURE_2D, target->id());
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kArrayTextureWidth, rect_height_, 0, GL_RGBA, GL_FLOAT, nullptr);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, target == &target_ ? GL_COLOR_ATTACHMENT0 : GL_COLOR_ATTACHMENT1,
-                               GL_TEXTURE_2D, target->id(), 0);
-    }
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error("GL renderer: the RGBA32F vertex-colour targets are not renderable on this driver");
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    // The vertex-colour buffer (both layers) and the vertex pass's blocks.
     layer_bytes_ = size_t(kArrayTextureWidth) * rect_height_ * 16;
     colors_ = make_buffer();
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, colors_.id());
-    glBufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(2 * layer_bytes_), nullptr, GL_STREAM_COPY);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    gpu_bytes_ += 4 * layer_bytes_;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, colors_.id());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(2 * layer_bytes_), nullptr, GL_DYNAMIC_COPY);
+    const PackedBlocks blocks = pack_blocks(scene_, g.first_vertex);
+    block_count_ = int(blocks.blocks.size());
+    blocks_ = make_buffer();
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, blocks_.id());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<size_t>(blocks.blocks.size(), 1) * sizeof(glm::ivec4)),
+                 blocks.blocks.empty() ? nullptr : blocks.blocks.data(), GL_STATIC_DRAW);
+    block_vertices_ = make_buffer();
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, block_vertices_.id());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<size_t>(blocks.vertices.size(), 1) * sizeof(int32_t)),
+                 blocks.vertices.empty() ? nullptr : blocks.vertices.data(), GL_STATIC_DRAW);
+    candidates_ = make_buffer();
+    part_culling_ = make_buffer();
+    counters_ = make_buffer();
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, counters_.id());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(kCounterCount * sizeof(uint32_t)), nullptr, GL_DYNAMIC_READ);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    gpu_bytes_ += 2 * layer_bytes_ + blocks.blocks.size() * sizeof(glm::ivec4) + blocks.vertices.size() * sizeof(int32_t);
 
     // Display geometry: part-space positions of every vertex, indices per part.
     std::vector<Vec3> positions3;
@@ -303,6 +320,8 @@ void GlRenderer::frame_changed() {
     shadow_maps_stale_ = true;  // poses or lights may have moved
     shaded_current_frame_ = false;
     pack_occluder_lists(frame_.occluder_lists(), occluder_list_texels_);
+    pack_block_candidates(frame_.occluder_lists(), candidate_words_);
+    pack_part_culling(frame_.poses(), local_reach_, split_fields_, part_culling_records_);
     stats_.lights = frame_.environment_squares().size() + frame_.light_positions().size();
     stats_.vertices = size_t(vertex_count_);
 }
@@ -331,6 +350,16 @@ void GlRenderer::upload_frame() {
     update_array_texture(lights_, light_texels_);
 
     upload_uint_array(occluder_lists_, occluder_list_texels_);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, candidates_.id());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(candidate_words_.size() * sizeof(uint32_t)),
+                 candidate_words_.data(), GL_STREAM_DRAW);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, part_culling_.id());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(part_culling_records_.size() * sizeof(Vec4)),
+                 part_culling_records_.data(), GL_STREAM_DRAW);
+    const uint32_t zeros[kCounterCount] = {};
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, counters_.id());
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeros), zeros);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 }
 
 void GlRenderer::shade_on_device() {
@@ -338,34 +367,26 @@ void GlRenderer::shade_on_device() {
     sync_materials();
     upload_frame();
     render_shadow_maps();
+    const size_t light_words = std::max<size_t>(frame_.occluder_lists().light_words, 1);
+    if (!vertex_pass_ || light_words != vertex_pass_light_words_ || layered_ != vertex_pass_layered_)
+        build_vertex_pass(light_words);
     begin_pass(kPassShade);
-    glBindFramebuffer(GL_FRAMEBUFFER, target_fbo_.id());
-    // The specular target only when some part is textured: others write no second layer.
-    const GLenum draw_buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glDrawBuffers(layered_ ? 2 : 1, draw_buffers);
-    glViewport(0, 0, kArrayTextureWidth, rect_height_);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glUseProgram(shade_program_.id());
-    glUniform1i(uniform(shade_program_, "u_vertex_count"), vertex_count_);
-    bind_shading_inputs(shade_program_);
-    glBindVertexArray(empty_vao_.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glUseProgram(vertex_pass_.id());
+    bind_shading_inputs(vertex_pass_);
+    glUniform1i(uniform(vertex_pass_, "u_block_count"), block_count_);
+    glUniform1i(uniform(vertex_pass_, "u_part_count"), int(scene_.parts.size()));
+    glUniform1i(uniform(vertex_pass_, "u_layer_offset"), int(layer_bytes_ / 16));
+    glUniform1i(uniform(vertex_pass_, "u_culling"), options_.occluder_culling ? 1 : 0);
+    const Buffer* buffers[] = {&blocks_, &block_vertices_, &candidates_, &part_culling_, &counters_, &colors_};
+    for (GLuint binding = 0; binding < 6; ++binding)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffers[binding]->id());
+    // At most 65,535 workgroups along an axis: the blocks as rows of that many.
+    const GLuint groups = GLuint(std::max(block_count_, 1));
+    const GLuint columns = std::min<GLuint>(groups, 65535);
+    glDispatchCompute(columns, (groups + columns - 1) / columns, 1);
+    // The display pass draws the colours as vertex attributes; read_colors copies them.
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     end_pass(kPassShade);
-
-    // Render target → pixel-pack buffer: stays on the GPU.
-    begin_pass(kPassPack);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, colors_.id());
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    for (int layer = 0; layer < (layered_ ? 2 : 1); ++layer) {
-        glReadBuffer(GL_COLOR_ATTACHMENT0 + GLenum(layer));
-        glReadPixels(0, 0, kArrayTextureWidth, rect_height_, GL_RGBA, GL_FLOAT,
-                     reinterpret_cast<void*>(size_t(layer) * layer_bytes_));
-    }
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    end_pass(kPassPack);
     query_pending_[frame_parity_] = !clock_timing_;
     drew_[frame_parity_] = false;
     check_gl("the shading pass");
@@ -437,7 +458,7 @@ void GlRenderer::end_pass(int pass) {
         return;
     }
     glFinish();
-    double* ms[kPassCount] = {&timings_.shade_ms, &timings_.pack_ms, &timings_.display_ms, &timings_.shadow_ms};
+    double* ms[kPassCount] = {&timings_.shade_ms, &timings_.display_ms, &timings_.shadow_ms};
     *ms[pass] = clock_ms() - pass_start_ms_;
 }
 
@@ -447,17 +468,16 @@ void GlRenderer::collect_timings() {
     if (!query_pending_[frame_parity_]) return;
     Query* queries = queries_[frame_parity_];
     GLuint available = 0;
-    glGetQueryObjectuiv(queries[kPassPack].id(), GL_QUERY_RESULT_AVAILABLE, &available);
+    glGetQueryObjectuiv(queries[kPassShade].id(), GL_QUERY_RESULT_AVAILABLE, &available);
     if (!available) return;
-    GLuint64 ns[kPassCount] = {0, 0, 0, 0};
-    const bool ran[kPassCount] = {true, true, drew_[frame_parity_], shadowed_[frame_parity_]};
+    GLuint64 ns[kPassCount] = {0, 0, 0};
+    const bool ran[kPassCount] = {true, drew_[frame_parity_], shadowed_[frame_parity_]};
     for (int q = 0; q < kPassCount; ++q) {
         if (!ran[q]) continue;
         glGetQueryObjectuiv(queries[q].id(), GL_QUERY_RESULT_AVAILABLE, &available);
         if (available) glGetQueryObjectui64v(queries[q].id(), GL_QUERY_RESULT, &ns[q]);
     }
     timings_.shade_ms = double(ns[kPassShade]) * 1e-6;
-    timings_.pack_ms = double(ns[kPassPack]) * 1e-6;
     timings_.display_ms = double(ns[kPassDisplay]) * 1e-6;
     timings_.shadow_ms = double(ns[kPassShadow]) * 1e-6;
     query_pending_[frame_parity_] = false;
@@ -466,13 +486,28 @@ void GlRenderer::collect_timings() {
 std::string GlRenderer::pass_times() const {
     const PassTimings& t = timings_;
     const std::string shadow = t.shadow_ms > 0 ? fmt::format("shadow maps {:.1f} ms, ", t.shadow_ms) : "";
-    return fmt::format("{}shading {:.1f} ms, pack {:.1f} ms{}", shadow, t.shade_ms, t.pack_ms,
-                       t.clock ? " (clock)" : " (timer queries)");
+    return fmt::format("{}shading {:.1f} ms{}", shadow, t.shade_ms, t.clock ? " (clock)" : " (timer queries)");
 }
 
 void GlRenderer::shade(VertexColors& out) {
     shade_on_device();
     read_colors(out);
+    const DeviceCounts counts = device_counts();
+    stats_.occluder_lookups = counts.occluder_lookups;
+    stats_.block_occluders_culled = counts.block_pairs_culled;
+}
+
+DeviceCounts GlRenderer::device_counts() const {
+    uint32_t words[kCounterCount] = {};
+    glBindBuffer(GL_COPY_READ_BUFFER, counters_.id());
+    glGetBufferSubData(GL_COPY_READ_BUFFER, 0, sizeof(words), words);
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    check_gl("reading the vertex pass's counters");
+    DeviceCounts counts;
+    counts.occluder_lookups = words[kCounterOccluderLookups];
+    counts.block_pairs = words[kCounterBlockPairs];
+    counts.block_pairs_culled = words[kCounterBlockPairsCulled];
+    return counts;
 }
 
 void GlRenderer::read_colors(VertexColors& out) const {

@@ -1,21 +1,23 @@
 #pragma once
-// The GPU runtime renderer (RSL paper §5.2): the CPU renderer's sum
-// (src/render/cpu_renderer.h) as a render-to-vertex-array pass.
+// The GPU runtime renderer: the CPU renderer's sum (src/render/cpu_renderer.h)
+// as a compute pass over the CPU's own vertex blocks
+// (docs/design/GPU_DESIGN.md "The vertex pass").
 //
-//  1. Shading pass: a fragment shader runs over the "vertex rectangle" — one
-//     texel per vertex of every part, W = 2048 wide — and writes each vertex's
-//     RGB into an RGBA32F render target (shaders/shade_vertices.frag.glsl).
-//  2. The target is read into a pixel-pack buffer (GPU to GPU, no CPU copy),
-//     and that same buffer is bound as the vertex-colour array.
-//  3. Display pass: the parts drawn with those colours (shaders/display.*),
+//  1. Vertex pass: one workgroup per vertex block (shaders/shade_blocks.comp.glsl)
+//     builds the block's occluder lists from the frame's part-level
+//     candidates with the CPU's block-level culling tests
+//     (src/shading/culling.h), and writes each vertex's RGB into the
+//     vertex-colour buffer, which the display pass draws as it is.
+//  2. Display pass: the parts drawn with those colours (shaders/display.*),
 //     and the parts shaded per pixel (RenderOptions::pixel_shadows: the
 //     flat rectangles, grounds and walls; pixel_highlights: glossy parts)
 //     drawn by the per-pixel pass, which takes the whole sum at the point
 //     each pixel sees (shaders/shade_pixels.*, gl_display.cpp).
 //
-// Everything static (meshes, SVDF, OVDF, BRDF tables) is uploaded once
-// (gpu_layout.h); every frame uploads part poses, lights and occluder lists
-// (a few KB). Needs a current OpenGL ≥ 3.3 core context for its lifetime.
+// Everything static (meshes, blocks, SVDF, OVDF, BRDF tables) is uploaded
+// once (gpu_layout.h); every frame uploads part poses, lights and occluder
+// candidates (a few KB). Needs a current OpenGL ≥ 4.3 core context for its
+// lifetime; an older one gets rsl::Error.
 //
 // It is a VertexRenderer (src/render/vertex_renderer.h): the frame of time t
 // comes from the shared FrameSetup, the BRDF tables from its MaterialLibrary;
@@ -25,7 +27,7 @@
 //
 // A competitor baseline rides along (RenderOptions::shadow_maps, GL only;
 // docs/design/GPU_DESIGN.md "Shadow-mapped visibility"): with it enabled, each frame first
-// draws one depth map per environment RSL (shadow_maps.h), and the shading
+// draws one depth map per environment RSL (shadow_maps.h), and the vertex
 // pass takes every environment light's visibility from its map, filtered
 // over the light's square (PCF or PCSS), instead of SVDF × Π OVDF; local
 // lights keep the fields. From C++: options.shadow_maps.enabled = true
@@ -52,8 +54,15 @@ namespace rsl::gl {
 // shadow_ms: the shadow-map depth pass (RenderOptions::shadow_maps), 0 for
 // a frame that drew none (maps off, or nothing moved since the last maps).
 struct PassTimings {
-    double shade_ms = 0, pack_ms = 0, display_ms = 0, shadow_ms = 0;
+    double shade_ms = 0, display_ms = 0, shadow_ms = 0;
     bool clock = false;  // measured by the CPU clock around glFinish
+};
+
+// What the last vertex pass counted (read back from the GPU).
+struct DeviceCounts {
+    size_t occluder_lookups = 0;      // (vertex, light, occluder) lookups, as RenderStats::occluder_lookups
+    size_t block_pairs = 0;           // (block, light, occluder) triples the part-level lists hand the blocks
+    size_t block_pairs_culled = 0;    // ... of which the block-level tests culled
 };
 
 // How the BRDF texture was last brought up to date (counted since construction).
@@ -65,16 +74,17 @@ struct MaterialUploads {
 class GlRenderer : public VertexRenderer {
 public:
     // As VertexRenderer's constructor (vertex_renderer.h); needs a current
-    // OpenGL ≥ 3.3 core context for its lifetime.
+    // OpenGL ≥ 4.3 core context for its lifetime (rsl::Error otherwise).
     GlRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields, const RenderOptions& options);
     ~GlRenderer() override;
 
     std::string backend() const override { return "gl"; }
 
-    // Runs the shading pass and fills the vertex-colour buffer (on the GPU;
+    // Runs the vertex pass and fills the vertex-colour buffer (on the GPU;
     // the viewer draws it as it is).
     void shade_on_device();
-    // shade_on_device() and the colours copied to the CPU.
+    // shade_on_device() and the colours copied to the CPU; stats() gets the
+    // pass's counts (device_counts()).
     void shade(VertexColors& out) override;
     using VertexRenderer::shade;
     // The vertex colours of the last shade_on_device(), into `out`; textured
@@ -101,7 +111,9 @@ public:
     MaterialUploads material_uploads() const { return uploads_; }
 
     PassTimings timings() const { return timings_; }
-    // "shadow maps 3.1 ms, shading 40.2 ms, pack 0.3 ms (clock)": the last measured frame.
+    // The last vertex pass's counts (waits for it).
+    DeviceCounts device_counts() const;
+    // "shadow maps 3.1 ms, shading 40.2 ms (clock)": the last measured frame.
     std::string pass_times() const override;
     // The shadow maps' sphere (centre, radius) of the last frame that drew them; (0, 0, 0, 0) before.
     Vec4 shadow_map_sphere() const { return shadow_maps_ ? shadow_maps_->sphere() : Vec4(0.0f); }
@@ -125,6 +137,12 @@ private:
     // pose is the caller's (the vertex colours' view is the frame's camera).
     Image draw_image(const PinholeCamera& camera);
     void upload_geometry(const PackedGeometry& geometry);
+    // The vertex pass for the frame's light words (32 lights a word) and
+    // layers: built again when the light count crosses a multiple of 32 or
+    // the first textured material comes or the last goes.
+    void build_vertex_pass(size_t light_words);
+    // The sampler units and the OVDF cube faces' uniforms of a program that shades (shade_point.glsl).
+    void set_sampler_units(const Program& program);
     void upload_frame();
     // Brings the BRDF texture up to the library: in place when only tables of
     // the same layout changed, else a full pack (upload_all_tables).
@@ -170,7 +188,11 @@ private:
     PackedMaterials materials_;
     size_t gpu_bytes_ = 0;
 
-    Program shade_program_, display_program_, pixel_program_;
+    Program vertex_pass_, display_program_, pixel_program_;
+    std::string vertex_pass_defines_;  // MAX_STRIDE
+    size_t vertex_pass_light_words_ = 0;
+    bool vertex_pass_layered_ = false;  // built with the specular layer (LAYERED)
+    std::vector<Vec3> face_normal_, face_s_, face_t_;  // the OVDF cube faces' uniforms
     std::vector<char> rectangle_parts_;  // per part: one flat rectangle (find_rectangle)
     std::vector<Bounds> part_bounds_;  // per part: its mesh's box (part space)
     Texture positions_, normals_, tangents_;
@@ -179,10 +201,16 @@ private:
     ArrayTexture indices_;         // every part's triangle indices (part-local), first_index_ order
     ArrayTexture svdf_tables_, svdf_coefficients_, ovdf_tables_, ovdf_coefficients_, ovdf_frames_;
     Texture brdf_;
-    Texture target_, specular_target_;  // colour attachments 0 (diffuse or only layer) and 1 (specular)
-    Framebuffer target_fbo_;
-    // GL_PIXEL_PACK_BUFFER when written, GL_ARRAY_BUFFER when drawn: the
-    // vertex rectangle of attachment 0, then (layered_ only) that of attachment 1.
+    // The vertex pass's storage buffers (gpu_layout.h): the blocks and
+    // their vertices (static); the frame's candidates and part culling
+    // records; the counters.
+    Buffer blocks_, block_vertices_, candidates_, part_culling_, counters_;
+    int block_count_ = 0;
+    std::vector<uint32_t> candidate_words_;
+    std::vector<Vec4> part_culling_records_;
+    std::vector<BoundingSphere> local_reach_, split_fields_;  // per part (pack_part_culling)
+    // Written by the vertex pass as a storage buffer, drawn as GL_ARRAY_BUFFER:
+    // per vertex its colour, then (layered_ only) the specular layer at layer_bytes_.
     Buffer colors_;
     size_t layer_bytes_ = 0;  // one vertex rectangle of RGBA32F
     VertexArray empty_vao_, display_vao_;

@@ -16,7 +16,7 @@ enum Unit : int {
 };
 
 // Timed passes (PassTimings), the index of their timer queries.
-enum Pass : int { kPassShade, kPassPack, kPassDisplay, kPassShadow, kPassCount };
+enum Pass : int { kPassShade, kPassDisplay, kPassShadow, kPassCount };
 
 inline void bind_texture(int unit, GLenum target, GLuint texture) {
     glActiveTexture(GL_TEXTURE0 + unit);

@@ -1,6 +1,7 @@
 #include "src/gl/gpu_layout.h"
 
 #include <array>
+#include <bit>
 #include <map>
 
 #include "src/core/envmap.h"
@@ -313,6 +314,51 @@ void pack_occluder_lists(const OccluderLists& lists, std::vector<uint32_t>& texe
     texels.resize(slots + lists.occluders.size());
     for (size_t s = 0; s < slots; ++s) texels[s] = uint32_t(slots + lists.offsets[s]);
     for (size_t e = 0; e < lists.occluders.size(); ++e) texels[slots + e] = uint32_t(lists.occluders[e]);
+}
+
+PackedBlocks pack_blocks(const Scene& scene, const std::vector<int>& first_vertex) {
+    std::vector<std::vector<int>> orders;
+    for (const Part& part : scene.parts) orders.push_back(spatial_block_order(part.mesh.positions, kShadeBlock));
+    PackedBlocks packed;
+    for (const VertexBlock& block : vertex_blocks(orders)) {
+        const std::vector<int>& order = orders[size_t(block.part)];
+        packed.blocks.emplace_back(block.part, int(packed.vertices.size()), block.end - block.begin, 0);
+        for (int i = block.begin; i < block.end; ++i)
+            packed.vertices.push_back(first_vertex[size_t(block.part)] + order[size_t(i)]);
+    }
+    return packed;
+}
+
+void pack_block_candidates(const OccluderLists& lists, std::vector<uint32_t>& words) {
+    const size_t parts = lists.candidate_offsets.empty() ? 0 : lists.candidate_offsets.size() - 1;
+    const size_t stride = kCandidateHeader + lists.light_words;
+    const size_t total = parts + 1 + lists.candidate_occluders.size() * stride;
+    if (total > size_t(UINT32_MAX))
+        throw Error(fmt::format("GL renderer: the frame's occluder candidates need {} words, more than uint indices address",
+                                total));
+    words.resize(total);
+    for (size_t p = 0; p <= parts; ++p) words[p] = uint32_t(lists.candidate_offsets[p]);
+    if (parts == 0) words[0] = 0;
+    uint32_t* entry = words.data() + parts + 1;
+    for (size_t c = 0; c < lists.candidate_occluders.size(); ++c, entry += stride) {
+        entry[0] = uint32_t(lists.candidate_occluders[c]);
+        entry[1] = std::bit_cast<uint32_t>(lists.candidate_growths[c]);
+        for (size_t w = 0; w < lists.light_words; ++w) entry[kCandidateHeader + w] = lists.candidate_lights[c * lists.light_words + w];
+    }
+}
+
+void pack_part_culling(const std::vector<PartPose>& poses, const std::vector<BoundingSphere>& local_reach,
+                       const std::vector<BoundingSphere>& split_fields, std::vector<Vec4>& out) {
+    out.resize(std::max<size_t>(poses.size(), 1) * kCullingStride, Vec4(0.0f));
+    for (size_t p = 0; p < poses.size(); ++p) {
+        // The CPU renderer's spheres, moved by the same function (shade_block.cpp prepare_occluder).
+        const PartPose& pose = poses[p];
+        Vec4* record = &out[p * kCullingStride];
+        record[kCullingBounds] = as_vec4(pose.world_bounds);
+        record[kCullingReach] = as_vec4(transform_sphere(pose.transform, local_reach[p]));
+        record[kCullingField] = as_vec4(transform_sphere(pose.transform, split_fields[p]));
+        record[kCullingFlags] = Vec4(pose.uniform_scale ? 1.0f : 0.0f, split_fields[p].radius > 0.0f ? 1.0f : 0.0f, 0, 0);
+    }
 }
 
 }  // namespace rsl::gl

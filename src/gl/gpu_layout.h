@@ -37,7 +37,9 @@
 #include "src/brdf/brdf_table.h"
 #include "src/core/scene.h"
 #include "src/render/culling.h"
+#include "src/render/frame_setup.h"
 #include "src/render/part_fields.h"
+#include "src/render/vertex_blocks.h"
 #include "src/shading/shapes.h"
 
 namespace rsl::gl {
@@ -77,6 +79,24 @@ enum PartSlot : int {
 static_assert(kSlotShapeHigh < kPartStride);
 
 inline constexpr int kLightTexels = 3;        // per light in the lights texture
+// The vertex pass's storage buffers (shaders/shade_blocks.comp.glsl).
+// Per candidate (pack_block_candidates): occluder, growth's bits, then its light words.
+inline constexpr int kCandidateHeader = 2;
+// Per part, kCullingStride vec4 (pack_part_culling).
+enum CullingSlot : int {
+    kCullingBounds = 0,  // the part's world bounding sphere (center, radius)
+    kCullingReach = 1,   // its occluder field's reach in the world (radius 0: none)
+    kCullingField = 2,   // its split-lookup OVDF's bounding sphere in the world
+    kCullingFlags = 3,   // (uniform scale, split lookup, 0, 0)
+    kCullingStride = 4,
+};
+// The vertex pass's counters (GlRenderer::device_counts), uints.
+enum Counter : int {
+    kCounterOccluderLookups = 0,
+    kCounterBlockPairs = 1,        // (block, light, occluder) triples the part-level lists hand the blocks
+    kCounterBlockPairsCulled = 2,  // ... of which the block-level tests culled
+    kCounterCount = 3,
+};
 inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
 inline constexpr int kSamplesPerTexel = 2;    // OVDF samples' (surface distance, occluded area), RG and BA
 
@@ -110,6 +130,16 @@ inline constexpr ShaderIntConstant kShaderIntConstants[] = {
     {"kSlotShapeLow", kSlotShapeLow},
     {"kSlotShapeHigh", kSlotShapeHigh},
     {"kLightTexels", kLightTexels},
+    {"kShadeBlock", kShadeBlock},
+    {"kCandidateHeader", kCandidateHeader},
+    {"kCullingBounds", kCullingBounds},
+    {"kCullingReach", kCullingReach},
+    {"kCullingField", kCullingField},
+    {"kCullingFlags", kCullingFlags},
+    {"kCullingStride", kCullingStride},
+    {"kCounterOccluderLookups", kCounterOccluderLookups},
+    {"kCounterBlockPairs", kCounterBlockPairs},
+    {"kCounterBlockPairsCulled", kCounterBlockPairsCulled},
     {"kSamplesPerTexel", kSamplesPerTexel},
 };
 
@@ -176,5 +206,27 @@ void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, 
 // end; the occluder part indices follow the P·L + 1 offsets. Throws
 // rsl::Error past what uint texels index.
 void pack_occluder_lists(const OccluderLists& lists, std::vector<uint32_t>& texels);
+
+// The CPU renderer's vertex blocks (vertex_blocks.h) as the vertex pass's
+// workgroups take them: per block (part, first entry of `vertices`, vertex
+// count, 0), and per entry the vertex's index in the vertex rectangle.
+struct PackedBlocks {
+    std::vector<glm::ivec4> blocks;
+    std::vector<int32_t> vertices;
+};
+PackedBlocks pack_blocks(const Scene& scene, const std::vector<int>& first_vertex);
+
+// The frame's per-part candidates (OccluderLists::candidate_*) as the vertex
+// pass reads them: parts + 1 offsets (in candidates), then per candidate
+// kCandidateHeader + lists.light_words words. Throws rsl::Error past what
+// uint words index.
+void pack_block_candidates(const OccluderLists& lists, std::vector<uint32_t>& words);
+
+// What the block-level tests need of each part in this frame
+// (kCullingStride vec4 per part, CullingSlot): `local_reach` its occluder
+// field's reach in its own frame (radius 0: none), `split_fields` its
+// split-lookup OVDF's (split_lookup_field) bounding sphere (radius 0: none).
+void pack_part_culling(const std::vector<PartPose>& poses, const std::vector<BoundingSphere>& local_reach,
+                       const std::vector<BoundingSphere>& split_fields, std::vector<Vec4>& out);
 
 }  // namespace rsl::gl

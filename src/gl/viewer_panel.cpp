@@ -52,8 +52,8 @@ void material_editor(ViewerState& state, int material) {
 void timings_section(ViewerState& state) {
     const PassTimings t = state.renderer->timings();
     ImGui::Text("%.1f fps, %.2f ms/frame", state.fps, state.frame_ms);
-    ImGui::Text("GPU%s: shading %.2f ms, pack %.2f ms, display %.2f ms", t.clock ? " (clock, software GL)" : "",
-                t.shade_ms, t.pack_ms, t.display_ms);
+    ImGui::Text("GPU%s: shading %.2f ms, display %.2f ms", t.clock ? " (clock, software GL)" : "", t.shade_ms,
+                t.display_ms);
     if (t.shadow_ms > 0) ImGui::Text("shadow maps %.2f ms", t.shadow_ms);  // the shadow-map baseline's depth pass
     ImGui::Text("%d vertices, %zu lights, occluder pairs %zu (%zu culled)", state.renderer->vertex_count(),
                 state.renderer->stats().lights, state.renderer->stats().occluder_pairs,

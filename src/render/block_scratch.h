@@ -13,11 +13,12 @@
 
 #include "src/render/ovdf_lookup.h"
 #include "src/render/cpu_renderer.h"
+#include "src/render/vertex_blocks.h"
+#include "src/shading/culling.h"
 #include "src/shading/frames.h"
 
 namespace rsl {
 
-inline constexpr int kShadeBlock = 256;  // points per block (renderer.cpp splits the parts so)
 
 // Calls visit(k), in order, for each point k < n whose byte in
 // `needed_bytes` (0 or 1, zero up to the next multiple of 8 past n) is set:
@@ -84,22 +85,9 @@ struct OccluderVertexScratch {
     bool in_reach[kShadeBlock];
 };
 
-// How far any point's direction to a part can turn from the block center's
-// (asin(r / d)), plus a margin of 1e-3 rad for rounding, as cosine and sine.
-struct BlockSpread {
-    float cos = 1, sin = 0;
-};
-// The spread of a block of radius r whose center lies at distance d > r from
-// the part's, with no trigonometric call (asin, then the sum's cos a·cos δ −
-// sin a·sin δ and sin a·cos δ + cos a·sin δ): a pixel shaded per pixel is a
-// block of its own, and its asinf and sincosf for every occluder near it
-// were 4% of a dense scene's image.
-inline BlockSpread block_spread(float radius, float distance) {
-    constexpr float kMarginCos = 0.99999952f, kMarginSin = 0.00099999983f;  // of 1e-3 rad
-    const float s = std::min(1.0f, radius / distance);
-    const float c = std::sqrt(std::max(0.0f, 1.0f - s * s));
-    return BlockSpread{c * kMarginCos - s * kMarginSin, s * kMarginCos + c * kMarginSin};
-}
+using shading::BlockSpread;
+using shading::block_spread;
+using shading::block_unshadowed;
 
 // Per-thread scratch of one block (about 40 KB plus the occluder pool, never
 // on the heap once warm).
@@ -166,7 +154,7 @@ struct CpuRenderer::BlockScratch {
         uint64_t stamp = 0;
         bool outside = false;  // the whole block lies beyond the occluder's outer shell
         Vec3 pole{0};
-        BlockSpread spread;
+        BlockSpread spread{1.0f, 0.0f};
         float cone = -1;
         OccluderVertexScratch* vertices = nullptr;  // null until the block needs it at vertex level
     };
@@ -175,24 +163,5 @@ struct CpuRenderer::BlockScratch {
     std::vector<std::unique_ptr<OccluderVertexScratch>> pool;
     size_t pool_used = 0;  // of the pool, by the current block
 };
-
-// Whether an environment light (unit world direction, square half-edge h)
-// clears the part's bounding cone at every vertex of the block: then every
-// vertex's OvdfLookup::unshadowed test passes, with a margin for rounding.
-//
-// The angle test angle(light, pole) ≥ needed + spread' (spread' = spread +
-// 1e-3, cos_needed = 1 − (h + cone)²) in cosines, without acos: a
-// rotation by more than π − spread' is none (needed ≥ π − spread' ⟺
-// cos_needed ≤ −cos spread'), else the light's cosine must be at most
-// cos(needed + spread').
-inline bool block_unshadowed(const Vec3& pole, const BlockSpread& spread, float cone, const Vec3& light,
-                             float half_edge) {
-    if (cone < 0.0f) return false;
-    const float limit = half_edge + cone;
-    const float cos_needed = 1.0f - limit * limit;  // the angle to the pole each vertex needs, as a cosine
-    if (cos_needed <= -spread.cos) return false;     // the cone and square cover every direction
-    const float sin_needed = std::sqrt(std::max(0.0f, 1.0f - cos_needed * cos_needed));
-    return glm::dot(light, pole) <= cos_needed * spread.cos - sin_needed * spread.sin;
-}
 
 }  // namespace rsl

@@ -31,17 +31,12 @@ CpuRenderer::CpuRenderer(const Scene& scene, EnvironmentLights environment_light
             throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
                              part.mesh.normals.size(), n);
         block_order_.push_back(spatial_block_order(part.mesh.positions, kShadeBlock));
-        for (size_t begin = 0; begin < n; begin += kShadeBlock)
-            blocks_.push_back(Block{int(p), int(begin), int(std::min(n, begin + kShadeBlock))});
         local_bounds_.push_back(part.mesh.bounding_sphere());
         local_boxes_.push_back(part.mesh.bounds());
         shapes_.push_back(options_.exact_shapes ? find_occluder_shape(part.mesh) : OccluderShape{});
         local_reach_.push_back(fields_.occluder[p] ? fields_.occluder[p]->reach() : BoundingSphere{});
-        // Compressed OVDFs blended by coefficients take the split lookup.
-        const auto* ovdf = dynamic_cast<const OvdfOccluder*>(fields_.occluder[p].get());
-        const bool fast = options_.fast_occluder_lookups && ovdf && ovdf->blend() == OvdfBlend::AlignedCoefficients;
-        fast_lookups_.push_back(fast ? std::make_unique<const OvdfLookup>(ovdf->field()) : nullptr);
-        if (fast_lookups_.back() && !fast_lookups_.back()->usable()) fast_lookups_.back().reset();
+        const Ovdf* split = split_lookup_field(fields_.occluder[p].get(), options_.fast_occluder_lookups);
+        fast_lookups_.push_back(split ? std::make_unique<const OvdfLookup>(*split) : nullptr);
         // Per pixel only with the fields' occluder factor (not the
         // ray-traced diagnostics), and only where there is one.
         const bool per_pixel = options_.occluders && !options_.exact_visibility &&
@@ -49,6 +44,7 @@ CpuRenderer::CpuRenderer(const Scene& scene, EnvironmentLights environment_light
                                 (options_.pixel_shadows == PixelShadows::Planes && find_rectangle(part.mesh)));
         pixel_parts_.push_back(per_pixel ? 1 : 0);
     }
+    blocks_ = vertex_blocks(block_order_);
     pixel_terms_.resize(parts);
     rim_view_floor_.resize(parts);
     enclosed_vertices_.resize(parts);

@@ -34,6 +34,7 @@
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"
 #include "src/frame/vertex_colors.h"
+#include "src/render/vertex_blocks.h"
 #include "src/render/vertex_renderer.h"
 
 namespace rsl {
@@ -71,10 +72,7 @@ protected:
                         const ImageFormationOptions& options) override;
 
 private:
-    struct Block {
-        int part;
-        int begin, end;  // a range of the part's block_order_ (its vertices in compact blocks)
-    };
+    using Block = VertexBlock;  // a range of the part's block_order_ (its vertices in compact blocks)
     struct BlockScratch;  // shade_block.cpp
     void sync_materials();
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts);

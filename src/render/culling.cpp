@@ -25,6 +25,11 @@ void update_occluder_lists(std::span<const CullingPart> parts, const CullingLigh
     out.growth.clear();
     out.offsets.resize(count * light_count + 1);
     out.pairs = out.culled = out.candidates = 0;
+    out.light_words = (light_count + 31) / 32;
+    out.candidate_offsets.resize(count + 1);
+    out.candidate_occluders.clear();
+    out.candidate_growths.clear();
+    out.candidate_lights.clear();
     out.reaches.clear();
     out.field_parts.clear();
     for (size_t o = 0; o < count; ++o) {
@@ -63,6 +68,13 @@ void update_occluder_lists(std::span<const CullingPart> parts, const CullingLigh
             out.candidate_growth.assign(out.candidate_parts.size(), 0.0f);
         }
         out.candidates += out.candidate_parts.size();
+        const size_t first_candidate = out.candidate_occluders.size();
+        out.candidate_offsets[receiver] = first_candidate;
+        out.candidate_occluders.insert(out.candidate_occluders.end(), out.candidate_parts.begin(),
+                                       out.candidate_parts.end());
+        out.candidate_growths.insert(out.candidate_growths.end(), out.candidate_growth.begin(),
+                                     out.candidate_growth.end());
+        out.candidate_lights.resize(out.candidate_occluders.size() * out.light_words, 0u);
         for (size_t l = 0; l < light_count; ++l) {
             out.offsets[slot++] = out.occluders.size();
             const bool light_on = l < environment ? options.environment : options.local_lights;
@@ -87,11 +99,13 @@ void update_occluder_lists(std::span<const CullingPart> parts, const CullingLigh
                 if (keep) {
                     out.occluders.push_back(o);
                     out.growth.push_back(growth);
+                    out.candidate_lights[(first_candidate + c) * out.light_words + l / 32] |= 1u << (l % 32);
                 }
             }
         }
     }
     out.offsets[slot] = out.occluders.size();
+    out.candidate_offsets[count] = out.candidate_occluders.size();
     out.culled = out.pairs - out.occluders.size();
 }
 

@@ -15,26 +15,16 @@
 #include "src/render/render_options.h"
 #include "src/render/sphere_tree.h"
 #include "src/render/square_lights.h"
+#include "src/shading/culling.h"
 
 namespace rsl {
 
-// Whether a ray from some point of `receiver`, in some direction within
-// `half_angle` of the unit `direction`, can meet `occluder`.
-//
-// Such a ray y = x + sω stays in the region where the axial coordinate
-// a = (y − c)·d ≥ −r and the distance from the axis is ≤ r + (a + r)·tan β
-// (c, r: the receiver sphere; s·cos γ ≤ a + r and s·sin γ ≤ (a + r)·tan β).
-// The occluder sphere (center axial a_o, lateral q_o, radius R) can reach it
-// only if a_o + R ≥ −r and q_o − R ≤ r + (a_o + R + r)·tan β.
+// The shared tests (src/shading/culling.h) on BoundingSpheres.
+inline Vec4 as_vec4(const BoundingSphere& s) { return Vec4(s.center, s.radius); }
+inline BoundingSphere as_sphere(const Vec4& s) { return BoundingSphere{Vec3(s), s.w}; }
 inline bool may_shadow_direction(const BoundingSphere& receiver, const BoundingSphere& occluder,
                                  const Vec3& direction, float half_angle) {
-    if (half_angle >= 0.5f * kPi - 1e-3f) return true;  // the cone is a half-space or more: keep
-    const Vec3 v = occluder.center - receiver.center;
-    const float axial = glm::dot(v, direction);
-    const float far_axial = axial + occluder.radius;
-    if (far_axial < -receiver.radius) return false;  // entirely behind the receiver
-    const float lateral = glm::length(v - axial * direction);
-    return lateral - occluder.radius <= receiver.radius + (far_axial + receiver.radius) * std::tan(half_angle);
+    return shading::may_shadow_direction(as_vec4(receiver), as_vec4(occluder), direction, half_angle);
 }
 
 // Whether a segment from some point of `receiver` to some point of a sphere
@@ -51,18 +41,11 @@ inline bool may_shadow_sphere_light(const BoundingSphere& receiver, const Boundi
     return distance <= std::max(receiver.radius, light_radius) + occluder.radius;
 }
 
-// Whether the receiver sphere lies entirely outside an occluder field's reach
-// (beyond its outer shell the field is exactly 1).
 inline bool beyond_reach(const BoundingSphere& receiver, const BoundingSphere& reach) {
-    return glm::length(receiver.center - reach.center) - receiver.radius > reach.radius;
+    return shading::beyond_reach(as_vec4(receiver), as_vec4(reach));
 }
-
-// A sphere moved by a rigid (possibly uniformly scaled) transform; for a
-// non-uniform scale the radius grows by the largest axis scale (conservative).
 inline BoundingSphere transform_sphere(const Mat4& m, const BoundingSphere& s) {
-    const Mat3 l(m);
-    const float scale = std::max({glm::length(l[0]), glm::length(l[1]), glm::length(l[2])});
-    return BoundingSphere{Vec3(m * Vec4(s.center, 1.0f)), s.radius * scale};
+    return as_sphere(shading::transform_sphere(m, as_vec4(s)));
 }
 
 // A part as the per-frame occluder culling sees it: its occluder field (null:
@@ -103,6 +86,16 @@ struct OccluderLists {
     // Per receiver: the occluders whose reach it lies in (before the per-light
     // tests), summed over receivers: what the search hands the light tests.
     size_t candidates = 0;
+    // Per receiver p, the same as candidates (the GPU's blocks start from
+    // them, gpu_layout.h pack_block_candidates): its candidates
+    // [candidate_offsets[p], candidate_offsets[p + 1]) in ascending part
+    // order, each with its growth and `light_words` words of light bits, bit
+    // l set where light l's list keeps it.
+    std::vector<size_t> candidate_offsets;
+    std::vector<int> candidate_occluders;
+    std::vector<float> candidate_growths;
+    std::vector<uint32_t> candidate_lights;
+    size_t light_words = 0;
 
     // Scratch of update_occluder_lists.
     SphereTree reach_tree;

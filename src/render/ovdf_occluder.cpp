@@ -1,4 +1,5 @@
 #include "src/render/ovdf_occluder.h"
+#include "src/render/ovdf_lookup.h"
 
 #include "src/render/field_cache_loader.h"
 
@@ -10,6 +11,12 @@ std::shared_ptr<const OccluderField> bake_ovdf_occluder(const TriangleMesh& mesh
                                                         const std::function<void(double)>& progress) {
     auto field = std::make_shared<const Ovdf>(bake_ovdf(mesh, params, nullptr, progress));
     return std::make_shared<const OvdfOccluder>(std::move(field));
+}
+
+const Ovdf* split_lookup_field(const OccluderField* field, bool fast_occluder_lookups) {
+    const auto* ovdf = dynamic_cast<const OvdfOccluder*>(field);
+    if (!fast_occluder_lookups || !ovdf || ovdf->blend() != OvdfBlend::AlignedCoefficients) return nullptr;
+    return OvdfLookup(ovdf->field()).usable() ? &ovdf->field() : nullptr;
 }
 
 }  // namespace rsl

@@ -42,6 +42,12 @@ private:
     OvdfBlend blend_;
 };
 
+// The field of an occluder that both renderers look up in two halves
+// (OvdfLookup) and cull by its bounding cone: a compressed OVDF blended by
+// coefficients with few enough PCA vectors, when `fast_occluder_lookups`
+// (RenderOptions); null for every other field.
+const Ovdf* split_lookup_field(const OccluderField* field, bool fast_occluder_lookups);
+
 std::shared_ptr<const OccluderField> bake_ovdf_occluder(const TriangleMesh& mesh, const OvdfParams& params,
                                                         const std::function<void(double)>& progress = {});
 

@@ -40,4 +40,14 @@ std::vector<int> spatial_block_order(std::span<const Vec3> positions, int block_
     return order;
 }
 
+std::vector<VertexBlock> vertex_blocks(const std::vector<std::vector<int>>& orders) {
+    std::vector<VertexBlock> blocks;
+    for (size_t p = 0; p < orders.size(); ++p) {
+        const int n = int(orders[p].size());
+        for (int begin = 0; begin < n; begin += kShadeBlock)
+            blocks.push_back(VertexBlock{int(p), begin, std::min(n, begin + kShadeBlock)});
+    }
+    return blocks;
+}
+
 }  // namespace rsl

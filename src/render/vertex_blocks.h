@@ -14,6 +14,17 @@
 
 namespace rsl {
 
+// Vertices per block: the CPU renderer's unit of work and the GPU's workgroup.
+inline constexpr int kShadeBlock = 256;
+
+// One block: a range [begin, end) of its part's spatial_block_order.
+struct VertexBlock {
+    int part;
+    int begin, end;
+};
+// The blocks of parts whose spatial_block_order is `orders` (one per part), part by part.
+std::vector<VertexBlock> vertex_blocks(const std::vector<std::vector<int>>& orders);
+
 // A permutation of the vertex indices whose consecutive runs of block_size
 // (the last one shorter) are compact in space: the points split recursively
 // at a multiple of block_size along the longest side of their bounds, so each

@@ -28,3 +28,4 @@
 #include "src/shading/ovdf_inside.h"
 #include "src/shading/shadow_maps.h"
 #include "src/shading/shapes.h"
+#include "src/shading/culling.h"
