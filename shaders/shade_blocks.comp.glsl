@@ -19,7 +19,7 @@
 //  5. the sum, into the vertex-colour buffer the display pass draws.
 //
 // The host prepends MAX_STRIDE, SHADE_BLOCK, LIGHT_WORDS (32 lights a word), LAYERED
-// (some part has a specular table), the layout constants, the shading core
+// (some part has a specular table), RECORD_BLOCK_LIGHTS (tests only), the layout constants, the shading core
 // and shade_point.glsl.
 
 layout(local_size_x = SHADE_BLOCK) in;  // kShadeBlock: a layout takes a literal
@@ -37,6 +37,13 @@ layout(std430, binding = 3) readonly buffer PartCulling { vec4 part_culling[]; }
 layout(std430, binding = 4) buffer Counters { uint counters[]; };
 // Per vertex its colour; with LAYERED the specular layer from u_layer_offset.
 layout(std430, binding = 5) writeonly buffer Colors { vec4 colors[]; };
+
+#if RECORD_BLOCK_LIGHTS
+// GlRenderer::block_candidate_lights: per block, from its offset, each
+// candidate's light words after the block-level tests.
+layout(std430, binding = 6) writeonly buffer Recorded { uint recorded[]; };
+layout(std430, binding = 7) readonly buffer RecordOffsets { uint record_offsets[]; };
+#endif
 
 uniform int u_block_count;
 uniform int u_part_count;
@@ -309,6 +316,11 @@ void main() {
         if (uint(k) < count) {
             uint entry = header + (chunk + uint(k)) * uint(kCandidateHeader + LIGHT_WORDS);
             culled += block_candidate(entry, k);
+#if RECORD_BLOCK_LIGHTS
+            for (int w = 0; w < LIGHT_WORDS; ++w)
+                recorded[record_offsets[block] + (chunk - first + uint(k)) * uint(LIGHT_WORDS) + uint(w)] =
+                    s_lights[k * LIGHT_WORDS + w];
+#endif
             for (int w = 0; w < LIGHT_WORDS; ++w) tested += uint(bitCount(candidates[entry + uint(kCandidateHeader + w)]));
         }
         barrier();

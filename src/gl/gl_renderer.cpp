@@ -83,13 +83,19 @@ void GlRenderer::set_sampler_units(const Program& program) {
     glUniform3fv(uniform(program, "u_face_t"), 6, &face_t_[0].x);
 }
 
+Program GlRenderer::make_vertex_pass(size_t light_words, bool record) {
+    const std::string defines =
+        vertex_pass_defines_ +
+        fmt::format("#define SHADE_BLOCK {}\n#define LIGHT_WORDS {}\n#define LAYERED {}\n#define RECORD_BLOCK_LIGHTS {}\n",
+                    kShadeBlock, light_words, layered_ ? 1 : 0, record ? 1 : 0) +
+        shading_prelude() + shade_point_prelude();
+    Program program = build_compute_program("shade_blocks.comp.glsl", defines);
+    set_sampler_units(program);
+    return program;
+}
+
 void GlRenderer::build_vertex_pass(size_t light_words) {
-    const std::string defines = vertex_pass_defines_ +
-                                fmt::format("#define SHADE_BLOCK {}\n#define LIGHT_WORDS {}\n#define LAYERED {}\n", kShadeBlock,
-                                            light_words, layered_ ? 1 : 0) +
-                                shading_prelude() + shade_point_prelude();
-    vertex_pass_ = build_compute_program("shade_blocks.comp.glsl", defines);
-    set_sampler_units(vertex_pass_);
+    vertex_pass_ = make_vertex_pass(light_words, false);
     vertex_pass_light_words_ = light_words;
     vertex_pass_layered_ = layered_;
 }
@@ -129,6 +135,7 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(2 * layer_bytes_), nullptr, GL_DYNAMIC_COPY);
     const PackedBlocks blocks = pack_blocks(scene_, g.first_vertex);
     block_count_ = int(blocks.blocks.size());
+    for (const glm::ivec4& block : blocks.blocks) block_parts_.push_back(block.x);
     blocks_ = make_buffer();
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, blocks_.id());
     glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<size_t>(blocks.blocks.size(), 1) * sizeof(glm::ivec4)),
@@ -371,12 +378,21 @@ void GlRenderer::shade_on_device() {
     if (!vertex_pass_ || light_words != vertex_pass_light_words_ || layered_ != vertex_pass_layered_)
         build_vertex_pass(light_words);
     begin_pass(kPassShade);
-    glUseProgram(vertex_pass_.id());
-    bind_shading_inputs(vertex_pass_);
-    glUniform1i(uniform(vertex_pass_, "u_block_count"), block_count_);
-    glUniform1i(uniform(vertex_pass_, "u_part_count"), int(scene_.parts.size()));
-    glUniform1i(uniform(vertex_pass_, "u_layer_offset"), int(layer_bytes_ / 16));
-    glUniform1i(uniform(vertex_pass_, "u_culling"), options_.occluder_culling ? 1 : 0);
+    run_vertex_pass(vertex_pass_);
+    end_pass(kPassShade);
+    query_pending_[frame_parity_] = !clock_timing_;
+    drew_[frame_parity_] = false;
+    check_gl("the shading pass");
+    shaded_current_frame_ = true;
+}
+
+void GlRenderer::run_vertex_pass(const Program& program) {
+    glUseProgram(program.id());
+    bind_shading_inputs(program);
+    glUniform1i(uniform(program, "u_block_count"), block_count_);
+    glUniform1i(uniform(program, "u_part_count"), int(scene_.parts.size()));
+    glUniform1i(uniform(program, "u_layer_offset"), int(layer_bytes_ / 16));
+    glUniform1i(uniform(program, "u_culling"), options_.occluder_culling ? 1 : 0);
     const Buffer* buffers[] = {&blocks_, &block_vertices_, &candidates_, &part_culling_, &counters_, &colors_};
     for (GLuint binding = 0; binding < 6; ++binding)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffers[binding]->id());
@@ -386,11 +402,41 @@ void GlRenderer::shade_on_device() {
     glDispatchCompute(columns, (groups + columns - 1) / columns, 1);
     // The display pass draws the colours as vertex attributes; read_colors copies them.
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    end_pass(kPassShade);
-    query_pending_[frame_parity_] = !clock_timing_;
-    drew_[frame_parity_] = false;
-    check_gl("the shading pass");
-    shaded_current_frame_ = true;
+}
+
+std::vector<std::vector<uint32_t>> GlRenderer::block_candidate_lights() {
+    sync_materials();
+    upload_frame();
+    const OccluderLists& lists = frame_.occluder_lists();
+    const size_t words = std::max<size_t>(lists.light_words, 1);
+    std::vector<uint32_t> offsets;
+    size_t total = 0;
+    for (const int part : block_parts_) {
+        offsets.push_back(uint32_t(total));
+        total += (lists.candidate_offsets[size_t(part) + 1] - lists.candidate_offsets[size_t(part)]) * words;
+    }
+    Buffer recorded = make_buffer(), record_offsets = make_buffer();
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, recorded.id());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<size_t>(total, 1) * 4), nullptr, GL_DYNAMIC_READ);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, record_offsets.id());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<size_t>(offsets.size(), 1) * 4), offsets.data(),
+                 GL_STATIC_DRAW);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, recorded.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, record_offsets.id());
+    const Program program = make_vertex_pass(words, true);
+    run_vertex_pass(program);
+    std::vector<uint32_t> flat(std::max<size_t>(total, 1));
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, recorded.id());
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(flat.size() * 4), flat.data());
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    check_gl("recording the blocks' candidate lights");
+    shaded_current_frame_ = false;  // the colours are the record pass's, not a timed frame's
+    std::vector<std::vector<uint32_t>> blocks;
+    for (size_t b = 0; b < block_parts_.size(); ++b) {
+        const size_t end = b + 1 < offsets.size() ? offsets[b + 1] : total;
+        blocks.emplace_back(flat.begin() + std::ptrdiff_t(offsets[b]), flat.begin() + std::ptrdiff_t(end));
+    }
+    return blocks;
 }
 
 void GlRenderer::bind_shading_inputs(const Program& program) {

@@ -113,6 +113,10 @@ public:
     PassTimings timings() const { return timings_; }
     // The last vertex pass's counts (waits for it).
     DeviceCounts device_counts() const;
+    // Per block (CpuRenderer::block_candidate_lights' order and layout) the
+    // light words the workgroup kept for each candidate occluder at the
+    // current frame: a vertex pass of its own, for tests.
+    std::vector<std::vector<uint32_t>> block_candidate_lights();
     // "shadow maps 3.1 ms, shading 40.2 ms (clock)": the last measured frame.
     std::string pass_times() const override;
     // The shadow maps' sphere (centre, radius) of the last frame that drew them; (0, 0, 0, 0) before.
@@ -141,6 +145,9 @@ private:
     // layers: built again when the light count crosses a multiple of 32 or
     // the first textured material comes or the last goes.
     void build_vertex_pass(size_t light_words);
+    Program make_vertex_pass(size_t light_words, bool record);
+    // Dispatches `program` (a vertex pass) over every block.
+    void run_vertex_pass(const Program& program);
     // The sampler units and the OVDF cube faces' uniforms of a program that shades (shade_point.glsl).
     void set_sampler_units(const Program& program);
     void upload_frame();
@@ -206,6 +213,7 @@ private:
     // records; the counters.
     Buffer blocks_, block_vertices_, candidates_, part_culling_, counters_;
     int block_count_ = 0;
+    std::vector<int> block_parts_;  // per block its part
     std::vector<uint32_t> candidate_words_;
     std::vector<Vec4> part_culling_records_;
     std::vector<BoundingSphere> local_reach_, split_fields_;  // per part (pack_part_culling)

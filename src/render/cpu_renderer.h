@@ -58,6 +58,13 @@ public:
     // shade()'s, with keep_image_terms on) for form_image at `posed` (the
     // scene posed at time()): what form_image() uses (pixel_shading.cpp).
     PartShaders pixel_shading(const VertexColors& colors, const PosedScene& posed) const;
+    // Block b's (of blocks(), the GPU's too) candidate occluders'
+    // lights after the block-level culling tests at the current frame: per
+    // candidate of the block's part (OccluderLists::candidate_*, in order)
+    // its light words, a bit per light the block still looks up. What the
+    // GPU's workgroups compute (tests/gl compare the two).
+    std::vector<uint32_t> block_candidate_lights(size_t b) const;
+    size_t block_count() const { return blocks_.size(); }
     // Square lights of the environment at the current time (world space, blend-weighted).
     const std::vector<SquareLight>& environment_squares() const { return environment_squares_; }
 
@@ -76,6 +83,8 @@ private:
     struct BlockScratch;  // shade_block.cpp
     void sync_materials();
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts);
+    void load_block_points(BlockScratch& s, const Block& block) const;
+    static BoundingSphere block_bounding_sphere(const BlockScratch& s, int n);
     void set_point(BlockScratch& s, int k, const Vec3& position, const Frame& frame) const;
     void set_light(BlockScratch& s, size_t light, int n) const;
     void put_light(BlockScratch& s, int k, const SquareLight& square, float spot) const;

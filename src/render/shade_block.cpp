@@ -379,12 +379,70 @@ bool CpuRenderer::block_may_be_shadowed(BlockScratch& s, const BoundingSphere& b
            may_shadow_direction(grown, occluder.world_bounds, sq.direction, square_cone_half_angle(sq.half_edge));
 }
 
+// The block's vertices into the scratch: world position, shading frame (as
+// PosedScene::vertex) and local view, and a fresh stamp for its occluders.
+void CpuRenderer::load_block_points(BlockScratch& s, const Block& block) const {
+    const TriangleMesh& mesh = scene_.parts[size_t(block.part)].mesh;
+    const PartPose& pose = poses_[size_t(block.part)];
+    const int* const order = block_order_[size_t(block.part)].data() + block.begin;
+    const bool has_tangents = !mesh.tangents.empty();
+    if (s.occluders.size() != scene_.parts.size()) s.occluders.assign(scene_.parts.size(), {});  // first block only
+    ++s.stamp;  // every part's BlockOccluder is stale
+    s.pool_used = 0;
+    for (int k = 0; k < block.end - block.begin; ++k) {
+        const int v = order[k];
+        s.vertex[k] = v;
+        const Vec3 normal = glm::normalize(pose.normal * mesh.normals[v]);
+        const Vec3 tangent = has_tangents ? pose.linear * Vec3(mesh.tangents[v]) : Vec3(0);
+        set_point(s, k, Vec3(pose.transform * Vec4(mesh.positions[v], 1.0f)), Frame::from_normal_tangent(normal, tangent));
+    }
+}
+
+// The bounding sphere of the block's n points (box center, farthest point)
+// for block-level culling; the GPU's workgroups compute the same
+// (shaders/shade_blocks.comp.glsl).
+BoundingSphere CpuRenderer::block_bounding_sphere(const BlockScratch& s, int n) {
+    Vec3 lo(s.px[0], s.py[0], s.pz[0]), hi = lo;
+    for (int k = 1; k < n; ++k) {
+        lo = glm::min(lo, Vec3(s.px[k], s.py[k], s.pz[k]));
+        hi = glm::max(hi, Vec3(s.px[k], s.py[k], s.pz[k]));
+    }
+    BoundingSphere sphere;
+    sphere.center = 0.5f * (lo + hi);
+    float r2 = 0;
+    for (int k = 0; k < n; ++k) {
+        const Vec3 d = Vec3(s.px[k], s.py[k], s.pz[k]) - sphere.center;
+        r2 = std::max(r2, glm::dot(d, d));
+    }
+    sphere.radius = std::sqrt(r2) * (1.0f + 1e-6f) + 1e-6f;
+    return sphere;
+}
+
+std::vector<uint32_t> CpuRenderer::block_candidate_lights(size_t b) const {
+    RSL_CHECK(b < blocks_.size());
+    const Block& block = blocks_[b];
+    auto scratch = std::make_unique<BlockScratch>();
+    BlockScratch& s = *scratch;
+    load_block_points(s, block);
+    const BoundingSphere sphere =
+        options_.occluder_culling ? block_bounding_sphere(s, block.end - block.begin) : BoundingSphere{};
+    const OccluderLists& lists = frame_.occluder_lists();
+    const size_t first = lists.candidate_offsets[size_t(block.part)];
+    const size_t last = lists.candidate_offsets[size_t(block.part) + 1];
+    const size_t words = lists.light_words;
+    std::vector<uint32_t> bits((last - first) * words, 0u);
+    for (size_t c = first; c < last; ++c)
+        for (size_t l = 0; l < words * 32; ++l)
+            if ((lists.candidate_lights[c * words + l / 32] >> (l % 32)) & 1u &&
+                block_may_be_shadowed(s, sphere, lists.candidate_occluders[c], lists.candidate_growths[c], l))
+                bits[(c - first) * words + l / 32] |= 1u << (l % 32);
+    return bits;
+}
+
 void CpuRenderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) {
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
     const int part_index = block.part;
-    const TriangleMesh& mesh = scene_.parts[part_index].mesh;
-    const PartPose& pose = poses_[part_index];
     const BrdfTable& table = *part_tables_[part_index];
     // A textured part's second lobe: the same squares and visibility, a second table.
     const BrdfTable* specular = part_specular_tables_[part_index];
@@ -392,38 +450,12 @@ void CpuRenderer::shade_block(const Block& block, VertexColors& out, RenderStats
     RSL_CHECK(!specular || specular->isotropic() == isotropic);
     const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
     const int n = block.end - block.begin;
-    const int* const order = block_order_[size_t(part_index)].data() + block.begin;
-    const bool has_tangents = !mesh.tangents.empty();
     const bool vertex_culling = options_.occluder_culling;
-    if (s.occluders.size() != scene_.parts.size()) s.occluders.assign(scene_.parts.size(), {});  // first block only
-    ++s.stamp;  // every part's BlockOccluder is stale
-    s.pool_used = 0;
-
-    // World position, shading frame (as PosedScene::vertex) and local view.
+    load_block_points(s, block);
+    const BoundingSphere block_sphere = vertex_culling ? block_bounding_sphere(s, n) : BoundingSphere{};
     for (int k = 0; k < n; ++k) {
-        const int v = order[k];
-        s.vertex[k] = v;
-        const Vec3 normal = glm::normalize(pose.normal * mesh.normals[v]);
-        const Vec3 tangent = has_tangents ? pose.linear * Vec3(mesh.tangents[v]) : Vec3(0);
-        set_point(s, k, Vec3(pose.transform * Vec4(mesh.positions[v], 1.0f)), Frame::from_normal_tangent(normal, tangent));
         s.r[k] = s.g[k] = s.b[k] = 0.0f;
         s.sr[k] = s.sg[k] = s.sb[k] = 0.0f;
-    }
-    // The block's bounding sphere (box center, farthest vertex) for block-level culling.
-    BoundingSphere block_sphere;
-    if (vertex_culling) {
-        Vec3 lo(s.px[0], s.py[0], s.pz[0]), hi = lo;
-        for (int k = 1; k < n; ++k) {
-            lo = glm::min(lo, Vec3(s.px[k], s.py[k], s.pz[k]));
-            hi = glm::max(hi, Vec3(s.px[k], s.py[k], s.pz[k]));
-        }
-        block_sphere.center = 0.5f * (lo + hi);
-        float r2 = 0;
-        for (int k = 0; k < n; ++k) {
-            const Vec3 d = Vec3(s.px[k], s.py[k], s.pz[k]) - block_sphere.center;
-            r2 = std::max(r2, glm::dot(d, d));
-        }
-        block_sphere.radius = std::sqrt(r2) * (1.0f + 1e-6f) + 1e-6f;
     }
 
     const size_t environment = environment_squares_.size();

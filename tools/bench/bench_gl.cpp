@@ -1,6 +1,7 @@
-// `rsl bench gl`: the GPU renderer (headless EGL context) on the robot and
-// kitchen scenes at 30 RSLs: frames per second of the shading pass alone
-// (render-to-vertex-array + pack into the vertex buffer) and of the full frame
+// `rsl bench gl`: the GPU renderer (headless EGL context) on the robot,
+// bunny, kitchen and yard scenes at 30 RSLs: the vertex pass against the CPU
+// renderer on the same frames (time, occluder lookups, block culling,
+// parity), frames per second of the vertex pass alone and of the full frame
 // (plus the display pass into a 640×480 target, with and without the
 // per-pixel pass), and why the BRDF tables are stored in 32-bit rather than
 // 16-bit float.
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "src/fields/cpca.h"
@@ -16,7 +18,10 @@
 #include "src/gl/gl_renderer.h"
 #include "src/gl/headless_context.h"
 #include "src/gl/viewer.h"
+#include "src/frame/error_metrics.h"
+#include "src/render/cpu_renderer.h"
 #include "src/render/render_setup.h"
+#include "tools/assets/yard.h"
 
 namespace rsl::bench {
 namespace {
@@ -41,13 +46,50 @@ struct DisplayTarget {
     }
 };
 
-void bench_scene(const fs::path& path, const BenchOptions& options, const std::string& device) {
-    const std::string name = path.stem().string();
-    if (!fs::exists(path)) {
-        bench_emit({{"bench", "gl"}, {"case", name}, {"skipped", "missing " + path.string()}});
-        return;
+// The shading pass against the CPU renderer on the same frames, alternated
+// in one run: per frame the CPU's shade() and the GPU's vertex pass (wall
+// clock around glFinish), the occluder lookups each made, and the
+// block-level culling. The least frame time of each (the noise on a shared
+// machine only adds).
+struct ShadingComparison {
+    double cpu_ms = 1e30, gpu_ms = 1e30, gpu_pass_ms = 0;
+    double cpu_lookups = 0, gpu_lookups = 0;  // per frame
+    double cpu_block_culled = 0, gpu_block_pairs = 0, gpu_block_culled = 0;
+    double parity = 0;  // relative L2 of the GPU's colours against the CPU's, last frame
+};
+
+ShadingComparison compare_shading(gl::GlRenderer& gpu, CpuRenderer& cpu, const std::vector<float>& times) {
+    ShadingComparison c;
+    VertexColors cpu_colors = cpu.make_output(), gpu_colors = gpu.make_output();
+    for (const float t : times) {
+        cpu.set_time(t);
+        auto start = Clock::now();
+        cpu.shade(cpu_colors);
+        c.cpu_ms = std::min(c.cpu_ms, 1e3 * since(start));
+        c.cpu_lookups += double(cpu.stats().occluder_lookups);
+        c.cpu_block_culled += double(cpu.stats().block_occluders_culled);
+        gpu.set_time(t);
+        glFinish();
+        start = Clock::now();
+        gpu.shade_on_device();
+        glFinish();
+        c.gpu_ms = std::min(c.gpu_ms, 1e3 * since(start));
+        const gl::DeviceCounts counts = gpu.device_counts();
+        c.gpu_lookups += double(counts.occluder_lookups);
+        c.gpu_block_pairs += double(counts.block_pairs);
+        c.gpu_block_culled += double(counts.block_pairs_culled);
     }
-    auto scene = std::make_shared<Scene>(load_scene(path));
+    const double frames = double(times.size());
+    c.cpu_lookups /= frames, c.gpu_lookups /= frames;
+    c.cpu_block_culled /= frames, c.gpu_block_pairs /= frames, c.gpu_block_culled /= frames;
+    gpu.shade(gpu_colors);  // the last frame again, read back
+    c.parity = compare_vertex_colors(gpu_colors, cpu_colors).total.relative_l2();
+    c.gpu_pass_ms = gpu.timings().shade_ms;  // timer queries: a recent frame's (the clock on software GL)
+    return c;
+}
+
+void bench_scene(std::shared_ptr<Scene> scene, const std::string& name, const BenchOptions& options,
+                 const std::string& device) {
     // The paper's settings take minutes to bake; --quick benches small fields
     // (fewer PCA vectors: cheaper lookups, so faster than the full fields).
     if (options.quick) gl::use_quick_fields(scene->precompute);
@@ -55,13 +97,17 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
     render.environment_lights = 30;
     const RenderSetup setup = prepare_render(scene, render);
     gl::GlRenderer renderer(*scene, setup.environment_lights, setup.fields, render);
-    const int frames = options.quick ? 4 : 24;
+    CpuRenderer cpu(*scene, setup.environment_lights, setup.fields, render);
+    const int frames = options.quick ? 4 : 12;
     const float duration = std::max(scene->animation.end - scene->animation.start, 1e-3f);
     auto time_of = [&](int f) { return scene->animation.start + duration * float(f) / float(frames); };
 
     renderer.set_time(time_of(0));
     renderer.shade_on_device();  // warm-up: shader compilation happens at first use on some drivers
     glFinish();
+    std::vector<float> compared_times;
+    for (int f = 0; f < (options.quick ? 2 : 4); ++f) compared_times.push_back(time_of(f * frames / 4 + frames / 8));
+    const ShadingComparison compared = compare_shading(renderer, cpu, compared_times);
     auto start = Clock::now();
     for (int f = 0; f < frames; ++f) {
         renderer.set_time(time_of(f));
@@ -111,6 +157,18 @@ void bench_scene(const fs::path& path, const BenchOptions& options, const std::s
                 {"frames", frames},
                 {"shading_ms", 1e3 * shade_seconds},
                 {"shading_fps", 1.0 / shade_seconds},
+                {"compared_frames", compared_times.size()},
+                {"cpu_shading_ms", compared.cpu_ms},
+                {"gpu_shading_ms", compared.gpu_ms},
+                {"gpu_pass_ms", compared.gpu_pass_ms},
+                {"gpu_over_cpu", compared.gpu_ms / compared.cpu_ms},
+                {"cpu_occluder_lookups", compared.cpu_lookups},
+                {"gpu_occluder_lookups", compared.gpu_lookups},
+                {"gpu_over_cpu_lookups", compared.cpu_lookups > 0 ? compared.gpu_lookups / compared.cpu_lookups : 1.0},
+                {"cpu_block_occluders_culled", compared.cpu_block_culled},
+                {"gpu_block_pairs", compared.gpu_block_pairs},
+                {"gpu_block_pairs_culled", compared.gpu_block_culled},
+                {"gpu_cpu_relative_l2", compared.parity},
                 {"display_frames", display_frames},
                 {"frame_ms", 1e3 * frame_seconds},
                 {"frame_fps", 1.0 / frame_seconds},
@@ -166,14 +224,31 @@ void bench_sat_precision(const fs::path& path) {
     }
 }
 
-RegisterBenchmark gl_benchmark({"gl", "GPU renderer: robot and kitchen fps (shading pass, full frame), SAT precision",
+RegisterBenchmark gl_benchmark({"gl", "GPU renderer against the CPU on robot, bunny, kitchen and yards (--parts): "
+                                      "shading time, occluder lookups, block culling, parity; full-frame fps; SAT precision",
     [](const BenchOptions& options) {
         gl::HeadlessContext context;
         const std::string device = context.description();
         const fs::path& scenes = options.scenes;
         bench_sat_precision(scenes / "robot.json");
-        bench_scene(scenes / "robot.json", options, device);
-        bench_scene(scenes / "kitchen.json", options, device);
+        for (const char* name : {"robot", "bunny", "kitchen"}) {
+            const fs::path path = scenes / (std::string(name) + ".json");
+            if (!fs::exists(path)) {
+                bench_emit({{"bench", "gl"}, {"case", name}, {"skipped", "missing " + path.string()}});
+                continue;
+            }
+            bench_scene(std::make_shared<Scene>(load_scene(path)), name, options, device);
+        }
+        // The yards (tools/assets/yard.h): many moving parts on a ground; --parts picks their sizes.
+        std::vector<int> yards = options.scale_parts;
+        if (yards.empty()) yards = {options.quick ? 8 : 128};
+        for (const int n : yards) {
+            const fs::path dir = options.output / "gl" / fmt::format("yard-{}", n);
+            fs::create_directories(dir);
+            const fs::path environment = fs::absolute(options.generated_assets / "sunsky.exr");
+            const fs::path file = assets::write_yard(dir, n, environment.string());
+            bench_scene(std::make_shared<Scene>(load_scene(file)), fmt::format("yard-{}", n), options, device);
+        }
     }});
 
 }  // namespace
