@@ -59,10 +59,11 @@ cp "$build/rsl" "$stage/bin/rsl"
 # (libEGL, libOpenGL, libGLdispatch, libGL, libGLX), which must be the
 # server's so that they find its vendor driver (NVIDIA's libEGL_nvidia).
 # libstdc++ and libgcc_s go into lib/fallback, off the RPATH: the program and
-# its libraries need at most GLIBCXX_3.4.29 (GCC 11), which every system with
-# glibc ≥ 2.34 has, and the server's own copy can be newer than this one and
-# needed by its driver's libraries, which share the process. run-on-gpu.sh
-# puts lib/fallback on LD_LIBRARY_PATH only when rsl does not start without it.
+# its libraries need GLIBCXX_3.4.29 (GCC 11; BUILD.txt names the versions),
+# which every system with glibc ≥ 2.34 has, and the server's own copy can be
+# newer than this one and needed by its driver's libraries, which share the
+# process. run-on-gpu.sh puts lib/fallback on LD_LIBRARY_PATH only when rsl
+# does not start without it.
 glibc='^(libc|libm|libdl|libpthread|librt|libresolv|libutil|libmvec|libanl|libnsl|ld-linux-x86-64)\.so'
 loaders='^(libGL|libGLX|libEGL|libGLdispatch|libOpenGL|libGLESv1_CM|libGLESv2)\.so'
 ldd "$stage/bin/rsl" | awk '$2 == "=>" {print $1, $3}' | while read -r soname path; do
@@ -84,10 +85,13 @@ mkdir -p "$stage/assets/scenes"
 cp $(grep -L 'shared/assets' assets/scenes/*.json) "$stage/assets/scenes/"
 "$stage/bin/rsl" assets --out "$stage/assets/generated" >/dev/null
 cp scripts/portable/run-on-gpu.sh "$stage/run-on-gpu.sh"
+# The newest glibc and libstdc++ symbol versions that the program and lib/ use.
+newest() { objdump -T "$stage/bin/rsl" "$stage"/lib/*.so* | grep -o "$1_[0-9.]*" | sort -uV | tail -1; }
 {
   "$stage/bin/rsl" --version
   echo "built: $(date -u +%Y-%m-%d) on $(. /etc/os-release && echo "$PRETTY_NAME"), -march=$march"
-  echo "needs: Linux x86-64 ($march), glibc ≥ 2.34, libglvnd's libEGL.so.1 and libOpenGL.so.0, a GL driver"
+  echo "needs: Linux x86-64 ($march), glibc with $(newest GLIBC), libstdc++ with $(newest GLIBCXX)" \
+    "(else lib/fallback's), libglvnd's libEGL.so.1 and libOpenGL.so.0, a GL driver"
   echo "cpu flags: $cpu_flags"
 } >"$stage/BUILD.txt"
 
