@@ -51,18 +51,33 @@ std::vector<std::pair<EGLDisplay, std::string>> candidate_displays() {
     return displays;
 }
 
-EGLContext create_core_context(EGLDisplay display) {
+// An OpenGL config for a display that cannot make a context without one. Its
+// surface type is never used (the context is made current without a surface),
+// but eglChooseConfig defaults EGL_SURFACE_TYPE to EGL_WINDOW_BIT, and an EGL
+// device display (NVIDIA without X) has no window configs: ask for pbuffer
+// configs, as NVIDIA's headless EGL examples do, then for any surface type.
+EGLConfig choose_config(EGLDisplay display) {
+    for (const EGLint surface_type : {EGLint(EGL_PBUFFER_BIT), EGLint(EGL_DONT_CARE)}) {
+        const EGLint attributes[] = {EGL_SURFACE_TYPE, surface_type, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        EGLConfig config = EGL_NO_CONFIG_KHR;
+        EGLint count = 0;
+        if (eglChooseConfig(display, attributes, &config, 1, &count) && count > 0) return config;
+    }
+    return EGL_NO_CONFIG_KHR;
+}
+
+EGLContext create_core_context(EGLDisplay display, EglConfig choice) {
     if (!eglBindAPI(EGL_OPENGL_API)) return EGL_NO_CONTEXT;
-    const EGLint config_attributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-    EGLConfig config = nullptr;
-    EGLint configs = 0;
     const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
-    const bool configless = has_extension(extensions, "EGL_KHR_no_config_context") ||
-                            has_extension(extensions, "EGL_MESA_configless_context");
-    if (!configless && (!eglChooseConfig(display, config_attributes, &config, 1, &configs) || configs < 1))
-        return EGL_NO_CONTEXT;
+    const bool configless = choice == EglConfig::Automatic &&
+                            (has_extension(extensions, "EGL_KHR_no_config_context") ||
+                             has_extension(extensions, "EGL_MESA_configless_context"));
+    EGLConfig config = EGL_NO_CONFIG_KHR;
+    if (!configless && (config = choose_config(display)) == EGL_NO_CONFIG_KHR) return EGL_NO_CONTEXT;
     // The newest core version first: drivers give the newest they can anyway,
-    // but some refuse a request above what they support.
+    // but some refuse a request above what they support. Versions below 4.3
+    // are asked for too, so that an older driver's context can say in the
+    // error which version it has.
     const EGLint versions[][2] = {{4, 6}, {4, 5}, {4, 3}, {4, 1}, {3, 3}};
     for (const auto& version : versions) {
         const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
@@ -72,15 +87,23 @@ EGLContext create_core_context(EGLDisplay display) {
                                      EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                      EGL_NONE};
-        EGLContext context = eglCreateContext(display, configless ? EGL_NO_CONFIG_KHR : config, EGL_NO_CONTEXT, attributes);
+        EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, attributes);
         if (context != EGL_NO_CONTEXT) return context;
     }
     return EGL_NO_CONTEXT;
 }
 
+// Whether the current context is OpenGL 4.3 or newer (compute shaders).
+bool has_gl_4_3() {
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    return major > 4 || (major == 4 && minor >= 3);
+}
+
 }  // namespace
 
-HeadlessContext::HeadlessContext() : state_(std::make_unique<State>()) {
+HeadlessContext::HeadlessContext(EglConfig config) : state_(std::make_unique<State>()) {
     std::string tried;
     for (const auto& [display, name] : candidate_displays()) {
         EGLint major = 0, minor = 0;
@@ -94,10 +117,17 @@ HeadlessContext::HeadlessContext() : state_(std::make_unique<State>()) {
             eglTerminate(display);
             continue;
         }
-        EGLContext context = create_core_context(display);
+        EGLContext context = create_core_context(display, config);
         if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
-            tried += fmt::format("\n  {}: no OpenGL ≥ 3.3 core context (0x{:x})", name, eglGetError());
+            tried += fmt::format("\n  {}: no OpenGL ≥ 4.3 core context (0x{:x})", name, eglGetError());
             if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
+            eglTerminate(display);
+            continue;
+        }
+        if (!has_gl_4_3()) {
+            tried += fmt::format("\n  {}: {} found, OpenGL ≥ 4.3 core needed", name, context_description());
+            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglDestroyContext(display, context);
             eglTerminate(display);
             continue;
         }
