@@ -50,7 +50,7 @@ std::unique_ptr<VertexRenderer> make_renderer(Backend backend, const Scene& scen
 #ifdef RSL_HAVE_GL
         if (!gl::has_current_context())
             throw_error("the gl-current backend: no OpenGL context is current on this thread (make the "
-                        "engine's OpenGL >= 3.3 core context current first, or use the gl backend)");
+                        "engine's OpenGL >= 4.3 core context current first, or use the gl backend)");
         return std::make_unique<gl::GlRenderer>(scene, std::move(environment_lights), std::move(fields), options);
 #else
         throw_error("the gl-current backend: this rsl was built without OpenGL (RSL_BUILD_GL=OFF)");

@@ -22,7 +22,7 @@ std::string backend_name(Backend backend);
 std::vector<std::string> available_backends();
 
 // `scene` must outlive the renderer. Throws rsl::Error when the backend was
-// not built (or, for gl, no OpenGL ≥ 3.3 context can be made; for
+// not built (or, for gl, no OpenGL ≥ 4.3 context can be made; for
 // gl-current, none is current).
 std::unique_ptr<VertexRenderer> make_renderer(Backend backend, const Scene& scene,
                                               EnvironmentLights environment_lights, PartFields fields,

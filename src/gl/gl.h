@@ -2,7 +2,8 @@
 // The OpenGL API as rsl uses it: the core-profile header with prototypes. The
 // entry points come from libglvnd's libOpenGL.so (Debian's Mesa and NVIDIA's
 // driver both install it), which dispatches to whichever context — EGL or GLX
-// — is current, so no loader library is needed. Everything used is core 3.3, except glClipControl (4.5), which is
+// — is current, so no loader library is needed. Everything used is core 4.3
+// (compute shaders, storage buffers), except glClipControl (4.5), which is
 // called only where the context has it (GlRenderer::form_image).
 #ifndef GL_GLEXT_PROTOTYPES
 #define GL_GLEXT_PROTOTYPES 1

@@ -11,7 +11,7 @@ namespace rsl::gl {
 
 class Skybox {
 public:
-    // `second` may be null (no blend). Needs a current GL 3.3 core context.
+    // `second` may be null (no blend). Needs a current GL 3.3 core context (the renderer beside it needs 4.3).
     Skybox(const CubeMap& first, const CubeMap* second);
 
     // Fills the bound framebuffer's viewport (depth test off, depth

@@ -35,14 +35,14 @@ struct Window {
     Window(int width, int height, const std::string& title) {
         glfwSetErrorCallback([](int code, const char* message) { std::fprintf(stderr, "GLFW %d: %s\n", code, message); });
         if (!glfwInit()) throw Error("rsl view: GLFW could not start (no display? try xvfb-run -a rsl view ...)");
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
         glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
         glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
         glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
         window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
         if (!window) {
             glfwTerminate();
-            throw Error("rsl view: no window with an OpenGL 3.3 core context");
+            throw Error("rsl view: no window with an OpenGL 4.3 core context");
         }
         glfwMakeContextCurrent(window);
         glfwSwapInterval(0);  // measure the renderer, not the display's refresh

@@ -34,7 +34,7 @@ struct ViewerOptions {
 };
 
 // Runs the viewer until the window closes (or the screenshot is written).
-// Throws rsl::Error when no window or GL 3.3 core context can be had.
+// Throws rsl::Error when no window or GL 4.3 core context can be had.
 void run_viewer(const ViewerOptions& options);
 
 // Precompute settings small enough to bake a scene's fields in seconds.
