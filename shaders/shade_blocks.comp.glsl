@@ -65,35 +65,6 @@ vec3 g_share[kMaxLights];
 vec3 g_specular_share[kMaxLights];
 #endif
 
-// Light l at world point p: its direction, square half-edge and integral (as shade_point).
-struct PointLight {
-    vec3 direction;
-    float h;
-    vec3 integral;
-};
-PointLight light_at(int l, vec3 p) {
-    vec4 a = fetch(u_lights, kLightTexels * l), b = fetch(u_lights, kLightTexels * l + 1);
-    PointLight light;
-    if (l < u_environment_lights) {
-        light.direction = a.xyz;
-        light.h = a.w;
-        light.integral = b.rgb;
-        return light;
-    }
-    vec3 to_center = a.xyz - p;
-    float distance = length(to_center);
-    light.h = 0.0;
-    light.integral = vec3(0.0);
-    light.direction = vec3(0.0, 0.0, 1.0);
-    if (!(distance > a.w)) return light;
-    light.direction = to_center / distance;
-    float solid_angle = sphere_cap_solid_angle(a.w, distance);
-    light.h = half_edge_for_solid_angle(solid_angle);
-    vec4 c = fetch(u_lights, kLightTexels * l + 2);
-    light.integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -light.direction, b.w, c.w));
-    return light;
-}
-
 // Step 1: the block sphere (box center, farthest vertex), as shade_block.
 void block_sphere(int n) {
     vec3 lo = s_point[0], hi = lo;

@@ -425,6 +425,37 @@ float shadow_visible_fraction(int layer, vec3 light, vec3 p, LocalFrame frame, v
 
 // ---- the sum ----
 
+// Light l at world point p: its direction, square half-edge and integral;
+// a sphere light that contains p has h = 0 (no share).
+struct PointLight {
+    vec3 direction;
+    float h;
+    vec3 integral;
+};
+PointLight light_at(int l, vec3 p) {
+    vec4 a = fetch(u_lights, kLightTexels * l), b = fetch(u_lights, kLightTexels * l + 1);
+    PointLight light;
+    if (l < u_environment_lights) {
+        light.direction = a.xyz;
+        light.h = a.w;
+        light.integral = b.rgb;
+        return light;
+    }
+    // A sphere light: center a.xyz, radius a.w, radiance b.rgb; spot axis c.xyz, cone (b.w, c.w).
+    vec3 to_center = a.xyz - p;
+    float distance = length(to_center);
+    light.h = 0.0;
+    light.integral = vec3(0.0);
+    light.direction = vec3(0.0, 0.0, 1.0);
+    if (!(distance > a.w)) return light;
+    light.direction = to_center / distance;
+    float solid_angle = sphere_cap_solid_angle(a.w, distance);
+    light.h = half_edge_for_solid_angle(solid_angle);
+    vec4 c = fetch(u_lights, kLightTexels * l + 2);
+    light.integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -light.direction, b.w, c.w));
+    return light;
+}
+
 struct PointShade {
     vec3 color;     // the diffuse sum at unit texture (textured parts), else the whole sum
     vec3 specular;  // textured parts (kSlotSpecular.w = 1): the specular table's sum
@@ -468,24 +499,10 @@ PointShade shade_point(int part, vec3 p, LocalFrame frame) {
     int first = u_environment_enabled ? 0 : u_environment_lights;
     int last = u_local_enabled ? u_light_count : u_environment_lights;
     for (int l = first; l < last; ++l) {
-        vec4 a = fetch(u_lights, kLightTexels * l), b = fetch(u_lights, kLightTexels * l + 1);
-        vec3 direction;
-        float h;
-        vec3 integral;
-        if (l < u_environment_lights) {
-            direction = a.xyz;
-            h = a.w;
-            integral = b.rgb;
-        } else {  // sphere light: center a.xyz, radius a.w, radiance b.rgb; spot axis c.xyz, cone (b.w, c.w)
-            vec3 to_center = a.xyz - p;
-            float distance = length(to_center);
-            if (!(distance > a.w)) continue;
-            direction = to_center / distance;
-            float solid_angle = sphere_cap_solid_angle(a.w, distance);
-            h = half_edge_for_solid_angle(solid_angle);
-            vec4 c = fetch(u_lights, kLightTexels * l + 2);
-            integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -direction, b.w, c.w));
-        }
+        PointLight light = light_at(l, p);
+        vec3 direction = light.direction;
+        float h = light.h;
+        vec3 integral = light.integral;
         vec3 local = frame_to_local(frame, direction);
         vec2 lp = hemisphere_to_plane(local);
         if (!(h > 0.0f) || !square_reaches_hemisphere(local.z, h)) continue;

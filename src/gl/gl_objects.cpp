@@ -1,6 +1,7 @@
 #include "src/gl/gl_objects.h"
 
 #include <algorithm>
+#include <initializer_list>
 
 #include "src/core/error.h"
 #include "src/gl/shader_sources.h"
@@ -82,6 +83,25 @@ GLuint compile(GLenum type, const std::string& name, const std::string& defines)
     return compile_shader(type, with_defines(shader_text(name), defines), "shaders/" + name);
 }
 
+// Links the compiled `shaders` (deleted here) into a program; throws
+// rsl::Error with the driver's log, naming `label`.
+Program link_program(std::initializer_list<GLuint> shaders, const std::string& label) {
+    Program program(glCreateProgram());
+    for (const GLuint shader : shaders) glAttachShader(program.id(), shader);
+    glLinkProgram(program.id());
+    for (const GLuint shader : shaders) glDeleteShader(shader);
+    GLint ok = 0;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+        throw Error(fmt::format("{}: link failed:\n{}", label, log));
+    }
+    return program;
+}
+
 }  // namespace
 
 GLuint compile_shader(GLenum type, const std::string& source, const std::string& label) {
@@ -121,40 +141,11 @@ Program build_program(const std::string& vertex, const std::string& fragment, co
         glDeleteShader(vs);
         throw;
     }
-    Program program(glCreateProgram());
-    glAttachShader(program.id(), vs);
-    glAttachShader(program.id(), fs);
-    glLinkProgram(program.id());
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
-        throw Error(fmt::format("shaders/{} + shaders/{}: link failed:\n{}", vertex, fragment, log));
-    }
-    return program;
+    return link_program({vs, fs}, fmt::format("shaders/{} + shaders/{}", vertex, fragment));
 }
 
 Program build_compute_program(const std::string& compute, const std::string& defines) {
-    const GLuint cs = compile(GL_COMPUTE_SHADER, compute, defines);
-    Program program(glCreateProgram());
-    glAttachShader(program.id(), cs);
-    glLinkProgram(program.id());
-    glDeleteShader(cs);
-    GLint ok = 0;
-    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
-        throw Error(fmt::format("shaders/{}: link failed:\n{}", compute, log));
-    }
-    return program;
+    return link_program({compile(GL_COMPUTE_SHADER, compute, defines)}, "shaders/" + compute);
 }
 
 void require_gl_version(int major, int minor, const std::string& what) {
