@@ -51,12 +51,16 @@ std::vector<float> frame_times(const Scene& scene, int frames) {
     return times;
 }
 
-Image form_frame(const PosedScene& posed, const Scene& scene, float t, const VertexColors& colors, int width,
-                 int height) {
+ImageFormationOptions demo_formation() {
     ImageFormationOptions formation;
     formation.opaque_background = true;
     formation.background = Color(0.015f, 0.016f, 0.02f);
-    return form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, formation);
+    return formation;
+}
+
+Image form_frame(const PosedScene& posed, const Scene& scene, float t, const VertexColors& colors, int width,
+                 int height) {
+    return form_image(posed, PinholeCamera::at_time(scene.camera, t, width, height), colors, demo_formation());
 }
 
 void weighted_sum(VertexColors& out, const std::vector<const VertexColors*>& inputs, const std::vector<float>& weights) {
@@ -170,23 +174,27 @@ double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::ste
 
 namespace rsl::demos {
 
-void render_sequence(const SequenceSpec& spec, const DemoOptions& options, const Scene& scene,
-                     VertexColors colors, DemoResult& result) {
+void render_sequence(const SequenceSpec& spec, const DemoOptions& options, RenderSession& session,
+                     DemoResult& result) {
+    const Scene& scene = session.scene();
     const int frames = options.frames > 0 ? options.frames : spec.default_frames;
     const int width = options.width > 0 ? options.width : spec.default_width;
     const int height = options.height > 0 ? options.height : spec.default_height;
     const std::vector<float> times = frame_times(scene, frames);
-    PosedScene posed(scene, times.front());
     FrameSequence sequence(output_folder(options, spec.name));
     for (size_t f = 0; f < times.size(); ++f) {
         const float t = times[f];
         FrameTiming timing;
         timing.time = t;
-        spec.shade(int(f), t, colors, timing);
-        const auto start = std::chrono::steady_clock::now();
-        posed.set_time(t);
-        const Image image = form_frame(posed, scene, t, colors, width, height);
-        timing.image_seconds = seconds_between(start, std::chrono::steady_clock::now());
+        const auto begin = std::chrono::steady_clock::now();
+        if (spec.update) spec.update(int(f), t);
+        const auto edited = std::chrono::steady_clock::now();
+        session.shade(t);
+        const auto shaded = std::chrono::steady_clock::now();
+        const Image image = session.image(session.camera(width, height), demo_formation());
+        timing.update_seconds = seconds_between(begin, edited);
+        timing.shade_seconds = seconds_between(edited, shaded);
+        timing.image_seconds = seconds_between(shaded, std::chrono::steady_clock::now());
         const std::string label = spec.label ? spec.label(int(f), t) : fmt::format("t={:.2f}s", t);
         const fs::path path = sequence.add(image, label);
         result.timings.push_back(timing);

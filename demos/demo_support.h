@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "demos/demo.h"
+#include "src/backend/render_session.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
 #include "src/render/render_options.h"
@@ -30,8 +31,9 @@ std::filesystem::path output_folder(const DemoOptions& options, const std::strin
 // the range is a loop, so the last frame does not repeat the first.
 std::vector<float> frame_times(const Scene& scene, int frames);
 
-// The image of per-vertex colours from the scene camera at t, on a dark
-// opaque background (what every demo frame shows).
+// Every demo frame's background: dark and opaque.
+ImageFormationOptions demo_formation();
+// The image of per-vertex colours from the scene camera at t, on demo_formation()'s background.
 Image form_frame(const PosedScene& posed, const Scene& scene, float t, const VertexColors& colors, int width,
                  int height);
 
@@ -79,17 +81,20 @@ double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::ste
 
 namespace rsl::demos {
 
-// The frame loop every animated demo runs: for each frame time, `shade`
-// fills the vertex colours (and its own timing fields), the frame is formed
-// and written, and the label returned by `label` goes on its contact-sheet tile.
+// The frame loop every animated demo runs: for each frame time, the frame
+// is edited, shaded and formed, written, and the label returned by `label` goes on
+// its contact-sheet tile.
 struct SequenceSpec {
     std::string name;
     int default_frames = 12;
     int default_width = 320, default_height = 240;
-    std::function<void(int frame, float t, VertexColors& colors, FrameTiming& timing)> shade;
+    // Edits before frame f is shaded (timed as the frame's update); may be empty.
+    std::function<void(int frame, float t)> update;
     std::function<std::string(int frame, float t)> label;  // empty: "t=…s"
 };
-void render_sequence(const SequenceSpec& spec, const DemoOptions& options, const Scene& scene,
-                     VertexColors colors, DemoResult& result);
+// Per frame: `update`, the session's shade at t and its own image
+// (per-pixel shadows and highlights, as `rsl render` forms it).
+void render_sequence(const SequenceSpec& spec, const DemoOptions& options, RenderSession& session,
+                     DemoResult& result);
 
 }  // namespace rsl::demos

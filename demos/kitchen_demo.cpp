@@ -15,9 +15,7 @@
 #include "tools/rsl/progress_display.h"
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"
-#include "src/backend/make_renderer.h"
 #include "src/core/error.h"
-#include "src/render/render_setup.h"
 
 namespace rsl::demos {
 
@@ -30,23 +28,16 @@ DemoResult run_kitchen_demo(const DemoOptions& options) {
         throw_file_error(scene->source, "the kitchen demo needs environment.second_file (the map it changes to)");
     RenderOptions render;
     if (options.quick) render.environment_lights = kQuickLights;
-    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
-    const std::unique_ptr<VertexRenderer> renderer =
-        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render);
+    RenderSession session(scene, render, Backend::Cpu,
+                          {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
 
     SequenceSpec spec;
     spec.name = result.name;
-    spec.shade = [&](int, float t, VertexColors& colors, FrameTiming& timing) {
-        const auto begin = std::chrono::steady_clock::now();
-        renderer->set_time(t);
-        renderer->shade(colors);
-        timing.shade_seconds = seconds_between(begin, std::chrono::steady_clock::now());
-    };
     spec.label = [&](int, float t) {
         return fmt::format("t={:.2f}s mix={:.0f}%", t, 100.0f * scene->environment.blend_weight_at(t));
     };
-    render_sequence(spec, options, *scene, renderer->make_output(), result);
+    render_sequence(spec, options, session, result);
     result.notes.push_back(fmt::format(
         "{} vertices; {} and {} ({} RSLs each) blended by the renderer over a {} s period; {} local light(s)", scene->vertex_count(),
         scene->environment.file.filename().string(), scene->environment.second_file.filename().string(),

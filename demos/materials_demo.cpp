@@ -17,9 +17,7 @@
 #include "tools/rsl/progress_display.h"
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"
-#include "src/backend/make_renderer.h"
 #include "src/core/error.h"
-#include "src/render/render_setup.h"
 
 namespace rsl::demos {
 
@@ -56,33 +54,26 @@ DemoResult run_materials_demo(const DemoOptions& options) {
     if (swept.empty()) throw_file_error(scene->source, "no part named orb*: nothing to sweep");
     RenderOptions render;
     if (options.quick) render.environment_lights = kQuickLights;
-    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
+    RenderSession session(scene, render, Backend::Cpu,
+                          {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
 
     const int frames = options.frames > 0 ? options.frames : 12;
-    const std::unique_ptr<VertexRenderer> renderer =
-        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render);
-    MaterialLibrary& library = renderer->materials();
+    MaterialLibrary& library = session.renderer().materials();
     SequenceSpec spec;
     spec.name = result.name;
     spec.default_width = 480, spec.default_height = 180;  // a row of four
     int edits = 0;
-    spec.shade = [&](int frame, float t, VertexColors& colors, FrameTiming& timing) {
-        const auto begin = std::chrono::steady_clock::now();
+    spec.update = [&](int frame, float) {
         for (int m : swept) {
             MaterialDesc desc = library.desc(m);
             set_glossiness(desc, sweep_roughness(frame, frames));
             library.replace(m, std::move(desc));  // rebuilds this material's table only
             ++edits;
         }
-        const auto edited = std::chrono::steady_clock::now();
-        renderer->set_time(t);
-        renderer->shade(colors);
-        timing.update_seconds = seconds_between(begin, edited);
-        timing.shade_seconds = seconds_between(edited, std::chrono::steady_clock::now());
     };
     spec.label = [&](int f, float) { return fmt::format("roughness {:.2f}", sweep_roughness(f, frames)); };
-    render_sequence(spec, options, *scene, renderer->make_output(), result);
+    render_sequence(spec, options, session, result);
     double rebuild = 0;
     for (const FrameTiming& timing : result.timings) rebuild += timing.update_seconds;
     result.metrics["table_rebuild_seconds"] = rebuild / double(result.timings.size());

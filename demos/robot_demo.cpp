@@ -10,8 +10,6 @@
 #include "tools/rsl/progress_display.h"
 #include "demos/demo_runners.h"
 #include "demos/demo_support.h"
-#include "src/backend/make_renderer.h"
-#include "src/render/render_setup.h"
 
 namespace rsl::demos {
 
@@ -22,22 +20,15 @@ DemoResult run_robot_demo(const DemoOptions& options) {
     std::shared_ptr<Scene> scene = load_demo_scene(options, "robot/scene.json");
     RenderOptions render;
     if (options.quick) render.environment_lights = kQuickLights;
-    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
-    const std::unique_ptr<VertexRenderer> renderer =
-        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render);
+    RenderSession session(scene, render, Backend::Cpu,
+                          {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
 
     SequenceSpec spec;
     spec.name = result.name;
-    spec.shade = [&](int, float t, VertexColors& colors, FrameTiming& timing) {
-        const auto begin = std::chrono::steady_clock::now();
-        renderer->set_time(t);
-        renderer->shade(colors);
-        timing.shade_seconds = seconds_between(begin, std::chrono::steady_clock::now());
-    };
-    render_sequence(spec, options, *scene, renderer->make_output(), result);
+    render_sequence(spec, options, session, result);
     result.notes.push_back(fmt::format("{} vertices, {} square lights, sun/sky turning {:.0f} deg/s",
-                                       scene->vertex_count(), renderer->stats().lights,
+                                       scene->vertex_count(), session.renderer().stats().lights,
                                        scene->environment.rotation_degrees_per_second));
     return result;
 }

@@ -21,13 +21,13 @@ gl::GlRenderer& caller_context_renderer(Backend backend, VertexRenderer& rendere
 }  // namespace
 
 void Renderer::shade_gl() {
-    gl::GlRenderer& renderer = caller_context_renderer(state_->backend, *state_->renderer);
+    gl::GlRenderer& renderer = caller_context_renderer(state_->session->backend(), state_->renderer());
     state_->update_frame();
     renderer.shade_on_device();  // nothing is read back
 }
 
 unsigned Renderer::gl_color_buffer() const {
-    return caller_context_renderer(state_->backend, *state_->renderer).color_buffer();
+    return caller_context_renderer(state_->session->backend(), state_->renderer()).color_buffer();
 }
 #else
 void Renderer::shade_gl() { throw_error("the gl-current backend: this rsl was built without OpenGL"); }

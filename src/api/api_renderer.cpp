@@ -1,6 +1,6 @@
-// rsl::api::Renderer (include/rsl/rsl.h): what `rsl render` runs — the
-// render setup (prepare_render), a backend from make_renderer, image
-// formation — and `rsl truth`'s ground truth, over one scene the setters edit.
+// rsl::api::Renderer (include/rsl/rsl.h): what `rsl render` runs — a
+// RenderSession: set-up, a backend's renderer, its image — and `rsl truth`'s
+// ground truth, over one scene the setters edit.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -28,7 +28,7 @@ void Renderer::State::check_part(int part) const {
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : state_(std::make_unique<State>()) {
     State& s = *state_;
     if (settings.lights < 1) throw_error("lights {}: expected at least 1", settings.lights);
-    s.backend = parse_backend(settings.backend);
+    const Backend backend = parse_backend(settings.backend);
     s.options.environment_lights = settings.lights;
     s.options.cross_face_lights = settings.cross_face_lights;
     s.options.self_visibility = settings.self_visibility;
@@ -39,8 +39,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : state_(
     SetupOptions how;
     how.progress = throttled(settings.progress);
     how.field_cache = settings.field_cache;
-    s.setup = prepare_render(std::make_shared<rsl::Scene>(scene.internal()), s.options, how);
-    s.renderer = make_renderer(s.backend, s.scene(), s.setup.environment_lights, s.setup.fields, s.options);
+    s.session = std::make_unique<RenderSession>(std::make_shared<rsl::Scene>(scene.internal()), s.options, backend, how);
     // The overrides hold from now on for the truth as well (the renderer has
     // checked them: scene_material_library).
     for (const auto& [part, material] : settings.part_materials) {
@@ -49,18 +48,17 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : state_(
             if (materials[m].name == material) s.scene().parts[s.part_index(part)].material = int(m);
     }
     s.posed_node.assign(s.scene().parts.size(), -1);
-    s.output = s.renderer->make_output();
 }
 
 Renderer::Renderer(Renderer&& other) noexcept = default;
 Renderer& Renderer::operator=(Renderer&& other) noexcept = default;
 Renderer::~Renderer() = default;
 
-std::string Renderer::backend() const { return backend_name(state_->backend); }
-std::string Renderer::device() const { return state_->renderer->device(); }
+std::string Renderer::backend() const { return backend_name(state_->session->backend()); }
+std::string Renderer::device() const { return state_->renderer().device(); }
 
 SetupReport Renderer::setup() const {
-    const RenderSetup& s = state_->setup;
+    const RenderSetup& s = state_->session->setup();
     return {s.environment_lights.light_count(), s.fields_loaded, s.fields_baked, s.fit_seconds, s.bake_seconds};
 }
 
@@ -122,19 +120,19 @@ void Renderer::set_camera(const Camera& camera) {
 void Renderer::set_sphere_lights(const std::vector<SphereLight>& lights) {
     std::vector<LocalLight> local;
     for (const SphereLight& light : lights) local.push_back(to_local_light(light));
-    state_->renderer->set_local_lights(local);  // checks them
+    state_->renderer().set_local_lights(local);  // checks them
     state_->scene().lights = std::move(local);
     state_->frame_stale = true;
 }
 
 std::vector<SphereLight> Renderer::sphere_lights() const {
     std::vector<SphereLight> lights;
-    for (const LocalLight& light : state_->renderer->local_lights()) lights.push_back(to_sphere_light(light));
+    for (const LocalLight& light : state_->renderer().local_lights()) lights.push_back(to_sphere_light(light));
     return lights;
 }
 
 void Renderer::set_environment_lights(const std::vector<SquareLight>& lights) {
-    EnvironmentLights sets = state_->renderer->environment_lights();
+    EnvironmentLights sets = state_->renderer().environment_lights();
     sets.first.lights.clear();
     sets.first.region_of_texel.clear();
     for (size_t i = 0; i < lights.size(); ++i) {
@@ -153,41 +151,40 @@ void Renderer::set_environment_lights(const std::vector<SquareLight>& lights) {
             throw_error("{} radiance: negative", what);
         sets.first.lights.push_back(rsl);
     }
-    state_->renderer->set_environment_lights(std::move(sets));
+    state_->renderer().set_environment_lights(std::move(sets));
     state_->frame_stale = true;
 }
 
 std::vector<SquareLight> Renderer::environment_lights() const {
     std::vector<SquareLight> lights;
-    for (const RotatableSquareLight& l : state_->renderer->environment_lights().first.lights)
+    for (const RotatableSquareLight& l : state_->renderer().environment_lights().first.lights)
         lights.push_back({to_float3(l.center), l.half_diagonal, to_float3(l.radiance)});
     return lights;
 }
 
 void Renderer::set_part_material(const std::string& part, const std::string& material) {
     State& s = *state_;
-    s.renderer->set_part_material(part, material);  // checks both names
-    const int index = s.renderer->materials().find(material);
+    s.renderer().set_part_material(part, material);  // checks both names
+    const int index = s.renderer().materials().find(material);
     s.scene().parts[s.part_index(part)].material = index;
 }
 
 void Renderer::set_material_parameter(const std::string& material, const std::string& key,
                                       const std::vector<float>& value) {
     State& s = *state_;
-    s.renderer->set_material_parameter(material, key, value);  // checks and rebuilds the table
-    const int index = s.renderer->materials().find(material);
+    s.renderer().set_material_parameter(material, key, value);  // checks and rebuilds the table
+    const int index = s.renderer().materials().find(material);
     // The library holds the scene's materials at the same indices (MaterialLibrary::from_scene).
-    s.scene().materials.at(index) = s.renderer->materials().desc(index);
+    s.scene().materials.at(index) = s.renderer().materials().desc(index);
 }
 
 VertexColors Renderer::shade() {
     State& s = *state_;
     s.update_frame();
-    s.renderer->keep_image_terms(false);  // colours alone: no image's terms to keep
-    s.renderer->shade(s.output);
-    // A textured part's colour at unit texture: its diffuse and specular
-    // layers summed (render_image applies the texture per pixel).
-    return to_api(s.output.at_unit_texture());
+    // Colours alone: no image's terms to keep. A textured part's colour at
+    // unit texture: its diffuse and specular layers summed (render_image
+    // applies the texture per pixel).
+    return to_api(s.session->shade(false).at_unit_texture());
 }
 
 std::pair<int, int> Renderer::State::image_size(const ImageSettings& settings) const {
@@ -219,15 +216,13 @@ Image Renderer::form_image(const VertexColors& colors, const ImageSettings& sett
 Image Renderer::render_image(const ImageSettings& settings) {
     State& s = *state_;
     s.update_frame();
-    s.renderer->keep_image_terms(true);
-    s.renderer->shade(s.output);
+    const auto [width, height] = s.image_size(settings);
+    s.session->shade(true);
     // The renderer's own image of its colours (per-pixel shadows and
     // highlights, textures per pixel), as `rsl render`'s.
-    const auto [width, height] = s.image_size(settings);
     ImageFormationOptions formation;
     formation.samples_per_side = settings.samples;
-    return to_api(s.renderer->form_image(s.output, PinholeCamera::at_time(s.scene().camera, s.time, width, height),
-                                         formation));
+    return to_api(s.session->image(s.session->camera(width, height), formation));
 }
 
 VertexColors Renderer::truth(const TruthSettings& settings) const {
@@ -238,7 +233,8 @@ VertexColors Renderer::truth(const TruthSettings& settings) const {
     // The environment `rsl truth` integrates: the scene's map (a blend's two)
     // at the scene's resolution, black without one.
     const CubeMap environment =
-        s.setup.environment.resolution() > 0 ? s.setup.environment_at(s.time) : CubeMap(scene.environment.resolution);
+        s.session->setup().environment.resolution() > 0 ? s.session->setup().environment_at(s.time)
+                                                        : CubeMap(scene.environment.resolution);
     GroundTruthOptions options;
     options.texel_subdivision = settings.subdivision;
     options.local_lights = settings.local_lights;

@@ -9,29 +9,27 @@
 #include <vector>
 
 #include "rsl/rsl.h"
-#include "src/backend/make_renderer.h"
+#include "src/backend/render_session.h"
 #include "src/rays/posed_scene.h"
-#include "src/render/render_setup.h"
 
 namespace rsl::api {
 
 struct Renderer::State {
-    RenderSetup setup;  // setup.scene: the copy every setter edits
     RenderOptions options;
-    Backend backend = Backend::Cpu;
-    std::unique_ptr<VertexRenderer> renderer;
+    std::unique_ptr<RenderSession> session;  // its scene: the copy every setter edits
     float time = 0;
     bool frame_stale = true;          // the renderer is not posed at `time` with the latest edits
     std::vector<int> posed_node;      // per part: its node from set_part_pose, or −1
-    ::rsl::VertexColors output;       // reused between frames
     mutable std::unique_ptr<PosedScene> posed;  // image formation, made at the first image
 
-    rsl::Scene& scene() { return *setup.scene; }
-    const rsl::Scene& scene() const { return *setup.scene; }
+    rsl::Scene& scene() { return session->scene(); }
+    const rsl::Scene& scene() const { return session->scene(); }
+    VertexRenderer& renderer() { return session->renderer(); }
+    const VertexRenderer& renderer() const { return session->renderer(); }
     // Poses the renderer at `time` when an edit or set_time made it stale.
     void update_frame() {
         if (!frame_stale) return;
-        renderer->set_time(time);
+        session->set_time(time);
         frame_stale = false;
     }
     // The image of any internal vertex colours, layered parts' textures

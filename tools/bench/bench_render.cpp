@@ -10,7 +10,7 @@
 
 #include "tools/bench/bench.h"
 #include "tools/bench/render_bench_cases.h"
-#include "src/backend/make_renderer.h"
+#include "src/backend/render_session.h"
 #include "src/render/render_setup.h"
 #include "src/frame/error_metrics.h"
 #include "src/trace/ground_truth.h"
@@ -138,14 +138,12 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     }
     RenderOptions render_options;
     render_options.environment_lights = c.lights;
-    const RenderSetup setup = prepare_render(scene, render_options);
-    const std::unique_ptr<VertexRenderer> renderer =
-        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render_options);
-    VertexColors colors = renderer->make_output();
-    renderer->set_time(c.time);
-    renderer->shade(colors);  // warm-up: thread-local scratch, caches
+    RenderSession session(scene, render_options);
+    const RenderSetup& setup = session.setup();
+    VertexRenderer& renderer = session.renderer();
+    VertexColors colors = session.shade(c.time, false);  // warm-up: thread-local scratch, caches
     const int repeats = options.quick ? 2 : 5;
-    CaseTimings timings = time_renderer(*renderer, *scene, c, repeats, options.quick, colors);
+    CaseTimings timings = time_renderer(renderer, *scene, c, repeats, options.quick, colors);
     time_variants(*scene, setup, render_options, c, repeats, timings);
 
     // The map the renderer's RSLs stand for at c.time (blended when the scene blends two).
@@ -155,7 +153,7 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     timings.truth = since(start);
     const VertexErrorReport error = compare_vertex_colors(colors, reference);
     const ObjectErrorReport objects = object_errors(error);
-    emit_case(c, *scene, setup, renderer->stats(), timings, error, objects);
+    emit_case(c, *scene, setup, renderer.stats(), timings, error, objects);
 }
 
 void bench_render(const BenchOptions& options) {

@@ -22,7 +22,7 @@
 #include "tools/baselines/raster.h"
 #include "tools/bench/bench.h"
 #include "src/fields/field_cache.h"
-#include "src/backend/make_renderer.h"
+#include "src/backend/render_session.h"
 #include "src/core/image.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/ovdf_occluder.h"
@@ -152,18 +152,16 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
     const std::shared_ptr<Scene> scene = write_and_load_yard(options, dir, instances, reach);
     RenderOptions render_options;
     render_options.environment_lights = 30;
-    const RenderSetup setup = prepare_render(scene, render_options, {.progress = cli::drawn_progress(true), .field_cache = {}});
+    RenderSession session(scene, render_options, Backend::Cpu, {.progress = cli::drawn_progress(true), .field_cache = {}});
+    const RenderSetup& setup = session.setup();
     size_t unique_fields = 0, unique_meshes = 0;
     const size_t ram = field_ram_bytes(setup.fields, unique_fields, unique_meshes);
-    const std::unique_ptr<VertexRenderer> renderer =
-        make_renderer(Backend::Cpu, *scene, setup.environment_lights, setup.fields, render_options);
-    VertexColors colors = renderer->make_output();
-    renderer->set_time(0.0f);
-    renderer->shade(colors);  // warm-up: per-thread scratch, list capacity
-    const FrameTimings timings = time_frames(*renderer, colors);
+    VertexRenderer& renderer = session.renderer();
+    VertexColors colors = session.shade(0.0f, false);  // warm-up: per-thread scratch, list capacity
+    const FrameTimings timings = time_frames(renderer, colors);
     const std::vector<double>& shade = timings.shade;
     const std::vector<double>& setup_ms = timings.setup_ms;
-    const RenderStats& stats = renderer->stats();
+    const RenderStats& stats = renderer.stats();
     const double parts = double(scene->parts.size());
     nlohmann::json row{{"bench", "scale"},
                        {"case", fmt::format("yard-{}", instances)},
@@ -186,7 +184,7 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
                        {"ovdf_lookups_per_frame", timings.lookups / kFrameTimes.size()},
                        {"candidates_per_receiver", double(timings.candidates) / double(kFrameTimes.size()) / parts},
                        {"occluders_per_receiver_light", double(timings.entries) / double(kFrameTimes.size()) / parts / double(std::max<size_t>(1, stats.lights))}};
-    if (instances <= kTruthLimit) add_truth_errors(*renderer, colors, *scene, setup, row);
+    if (instances <= kTruthLimit) add_truth_errors(renderer, colors, *scene, setup, row);
     bench_emit(row);
     ScaleRow result{instances, int(scene->parts.size()), scene->precompute.ovdf_outer_radius,
                     shade[kFrameTimes.size() / 2]};

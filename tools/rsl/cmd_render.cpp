@@ -10,7 +10,7 @@
 
 #include <fmt/core.h>
 
-#include "src/backend/make_renderer.h"
+#include "src/backend/render_session.h"
 #include "tools/rsl/command.h"
 #include "tools/rsl/progress_display.h"
 #include "src/core/error.h"
@@ -109,14 +109,9 @@ void report_renderer(const RenderArgs& args, Backend backend, const RenderSetup&
 
 // Frame phase: shades and forms every frame, writes its EXR + PNG (and vertex
 // colours), and prints one line of timings per frame.
-void render_frames(const RenderArgs& args, const RenderSetup& setup, VertexRenderer& renderer,
-                   const std::filesystem::path& output) {
-    const Scene& scene = *setup.scene;
+void render_frames(const RenderArgs& args, RenderSession& session, const std::filesystem::path& output) {
+    const Scene& scene = session.scene();
     const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
-    const int width = args.width > 0 ? args.width : scene.camera.width;
-    const int height = args.height > 0 ? args.height : scene.camera.height;
-    VertexColors colors = renderer.make_output();
-    renderer.keep_image_terms(true);  // every frame forms an image
     ImageFormationOptions formation;
     formation.samples_per_side = args.samples;
     // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
@@ -126,11 +121,9 @@ void render_frames(const RenderArgs& args, const RenderSetup& setup, VertexRende
     for (size_t f = 0; f < times.size(); ++f) {
         const float t = times[f];
         const auto start = std::chrono::steady_clock::now();
-        renderer.set_time(t);
-        renderer.shade(colors);
+        const VertexColors& colors = session.shade(t);
         const auto shaded = std::chrono::steady_clock::now();
-        const PinholeCamera camera = PinholeCamera::at_time(scene.camera, t, width, height);
-        const Image image = renderer.form_image(colors, camera, formation);
+        const Image image = session.image(session.camera(args.width, args.height), formation);
         const auto formed = std::chrono::steady_clock::now();
         const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
         write_exr_and_png(exr, image, tone);
@@ -138,8 +131,9 @@ void render_frames(const RenderArgs& args, const RenderSetup& setup, VertexRende
             write_vertex_colors(times.size() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output), colors);
         const double shading_ms = 1e3 * std::chrono::duration<double>(shaded - start).count();
         const double image_ms = 1e3 * std::chrono::duration<double>(formed - shaded).count();
+        const VertexRenderer& renderer = session.renderer();
         const RenderStats& stats = renderer.stats();
-        const std::string blend = setup.environment_lights.blends()
+        const std::string blend = session.setup().environment_lights.blends()
                                       ? fmt::format(", second map {:.0f}%", 100.0f * scene.environment.blend_weight_at(t))
                                       : "";
         fmt::print("t={:.3f}: {} vertices x {} lights{}, {} shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} "
@@ -158,16 +152,14 @@ void run_render(const RenderArgs& args) {
     ProgressDisplay display(!args.quiet);
     SetupOptions how;
     how.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
-    const RenderSetup setup = prepare_render(args.scene, options, how);
-    const Scene& scene = *setup.scene;
+    // Every backend shades the same per-vertex sum and forms the same image.
+    RenderSession session(args.scene, options, backend, how);
+    const RenderSetup& setup = session.setup();
     if (!args.quiet && setup.environment.resolution() > 0) display.note(describe_fit(setup));
     display.note(fmt::format("fields: {} loaded from the cache, {} baked ({:.1f} s)", setup.fields_loaded,
                              setup.fields_baked, setup.bake_seconds));
-    // Every backend shades the same per-vertex sum and forms the same image.
-    const std::unique_ptr<VertexRenderer> renderer =
-        make_renderer(backend, scene, setup.environment_lights, setup.fields, options);
-    report_renderer(args, backend, setup, *renderer);
-    render_frames(args, setup, *renderer, output);
+    report_renderer(args, backend, setup, session.renderer());
+    render_frames(args, session, output);
 }
 
 RegisterCommand render_command({"render",
