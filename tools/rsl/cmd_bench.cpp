@@ -1,13 +1,19 @@
-// `rsl bench [NAMES...]`: run registered benchmarks, JSON lines on stdout.
+// `rsl bench [NAMES...]`: run registered benchmarks, JSON lines on stdout;
+// with --markdown also the page of their figures (tools/bench/results_page.h).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
 #include <thread>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
+#include "src/version/build_info.h"
 #include "tools/assets/yard.h"
 #include "tools/bench/bench.h"
+#include "tools/bench/results_page.h"
 #include "tools/rsl/command.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
@@ -27,6 +33,7 @@ struct BenchArgs {
     bool quick = false;
     bool list = false;
     std::string json_out;
+    std::string markdown;
     std::string shared = std::string(RSL_SOURCE_DIR) + "/../shared/assets";
     std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
     std::string scenes = std::string(RSL_SOURCE_DIR) + "/assets/scenes";
@@ -34,6 +41,38 @@ struct BenchArgs {
     std::vector<int> parts;
     std::vector<float> reaches;
 };
+
+// The command line that reproduces the run, as the page names it.
+std::string bench_command_line(const BenchArgs& args) {
+    std::string line = "rsl bench --markdown " + args.markdown;
+    if (args.quick) line += " --quick";
+    if (!args.parts.empty()) line += fmt::format(" --parts {}", fmt::join(args.parts, ","));
+    if (!args.reaches.empty()) line += fmt::format(" --reaches {}", fmt::join(args.reaches, ","));
+    for (const std::string& name : args.names) line += " " + name;
+    return line;
+}
+
+// The page of this run's results; the plots it links are copied beside it
+// (gallery/), since the --out folder is scratch.
+void write_markdown(const BenchArgs& args) {
+    namespace fs = std::filesystem;
+    const fs::path page = args.markdown;
+    const fs::path folder = page.has_parent_path() ? page.parent_path() : fs::path(".");
+    std::vector<nlohmann::json> results = bench_results();
+    for (nlohmann::json& row : results) {
+        if (!row.contains("plot")) continue;
+        const fs::path plot = row["plot"].get<std::string>();
+        const fs::path copy = folder / "gallery" / fmt::format("results_{}_{}", row.value("bench", "bench"),
+                                                               plot.filename().string());
+        write_atomically(copy, [&](const fs::path& tmp) { fs::copy_file(plot, tmp, fs::copy_options::overwrite_existing); });
+        row["plot"] = copy.string();
+    }
+    const std::time_t now = std::time(nullptr);
+    char date[16];
+    std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+    const bench::ResultsRun run{bench_command_line(args), build_commit(), bench::describe_machine(), date, args.quick};
+    write_file_atomically(page, bench::results_page(results, run, folder));
+}
 
 RegisterCommand bench_command({"bench",
     "Run benchmarks; one JSON object per result line on stdout (timings, rates, memory, errors).",
@@ -43,6 +82,10 @@ RegisterCommand bench_command({"bench",
         app.add_flag("--list", args->list, "List the benchmarks and exit");
         app.add_flag("--quick", args->quick, "Smaller cases (smoke test)");
         app.add_option("--json-out", args->json_out, "Also write all results as a JSON array to this file");
+        app.add_option("--markdown", args->markdown,
+                       "Also write the results as a page of tables naming the machine, the commit and this command "
+                       "(docs/RESULTS.md is written so: rsl bench --markdown docs/RESULTS.md render render-accuracy "
+                       "render-goal scale gl lightfit); plots are copied into its folder's gallery/");
         app.add_option("--shared-assets", args->shared, "Folder of real probes/meshes (optional)")->capture_default_str();
         app.add_option("--generated-assets", args->generated, "The project's generated assets")->capture_default_str();
         app.add_option("--scenes", args->scenes, "The project's scene files")->capture_default_str();
@@ -79,6 +122,7 @@ RegisterCommand bench_command({"bench",
             }
             if (!args->json_out.empty())
                 write_file_atomically(args->json_out, nlohmann::json(bench_results()).dump(2));
+            if (!args->markdown.empty()) write_markdown(*args);
         });
     }});
 }  // namespace

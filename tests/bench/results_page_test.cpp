@@ -1,0 +1,60 @@
+// The page `rsl bench --markdown` writes (tools/bench/results_page.h): every
+// figure of the run in its section's table, formatted, with the machine, the
+// commit and the command named.
+#include <catch2/catch.hpp>
+
+#include "tools/bench/results_page.h"
+
+namespace rsl::bench {
+namespace {
+
+using nlohmann::json;
+
+TEST_CASE("The results page tables every line of the run, naming where it was measured", "[bench][results-page]") {
+    const std::vector<json> results{
+        {{"bench", "machine"}, {"hardware_threads", 2}},
+        {{"bench", "render"}, {"case", "robot 30 RSLs"}, {"vertices", 87651}, {"lights", 30},
+         {"shade_seconds", 0.0812}, {"fps_shading", 12.315}, {"relative_l2_vs_truth", 0.02137},
+         {"objects_relative_l2_vs_truth", 0.0241}, {"worst_part", "shin_l"},
+         {"worst_part_relative_l2_vs_truth", 0.109}, {"speedup_shading", 79.04}},
+        {{"bench", "render"}, {"case", "kitchen"}, {"skipped", "missing shared assets"}},
+        {{"bench", "gl"}, {"case", "BRDF SAT storage steel"}, {"float16_median_relative_error", 0.2}},
+        {{"bench", "gl"}, {"case", "robot 30 RSLs"}, {"device", "EGL: OpenGL 4.5 llvmpipe"}, {"vertices", 87651},
+         {"cpu_shading_ms", 97.0}, {"gpu_shading_ms", 1474.0}, {"gpu_over_cpu", 15.2},
+         {"cpu_occluder_lookups", 1503019}, {"gpu_occluder_lookups", 1503136}, {"gpu_cpu_relative_l2", 9.1e-6},
+         {"frame_ms", nullptr}},
+        {{"bench", "scale"}, {"plot", "/tmp/out/scale/frame_time.png"}},
+        {{"bench", "newbench"}, {"case", "a"}, {"widgets_per_second", 1234.5}, {"label", "x"}},
+    };
+    const ResultsRun run{"rsl bench --markdown docs/RESULTS.md render gl", "abc123", "Some CPU, 2 hardware threads",
+                         "2026-12-05", false};
+    const std::string page = results_page(results, run, "/tmp/docs");
+    INFO(page);
+    CHECK_THAT(page, Catch::Contains("Written by `rsl bench --markdown docs/RESULTS.md render gl` at commit `abc123` "
+                                     "on 2026-12-05, on Some CPU, 2 hardware threads; OpenGL: EGL: OpenGL 4.5 llvmpipe"));
+    CHECK_THAT(page, !Catch::Contains("--quick"));
+    // The render line, each figure in its column's format.
+    CHECK_THAT(page, Catch::Contains("| robot 30 RSLs | 87,651 | 30 | 81.2 | 12.3 | 2.14% | 2.41% | `shin_l` 10.9% | 79.0× |"));
+    CHECK_THAT(page, Catch::Contains("- skipped: kitchen: missing shared assets"));
+    // The GPU table keeps the comparison lines only, and leaves out a column no line fills.
+    CHECK_THAT(page, Catch::Contains("| robot 30 RSLs | 87,651 | 97.0 | 1474.0 | 15.2× | 1,503,019 | 1,503,136 | 9.1e-06 |"));
+    CHECK_THAT(page, !Catch::Contains("BRDF SAT storage"));
+    CHECK_THAT(page, !Catch::Contains("frame ms"));
+    // A plot is linked relative to the page; a benchmark without a section gets its numbers.
+    CHECK_THAT(page, Catch::Contains("](../out/scale/frame_time.png)"));
+    CHECK_THAT(page, Catch::Contains("| a | 1234 |"));
+    // Sections follow the page's order (render before gl), whatever the run's.
+    CHECK(page.find("## Shading on the CPU") < page.find("## The GPU renderer"));
+
+    const ResultsRun quick{"rsl bench --markdown x.md --quick", "abc", "m", "2026-12-05", true};
+    CHECK_THAT(results_page(results, quick, "."), Catch::Contains("These are `--quick` figures"));
+}
+
+TEST_CASE("The machine is named by its CPU and threads", "[bench][results-page]") {
+    const std::string machine = describe_machine();
+    CHECK_THAT(machine, Catch::Contains("hardware threads"));
+    CHECK_THAT(machine, Catch::Contains("Linux"));
+}
+
+}  // namespace
+}  // namespace rsl::bench
