@@ -128,115 +128,135 @@ struct BlockTaps {
     alignas(32) float clipped[kBlock], inv_area[kBlock];
 };
 
+// Pass 1 for queries [begin, begin + count) of a block: what square_taps
+// computes, 8 lanes at a time, on a table of N² texels and V view samples.
+// Slices: 1 (view-independent), 2 (isotropic, linear in the view's plane
+// radius), 4 (anisotropic, bilinear on the V×V grid).
+template <int Slices>
+inline void block_square_taps(const SquareQueries& q, size_t begin, size_t count, int n, int v, BlockTaps<Slices>& b) {
+    const int row = (n + 1) * 3;
+    const float scale = 0.5f * static_cast<float>(n);
+    for (size_t g = 0; g < count; g += 8) {
+        const size_t i = begin + g;
+        Float8 h = q.half_edge ? load_group(q.half_edge, i, q.count) : splat(q.uniform_half_edge);
+        h = max8(h, splat(shading::kMinSquareTexels / static_cast<float>(n)));  // as square_taps
+        const Float8 cx = load_group(q.center_x, i, q.count), cy = load_group(q.center_y, i, q.count);
+        const Float8 fn = splat(static_cast<float>(n));
+        const Float8 x0 = clamp8((cx - h + 1.0f) * scale, fn), x1 = clamp8((cx + h + 1.0f) * scale, fn);
+        const Float8 y0 = clamp8((cy - h + 1.0f) * scale, fn), y1 = clamp8((cy + h + 1.0f) * scale, fn);
+        Int8 a0, a1, b0, b1;
+        Float8 f0, f1, g0, g1;
+        bracket8(x0, n, a0, f0);
+        bracket8(x1, n, a1, f1);
+        bracket8(y0, n, b0, g0);
+        bracket8(y1, n, b1, g1);
+        const Float8 clipped = (x1 - x0) * (y1 - y0);
+        const Float8 edge = 2.0f * h * scale;
+        const Float8 wy[4] = {1.0f - g1, g1, g0 - 1.0f, -g0};
+        Float8 view_weight[Slices];
+        Int8 first = Int8{};
+        if constexpr (Slices == 1) {
+            view_weight[0] = splat(1.0f);
+        } else if constexpr (Slices == 2) {
+            const Float8 radius = sqrt8(clamp8(1.0f - load_group(q.view_z, i, q.count), splat(1.0f)));
+            Float8 w;
+            sample_lerp8(radius * float(v) - 0.5f, v, first, w);
+            view_weight[0] = 1.0f - w, view_weight[1] = w;
+        } else {
+            // hemisphere_to_plane, clamped to the horizon, on the V×V grid.
+            const Float8 z = max8(load_group(q.view_z, i, q.count), splat(-0.999f));
+            const Float8 s = 1.0f / sqrt8(max8(1.0f + z, splat(1e-12f)));
+            Float8 px = load_group(q.view_x, i, q.count) * s, py = load_group(q.view_y, i, q.count) * s;
+            const Float8 len2 = px * px + py * py;
+            const Float8 len = sqrt8(len2);
+            px = len2 > 1.0f ? px / len : px;
+            py = len2 > 1.0f ? py / len : py;
+            Int8 i0, j0;
+            Float8 wi, wj;
+            sample_lerp8((px + 1.0f) * 0.5f * float(v) - 0.5f, v, i0, wi);
+            sample_lerp8((py + 1.0f) * 0.5f * float(v) - 0.5f, v, j0, wj);
+            first = j0 * v + i0;
+            view_weight[0] = (1.0f - wi) * (1.0f - wj), view_weight[1] = wi * (1.0f - wj);
+            view_weight[2] = (1.0f - wi) * wj, view_weight[3] = wi * wj;
+        }
+        store8(b.row_upper + g, b1 * row);
+        store8(b.row_lower + g, b0 * row);
+        store8(b.col_upper + g, a1 * 3);
+        store8(b.col_lower + g, a0 * 3);
+        store8(b.first_slice + g, first);
+        store8(b.f_upper + g, f1);
+        store8(b.f_lower + g, f0);
+        for (int s = 0; s < Slices; ++s) {
+            for (int m = 0; m < 4; ++m) store8(b.weight[s][m] + g, view_weight[s] * wy[m]);
+            store8(b.offset_weight[s] + g, view_weight[s] * clipped);
+        }
+        store8(b.clipped + g, clipped);
+        store8(b.inv_area + g, 1.0f / (edge * edge));
+    }
+}
+
+// Where pass 2 reads: the slices' corner sums (the last slice padded so that
+// an 8-float load past its end stays inside), and each slice's mean offset.
+struct SliceCorners {
+    int row = 0, view_samples = 0, last = 0;
+    size_t slice_floats = 0;
+    const float* sat = nullptr;
+    const float* padded = nullptr;
+    const Color* offsets = nullptr;
+};
+
+// Pass 2 for the block's `count` queries: per query and slice, the 4 corner
+// rows × 2 corner pairs as 8-float loads, weighted and summed, into out[begin + k].
+template <int Slices>
+inline void block_averages(const SliceCorners& t, const BlockTaps<Slices>& b, size_t begin, size_t count,
+                           const ColorOutputs& out) {
+    for (size_t k = 0; k < count; ++k) {
+        float* const r = out.r + begin + k;
+        float* const gr = out.g + begin + k;
+        float* const bl = out.b + begin + k;
+        if (b.clipped[k] <= 0.0f) {  // entirely outside the table (FMA would leave ±ulp residues)
+            *r = *gr = *bl = 0.0f;
+            continue;
+        }
+        const int rows[4] = {b.row_upper[k], b.row_upper[k] + t.row, b.row_lower[k], b.row_lower[k] + t.row};
+        Float8 upper[Slices], lower[Slices];  // corner pairs (a1, a1+1) and (a0, a0+1)
+        Color offset(0.0f);
+        for (int s = 0; s < Slices; ++s) {
+            const int slice = b.first_slice[k] + (s & 1) + (s >> 1) * t.view_samples;
+            const float* corners = slice == t.last ? t.padded : t.sat + slice * t.slice_floats;
+            const float* upper_pair = corners + b.col_upper[k];
+            const float* lower_pair = corners + b.col_lower[k];
+            upper[s] = Float8{}, lower[s] = Float8{};
+            for (int m = 0; m < 4; ++m) {
+                const float w = b.weight[s][m][k];
+                upper[s] += w * load8(upper_pair + rows[m]);
+                lower[s] += w * load8(lower_pair + rows[m]);
+            }
+            offset += b.offset_weight[s][k] * t.offsets[slice];
+        }
+        for (int s = 1; s < Slices; ++s) upper[0] += upper[s], lower[0] += lower[s];
+        // Upper pair: weights (1 − f1, f1); lower: (f0 − 1, −f0) = −(1 − f0, f0).
+        const Float8 sum = upper[0] * pair_weights(b.f_upper[k]) - lower[0] * pair_weights(b.f_lower[k]);
+        // An average of ρ·cos ≥ 0; the table's differences over a square
+        // of a texel or less (a sun) can cancel to a rounding below 0.
+        *r = std::max((sum[0] + sum[3] + offset.r) * b.inv_area[k], 0.0f);
+        *gr = std::max((sum[1] + sum[4] + offset.g) * b.inv_area[k], 0.0f);
+        *bl = std::max((sum[2] + sum[5] + offset.b) * b.inv_area[k], 0.0f);
+    }
+}
+
 }  // namespace
 
-// The two passes (see the top of the file). Slices: 1 (view-independent), 2
-// (isotropic, linear in the view's plane radius), 4 (anisotropic, bilinear on
-// the V×V grid). Pass 1 computes what square_taps computes, lane by lane.
+// The two passes (see the top of the file), block by block.
 template <int Slices>
 void BrdfTable::batch_kernel(const SquareQueries& q, const ColorOutputs& out) const {
-    const int n = grid_.n;
-    const int row = (n + 1) * 3;
-    const int v = options_.view_samples;
-    const float scale = 0.5f * static_cast<float>(n);
-    const float* const sat = sat_.data();
-    const float* const padded = last_slice_padded_.data();
-    const size_t slice_floats = slice_floats_;
-    const int last = last_slice_;
-    const Color* const offsets = offsets_.data();
+    const SliceCorners corners{(grid_.n + 1) * 3, options_.view_samples, last_slice_, slice_floats_,
+                               sat_.data(), last_slice_padded_.data(), offsets_.data()};
     BlockTaps<Slices> b;
     for (size_t begin = 0; begin < q.count; begin += kBlock) {
         const size_t count = std::min(q.count - begin, static_cast<size_t>(kBlock));
-        for (size_t g = 0; g < count; g += 8) {
-            const size_t i = begin + g;
-            Float8 h = q.half_edge ? load_group(q.half_edge, i, q.count) : splat(q.uniform_half_edge);
-            h = max8(h, splat(shading::kMinSquareTexels / static_cast<float>(n)));  // as square_taps
-            const Float8 cx = load_group(q.center_x, i, q.count), cy = load_group(q.center_y, i, q.count);
-            const Float8 fn = splat(static_cast<float>(n));
-            const Float8 x0 = clamp8((cx - h + 1.0f) * scale, fn), x1 = clamp8((cx + h + 1.0f) * scale, fn);
-            const Float8 y0 = clamp8((cy - h + 1.0f) * scale, fn), y1 = clamp8((cy + h + 1.0f) * scale, fn);
-            Int8 a0, a1, b0, b1;
-            Float8 f0, f1, g0, g1;
-            bracket8(x0, n, a0, f0);
-            bracket8(x1, n, a1, f1);
-            bracket8(y0, n, b0, g0);
-            bracket8(y1, n, b1, g1);
-            const Float8 clipped = (x1 - x0) * (y1 - y0);
-            const Float8 edge = 2.0f * h * scale;
-            const Float8 wy[4] = {1.0f - g1, g1, g0 - 1.0f, -g0};
-            Float8 view_weight[Slices];
-            Int8 first = Int8{};
-            if constexpr (Slices == 1) {
-                view_weight[0] = splat(1.0f);
-            } else if constexpr (Slices == 2) {
-                const Float8 radius = sqrt8(clamp8(1.0f - load_group(q.view_z, i, q.count), splat(1.0f)));
-                Float8 w;
-                sample_lerp8(radius * float(v) - 0.5f, v, first, w);
-                view_weight[0] = 1.0f - w, view_weight[1] = w;
-            } else {
-                // hemisphere_to_plane, clamped to the horizon, on the V×V grid.
-                const Float8 z = max8(load_group(q.view_z, i, q.count), splat(-0.999f));
-                const Float8 s = 1.0f / sqrt8(max8(1.0f + z, splat(1e-12f)));
-                Float8 px = load_group(q.view_x, i, q.count) * s, py = load_group(q.view_y, i, q.count) * s;
-                const Float8 len2 = px * px + py * py;
-                const Float8 len = sqrt8(len2);
-                px = len2 > 1.0f ? px / len : px;
-                py = len2 > 1.0f ? py / len : py;
-                Int8 i0, j0;
-                Float8 wi, wj;
-                sample_lerp8((px + 1.0f) * 0.5f * float(v) - 0.5f, v, i0, wi);
-                sample_lerp8((py + 1.0f) * 0.5f * float(v) - 0.5f, v, j0, wj);
-                first = j0 * v + i0;
-                view_weight[0] = (1.0f - wi) * (1.0f - wj), view_weight[1] = wi * (1.0f - wj);
-                view_weight[2] = (1.0f - wi) * wj, view_weight[3] = wi * wj;
-            }
-            store8(b.row_upper + g, b1 * row);
-            store8(b.row_lower + g, b0 * row);
-            store8(b.col_upper + g, a1 * 3);
-            store8(b.col_lower + g, a0 * 3);
-            store8(b.first_slice + g, first);
-            store8(b.f_upper + g, f1);
-            store8(b.f_lower + g, f0);
-            for (int s = 0; s < Slices; ++s) {
-                for (int m = 0; m < 4; ++m) store8(b.weight[s][m] + g, view_weight[s] * wy[m]);
-                store8(b.offset_weight[s] + g, view_weight[s] * clipped);
-            }
-            store8(b.clipped + g, clipped);
-            store8(b.inv_area + g, 1.0f / (edge * edge));
-        }
-        for (size_t k = 0; k < count; ++k) {
-            float* const r = out.r + begin + k;
-            float* const gr = out.g + begin + k;
-            float* const bl = out.b + begin + k;
-            if (b.clipped[k] <= 0.0f) {  // entirely outside the table (FMA would leave ±ulp residues)
-                *r = *gr = *bl = 0.0f;
-                continue;
-            }
-            const int rows[4] = {b.row_upper[k], b.row_upper[k] + row, b.row_lower[k], b.row_lower[k] + row};
-            Float8 upper[Slices], lower[Slices];  // corner pairs (a1, a1+1) and (a0, a0+1)
-            Color offset(0.0f);
-            for (int s = 0; s < Slices; ++s) {
-                const int slice = b.first_slice[k] + (s & 1) + (s >> 1) * v;
-                const float* corners = slice == last ? padded : sat + slice * slice_floats;
-                const float* upper_pair = corners + b.col_upper[k];
-                const float* lower_pair = corners + b.col_lower[k];
-                upper[s] = Float8{}, lower[s] = Float8{};
-                for (int m = 0; m < 4; ++m) {
-                    const float w = b.weight[s][m][k];
-                    upper[s] += w * load8(upper_pair + rows[m]);
-                    lower[s] += w * load8(lower_pair + rows[m]);
-                }
-                offset += b.offset_weight[s][k] * offsets[slice];
-            }
-            for (int s = 1; s < Slices; ++s) upper[0] += upper[s], lower[0] += lower[s];
-            // Upper pair: weights (1 − f1, f1); lower: (f0 − 1, −f0) = −(1 − f0, f0).
-            const Float8 sum = upper[0] * pair_weights(b.f_upper[k]) - lower[0] * pair_weights(b.f_lower[k]);
-            // An average of ρ·cos ≥ 0; the table's differences over a square
-            // of a texel or less (a sun) can cancel to a rounding below 0.
-            *r = std::max((sum[0] + sum[3] + offset.r) * b.inv_area[k], 0.0f);
-            *gr = std::max((sum[1] + sum[4] + offset.g) * b.inv_area[k], 0.0f);
-            *bl = std::max((sum[2] + sum[5] + offset.b) * b.inv_area[k], 0.0f);
-        }
+        block_square_taps(q, begin, count, grid_.n, options_.view_samples, b);
+        block_averages(corners, b, begin, count, out);
     }
 }
 

@@ -110,6 +110,18 @@ private:
     struct TriangleOccluders;  // pixel_shading.cpp
     void triangle_lights(BlockScratch& s, size_t part, const uint32_t* corner, uint64_t* mask,
                          TriangleOccluders& occluders) const;
+    // shade_pixel's phases (pixel_shading.cpp).
+    struct PixelOccluders;
+    struct PixelTerms;
+    void triangle_shadowed_lights(BlockScratch& s, TriangleLights& cache, size_t part, size_t triangle,
+                                  PixelOccluders& o) const;
+    static void blend_dimmest_lights(const PixelTerms& terms, const uint32_t* corner, bool textured, float pixel_sum,
+                                     PixelOccluders& o);
+    float pixel_occlusion(BlockScratch& s, PixelOccluders& o, size_t l) const;
+    Color pixel_highlights(BlockScratch& s, PixelOccluders& o, size_t part, const uint32_t* corner,
+                           const float w[3]) const;
+    Color pixel_shadows(BlockScratch& s, PixelOccluders& o, const PixelTerms& terms, const uint32_t* corner,
+                        const float w[3], const Texture* texture, const RayHit& hit) const;
     void occluders_near(const BoundingSphere& sphere, size_t part, std::vector<int>& out) const;
     void prepare_occluder(BlockScratch& s, const BoundingSphere& block_sphere, int occluder, bool culling) const;
     OccluderVertexScratch& prepare_occluder_vertices(BlockScratch& s, int occluder, int n, bool culling) const;

@@ -207,8 +207,22 @@ void CpuRenderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* 
     occluders.first[lights] = uint32_t(occluders.ids.size());
 }
 
+// A pixel's shadowed lights: bit l of `mask` when some occluder may shadow
+// light l on the pixel's triangle, and per light those occluders (the
+// cache's packed lists, or `built` for a triangle another thread is filling).
+struct CpuRenderer::PixelOccluders {
+    std::vector<uint64_t>& mask;
+    const TriangleLights::PackedOccluders* packed = nullptr;
+    TriangleOccluders& built;
+    size_t lights = 0;
+    BoundingSphere point_sphere;  // the pixel's point as a block of one
+    RenderStats counts;           // not reported: the frame's counters are the vertices'
+    bool shadowed(size_t l) const { return (mask[l / 64] >> (l % 64)) & 1; }
+    std::span<const int> of(size_t l) const { return packed ? packed->of(l, lights) : built.of(l); }
+};
+
 Color CpuRenderer::shade_pixel(const VertexColors& colors, const PosedScene& posed, TriangleLights* cache,
-                            const RayHit& hit, const Vec3& ray_direction) const {
+                             const RayHit& hit, const Vec3& ray_direction) const {
     const size_t part = size_t(hit.instance);
     const TriangleMesh& mesh = scene_.parts[part].mesh;
     const uint32_t* corner = &mesh.indices[3 * size_t(hit.triangle)];
@@ -224,57 +238,13 @@ Color CpuRenderer::shade_pixel(const VertexColors& colors, const PosedScene& pos
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
     if (s.occluders.size() != scene_.parts.size()) s.occluders.assign(scene_.parts.size(), {});
-    // Shadows per pixel: the triangle's lights, from the cache or computed now.
     thread_local std::vector<uint64_t> mask;
     mask.assign((lights + 63) / 64, 0);
-    thread_local TriangleOccluders built;  // a triangle's lists, before they are packed
-    const TriangleLights::PackedOccluders* packed = nullptr;  // the cache's lists, or `built` when null
+    thread_local TriangleOccluders built;
+    PixelOccluders occluders{mask, nullptr, built, lights, {}, {}};
     if (cache) {
-        const size_t triangle = size_t(hit.triangle);
-        uint64_t* cached = &cache->masks[triangle * cache->words];
-        std::atomic<uint8_t>& state = cache->state[triangle];
-        uint8_t seen = state.load(std::memory_order_acquire);
-        if (seen == TriangleLights::kReady) {
-            std::copy(cached, cached + cache->words, mask.begin());
-            packed = &cache->occluders[triangle];
-        } else {
-            triangle_lights(s, part, corner, mask.data(), built);
-            // Kept when this thread claims the triangle first; else (another
-            // thread is filling it) used from `built` for this pixel alone.
-            if (seen == TriangleLights::kEmpty &&
-                state.compare_exchange_strong(seen, TriangleLights::kFilling, std::memory_order_acquire)) {
-                std::copy(mask.begin(), mask.end(), cached);
-                if (!built.ids.empty()) {
-                    TriangleLights::PackedOccluders& keep = cache->occluders[triangle];
-                    keep.packed = std::make_unique<int[]>(lights + 1 + built.ids.size());
-                    std::copy(built.first.begin(), built.first.end(), keep.packed.get());
-                    std::copy(built.ids.begin(), built.ids.end(), keep.packed.get() + lights + 1);
-                }
-                state.store(TriangleLights::kReady, std::memory_order_release);
-            }
-        }
-        // The dimmest of the triangle's shadowed lights, as many as together
-        // hold at most kBlendedShare of the pixel's colour, are blended too.
-        auto share_of = [&](size_t l) {
-            float share = 0.0f;
-            for (int c = 0; c < 3; ++c) {
-                const size_t at = corner[c] * lights + l;
-                share = std::max(share, sum_of(terms.unshadowed[at]) +
-                                            (texture ? sum_of(terms.unshadowed_specular[at]) : 0.0f));
-            }
-            return share;
-        };
-        thread_local std::vector<std::pair<float, size_t>> by_share;
-        by_share.clear();
-        for (size_t l = 0; l < lights; ++l)
-            if ((mask[l / 64] >> (l % 64)) & 1) by_share.emplace_back(share_of(l), l);
-        std::sort(by_share.begin(), by_share.end());
-        float blended = 0.0f;
-        for (const auto& [share, l] : by_share) {
-            blended += share;
-            if (!(blended <= kBlendedShare * sum_of(blend))) break;
-            mask[l / 64] &= ~(uint64_t(1) << (l % 64));
-        }
+        triangle_shadowed_lights(s, *cache, part, size_t(hit.triangle), occluders);
+        blend_dimmest_lights(terms, corner, texture != nullptr, sum_of(blend), occluders);
     }
     bool any = false;
     for (const uint64_t word : mask) any = any || word != 0;
@@ -284,69 +254,133 @@ Color CpuRenderer::shade_pixel(const VertexColors& colors, const PosedScene& pos
     s.pool_used = 0;
     // The point and its shading frame, as the per-pixel truth takes them.
     const SurfacePoint x = posed.hit_point(hit, ray_direction);
-    const Vec3& point = x.position;
-    set_point(s, 0, point, x.frame);
-    const BoundingSphere block_sphere{point, 1e-6f * (1.0f + glm::length(point))};
-    // The other parts' factor of light l at the point (after set_light), from
-    // the triangle's occluders of that light.
-    RenderStats counts;  // not reported: the frame's counters are the vertices'
-    auto occlusion_here = [&](size_t l) {
-        RSL_CHECK(cache);  // a shadowed light comes from a triangle's mask
-        s.queried[0] = 1;
-        s.query_of[0] = 0;
-        s.index[0] = 0;
-        s.qx[0] = s.lpx[0], s.qy[0] = s.lpy[0], s.qh[0] = s.half[0];
-        s.vis[0] = 1.0f;
-        shadow_by_occluders(s, block_sphere, packed ? packed->of(l, lights) : built.of(l), nullptr, l, 1, 1, counts);
-        return s.vis[0];
-    };
+    set_point(s, 0, x.position, x.frame);
+    occluders.point_sphere = BoundingSphere{x.position, 1e-6f * (1.0f + glm::length(x.position))};
+    if (highlights) return pixel_highlights(s, occluders, part, corner, w);
+    return pixel_shadows(s, occluders, terms, corner, w, texture, hit);
+}
 
-    Color sum(0);
-    if (highlights) {
-        RSL_CHECK(lights <= size_t(kShadeBlock));  // CpuRenderer::shade keeps no highlight terms for more
-        // The BRDF at the point: Σ I_l · B_l(x) · SVDF_l blended · F_l, all
-        // the lights' BRDF averages in one batch (slot l = light l).
-        set_lights_at_point(s, lights);
-        const int m = brdf_queries(s, *part_tables_[part], nullptr, int(lights));
-        // An enclosed corner's self-visibility is the inside's: the seen point is outside.
-        float ws[3] = {w[0], w[1], w[2]};
-        if (const std::vector<uint8_t>& enclosed = enclosed_vertices_[part]; !enclosed.empty()) {
-            float open = 0.0f;
-            for (int c = 0; c < 3; ++c) open += enclosed[corner[c]] ? 0.0f : w[c];
-            if (open > 0.0f)
-                for (int c = 0; c < 3; ++c) ws[c] = enclosed[corner[c]] ? 0.0f : w[c] / open;
-        }
-        thread_local std::vector<std::pair<size_t, Color>> shadowed_lights;
-        shadowed_lights.clear();
-        for (int i = 0; i < m; ++i) {
-            const size_t l = size_t(s.index[i]);
-            const size_t at[3] = {corner[0] * lights + l, corner[1] * lights + l, corner[2] * lights + l};
-            const float self = ws[0] * terms.self_visibility[at[0]] + ws[1] * terms.self_visibility[at[1]] +
-                               ws[2] * terms.self_visibility[at[2]];
-            if (!(self > 0.0f)) continue;  // no share at any corner, or a light switched off
-            const Color unshadowed = self * Color(s.ir[l] * s.br[i], s.ig[l] * s.bg[i], s.ib[l] * s.bb[i]);
-            if ((mask[l / 64] >> (l % 64)) & 1) {
-                shadowed_lights.emplace_back(l, unshadowed);
-                continue;
-            }
-            sum += (w[0] * terms.occlusion[at[0]] + w[1] * terms.occlusion[at[1]] + w[2] * terms.occlusion[at[2]]) *
-                   unshadowed;
-        }
-        for (const auto& [l, unshadowed] : shadowed_lights) {  // they reuse slot 0
-            set_light(s, l, 1);
-            sum += occlusion_here(l) * unshadowed;
-        }
-        return sum;
+// The triangle's shadowed lights into `o.mask`, from the cache or computed
+// now; `o.packed` the cache's occluder lists, or null when `o.built` holds them.
+void CpuRenderer::triangle_shadowed_lights(BlockScratch& s, TriangleLights& cache, size_t part, size_t triangle,
+                                           PixelOccluders& o) const {
+    const uint32_t* corner = &scene_.parts[part].mesh.indices[3 * triangle];
+    uint64_t* cached = &cache.masks[triangle * cache.words];
+    std::atomic<uint8_t>& state = cache.state[triangle];
+    uint8_t seen = state.load(std::memory_order_acquire);
+    if (seen == TriangleLights::kReady) {
+        std::copy(cached, cached + cache.words, o.mask.begin());
+        o.packed = &cache.occluders[triangle];
+        return;
     }
-    Color specular_sum(0);  // a textured part's specular layer
+    triangle_lights(s, part, corner, o.mask.data(), o.built);
+    // Kept when this thread claims the triangle first; else (another
+    // thread is filling it) used from `built` for this pixel alone.
+    if (seen == TriangleLights::kEmpty &&
+        state.compare_exchange_strong(seen, TriangleLights::kFilling, std::memory_order_acquire)) {
+        std::copy(o.mask.begin(), o.mask.end(), cached);
+        if (!o.built.ids.empty()) {
+            TriangleLights::PackedOccluders& keep = cache.occluders[triangle];
+            keep.packed = std::make_unique<int[]>(o.lights + 1 + o.built.ids.size());
+            std::copy(o.built.first.begin(), o.built.first.end(), keep.packed.get());
+            std::copy(o.built.ids.begin(), o.built.ids.end(), keep.packed.get() + o.lights + 1);
+        }
+        state.store(TriangleLights::kReady, std::memory_order_release);
+    }
+}
+
+// The dimmest of the triangle's shadowed lights, as many as together hold at
+// most kBlendedShare of the pixel's colour (`pixel_sum`), leave the mask:
+// they keep the corners' blend of their factor.
+void CpuRenderer::blend_dimmest_lights(const PixelTerms& terms, const uint32_t* corner, bool textured,
+                                       float pixel_sum, PixelOccluders& o) {
+    auto share_of = [&](size_t l) {
+        float share = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            const size_t at = corner[c] * o.lights + l;
+            share = std::max(share, sum_of(terms.unshadowed[at]) + (textured ? sum_of(terms.unshadowed_specular[at]) : 0.0f));
+        }
+        return share;
+    };
+    thread_local std::vector<std::pair<float, size_t>> by_share;
+    by_share.clear();
+    for (size_t l = 0; l < o.lights; ++l)
+        if (o.shadowed(l)) by_share.emplace_back(share_of(l), l);
+    std::sort(by_share.begin(), by_share.end());
+    float blended = 0.0f;
+    for (const auto& [share, l] : by_share) {
+        blended += share;
+        if (!(blended <= kBlendedShare * pixel_sum)) break;
+        o.mask[l / 64] &= ~(uint64_t(1) << (l % 64));
+    }
+}
+
+// The other parts' factor of light l at the pixel's point (set_point'ed in
+// slot 0), from the triangle's occluders of that light.
+float CpuRenderer::pixel_occlusion(BlockScratch& s, PixelOccluders& o, size_t l) const {
+    set_light(s, l, 1);
+    s.queried[0] = 1;
+    s.query_of[0] = 0;
+    s.index[0] = 0;
+    s.qx[0] = s.lpx[0], s.qy[0] = s.lpy[0], s.qh[0] = s.half[0];
+    s.vis[0] = 1.0f;
+    shadow_by_occluders(s, o.point_sphere, o.of(l), nullptr, l, 1, 1, o.counts);
+    return s.vis[0];
+}
+
+// Highlights per pixel: Σ I_l · B_l(x) · SVDF_l blended · F_l, the BRDF at
+// the pixel's point, all the lights' BRDF averages in one batch (slot l =
+// light l); F_l at the point for the shadowed lights, else the corners' blend.
+Color CpuRenderer::pixel_highlights(BlockScratch& s, PixelOccluders& o, size_t part, const uint32_t* corner,
+                                    const float w[3]) const {
+    const size_t lights = o.lights;
+    const PixelTerms& terms = pixel_terms_[part];
+    RSL_CHECK(lights <= size_t(kShadeBlock));  // CpuRenderer::shade keeps no highlight terms for more
+    set_lights_at_point(s, lights);
+    const int m = brdf_queries(s, *part_tables_[part], nullptr, int(lights));
+    // An enclosed corner's self-visibility is the inside's: the seen point is outside.
+    float ws[3] = {w[0], w[1], w[2]};
+    if (const std::vector<uint8_t>& enclosed = enclosed_vertices_[part]; !enclosed.empty()) {
+        float open = 0.0f;
+        for (int c = 0; c < 3; ++c) open += enclosed[corner[c]] ? 0.0f : w[c];
+        if (open > 0.0f)
+            for (int c = 0; c < 3; ++c) ws[c] = enclosed[corner[c]] ? 0.0f : w[c] / open;
+    }
+    Color sum(0);
+    thread_local std::vector<std::pair<size_t, Color>> shadowed_lights;
+    shadowed_lights.clear();
+    for (int i = 0; i < m; ++i) {
+        const size_t l = size_t(s.index[i]);
+        const size_t at[3] = {corner[0] * lights + l, corner[1] * lights + l, corner[2] * lights + l};
+        const float self = ws[0] * terms.self_visibility[at[0]] + ws[1] * terms.self_visibility[at[1]] +
+                           ws[2] * terms.self_visibility[at[2]];
+        if (!(self > 0.0f)) continue;  // no share at any corner, or a light switched off
+        const Color unshadowed = self * Color(s.ir[l] * s.br[i], s.ig[l] * s.bg[i], s.ib[l] * s.bb[i]);
+        if (o.shadowed(l)) {
+            shadowed_lights.emplace_back(l, unshadowed);
+            continue;
+        }
+        sum += (w[0] * terms.occlusion[at[0]] + w[1] * terms.occlusion[at[1]] + w[2] * terms.occlusion[at[2]]) *
+               unshadowed;
+    }
+    for (const auto& [l, unshadowed] : shadowed_lights)  // they reuse slot 0
+        sum += pixel_occlusion(s, o, l) * unshadowed;
+    return sum;
+}
+
+// Shadows per pixel: Σ Ū_l · F_l(x), the corners' blend Ū_l of each light's
+// share; F_l at the point for the shadowed lights, else the corners' blend.
+Color CpuRenderer::pixel_shadows(BlockScratch& s, PixelOccluders& o, const PixelTerms& terms, const uint32_t* corner,
+                                 const float w[3], const Texture* texture, const RayHit& hit) const {
+    const size_t lights = o.lights;
+    Color sum(0), specular_sum(0);  // specular: a textured part's specular layer
     for (size_t l = 0; l < lights; ++l) {
         const size_t at[3] = {corner[0] * lights + l, corner[1] * lights + l, corner[2] * lights + l};
         const Color u[3] = {terms.unshadowed[at[0]], terms.unshadowed[at[1]], terms.unshadowed[at[2]]};
         const Color v[3] = {texture ? terms.unshadowed_specular[at[0]] : Color(0),
                             texture ? terms.unshadowed_specular[at[1]] : Color(0),
                             texture ? terms.unshadowed_specular[at[2]] : Color(0)};
-        const bool shadowed = (mask[l / 64] >> (l % 64)) & 1;
-        if (!shadowed || u[0] + u[1] + u[2] + v[0] + v[1] + v[2] == Color(0)) {
+        if (!o.shadowed(l) || u[0] + u[1] + u[2] + v[0] + v[1] + v[2] == Color(0)) {
             // No shadow on the triangle, or too dim to see: the corners' blend.
             for (int c = 0; c < 3; ++c) {
                 sum += w[c] * terms.occlusion[at[c]] * u[c];
@@ -354,8 +388,7 @@ Color CpuRenderer::shade_pixel(const VertexColors& colors, const PosedScene& pos
             }
             continue;
         }
-        set_light(s, l, 1);
-        const float occlusion = occlusion_here(l);
+        const float occlusion = pixel_occlusion(s, o, l);
         sum += (w[0] * u[0] + w[1] * u[1] + w[2] * u[2]) * occlusion;
         specular_sum += (w[0] * v[0] + w[1] * v[1] + w[2] * v[2]) * occlusion;
     }
