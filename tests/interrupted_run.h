@@ -2,7 +2,7 @@
 // Fault tests of the `rsl` commands that write files (bake, truth, render):
 // the command is killed (SIGKILL) at several moments; whatever stands under
 // a final name must then be whole, and a rerun must complete and leave no
-// temporary (".NAME.tmp-PID-N.EXT", src/core/atomic_file.h) behind.
+// temporary (".NAME.tmp-HOST-PID-RANDOM.EXT", src/core/atomic_file.h) behind.
 #include <algorithm>
 #include <chrono>
 #include <functional>
@@ -16,6 +16,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "src/core/atomic_file.h"
 #include "src/core/image.h"
 #include "tests/test_support.h"
 
@@ -39,8 +40,7 @@ inline std::filesystem::path plant_stale_temporary(const std::filesystem::path& 
     const pid_t child = ::fork();
     if (child == 0) std::_Exit(0);
     ::waitpid(child, nullptr, 0);
-    const std::filesystem::path tmp = target.parent_path() / fmt::format(".{}.tmp-{}-0{}", target.stem().string(), child,
-                                                                         target.extension().string());
+    const std::filesystem::path tmp = temporary_path(target, long(child));
     write_text(tmp, "half written");
     return tmp;
 }

@@ -15,6 +15,7 @@
 #include <OpenEXR/ImfEnvmapAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStandardAttributes.h>
@@ -37,6 +38,25 @@ namespace fs = std::filesystem;
 namespace {
 
 // ---------------------------------------------------------------- OpenEXR
+
+// An EXR file built in memory: OpenEXR's own file stream leaves its last
+// buffered bytes unchecked, so the file is written by write_file_atomically.
+class MemoryOStream : public Imf::OStream {
+public:
+    MemoryOStream() : Imf::OStream("memory") {}
+    void write(const char c[], int n) override {
+        if (position_ + size_t(n) > bytes_.size()) bytes_.resize(position_ + size_t(n));
+        std::memcpy(&bytes_[position_], c, size_t(n));
+        position_ += size_t(n);
+    }
+    uint64_t tellp() override { return position_; }
+    void seekp(uint64_t position) override { position_ = size_t(position); }
+    const std::string& bytes() const { return bytes_; }
+
+private:
+    std::string bytes_;
+    size_t position_ = 0;
+};
 
 std::string channel_names(const Imf::ChannelList& channels) {
     std::string names;
@@ -132,7 +152,8 @@ void write_exr(const fs::path& path, const Image& image, const ExrWriteOptions& 
     if (image.pixels.size() != size_t(image.width) * image.height * image.channels)
         throw_file_error(path, "pixel buffer holds {} values, expected {}×{}×{}", image.pixels.size(),
                          image.width, image.height, image.channels);
-    write_atomically(path, [&](const fs::path& tmp) {
+    MemoryOStream stream;
+    {
         try {
             Imf::Header header(image.width, image.height);
             header.compression() = Imf::ZIP_COMPRESSION;
@@ -155,7 +176,7 @@ void write_exr(const fs::path& path, const Image& image, const ExrWriteOptions& 
             const size_t y_stride = x_stride * image.width;
             for (int c = 0; c < image.channels; ++c)
                 frame.insert(names[c], Imf::Slice(stored, (char*)base + c * value_size, x_stride, y_stride));
-            Imf::OutputFile file(tmp.c_str(), header);
+            Imf::OutputFile file(stream, header);  // its destructor writes the line offsets
             file.setFrameBuffer(frame);
             file.writePixels(image.height);
         } catch (const Error&) {
@@ -163,7 +184,8 @@ void write_exr(const fs::path& path, const Image& image, const ExrWriteOptions& 
         } catch (const std::exception& e) {
             throw_file_error(path, "cannot write OpenEXR image: {}", e.what());
         }
-    });
+    }
+    write_file_atomically(path, stream.bytes());
 }
 
 void write_exr(const fs::path& path, const Image& image) { write_exr(path, image, ExrWriteOptions{}); }
@@ -399,10 +421,17 @@ void write_png(const fs::path& path, const Image& image, const ToneMap& tone) {
         for (int k = 0; k < 3; ++k) bytes[p * c + k] = linear_to_srgb8(px[k] * scale * (c == 4 ? unpremultiply : 1.0f));
         if (c == 4) bytes[p * c + 3] = (unsigned char)std::lround(alpha * 255.0f);
     }
-    write_atomically(path, [&](const fs::path& tmp) {
-        if (!stbi_write_png(tmp.c_str(), image.width, image.height, c, bytes.data(), image.width * c))
-            throw_file_error(path, "cannot write PNG (disk full or directory not writable?)");
-    });
+    write_file_atomically(path, encode_png(bytes.data(), image.width, image.height, c));
+}
+
+std::string encode_png(const unsigned char* pixels, int width, int height, int channels) {
+    std::string png;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &png, width, height, channels, pixels, width * channels))
+        throw_error("cannot encode a {}×{} PNG of {} channels", width, height, channels);
+    return png;
 }
 
 void write_exr_and_png(const fs::path& exr_path, const Image& image, const ToneMap& tone) {

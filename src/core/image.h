@@ -3,6 +3,7 @@
 // tone-mapped PNG (write). Readers validate everything and throw rsl::Error
 // naming the file; writers are atomic.
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "src/core/math.h"
@@ -67,6 +68,9 @@ struct ToneMap {
 };
 // Tone-mapped 8-bit sRGB PNG (RGB, or RGBA when the image has alpha).
 void write_png(const std::filesystem::path& path, const Image& image, const ToneMap& tone = {});
+// The PNG file of 8-bit pixels (rows top to bottom, `channels` interleaved),
+// to write with write_file_atomically: stb's own file writer ignores failed writes.
+std::string encode_png(const unsigned char* pixels, int width, int height, int channels);
 // 8-bit sRGB encoding of a linear value in [0, 1].
 unsigned char linear_to_srgb8(float v);
 

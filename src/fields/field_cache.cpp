@@ -51,7 +51,8 @@ std::shared_ptr<const Field> load_or_bake(const FieldExpectation& expect, const 
                                           void (*write)(const fs::path&, const Field&, uint64_t)) {
     const auto start = std::chrono::steady_clock::now();
     std::shared_ptr<const Field> field;
-    if (fs::exists(out.file)) {
+    std::error_code ec;  // a folder that cannot be searched: baked, and its write says why
+    if (fs::exists(out.file, ec)) {
         try {
             field = std::make_shared<const Field>(read(out.file, expect));
             out.state = FieldState::Reused;
@@ -64,14 +65,20 @@ std::shared_ptr<const Field> load_or_bake(const FieldExpectation& expect, const 
         field = std::make_shared<const Field>(bake(mesh, params, &stats, [&](double x) {
             if (options.progress) options.progress(label, x);
         }));
-        write(out.file, *field, *expect.mesh_hash);
+        try {
+            write(out.file, *field, *expect.mesh_hash);
+        } catch (const Error& e) {
+            if (options.on_write_failure == CacheWriteFailure::Fail) throw;
+            warn("cannot write the field cache, going on with the field baked in memory: {}", e.what());
+        }
         out.state = FieldState::Baked;
         out.compression_ratio = stats.compression.compression_ratio();
         out.rms_error = stats.compression.rms_error;
     }
     if (options.progress) options.progress(label, 1.0);  // baked, or read from the cache
     out.seconds = seconds_since(start);
-    out.disk_bytes = size_t(fs::file_size(out.file));
+    const auto disk_bytes = fs::file_size(out.file, ec);
+    out.disk_bytes = ec ? 0 : size_t(disk_bytes);  // 0: not written
     out.memory_bytes = memory_bytes(*field);
     return field;
 }

@@ -50,7 +50,7 @@ struct FieldOutcome {
     bool wanted = false;         // asked for and in this shard
     FieldState state = FieldState::Skipped;
     double seconds = 0;      // reading or baking
-    size_t disk_bytes = 0;   // of the file
+    size_t disk_bytes = 0;   // of the file (0: it could not be written)
     size_t memory_bytes = 0; // of the field's arrays in RAM
     // A baked field's compression (the tables' size over the compressed
     // size) and its rms error; 0 for a field read from the cache.
@@ -78,6 +78,11 @@ struct FieldShard {
 // "I/N" with integers 0 ≤ I < N; throws rsl::Error naming `option` otherwise.
 FieldShard parse_field_shard(const std::string& text, const std::string& option = "--shard");
 
+// What a field file that cannot be written (read-only or full cache folder)
+// does to the run: a bake exists for its files and fails; a render needs only
+// the fields, baked in memory, and goes on after a warning.
+enum class CacheWriteFailure { Fail, Warn };
+
 struct FieldCacheOptions {
     std::filesystem::path directory;  // empty: default_cache_directory(scene source)
     bool svdf_only = false;
@@ -88,6 +93,7 @@ struct FieldCacheOptions {
     SvdfParams svdf;
     OvdfParams ovdf;
     FieldShard shard;
+    CacheWriteFailure on_write_failure = CacheWriteFailure::Fail;
 };
 
 SvdfParams svdf_params_from(const PrecomputeSettings& settings);

@@ -6,7 +6,6 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <chrono>
@@ -15,6 +14,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/image.h"
 #include "src/gl/gl.h"
 #include "src/gl/skybox.h"
 #include "src/gl/viewer_state.h"
@@ -137,10 +137,7 @@ void write_screenshot(const std::filesystem::path& path, int width, int height) 
     const size_t row = size_t(width) * 3;
     for (int y = 0; y < height; ++y)
         std::copy_n(pixels.data() + size_t(height - 1 - y) * row, row, flipped.data() + size_t(y) * row);
-    write_atomically(path, [&](const std::filesystem::path& tmp) {
-        if (!stbi_write_png(tmp.c_str(), width, height, 3, flipped.data(), int(row)))
-            throw_file_error(path, "could not write the PNG");
-    });
+    write_file_atomically(path, encode_png(flipped.data(), width, height, 3));
 }
 
 // Set-up phase: the scene, with quick fields if asked for and a light to move

@@ -14,6 +14,7 @@ CachedFields load_or_bake_fields(const Scene& scene, bool occluders,
     if (!cache_directory.empty()) options.directory = cache_directory;
     options.svdf_only = !occluders || scene.parts.size() < 2;  // a lone part shadows nobody
     options.progress = callback;
+    options.on_write_failure = CacheWriteFailure::Warn;
     const SceneFields fields = bake_or_load_fields(scene, options);
     CachedFields result;
     result.svdf.resize(scene.parts.size());

@@ -31,7 +31,8 @@ OvdfParams cache_ovdf_params(const PrecomputeSettings& settings);
 // Fields of every part of `scene`, in `cache_directory`, or when that is
 // empty beside the scene's source file (<scene folder>/.rsl-cache). OVDFs
 // only when `occluders` and the scene has more than one part. `callback`, when
-// given, hears every bake's progress (FieldCacheOptions::progress).
+// given, hears every bake's progress (FieldCacheOptions::progress). A field
+// file that cannot be written costs a warning (rsl::warn), not the render.
 CachedFields load_or_bake_fields(const Scene& scene, bool occluders,
                                  const std::filesystem::path& cache_directory = {},
                                  const std::function<void(const std::string&, double)>& callback = {});
