@@ -2,6 +2,7 @@
 // (include/rsl/rsl.h) with numpy arrays. Long calls (Renderer(), shade,
 // render_image, truth, fit_environment) release the GIL; progress goes to a
 // Python callable. rsl.Error carries the message the `rsl` program prints.
+#include <fmt/format.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -56,7 +57,7 @@ void bind_files(py::module_& m) {
     m.def(
         "bake_fields",
         [](const api::Scene& scene, const py::object& field_cache, const py::object& progress) {
-            const std::string folder = field_cache.is_none() ? "" : std::string(py::str(field_cache));
+            const std::string folder = field_cache.is_none() ? "" : path_argument(field_cache, "field_cache");
             const api::Progress callback = progress_callback(progress);
             api::SetupReport report;
             {
@@ -112,6 +113,16 @@ void bind_files(py::module_& m) {
 }
 
 }  // namespace
+
+std::string path_argument(const py::object& value, const char* name) {
+    if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+    if (py::hasattr(value, "__fspath__")) {
+        const py::object path = value.attr("__fspath__")();
+        if (py::isinstance<py::str>(path)) return path.cast<std::string>();
+    }
+    throw Error(fmt::format("{}: expected a path (str or os.PathLike), got {}", name,
+                            py::str(py::type::of(value).attr("__name__")).cast<std::string>()));
+}
 
 py::dict error_dict(const api::VertexError& e, bool with_objects) {
     py::dict d;

@@ -46,7 +46,7 @@ std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, c
     api::RenderSettings settings;
     settings.lights = lights;
     settings.backend = backend;
-    if (!field_cache.is_none()) settings.field_cache = py::str(field_cache);
+    if (!field_cache.is_none()) settings.field_cache = path_argument(field_cache, "field_cache");
     settings.cross_face_lights = cross_face;
     settings.self_visibility = self_visibility;
     settings.occluders = occluders;

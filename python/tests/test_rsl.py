@@ -277,5 +277,68 @@ class ModuleTest(unittest.TestCase):
         self.assertTrue(text.startswith(f"rsl {info['version']}\ncommit: {info['commit']}\n"), text)
 
 
+class HostileInputTest(unittest.TestCase):
+    """Issue 43: nothing hangs, nothing lies: special files and out-of-range values raise rsl.Error at once."""
+
+    def setUp(self):
+        self.folder = tempfile.mkdtemp(prefix="rsl_py_hostile_")
+        self.addCleanup(shutil.rmtree, self.folder, ignore_errors=True)
+
+    def test_a_fifo_scene_is_refused_at_once(self):
+        fifo = os.path.join(self.folder, "ff.json")
+        os.mkfifo(fifo)
+        def release():  # a blocked reader (the defect) then reads nothing, and the test fails instead of hanging
+            time.sleep(5)
+            try:
+                os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
+            except OSError:
+                pass
+        threading.Thread(target=release, daemon=True).start()
+        start = time.monotonic()
+        with self.assertRaisesRegex(rsl.Error, re.escape(fifo + ": is a FIFO (named pipe), not a regular file")):
+            rsl.Scene.load(fifo)
+        self.assertLess(time.monotonic() - start, 3)
+
+    def quad(self):
+        scene = rsl.Scene("quad")
+        scene.add_material("grey", "lambert", albedo=(0.5, 0.5, 0.5))
+        positions = np.array([[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]], dtype=np.float32)
+        scene.add_part("quad", positions, np.array([[0, 2, 1], [0, 3, 2]]), "grey")
+        scene.set_precompute(svdf_resolution=8, svdf_clusters=4, svdf_vectors=2, svdf_supersampling=1)
+        return scene
+
+    def test_precompute_settings_follow_the_scene_files_rules(self):
+        scene = self.quad()
+        with self.assertRaisesRegex(rsl.Error, "precompute: svdf_resolution must be an integer from 2 to 256, got 1"):
+            scene.set_precompute(svdf_resolution=1)
+        with self.assertRaisesRegex(rsl.Error, "precompute: ovdf_cube_resolution must be even, got 5"):
+            scene.set_precompute(ovdf_cube_resolution=5)
+
+    def test_field_cache_must_be_a_path(self):
+        scene = self.quad()
+        cwd = os.getcwd()
+        os.chdir(self.folder)
+        self.addCleanup(os.chdir, cwd)
+        with self.assertRaisesRegex(rsl.Error, "field_cache: expected a path \\(str or os.PathLike\\), got int"):
+            rsl.bake_fields(scene, field_cache=123)
+        with self.assertRaisesRegex(rsl.Error, "field_cache: expected a path"):
+            rsl.Renderer(scene, field_cache=123)
+        self.assertFalse(os.path.exists(os.path.join(self.folder, "123")))
+
+    def test_compare_refuses_nan(self):
+        good = np.ones((4, 3), dtype=np.float32)
+        bad = good.copy()
+        bad[2, 1] = np.nan
+        with self.assertRaisesRegex(rsl.Error, "compare result: vertex 2 holds nan: a comparison needs finite values"):
+            rsl.compare(bad, good)
+        with self.assertRaisesRegex(rsl.Error, "compare reference: vertex 2 holds nan"):
+            rsl.compare(good, bad)
+        image = np.ones((2, 3, 4), dtype=np.float32)
+        broken = image.copy()
+        broken[1, 2, 0] = np.inf
+        with self.assertRaisesRegex(rsl.Error, "compare result: pixel 5 holds inf"):
+            rsl.compare_images(broken, image)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

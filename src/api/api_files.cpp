@@ -1,5 +1,6 @@
 // The free functions of the public API (include/rsl/rsl.h): what `rsl fit`,
 // `rsl compare` and `rsl --version` run, and the program's files.
+#include <cmath>
 #include <chrono>
 
 #include <fmt/format.h>
@@ -51,8 +52,19 @@ EnvironmentFit fit_environment(const std::string& file, int lights, int resoluti
     return fit;
 }
 
+namespace {
+// NaN compares false against everything, so a NaN value would read as no error at all.
+void check_finite_values(const std::vector<float>& values, const std::string& what, int per_item, const char* item) {
+    for (size_t k = 0; k < values.size(); ++k)
+        if (!std::isfinite(values[k]))
+            throw_error("{}: {} {} holds {}: a comparison needs finite values", what, item, k / per_item, values[k]);
+}
+}  // namespace
+
 VertexError compare(const VertexColors& result, const VertexColors& reference,
                     const std::vector<std::string>& receivers) {
+    check_finite_values(result.rgb, "compare result", 3, "vertex");
+    check_finite_values(reference.rgb, "compare reference", 3, "vertex");
     const ::rsl::VertexColors a = to_internal(result, "compare result"), b = to_internal(reference, "compare reference");
     check_same_vertices(a, "result", b, "reference");
     const VertexErrorReport report = compare_vertex_colors(a, b);
@@ -72,6 +84,8 @@ VertexError compare(const VertexColors& result, const VertexColors& reference,
 }
 
 ImageError compare(const Image& result, const Image& reference) {
+    check_finite_values(result.rgba, "compare result", 4, "pixel");
+    check_finite_values(reference.rgba, "compare reference", 4, "pixel");
     const ::rsl::Image a = to_internal(result, "compare result"), b = to_internal(reference, "compare reference");
     if (a.width != b.width || a.height != b.height)
         throw_error("result and reference are not comparable: {}×{} vs {}×{} pixels", a.width, a.height, b.width,

@@ -1,11 +1,13 @@
 // rsl::api::Scene and Pose (include/rsl/rsl.h): a scene from a file through
 // load_scene, or built in code into the same rsl::Scene a file gives.
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "src/api/api_convert.h"
 #include "src/core/mesh.h"
+#include "src/core/precompute_limits.h"
 
 namespace rsl::api {
 
@@ -114,18 +116,22 @@ void Scene::add_sphere_light(const SphereLight& light) {
 void Scene::set_camera(const Camera& camera) { scene_->camera = to_camera(camera); }
 
 void Scene::set_precompute(const Precompute& s) {
-    for (int value : {s.svdf_resolution, s.svdf_clusters, s.svdf_vectors, s.svdf_supersampling, s.ovdf_shells,
-                      s.ovdf_cube_resolution, s.ovdf_vdt_resolution, s.ovdf_vectors})
-        if (value < 1) throw_error("precompute: {} where every count must be at least 1", value);
-    if (!(s.ovdf_inner_radius >= 0 && s.ovdf_outer_radius > s.ovdf_inner_radius))
+    if (!(s.ovdf_inner_radius >= 0 && s.ovdf_outer_radius > s.ovdf_inner_radius && std::isfinite(s.ovdf_outer_radius)))
         throw_error("precompute: OVDF shells from {} to {} bounding radii, expected 0 ≤ inner < outer (0: per mesh)",
                     s.ovdf_inner_radius, s.ovdf_outer_radius);
-    PrecomputeSettings& p = scene_->precompute;
+    PrecomputeSettings p;
     p.svdf_resolution = s.svdf_resolution, p.svdf_clusters = s.svdf_clusters, p.svdf_vectors = s.svdf_vectors;
     p.svdf_supersampling = s.svdf_supersampling;
     p.ovdf_shells = s.ovdf_shells, p.ovdf_inner_radius = s.ovdf_inner_radius, p.ovdf_outer_radius = s.ovdf_outer_radius;
     p.ovdf_cube_resolution = s.ovdf_cube_resolution, p.ovdf_vdt_resolution = s.ovdf_vdt_resolution;
     p.ovdf_vectors = s.ovdf_vectors;
+    // The scene file's rules, its key spelt as the setting's name here ("svdf_resolution").
+    if (const auto problem = precompute_problem(p)) {
+        std::string name = problem->key;
+        std::replace(name.begin(), name.end(), '.', '_');
+        throw_error("precompute: {} {}", name, problem->message);
+    }
+    scene_->precompute = p;
 }
 
 std::string Scene::name() const { return scene_->name; }

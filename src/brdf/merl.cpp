@@ -8,6 +8,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 
 namespace rsl {
 namespace {
@@ -72,6 +73,7 @@ MerlBrdf::MerlBrdf(const std::vector<double>& raw, std::filesystem::path source)
 }
 
 std::shared_ptr<const MerlBrdf> MerlBrdf::load(const std::filesystem::path& path) {
+    check_regular_file(path);  // an ifstream would block on a FIFO
     std::ifstream in(path, std::ios::binary);
     if (!in) throw_file_error(path, "cannot open MERL BRDF for reading (missing or not readable)");
     int32_t dims[3] = {0, 0, 0};

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 #include "src/core/image.h"
 
 namespace rsl {
@@ -161,6 +162,7 @@ private:
 }  // namespace
 
 ExrWindowSize check_exr_header(const fs::path& path) {
+    check_regular_file(path);  // the scanner's ifstream would block on a FIFO
     HeaderScanner scanner(path);
     const PartHeader h = scanner.scan();
     if (!h.has_window) scanner.fail("no dataWindow attribute");

@@ -18,6 +18,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 #include "src/core/gltf_accessor_reader.h"
 #include "src/core/gltf_materials.h"
 #include "src/core/scene.h"
@@ -31,15 +32,10 @@ using gltf::AccessorReader;
 // tinygltf reads files (the glTF itself, external buffers) with an ifstream
 // and takes tellg() for their size: a directory reports 2^63 − 1 bytes and
 // the allocation fails (std::bad_alloc, which `rsl` reported as an internal
-// error). This reader reads regular files only.
+// error), and a FIFO blocks. This reader reads regular files only, bounded.
 bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        if (err) *err += "not a regular file: " + path + "\n";
-        return false;
-    }
     try {
-        const std::string bytes = read_file(path);
+        const std::string bytes = read_bounded_file(path, kMaxGltfFileBytes, "a glTF file or buffer");
         out->assign(bytes.begin(), bytes.end());
     } catch (const Error& e) {
         if (err) *err += std::string(e.what()) + "\n";
@@ -55,13 +51,7 @@ struct LoadedGltf {
 };
 
 LoadedGltf read_model(const std::filesystem::path& path) {
-    char magic[4] = {};
-    {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw_file_error(path, "cannot open");
-        in.read(magic, 4);
-    }
-    const bool binary_content = std::string_view(magic, 4) == "glTF";
+    const bool binary_content = read_file_prefix(path, 4) == "glTF";
     const std::string extension = path.extension().string();
     const bool binary_name = extension == ".glb" || extension == ".GLB";
     if (binary_content != binary_name)

@@ -30,6 +30,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 #include "src/core/exr_header.h"
 
 namespace rsl {
@@ -92,7 +93,6 @@ void check_radiance(const fs::path& path, const Image& image) {
 }
 
 Image read_exr(const fs::path& path) {
-    if (!fs::is_regular_file(path)) throw_file_error(path, "cannot open for reading (missing or not a file)");
     const ExrWindowSize checked = check_exr_header(path);  // before OpenEXR allocates what the header claims
     Image image;
     try {
@@ -302,8 +302,11 @@ RadianceHeader read_radiance_header(const fs::path& path, ByteReader& in) {
 
 }  // namespace
 
+static_assert(kMaxRadianceFileBytes >= 4 * uint64_t(kMaxImagePixels), "a flat file of the largest image must fit");
+
 Image read_radiance_hdr(const fs::path& path) {
-    const std::string bytes = read_file(path);
+    const std::string bytes = read_bounded_file(path, kMaxRadianceFileBytes, "a Radiance HDR file", "#?",
+                                                       "not a Radiance HDR file (no '#?' at its start)");
     ByteReader in(path, bytes);
     const RadianceHeader header = read_radiance_header(path, in);
     const int width = header.width;
@@ -346,11 +349,10 @@ namespace {
 enum class FileKind { Exr, Radiance, Unknown };
 
 FileKind sniff(const fs::path& path) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw_file_error(path, "cannot open for reading (missing or not readable)");
+    const std::string prefix = read_file_prefix(path, 4);  // refuses a FIFO or a device before it blocks
     unsigned char magic[4] = {0, 0, 0, 0};
-    const size_t got = std::fread(magic, 1, 4, f);
-    std::fclose(f);
+    const size_t got = prefix.size();
+    std::memcpy(magic, prefix.data(), got);
     if (got == 0) throw_file_error(path, "file is empty");
     if (got == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01) return FileKind::Exr;
     if (got >= 2 && magic[0] == '#' && magic[1] == '?') return FileKind::Radiance;

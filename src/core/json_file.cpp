@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 
 namespace rsl {
 
@@ -104,6 +104,8 @@ Json parse_json_text(const std::filesystem::path& path, std::string_view text) {
                      locator.message);
 }
 
-Json read_json_file(const std::filesystem::path& path) { return parse_json_text(path, read_file(path)); }
+Json read_json_file(const std::filesystem::path& path) {
+    return parse_json_text(path, read_bounded_file(path, kMaxJsonFileBytes, "a JSON file"));
+}
 
 }  // namespace rsl

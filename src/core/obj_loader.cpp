@@ -2,12 +2,11 @@
 // read past and ignored). Errors name the file and line.
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 #include <unordered_map>
 
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 #include "src/core/mesh.h"
 
 namespace rsl {
@@ -148,12 +147,12 @@ private:
 }  // namespace
 
 TriangleMesh load_obj(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw_file_error(path, "cannot open");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
-    if (text.find('\0') != std::string::npos) throw_file_error(path, "contains NUL bytes: not a text OBJ file");
+    // Checked as each piece arrives: a binary or sparse file stops at its first megabyte.
+    const auto refuse_nul = [&path](std::string_view piece, uint64_t offset) {
+        if (const size_t nul = piece.find('\0'); nul != std::string_view::npos)
+            throw_file_error(path, "contains NUL bytes (the first at byte {}): not a text OBJ file", offset + nul);
+    };
+    const std::string text = read_bounded_file(path, kMaxObjFileBytes, "an OBJ file", {}, {}, refuse_nul);
     TriangleMesh mesh = ObjParser(path).parse(text);
     if (const size_t dropped = validate_and_complete(mesh, path))
         warn_file(path, "{} degenerate triangle{} dropped", dropped, dropped == 1 ? "" : "s");

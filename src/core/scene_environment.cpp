@@ -27,7 +27,14 @@ Vec3 sun_direction_in_map(const Scene& scene, const SunLight& sun) {
 CubeMap scene_environment_map(const Scene& scene, int resolution, bool second) {
     const EnvironmentDesc& env = scene.environment;
     const std::filesystem::path& file = second ? env.second_file : env.file;
-    CubeMap map = file.empty() ? CubeMap(resolution) : load_environment(file, resolution);
+    CubeMap map;
+    try {
+        map = file.empty() ? CubeMap(resolution) : load_environment(file, resolution);
+    } catch (const Error& e) {
+        // As a mesh's errors: the scene file and the key first, then the map's own error.
+        if (scene.source.empty()) throw;
+        throw_file_error(scene.source, "{}: {}", second ? "environment.second_file" : "environment.file", e.what());
+    }
     if (env.uniform != Color(0))
         for (Color& radiance : map.radiances()) radiance += env.uniform;
     return map;

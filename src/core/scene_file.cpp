@@ -12,8 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 #include "src/core/gltf_camera.h"
 #include "src/core/json_file.h"
+#include "src/core/precompute_limits.h"
 #include "src/core/scene.h"
 
 namespace rsl {
@@ -211,6 +213,9 @@ private:
             fail(join(where, name), fmt::format("must be an integer from {} to {}, got {}", least, most, j.dump()));
         return int(v);
     }
+    int int_at(const Json& object, const char* name, const std::string& where, const PrecomputeLimit& limit) const {
+        return int_at(object, name, where, limit.least, limit.most);
+    }
     std::string string_at(const Json& object, const char* name, const std::string& key) const {
         const Json& j = object.at(name);
         if (!j.is_string()) fail(key, fmt::format("expected a string, got {}", j.type_name()));
@@ -241,7 +246,7 @@ private:
     std::filesystem::path existing_file(const Json& j, const std::string& key) const {
         if (!j.is_string()) fail(key, fmt::format("expected a file name, got {}", j.type_name()));
         const std::filesystem::path file = dir_ / j.get<std::string>();
-        if (!std::filesystem::is_regular_file(file)) fail(key, fmt::format("file {} does not exist", file.string()));
+        if (const std::string why = why_not_regular_file(file); !why.empty()) fail(key, fmt::format("file {} {}", file.string(), why));
         return file;
     }
 
@@ -497,16 +502,16 @@ private:
             const Json& s = expect_object(j["svdf"], "precompute.svdf");
             const std::string w = "precompute.svdf";
             check_keys(s, w, {"resolution", "clusters", "vectors", "supersampling"});
-            if (s.contains("resolution")) p.svdf_resolution = int_at(s, "resolution", w, 2, 256);
-            if (s.contains("clusters")) p.svdf_clusters = int_at(s, "clusters", w, 1, 65536);
-            if (s.contains("vectors")) p.svdf_vectors = int_at(s, "vectors", w, 1, 256);
-            if (s.contains("supersampling")) p.svdf_supersampling = int_at(s, "supersampling", w, 1, 32);
+            if (s.contains("resolution")) p.svdf_resolution = int_at(s, "resolution", w, kSvdfResolutionLimit);
+            if (s.contains("clusters")) p.svdf_clusters = int_at(s, "clusters", w, kSvdfClustersLimit);
+            if (s.contains("vectors")) p.svdf_vectors = int_at(s, "vectors", w, kSvdfVectorsLimit);
+            if (s.contains("supersampling")) p.svdf_supersampling = int_at(s, "supersampling", w, kSvdfSupersamplingLimit);
         }
         if (j.contains("ovdf")) {
             const Json& o = expect_object(j["ovdf"], "precompute.ovdf");
             const std::string w = "precompute.ovdf";
             check_keys(o, w, {"shells", "inner_radius", "outer_radius", "cube_resolution", "vdt_resolution", "vectors"});
-            if (o.contains("shells")) p.ovdf_shells = int_at(o, "shells", w, 2, 256);
+            if (o.contains("shells")) p.ovdf_shells = int_at(o, "shells", w, kOvdfShellsLimit);
             // "auto" (the default): chosen per mesh (src/fields/ovdf.h ovdf_params_for_mesh).
             if (o.contains("inner_radius")) {
                 if (o["inner_radius"].is_string() && o["inner_radius"] != "auto")
@@ -514,14 +519,12 @@ private:
                 p.ovdf_inner_radius = o["inner_radius"] == "auto" ? 0.0f : positive_number_at(o, "inner_radius", w);
             }
             if (o.contains("outer_radius")) p.ovdf_outer_radius = positive_number_at(o, "outer_radius", w);
-            if (o.contains("cube_resolution")) p.ovdf_cube_resolution = int_at(o, "cube_resolution", w, 2, 256);
-            if (o.contains("vdt_resolution")) p.ovdf_vdt_resolution = int_at(o, "vdt_resolution", w, 2, 256);
-            if (o.contains("vectors")) p.ovdf_vectors = int_at(o, "vectors", w, 1, 256);
-            // Each face is split into 2 × 2 segments (OvdfParams::segments_per_side).
-            if (p.ovdf_cube_resolution % 2 != 0) fail("precompute.ovdf.cube_resolution", "must be even");
-            if (p.ovdf_outer_radius <= p.ovdf_inner_radius)
-                fail("precompute.ovdf.outer_radius", "must be larger than inner_radius");
+            if (o.contains("cube_resolution")) p.ovdf_cube_resolution = int_at(o, "cube_resolution", w, kOvdfCubeResolutionLimit);
+            if (o.contains("vdt_resolution")) p.ovdf_vdt_resolution = int_at(o, "vdt_resolution", w, kOvdfVdtResolutionLimit);
+            if (o.contains("vectors")) p.ovdf_vectors = int_at(o, "vectors", w, kOvdfVectorsLimit);
         }
+        // The rules between settings, as `rsl bake` checks its flags.
+        if (const auto problem = precompute_problem(p)) fail("precompute." + problem->key, problem->message);
     }
 
     // `false` (off), `true` (the default edge) or {enabled, relative_edge,
@@ -582,7 +585,7 @@ Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
 }  // namespace
 
 Scene load_scene(const std::filesystem::path& path) {
-    if (!std::filesystem::exists(path)) throw_file_error(path, "no such file");
+    check_regular_file(path);
     const std::string ext = lowercase_extension(path);
     if (ext == ".json") return SceneFileReader(path).read();
     if (ext == ".gltf" || ext == ".glb") return scene_from_mesh_file(path, true);

@@ -9,6 +9,7 @@
 #include "src/core/atomic_file.h"
 #include "src/core/binary_io.h"
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 #include "src/shading/ovdf_tables.h"
 
 namespace rsl {
@@ -287,6 +288,13 @@ CpcaModel get_model(const fs::path& path, BinaryReader& r, FieldHeader& h) {
     return m;
 }
 
+// The magic number first, then the size, before the rest is read: a link to a
+// huge or endless file in the cache costs eight bytes.
+std::string read_field_bytes(const fs::path& path) {
+    return read_bounded_file(path, kMaxFieldFileBytes, "a field file", std::string_view(kMagic, sizeof(kMagic)),
+                             "not an rsl field file (bad magic)");
+}
+
 // The payload ends where the trailing checksum begins.
 size_t payload_end(const std::string& bytes) { return bytes.size() >= 8 ? bytes.size() - 8 : 0; }
 
@@ -330,7 +338,7 @@ void write_ovdf(const fs::path& path, const Ovdf& ovdf, uint64_t mesh) {
 }
 
 FieldHeader read_field_header(const fs::path& path) {
-    const std::string bytes = read_file(path);
+    const std::string bytes = read_field_bytes(path);
     BinaryReader r(path, bytes, payload_end(bytes));
     FieldHeader h = parse_header(path, bytes, r);
     if (h.kind == FieldKind::Ovdf) {
@@ -342,7 +350,7 @@ FieldHeader read_field_header(const fs::path& path) {
 }
 
 Svdf read_svdf(const fs::path& path, const FieldExpectation& expect) {
-    const std::string bytes = read_file(path);
+    const std::string bytes = read_field_bytes(path);
     BinaryReader r(path, bytes, payload_end(bytes));
     FieldHeader h = parse_header(path, bytes, r);
     Svdf svdf;
@@ -355,7 +363,7 @@ Svdf read_svdf(const fs::path& path, const FieldExpectation& expect) {
 }
 
 Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
-    const std::string bytes = read_file(path);
+    const std::string bytes = read_field_bytes(path);
     BinaryReader r(path, bytes, payload_end(bytes));
     FieldHeader h = parse_header(path, bytes, r);
     Ovdf ovdf;

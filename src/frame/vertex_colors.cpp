@@ -7,6 +7,7 @@
 #include "src/core/atomic_file.h"
 #include "src/core/binary_io.h"
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 
 namespace rsl {
 
@@ -68,9 +69,9 @@ void write_vertex_colors(const std::filesystem::path& path, const VertexColors& 
 }
 
 VertexColors read_vertex_colors(const std::filesystem::path& path) {
-    const std::string bytes = read_file(path);
-    if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-        throw_file_error(path, "not an rsl vertex-colour file (.rslv): wrong magic number");
+    const std::string bytes =
+        read_bounded_file(path, kMaxVertexColorsFileBytes, "a vertex-colour file", std::string_view(kMagic, sizeof(kMagic)),
+                          "not an rsl vertex-colour file (.rslv): wrong magic number");
     const size_t header_and_data = bytes.size() >= sizeof(kMagic) + 12 ? bytes.size() - sizeof(uint64_t) : 0;
     BinaryReader r(path, bytes, header_and_data);
     char magic[sizeof(kMagic)];

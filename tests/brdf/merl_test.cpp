@@ -117,6 +117,6 @@ TEST_CASE("MERL: wrong dimensions, truncated or oversized files are refused, nam
     write_file_atomically(dir / "long.binary",
                           header(90, 90, 180) + std::string(3 * size_t(MerlBrdf::kSamples) * 8 + 5, '\0'));
     expect_error(dir / "long.binary", "trailing bytes");
-    expect_error(dir / "missing.binary", "cannot open");
+    expect_error(dir / "missing.binary", "does not exist");
     for (auto name : {"dims", "short_header", "truncated", "long"}) fs::remove(dir / (std::string(name) + ".binary"));
 }

@@ -12,6 +12,7 @@
 #include "src/fields/field_file.h"
 #include "tests/core/gltf_builder.h"
 #include "tests/interrupted_run.h"
+#include "tests/special_files.h"
 #include "tests/test_support.h"
 
 using namespace rsl;
@@ -317,4 +318,58 @@ TEST_CASE("rsl bake --shard refuses a bad I/N before loading anything", "[fields
         CHECK(contains(text, "expected I/N"));
         CHECK(!fs::exists(dir / ".rsl-cache"));
     }
+}
+
+TEST_CASE("rsl bake checks its flags by the scene file's rules, and says when render will not use its fields",
+          "[fields][cli][bad-input]") {
+    const fs::path dir = scratch_dir("bake_flags");
+    write_tiny_scene(dir);
+    const std::string scene = (dir / "tiny.json").string() + " -q -o " + (dir / "cache").string();
+    // Each once baked files the reader refuses, crashed, exhausted memory or was ignored.
+    const std::pair<const char*, const char*> cases[] = {
+        {"--vectors 1025", "--vectors 1025: must be an integer from 1 to 256, got 1025 (as precompute.svdf.vectors in a scene file)"},
+        {"--shells 1", "--shells 1: must be an integer from 2 to 256, got 1 (as precompute.ovdf.shells"},
+        {"--cube-resolution 3", "--cube-resolution 3: must be even, got 3 (as precompute.ovdf.cube_resolution"},
+        {"--supersampling 1000", "--supersampling 1000: must be an integer from 1 to 32, got 1000"},
+        {"--shells 0", "--shells 0: must be an integer from 2 to 256, got 0"},
+        {"--clusters -1", "--clusters -1: must be an integer from 1 to 65536, got -1"},
+    };
+    for (const auto& [flags, message] : cases) {
+        const auto [status, output] = run_rsl("bake " + scene + " " + flags);
+        INFO(flags << " -> " << output);
+        CHECK(status == 1);
+        CHECK(contains(output, message));
+        CHECK_FALSE(contains(output, "internal error"));
+    }
+    CHECK_FALSE(fs::exists(dir / "cache"));
+    // The scene file says the same of the same value.
+    write_text(dir / "bad.json", R"({"parts": [{"obj": "box.obj"}], "precompute": {"svdf": {"vectors": 1025}}})");
+    CHECK(contains(run_rsl("bake " + (dir / "bad.json").string()).second,
+                   "precompute.svdf.vectors: must be an integer from 1 to 256, got 1025"));
+
+    // Valid flags that differ from the scene's bake fields `rsl render` will not use: a note says so.
+    const auto [status, output] = run_rsl("bake " + scene + " --vectors 3 --svdf-only");
+    INFO(output);
+    CHECK(status == 0);
+    CHECK(contains(output, "rsl bake: note: --vectors 3 (the scene's 2) bake fields that `rsl render` of this scene "
+                           "will not use"));
+    // Flags equal to the scene's: no note.
+    CHECK_FALSE(contains(run_rsl("bake " + scene + " --vectors 2 --svdf-only").second, "note:"));
+}
+
+TEST_CASE("rsl bake refuses a FIFO in place of a cached field file, and bakes it again", "[fields][cli][bad-input]") {
+    const fs::path dir = scratch_dir("bake_fifo");
+    write_tiny_scene(dir);
+    const std::string scene = (dir / "tiny.json").string() + " --svdf-only -o " + (dir / "cache").string();
+    const auto [status, output] = run_rsl("bake " + scene);
+    REQUIRE(status == 0);
+    const std::vector<fs::path> files = printed_field_files(output);
+    REQUIRE(!files.empty());
+    make_fifo(files[0]);
+    // Before the fix this waited for a writer forever: 20 s is the test's patience.
+    const auto [again, text] = run_command("timeout 20 " + std::string(RSL_RSL_EXECUTABLE) + " bake " + scene);
+    INFO(text);
+    CHECK(again == 0);
+    CHECK(contains(text, files[0].string() + ": is a FIFO (named pipe), not a regular file"));
+    CHECK(fs::is_regular_file(files[0]));
 }

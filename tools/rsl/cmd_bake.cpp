@@ -1,8 +1,14 @@
 // `rsl bake SCENE|MESH`: bake (or reuse) the SVDF and OVDF of every unique
 // mesh, or of one shard of them (--shard I/N).
+#include <optional>
+#include <vector>
+
 #include <fmt/core.h>
 
+#include "src/core/error.h"
+#include "src/core/precompute_limits.h"
 #include "src/fields/field_cache.h"
+#include "src/fields/field_file.h"
 #include "tools/rsl/command.h"
 #include "tools/rsl/progress_display.h"
 #include "tools/rsl/unique_meshes.h"
@@ -14,25 +20,77 @@ namespace {
 struct BakeArgs {
     std::string input, output, shard;
     bool svdf_only = false, quiet = false;
-    int clusters = 0, vectors = 0, supersampling = 0, ovdf_vectors = 0, cube_resolution = 0, shells = 0;
+    // Absent: the scene's setting; given, checked by the scene file's rules.
+    std::optional<int> clusters, vectors, supersampling, ovdf_vectors, cube_resolution, shells;
 };
+
+struct BakeFlag {
+    const char* name;
+    std::optional<int> value;
+    int PrecomputeSettings::*setting;
+};
+
+std::vector<BakeFlag> bake_flags(const BakeArgs& args) {
+    return {{"--clusters", args.clusters, &PrecomputeSettings::svdf_clusters},
+            {"--vectors", args.vectors, &PrecomputeSettings::svdf_vectors},
+            {"--supersampling", args.supersampling, &PrecomputeSettings::svdf_supersampling},
+            {"--ovdf-vectors", args.ovdf_vectors, &PrecomputeSettings::ovdf_vectors},
+            {"--cube-resolution", args.cube_resolution, &PrecomputeSettings::ovdf_cube_resolution},
+            {"--shells", args.shells, &PrecomputeSettings::ovdf_shells}};
+}
+
+// The flags' values checked one at a time on the scene's (valid) settings
+// by the rules and messages of a scene file's "precompute" section, so that
+// the first problem names the flag that made it.
+void check_bake_flags(const BakeArgs& args, const PrecomputeSettings& scene) {
+    PrecomputeSettings settings = scene;
+    for (const BakeFlag& flag : bake_flags(args)) {
+        if (!flag.value) continue;
+        settings.*flag.setting = *flag.value;
+        if (const auto problem = precompute_problem(settings))
+            throw_error("{} {}: {} (as precompute.{} in a scene file)", flag.name, *flag.value, problem->message,
+                        problem->key);
+    }
+}
+
+// The flags that make this bake's fields other than the ones `rsl render`
+// of the scene looks for ("--vectors 4 (the scene's 8)"); empty when none do.
+std::string flags_render_will_not_use(const BakeArgs& args, const Scene& scene, const FieldCacheOptions& baked) {
+    const FieldCacheOptions render = default_field_options(scene);
+    const bool svdf_differs = params_json(baked.svdf) != params_json(render.svdf);
+    const bool ovdf_differs = !baked.svdf_only && params_json(baked.ovdf) != params_json(render.ovdf);
+    if (!svdf_differs && !ovdf_differs) return "";
+    std::string list;
+    for (const BakeFlag& flag : bake_flags(args))
+        if (flag.value)
+            list += fmt::format("{}{} {} (the scene's {})", list.empty() ? "" : ", ", flag.name, *flag.value,
+                                scene.precompute.*flag.setting);
+    return list;
+}
 
 void run_bake(const BakeArgs& args) {
     FieldShard shard;
     if (!args.shard.empty()) shard = parse_field_shard(args.shard);  // before the (slow) scene load
     const Scene scene = load_scene(args.input);
+    check_bake_flags(args, scene.precompute);
     FieldCacheOptions options = default_field_options(scene);
     options.shard = shard;
     if (!args.output.empty()) options.directory = args.output;
     options.svdf_only = args.svdf_only;
     ProgressDisplay display(!args.quiet);
     options.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
-    if (args.clusters > 0) options.svdf.clusters = args.clusters;
-    if (args.vectors > 0) options.svdf.vectors = args.vectors;
-    if (args.supersampling > 0) options.svdf.supersampling = options.ovdf.supersampling = args.supersampling;
-    if (args.ovdf_vectors > 0) options.ovdf.vectors = args.ovdf_vectors;
-    if (args.cube_resolution > 0) options.ovdf.cube_resolution = args.cube_resolution;
-    if (args.shells > 0) options.ovdf.shells = args.shells;
+    if (args.clusters) options.svdf.clusters = *args.clusters;
+    if (args.vectors) options.svdf.vectors = *args.vectors;
+    if (args.supersampling) options.svdf.supersampling = options.ovdf.supersampling = *args.supersampling;
+    if (args.ovdf_vectors) options.ovdf.vectors = *args.ovdf_vectors;
+    if (args.cube_resolution) options.ovdf.cube_resolution = *args.cube_resolution;
+    if (args.shells) options.ovdf.shells = *args.shells;
+    // Before the bake, which may take hours: the user can stop and edit the scene instead.
+    if (const std::string flags = flags_render_will_not_use(args, scene, options); !flags.empty())
+        fmt::print(stderr,
+                   "rsl bake: note: {} bake fields that `rsl render` of this scene will not use: it looks for "
+                   "fields of the scene's \"precompute\" settings (docs/SCENE_FORMAT.md); set them there instead\n",
+                   flags);
     const SceneFields fields = bake_or_load_fields(scene, options);
     int files = 0;  // of the whole scene, every shard's
     for (const UniqueFields& u : fields.unique)

@@ -12,6 +12,7 @@
 
 #include "src/backend/render_session.h"
 #include "tools/rsl/command.h"
+#include "tools/rsl/image_args.h"
 #include "tools/rsl/progress_display.h"
 #include "src/core/error.h"
 #include "src/frame/image_formation.h"
@@ -33,28 +34,13 @@ struct RenderArgs {
     std::vector<std::string> materials;
     std::string output;
     std::string vertex_output;
-    int width = 0, height = 0;
+    std::optional<int> width, height;  // absent: the scene camera's
     int samples = 1;
     float exposure = 0;
     bool quiet = false;
     int shadow_maps = 0;  // 0: off; else the resolution (GL only)
     std::string shadow_filter = "pcss";
 };
-
-// "A:B:STEP" → the times A, A + STEP, … ≤ B (inclusive within rounding).
-std::vector<float> parse_frames(const std::string& text) {
-    float a = 0, b = 0, step = 0;
-    char tail = 0;
-    if (std::sscanf(text.c_str(), "%f:%f:%f%c", &a, &b, &step, &tail) != 3 || !(step > 0) || b < a)
-        throw_error("--frames '{}': expected START:END:STEP with STEP > 0 and END ≥ START", text);
-    std::vector<float> times;
-    for (int i = 0;; ++i) {
-        const float t = a + float(i) * step;
-        if (t > b + 1e-4f * step) break;
-        times.push_back(t);
-    }
-    return times;
-}
 
 // out.exr, frame 7 → out.0007.exr
 std::filesystem::path numbered(const std::filesystem::path& path, int frame) {
@@ -63,10 +49,14 @@ std::filesystem::path numbered(const std::filesystem::path& path, int frame) {
     return result;
 }
 
-// Checking phase: the light and sample counts and the output's extension; returns the output path.
+// Checking phase: the light count, image size, samples, time, exposure and
+// the output's extension, before the scene loads; returns the output path.
 std::filesystem::path check_render_args(const RenderArgs& args) {
     if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
-    if (args.samples < 1) throw_error("--samples {}: expected at least 1", args.samples);
+    check_image_size(args.width, args.height, args.samples);
+    check_time("--time", args.time);
+    check_exposure(args.exposure);
+    if (!args.frames.empty()) parse_frames(args.frames);
     const std::filesystem::path output(args.output);
     if (output.extension() != ".exr") throw_error("-o {}: expected an .exr path (a .png preview is written beside it)", args.output);
     return output;
@@ -123,7 +113,7 @@ void render_frames(const RenderArgs& args, RenderSession& session, const std::fi
         const auto start = std::chrono::steady_clock::now();
         const VertexColors& colors = session.shade(t);
         const auto shaded = std::chrono::steady_clock::now();
-        const Image image = session.image(session.camera(args.width, args.height), formation);
+        const Image image = session.image(session.camera(args.width.value_or(0), args.height.value_or(0)), formation);
         const auto formed = std::chrono::steady_clock::now();
         const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
         write_exr_and_png(exr, image, tone);
@@ -136,6 +126,7 @@ void render_frames(const RenderArgs& args, RenderSession& session, const std::fi
         const std::string blend = session.setup().environment_lights.blends()
                                       ? fmt::format(", second map {:.0f}%", 100.0f * scene.environment.blend_weight_at(t))
                                       : "";
+        if (args.quiet) continue;
         fmt::print("t={:.3f}: {} vertices x {} lights{}, {} shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} "
                    "culled) -> {}\n",
                    t, colors.vertex_count(), stats.lights, blend, renderer.backend(), shading_ms, image_ms,
@@ -167,8 +158,8 @@ RegisterCommand render_command({"render",
     [](CLI::App& app) {
         auto args = std::make_shared<RenderArgs>();
         app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
-        auto* time = app.add_option("--time,-t", args->time, "Time in seconds")->capture_default_str();
-        auto* frames = app.add_option("--frames", args->frames, "START:END:STEP: numbered frames OUT.NNNN.exr");
+        auto* time = app.add_option("--time,-t", args->time, "Time in seconds (within ±1e6)")->capture_default_str();
+        auto* frames = app.add_option("--frames", args->frames, "START:END:STEP: numbered frames OUT.NNNN.exr (at most 100000)");
         time->excludes(frames);
         app.add_option("--lights,-k", args->lights, "Number of environment RSLs fitted to the map (each glTF sun adds one of its own)")->capture_default_str();
         app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer)")
@@ -193,10 +184,10 @@ RegisterCommand render_command({"render",
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
         app.add_option("-o,--output", args->output, "Image to write (.exr; a .png preview beside it)")->required();
         app.add_option("--vertex-out", args->vertex_output, "Per-vertex colours (.rslv) for `rsl compare`");
-        app.add_option("--width", args->width, "Image width (default: the scene camera's)");
-        app.add_option("--height", args->height, "Image height (default: the scene camera's)");
-        app.add_option("--samples", args->samples, "S: SxS primary rays per pixel")->capture_default_str();
-        app.add_option("--exposure", args->exposure, "PNG exposure in stops (default 0: automatic, as rsl truth)")->capture_default_str();
+        app.add_option("--width", args->width, "Image width, 1..16384 (default: the scene camera's)");
+        app.add_option("--height", args->height, "Image height, 1..16384 (default: the scene camera's)");
+        app.add_option("--samples", args->samples, "S: SxS primary rays per pixel, 1..16")->capture_default_str();
+        app.add_option("--exposure", args->exposure, "PNG exposure in stops, -64..64 (default 0: automatic, as rsl truth)")->capture_default_str();
         auto* shadow_maps = app.add_option("--shadow-maps", args->shadow_maps,
             "RES: the shadow-mapped baseline (gl backend): environment lights' visibility from one RESxRES "
             "depth map each (16..8192) instead of the SVDF/OVDF fields (docs/GPU.md)");
@@ -204,7 +195,7 @@ RegisterCommand render_command({"render",
                        "With --shadow-maps: pcss (blocker search; default) or pcf (fixed occluder distance, "
                        "0.1 x the scene's radius)")
             ->check(CLI::IsMember({"pcf", "pcss"}))->needs(shadow_maps)->capture_default_str();
-        app.add_flag("--quiet,-q", args->quiet, "No progress lines");
+        app.add_flag("--quiet,-q", args->quiet, "No progress or per-frame lines (errors and warnings still go to stderr)");
         app.callback([args] { run_render(*args); });
     }});
 

@@ -4,10 +4,12 @@
 // --per-pixel, the same integral at every pixel's hit point), as EXR + PNG.
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include <fmt/core.h>
 
 #include "tools/rsl/command.h"
+#include "tools/rsl/image_args.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "tools/rsl/progress_display.h"
@@ -26,7 +28,7 @@ struct TruthArgs {
     std::string vertex_output;
     bool per_pixel = false;
     int resolution = 0;
-    int width = 0, height = 0;
+    std::optional<int> width, height;  // absent: the scene camera's
     int samples = 1;
     int subdivision = 1;
     std::vector<float> background;
@@ -52,7 +54,9 @@ void run_truth(const TruthArgs& args) {
     const std::filesystem::path output(args.output);
     if (output.extension() != ".exr")
         throw_error("-o {}: expected an .exr path (a .png preview is written beside it)", args.output);
-    if (args.samples < 1) throw_error("--samples {}: expected at least 1", args.samples);
+    check_image_size(args.width, args.height, args.samples);
+    check_time("--time", args.time);
+    check_exposure(args.exposure);
     if (args.subdivision < 1 || args.subdivision > 16)
         throw_error("--subdivision {}: expected 1 to 16", args.subdivision);
     if (!args.background.empty() && args.background.size() != 3)
@@ -78,8 +82,8 @@ void run_truth(const TruthArgs& args) {
                    scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
                    scene.environment.blend_weight_at(args.time));
 
-    const int width = args.width > 0 ? args.width : scene.camera.width;
-    const int height = args.height > 0 ? args.height : scene.camera.height;
+    const int width = args.width.value_or(scene.camera.width);
+    const int height = args.height.value_or(scene.camera.height);
     const PinholeCamera camera = PinholeCamera::at_time(scene.camera, args.time, width, height);
     ImageFormationOptions formation;
     formation.samples_per_side = args.samples;
