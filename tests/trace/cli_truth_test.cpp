@@ -42,6 +42,7 @@ TEST_CASE("rsl truth and rsl compare end to end on a furnace scene", "[trace][cl
     auto [status, text] = run_command(rsl + " truth " + (dir / "furnace.json").string() + " -q -o " + out.string());
     INFO(text);
     REQUIRE(status == 0);
+    CHECK(text.find("shadow rays") == std::string::npos);  // -q: no summary line
     REQUIRE(fs::exists(dir / "truth.png"));
     const VertexColors colors = read_vertex_colors(dir / "truth.rslv");
     REQUIRE(colors.scene_name == "furnace");

@@ -121,6 +121,7 @@ void run_truth(const TruthArgs& args) {
     if (vertex_path.empty()) vertex_path = std::filesystem::path(output).replace_extension(".rslv");
     if (want_vertices) write_vertex_colors(vertex_path, vertices);
 
+    if (args.quiet) return;
     const uint64_t rays = truth.rays_traced();
     fmt::print("truth: {} ({}×{}{}), {}{:.2f} s, {} shadow rays ({:.1f} M/s)\n", output.string(), width, height,
                args.per_pixel ? ", per pixel" : "", want_vertices ? vertex_path.string() + ", " : "", shade_seconds,
@@ -152,7 +153,7 @@ RegisterCommand truth_command({"truth",
             ->expected(3);
         app.add_option("--exposure", args->exposure, "PNG exposure in stops (default: automatic)");
         app.add_flag("--no-lights", args->no_lights, "Leave out the scene's local lights");
-        app.add_flag("--quiet,-q", args->quiet, "No progress output");
+        app.add_flag("--quiet,-q", args->quiet, "No progress or summary line (errors and warnings still go to stderr)");
         app.callback([args] { run_truth(*args); });
     }});
 
