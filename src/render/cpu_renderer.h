@@ -85,6 +85,18 @@ private:
     void shade_block(const Block& block, VertexColors& out, RenderStats& counts);
     void load_block_points(BlockScratch& s, const Block& block) const;
     static BoundingSphere block_bounding_sphere(const BlockScratch& s, int n);
+    // shade_block's phases (shade_block.cpp).
+    struct PixelTerms;
+    struct BlockPixelTerms {
+        PixelTerms* terms = nullptr;  // null: the part is shaded per vertex
+        bool unshadowed = false, specular = false, self = false;  // which of `terms` the part keeps
+        const float* rim_floor = nullptr;  // highlights per pixel: brdf_queries' view_floor
+    };
+    BlockPixelTerms start_block_pixel_terms(BlockScratch& s, int part, bool textured, int n, size_t lights);
+    void block_self_visibility(BlockScratch& s, int part, const BrdfTable* specular, int m, bool keep_self,
+                               RenderStats& counts) const;
+    static void keep_block_pixel_terms(const BlockScratch& s, const BlockPixelTerms& kept, size_t lights, size_t l,
+                                       int m);
     void set_point(BlockScratch& s, int k, const Vec3& position, const Frame& frame) const;
     void set_light(BlockScratch& s, size_t light, int n) const;
     void put_light(BlockScratch& s, int k, const SquareLight& square, float spot) const;
@@ -112,7 +124,6 @@ private:
                          TriangleOccluders& occluders) const;
     // shade_pixel's phases (pixel_shading.cpp).
     struct PixelOccluders;
-    struct PixelTerms;
     void triangle_shadowed_lights(BlockScratch& s, TriangleLights& cache, size_t part, size_t triangle,
                                   PixelOccluders& o) const;
     static void blend_dimmest_lights(const PixelTerms& terms, const uint32_t* corner, bool textured, float pixel_sum,

@@ -439,6 +439,90 @@ std::vector<uint32_t> CpuRenderer::block_candidate_lights(size_t b) const {
     return bits;
 }
 
+// The block's vertices' terms for the image (pixel_shading.cpp), reset
+// before the lights add to them; `terms` null for a part shaded per vertex.
+CpuRenderer::BlockPixelTerms CpuRenderer::start_block_pixel_terms(BlockScratch& s, int part, bool textured, int n,
+                                                                  size_t lights) {
+    BlockPixelTerms kept;
+    PixelTerms& terms = pixel_terms_[size_t(part)];
+    // A textured part keeps both layers' terms (CpuRenderer::shade sizes them).
+    if (terms.occlusion.empty() || (textured && terms.unshadowed_specular.empty())) return kept;
+    kept.terms = &terms;
+    kept.unshadowed = !terms.unshadowed.empty();
+    kept.specular = kept.unshadowed && textured;
+    kept.self = !terms.self_visibility.empty();
+    if (kept.self) {
+        for (int k = 0; k < n; ++k) s.view_floor[k] = rim_view_floor_[size_t(part)][size_t(s.vertex[k])];
+        kept.rim_floor = s.view_floor;
+    }
+    for (int k = 0; k < n; ++k) {
+        const size_t first = size_t(s.vertex[k]) * lights, last = first + lights;
+        std::fill(terms.occlusion.begin() + first, terms.occlusion.begin() + last, 1.0f);
+        if (kept.unshadowed) std::fill(terms.unshadowed.begin() + first, terms.unshadowed.begin() + last, Color(0));
+        if (kept.specular)
+            std::fill(terms.unshadowed_specular.begin() + first, terms.unshadowed_specular.begin() + last, Color(0));
+        if (kept.self) std::fill(terms.self_visibility.begin() + first, terms.self_visibility.begin() + last, 0.0f);
+    }
+    return kept;
+}
+
+// The part's own visibility of the m queried squares into s.vis: the SVDF,
+// or exact rays (RenderOptions::exact_visibility); 0 where the square adds
+// nothing, unless the pixels keep the SVDF (`keep_self`).
+void CpuRenderer::block_self_visibility(BlockScratch& s, int part, const BrdfTable* specular, int m, bool keep_self,
+                                        RenderStats& counts) const {
+    const Svdf* svdf = options_.self_visibility ? fields_.self[part].get() : nullptr;
+    // A square whose BRDF average is 0 (clipped away below the horizon)
+    // adds nothing whatever its visibility: no visibility lookups (nor rays) for it.
+    auto adds_nothing = [&](int i) {
+        return s.br[i] == 0.0f && s.bg[i] == 0.0f && s.bb[i] == 0.0f &&
+               (!specular || (s.spr[i] == 0.0f && s.spg[i] == 0.0f && s.spb[i] == 0.0f));
+    };
+    const ExactVisibility* exact = options_.exact_visibility.get();
+    const ExactVisibilityMode exact_mode = exact ? exact->mode() : ExactVisibilityMode::All;
+    const bool exact_others = exact_mode == ExactVisibilityMode::Others || exact_mode == ExactVisibilityMode::OthersProduct;
+    if (exact && !exact_others) {
+        for (int i = 0; i < m; ++i) s.skip[i] = adds_nothing(i);
+        exact->visible_fraction_batch(part, 0, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.vis, &counts.shadow_rays);
+    } else if (svdf) {
+        svdf->visible_fraction_batch(0, s.query_vertex, s.qx, s.qy, s.qh, m, s.vis);
+    } else {
+        for (int i = 0; i < m; ++i) s.vis[i] = 1.0f;
+    }
+    // Highlights per pixel keep the SVDF of every square that reaches the
+    // vertex's hemisphere: a pixel near the vertex may see the light.
+    if (!keep_self)
+        for (int i = 0; i < m; ++i)
+            if (adds_nothing(i)) s.vis[i] = 0.0f;
+    if (exact && exact_others) {
+        for (int i = 0; i < m; ++i) s.skip[i] = !(s.vis[i] > 0.0f);
+        exact->visible_fraction_batch(part, 0, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.exact, &counts.shadow_rays);
+        for (int i = 0; i < m; ++i) s.vis[i] *= s.exact[i];
+    }
+}
+
+// Light l's terms of the m queried vertices for the image: the other parts'
+// shadows' factor (s.vis over the visibility before them, `unshadowed_vis`),
+// and the light's share or the SVDF's without it.
+void CpuRenderer::keep_block_pixel_terms(const BlockScratch& s, const BlockPixelTerms& kept, size_t lights, size_t l,
+                                         int m) {
+    PixelTerms& terms = *kept.terms;
+    for (int i = 0; i < m; ++i) {
+        const int k = s.index[i];
+        const size_t at = size_t(s.vertex[k]) * lights + l;
+        const float before = s.unshadowed_vis[i];
+        terms.occlusion[at] = before > 0.0f ? s.vis[i] / before : 1.0f;
+        if (kept.unshadowed)
+            terms.unshadowed[at] = before * Color(s.ir[k] * s.br[i], s.ig[k] * s.bg[i], s.ib[k] * s.bb[i]);
+        if (kept.specular)
+            terms.unshadowed_specular[at] = before * Color(s.ir[k] * s.spr[i], s.ig[k] * s.spg[i], s.ib[k] * s.spb[i]);
+        if (kept.self) terms.self_visibility[at] = before;
+    }
+}
+
+// Σ_l I_l · B_l · V_l · F_l over the block's vertices (docs/design/RENDERER.md):
+// per light, the BRDF averages, the part's own visibility, the other parts'
+// shadows, then the sum.
 void CpuRenderer::shade_block(const Block& block, VertexColors& out, RenderStats& counts) {
     thread_local BlockScratch scratch;
     BlockScratch& s = scratch;
@@ -446,102 +530,34 @@ void CpuRenderer::shade_block(const Block& block, VertexColors& out, RenderStats
     const BrdfTable& table = *part_tables_[part_index];
     // A textured part's second lobe: the same squares and visibility, a second table.
     const BrdfTable* specular = part_specular_tables_[part_index];
-    const bool isotropic = table.isotropic();
-    RSL_CHECK(!specular || specular->isotropic() == isotropic);
-    const Svdf* svdf = options_.self_visibility ? fields_.self[part_index].get() : nullptr;
+    RSL_CHECK(!specular || specular->isotropic() == table.isotropic());
     const int n = block.end - block.begin;
-    const bool vertex_culling = options_.occluder_culling;
     load_block_points(s, block);
-    const BoundingSphere block_sphere = vertex_culling ? block_bounding_sphere(s, n) : BoundingSphere{};
+    const BoundingSphere block_sphere = options_.occluder_culling ? block_bounding_sphere(s, n) : BoundingSphere{};
     for (int k = 0; k < n; ++k) {
         s.r[k] = s.g[k] = s.b[k] = 0.0f;
         s.sr[k] = s.sg[k] = s.sb[k] = 0.0f;
     }
-
     const size_t environment = environment_squares_.size();
     const size_t lights = environment + light_positions_.size();
-    // A part shaded per pixel keeps each light's terms for image formation
-    // (pixel_shading.cpp; a textured one both layers', CpuRenderer::shade sizes them).
-    PixelTerms* pixel = pixel_terms_[size_t(part_index)].occlusion.empty() ||
-                                (specular && pixel_terms_[size_t(part_index)].unshadowed_specular.empty())
-                            ? nullptr
-                            : &pixel_terms_[size_t(part_index)];
-    const bool keep_unshadowed = pixel && !pixel->unshadowed.empty();
-    const bool keep_specular = keep_unshadowed && specular;
-    const bool keep_self = pixel && !pixel->self_visibility.empty();
-    const float* rim_floor = nullptr;
-    if (keep_self) {
-        for (int k = 0; k < n; ++k) s.view_floor[k] = rim_view_floor_[size_t(part_index)][size_t(s.vertex[k])];
-        rim_floor = s.view_floor;
-    }
-    if (pixel)
-        for (int k = 0; k < n; ++k) {
-            const size_t first = size_t(s.vertex[k]) * lights, last = first + lights;
-            std::fill(pixel->occlusion.begin() + first, pixel->occlusion.begin() + last, 1.0f);
-            if (keep_unshadowed) std::fill(pixel->unshadowed.begin() + first, pixel->unshadowed.begin() + last, Color(0));
-            if (keep_specular)
-                std::fill(pixel->unshadowed_specular.begin() + first, pixel->unshadowed_specular.begin() + last, Color(0));
-            if (keep_self) std::fill(pixel->self_visibility.begin() + first, pixel->self_visibility.begin() + last, 0.0f);
-        }
+    const BlockPixelTerms pixel = start_block_pixel_terms(s, part_index, specular != nullptr, n, lights);
+    const ExactVisibility* exact = options_.exact_visibility.get();
+    const bool field_occluders = !exact || exact->mode() == ExactVisibilityMode::Self;
+
     for (size_t l = 0; l < lights; ++l) {
         if (l < environment ? !options_.environment : !options_.local_lights) continue;
         set_light(s, l, n);
-        const int m = brdf_queries(s, table, specular, n, rim_floor);
+        const int m = brdf_queries(s, table, specular, n, pixel.rim_floor);
         if (m == 0) continue;
         counts.lookups += size_t(m);
         for (int i = 0; i < m; ++i) s.query_vertex[i] = s.vertex[s.index[i]];
-        if (rim_floor)  // the rim's queries kept for the pixels are not the frame's lookups
+        if (pixel.rim_floor)  // the rim's queries kept for the pixels are not the frame's lookups
             for (int i = 0; i < m; ++i) counts.lookups -= s.skip[i] ? 1 : 0;
-
-        // A square whose BRDF average is 0 (clipped away below the horizon)
-        // adds nothing whatever its visibility: no visibility lookups (nor rays) for it.
-        auto adds_nothing = [&](int i) {
-            return s.br[i] == 0.0f && s.bg[i] == 0.0f && s.bb[i] == 0.0f &&
-                   (!specular || (s.spr[i] == 0.0f && s.spg[i] == 0.0f && s.spb[i] == 0.0f));
-        };
-        const ExactVisibility* exact = options_.exact_visibility.get();
-        const ExactVisibilityMode exact_mode = exact ? exact->mode() : ExactVisibilityMode::All;
-        const bool exact_others = exact_mode == ExactVisibilityMode::Others || exact_mode == ExactVisibilityMode::OthersProduct;
-        if (exact && !exact_others) {
-            for (int i = 0; i < m; ++i) s.skip[i] = adds_nothing(i);
-            exact->visible_fraction_batch(part_index, 0, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.vis,
-                                          &counts.shadow_rays);
-        } else if (svdf) {
-            svdf->visible_fraction_batch(0, s.query_vertex, s.qx, s.qy, s.qh, m, s.vis);
-        } else {
-            for (int i = 0; i < m; ++i) s.vis[i] = 1.0f;
-        }
-        // Highlights per pixel keep the SVDF of every square that reaches the
-        // vertex's hemisphere: a pixel near the vertex may see the light.
-        if (!keep_self)
-            for (int i = 0; i < m; ++i)
-                if (adds_nothing(i)) s.vis[i] = 0.0f;
-        if (exact && exact_others) {
-            for (int i = 0; i < m; ++i) s.skip[i] = !(s.vis[i] > 0.0f);
-            exact->visible_fraction_batch(part_index, 0, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.exact,
-                                          &counts.shadow_rays);
-            for (int i = 0; i < m; ++i) s.vis[i] *= s.exact[i];
-        }
-        const bool field_occluders = !exact || exact_mode == ExactVisibilityMode::Self;
-
-        if (pixel)
+        block_self_visibility(s, part_index, specular, m, pixel.self, counts);
+        if (pixel.terms)
             for (int i = 0; i < m; ++i) s.unshadowed_vis[i] = s.vis[i];
         if (field_occluders) shadow_by_occluders(s, block_sphere, part_index, l, n, m, counts);
-        if (pixel) {  // the others' shadows' factor, and the light's share or the SVDF's without it
-            for (int i = 0; i < m; ++i) {
-                const int k = s.index[i];
-                const size_t at = size_t(s.vertex[k]) * lights + l;
-                const float before = s.unshadowed_vis[i];
-                pixel->occlusion[at] = before > 0.0f ? s.vis[i] / before : 1.0f;
-                if (keep_unshadowed)
-                    pixel->unshadowed[at] = before * Color(s.ir[k] * s.br[i], s.ig[k] * s.bg[i], s.ib[k] * s.bb[i]);
-                if (keep_specular)
-                    pixel->unshadowed_specular[at] =
-                        before * Color(s.ir[k] * s.spr[i], s.ig[k] * s.spg[i], s.ib[k] * s.spb[i]);
-                if (keep_self) pixel->self_visibility[at] = before;
-            }
-        }
-
+        if (pixel.terms) keep_block_pixel_terms(s, pixel, lights, l, m);
         add_light(m, s.index, s.vis, s.ir, s.ig, s.ib, ColorInputs{s.br, s.bg, s.bb}, ColorOutputs{s.r, s.g, s.b});
         if (specular)
             add_light(m, s.index, s.vis, s.ir, s.ig, s.ib, ColorInputs{s.spr, s.spg, s.spb},
