@@ -1,6 +1,8 @@
 // The page `rsl bench --markdown` writes (tools/bench/results_page.h): every
 // figure of the run in its section's table, formatted, with the machine, the
 // commit and the command named.
+#include <algorithm>
+
 #include <catch2/catch.hpp>
 
 #include "tools/bench/results_page.h"
@@ -48,6 +50,41 @@ TEST_CASE("The results page tables every line of the run, naming where it was me
 
     const ResultsRun quick{"rsl bench --markdown x.md --quick", "abc", "m", "2026-12-05", true};
     CHECK_THAT(results_page(results, quick, "."), Catch::Contains("These are `--quick` figures"));
+}
+
+TEST_CASE("The accuracy table has one row per frame and the error at each K in its own column",
+          "[bench][results-page]") {
+    std::vector<json> results{{{"bench", "machine"}}};
+    for (const int k : {10, 30, 60, 100})
+        for (const double t : {0.0, 0.5})
+            results.push_back({{"bench", "render-accuracy"}, {"scene", "robot"}, {"environment", "grace"},
+                               {"material", "glossy"}, {"time", t}, {"lights", k}, {"precompute", "bench"},
+                               {"relative_l2", 0.01 * (1 + t) + 1.0 / k}, {"objects_relative_l2", 0.02 + 1.0 / k},
+                               {"worst_part", k == 30 ? "torso" : "shin"}, {"worst_part_relative_l2", 0.1 + 1.0 / k},
+                               {"relative_l2_without_occluders", 0.3}});
+    const std::string page = results_page(results, {"c", "x", "m", "d", false}, ".");
+    INFO(page);
+    CHECK_THAT(page, Catch::Contains("| scene | environment | material | t | fields | all, K = 10 | all, K = 30 | "
+                                     "all, K = 60 | all, K = 100 | objects, K = 30 | worst part | without OVDF |"));
+    // 1/10 + 0.01 = 11%, 1/30 + 0.01 = 4.33%, ...; the objects and the worst part at K = 30.
+    CHECK_THAT(page, Catch::Contains("| robot | grace | glossy | 0 | bench | 11.00% | 4.33% | 2.67% | 2.00% | 5.33% | "
+                                     "`torso` 13.3% | 30.00% |"));
+    CHECK_THAT(page, Catch::Contains("| robot | grace | glossy | 0.5 | bench | 11.50% | 4.83% | 3.17% | 2.50% |"));
+    CHECK(std::count(page.begin(), page.end(), '\n') < 20);  // two rows, not eight
+}
+
+TEST_CASE("A run's machine line names where and how it ran, for a page written later", "[bench][results-page]") {
+    const json line = machine_line(true, {"render", "scale"}, {8, 128}, {16.0f, 2.5f});
+    CHECK(line["bench"] == "machine");
+    CHECK_THAT(line["machine"].get<std::string>(), Catch::Contains("hardware threads"));
+    CHECK(line["date"].get<std::string>().size() == 10);
+    const ResultsRun run = results_run({{{"bench", "render"}}, line}, "docs/RESULTS.md");
+    CHECK(run.command == "rsl bench --markdown docs/RESULTS.md --quick --parts 8,128 --reaches 16,2.5 render scale");
+    CHECK(run.commit == line["commit"].get<std::string>());
+    CHECK(run.quick);
+    // Lines without one (an older rsl's) cannot say where they were measured.
+    CHECK_THROWS_WITH(results_run({{{"bench", "machine"}, {"hardware_threads", 2}}}, "x.md"),
+                      Catch::Contains("no machine line naming the commit"));
 }
 
 TEST_CASE("The machine is named by its CPU and threads", "[bench][results-page]") {

@@ -4,12 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <fstream>
+#include <map>
 #include <functional>
 #include <set>
 #include <thread>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "src/core/error.h"
+#include "src/version/build_info.h"
 
 namespace rsl::bench {
 
@@ -29,6 +35,8 @@ struct Section {
     std::string bench, title, text;
     std::vector<Column> columns;
     std::function<bool(const json&)> keep = [](const json&) { return true; };
+    // Rows merged before the table is written (the accuracy's K in columns); none: as they come.
+    std::function<std::vector<json>(const std::vector<json>&)> combine;
 };
 
 std::string with_thousands(long long value) {
@@ -70,6 +78,31 @@ void add_worst_part(json& row, const std::string& error_key) {
                                              100.0 * row[error_key].get<double>());
 }
 
+// One row per frame (scene, environment, material, t, fields), the error at
+// each K in its own column and the rest at K = 30, in the order first seen.
+std::vector<json> accuracy_by_lights(const std::vector<json>& rows) {
+    std::vector<json> merged;
+    std::map<std::string, size_t> index;
+    for (const json& row : rows) {
+        const std::string key = fmt::format("{}|{}|{}|{}|{}", row.value("scene", ""), row.value("environment", ""),
+                                            row.value("material", ""), row.value("time", 0.0), row.value("precompute", ""));
+        auto [at, added] = index.emplace(key, merged.size());
+        if (added) {
+            json frame;
+            for (const char* k : {"bench", "scene", "environment", "material", "time", "precompute"})
+                if (row.contains(k)) frame[k] = row[k];
+            merged.push_back(std::move(frame));
+        }
+        json& frame = merged[at->second];
+        const int lights = row.value("lights", 0);
+        if (row.contains("relative_l2")) frame[fmt::format("relative_l2_k{}", lights)] = row["relative_l2"];
+        if (lights == 30)
+            for (auto it = row.begin(); it != row.end(); ++it)
+                if (!frame.contains(it.key()) && it.key() != "lights") frame[it.key()] = it.value();
+    }
+    return merged;
+}
+
 std::vector<Section> sections() {
     const Column worst{"worst_part_cell", "worst part", Format::Text};
     return {
@@ -94,17 +127,20 @@ std::vector<Section> sections() {
          "`rsl bench render-accuracy` and `rsl bench render-goal`: the renderer against the ground truth of the "
          "same frame, per vertex. *Fields* says whose precomputation settings: the bench's (small, baked in "
          "seconds) or the scene file's own. *Without OVDF* is the error with the other parts' shadows left out: "
-         "what the occluder fields bring.",
+         "what the occluder fields bring. The objects, the worst part and *without OVDF* are at K = 30.",
          {{"scene", "scene", Format::Text},
           {"environment", "environment", Format::Text},
           {"material", "material", Format::Text},
           {"time", "t", Format::Decimal},
-          {"lights", "K", Format::Count},
           {"precompute", "fields", Format::Text},
-          {"relative_l2", "error: all", Format::Percent},
-          {"objects_relative_l2", "objects", Format::Percent},
+          {"relative_l2_k10", "all, K = 10", Format::Percent},
+          {"relative_l2_k30", "all, K = 30", Format::Percent},
+          {"relative_l2_k60", "all, K = 60", Format::Percent},
+          {"relative_l2_k100", "all, K = 100", Format::Percent},
+          {"objects_relative_l2", "objects, K = 30", Format::Percent},
           worst,
-          {"relative_l2_without_occluders", "without OVDF", Format::Percent}}},
+          {"relative_l2_without_occluders", "without OVDF", Format::Percent}},
+         [](const json&) { return true; }, accuracy_by_lights},
         {"scale", "Many moving parts",
          "`rsl bench scale`: yard-N, N instances of four small meshes bouncing, tumbling and orbiting on a ground "
          "(`rsl assets --yard N`), K = 30, the median of five frames; the errors are the means over them (the "
@@ -202,6 +238,7 @@ void write_section(std::string& page, const Section& section, const std::vector<
             rows.push_back(std::move(row));
         }
     }
+    if (section.combine) rows = section.combine(rows);
     if (rows.empty() && skipped.empty() && plots.empty()) return;
     page += "\n## " + section.title + "\n\n";
     if (!section.text.empty()) page += section.text + "\n\n";
@@ -232,6 +269,36 @@ std::string describe_machine() {
     utsname name{};
     if (uname(&name) == 0) text += fmt::format(", {} {}", name.sysname, name.release);
     return text;
+}
+
+json machine_line(bool quick, const std::vector<std::string>& names, const std::vector<int>& parts,
+                  const std::vector<float>& reaches) {
+    const std::time_t now = std::time(nullptr);
+    char date[16];
+    std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+    return {{"bench", "machine"}, {"hardware_threads", std::thread::hardware_concurrency()},
+            {"quick", quick},     {"machine", describe_machine()},
+            {"commit", build_commit()}, {"date", date},
+            {"names", names},     {"parts", parts},
+            {"reaches", reaches}};
+}
+
+ResultsRun results_run(const std::vector<json>& results, const std::string& page) {
+    const auto line = std::find_if(results.begin(), results.end(),
+                                   [](const json& row) { return row.value("bench", "") == "machine"; });
+    if (line == results.end() || !line->contains("commit") || !line->contains("machine") || !line->contains("date"))
+        throw_error("the results have no machine line naming the commit, machine and date (written by an older rsl "
+                    "bench?): the page could not say where they were measured");
+    const json& m = *line;
+    ResultsRun run{"rsl bench --markdown " + page, m["commit"].get<std::string>(), m["machine"].get<std::string>(),
+                   m["date"].get<std::string>(), m.value("quick", false)};
+    if (run.quick) run.command += " --quick";
+    if (const auto parts = m.value("parts", std::vector<int>{}); !parts.empty())
+        run.command += fmt::format(" --parts {}", fmt::join(parts, ","));
+    if (const auto reaches = m.value("reaches", std::vector<float>{}); !reaches.empty())
+        run.command += fmt::format(" --reaches {:g}", fmt::join(reaches, ","));
+    for (const std::string& name : m.value("names", std::vector<std::string>{})) run.command += " " + name;
+    return run;
 }
 
 std::string results_page(const std::vector<json>& results, const ResultsRun& run,

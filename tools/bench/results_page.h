@@ -23,6 +23,16 @@ struct ResultsRun {
 // the threads and the kernel of this machine.
 std::string describe_machine();
 
+// A run's first line ("bench": "machine"): this machine, the commit, today's
+// date and the run's arguments, so that a page written later from saved
+// lines (`rsl bench --markdown PAGE --from-json FILE`) names the run's own.
+nlohmann::json machine_line(bool quick, const std::vector<std::string>& names, const std::vector<int>& parts,
+                            const std::vector<float>& reaches);
+
+// The run described by the machine line of `results`, with the command line
+// that writes `page` again; refuses lines without one (a run of an older rsl).
+ResultsRun results_run(const std::vector<nlohmann::json>& results, const std::string& page);
+
 // The page for the result lines of one run (bench_results()), in the order
 // of the sections below; a benchmark without a section of its own gets a
 // table of its numeric figures. Plots the run wrote (a "plot" line) are

@@ -5,18 +5,18 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <thread>
+#include <sstream>
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
-#include "src/version/build_info.h"
 #include "tools/assets/yard.h"
 #include "tools/bench/bench.h"
 #include "tools/bench/results_page.h"
 #include "tools/rsl/command.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/file_reading.h"
 
 namespace rsl::cli {
 
@@ -34,6 +34,7 @@ struct BenchArgs {
     bool list = false;
     std::string json_out;
     std::string markdown;
+    std::string from_json;
     std::string shared = std::string(RSL_SOURCE_DIR) + "/../shared/assets";
     std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
     std::string scenes = std::string(RSL_SOURCE_DIR) + "/assets/scenes";
@@ -42,35 +43,44 @@ struct BenchArgs {
     std::vector<float> reaches;
 };
 
-// The command line that reproduces the run, as the page names it.
-std::string bench_command_line(const BenchArgs& args) {
-    std::string line = "rsl bench --markdown " + args.markdown;
-    if (args.quick) line += " --quick";
-    if (!args.parts.empty()) line += fmt::format(" --parts {}", fmt::join(args.parts, ","));
-    if (!args.reaches.empty()) line += fmt::format(" --reaches {}", fmt::join(args.reaches, ","));
-    for (const std::string& name : args.names) line += " " + name;
-    return line;
+// The results of a saved run: the JSON array of --json-out, or the JSON
+// lines a run prints on stdout.
+std::vector<nlohmann::json> read_saved_results(const std::string& file) {
+    const std::string text = read_bounded_file(file, kMaxJsonFileBytes, "a results file");
+    try {
+        if (const size_t first = text.find_first_not_of(" \t\r\n"); first != std::string::npos && text[first] == '[')
+            return nlohmann::json::parse(text).get<std::vector<nlohmann::json>>();
+        std::vector<nlohmann::json> lines;
+        std::istringstream in(text);
+        for (std::string line; std::getline(in, line);)
+            if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(nlohmann::json::parse(line));
+        return lines;
+    } catch (const nlohmann::json::exception& e) {
+        throw_error("{}: not the results of rsl bench (a JSON array or JSON lines): {}", file, e.what());
+    }
 }
 
-// The page of this run's results; the plots it links are copied beside it
+// The page of a run's results; the plots it links are copied beside it
 // (gallery/), since the --out folder is scratch.
-void write_markdown(const BenchArgs& args) {
+void write_markdown(const std::string& page_path, std::vector<nlohmann::json> results) {
     namespace fs = std::filesystem;
-    const fs::path page = args.markdown;
+    const fs::path page = page_path;
     const fs::path folder = page.has_parent_path() ? page.parent_path() : fs::path(".");
-    std::vector<nlohmann::json> results = bench_results();
+    const bench::ResultsRun run = bench::results_run(results, page_path);  // before anything is written
     for (nlohmann::json& row : results) {
         if (!row.contains("plot")) continue;
         const fs::path plot = row["plot"].get<std::string>();
         const fs::path copy = folder / "gallery" / fmt::format("results_{}_{}", row.value("bench", "bench"),
                                                                plot.filename().string());
-        write_atomically(copy, [&](const fs::path& tmp) { fs::copy_file(plot, tmp, fs::copy_options::overwrite_existing); });
+        // A page written again from a saved run finds the plot in its own gallery.
+        std::error_code same;
+        const bool held = fs::equivalent(plot, copy, same) || (!fs::exists(plot) && fs::exists(copy));
+        if (!held) {
+            if (!fs::exists(plot)) throw_error("the run's plot {} is gone and {} holds no copy", plot.string(), copy.string());
+            write_atomically(copy, [&](const fs::path& tmp) { fs::copy_file(plot, tmp, fs::copy_options::overwrite_existing); });
+        }
         row["plot"] = copy.string();
     }
-    const std::time_t now = std::time(nullptr);
-    char date[16];
-    std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
-    const bench::ResultsRun run{bench_command_line(args), build_commit(), bench::describe_machine(), date, args.quick};
     write_file_atomically(page, bench::results_page(results, run, folder));
 }
 
@@ -86,6 +96,9 @@ RegisterCommand bench_command({"bench",
                        "Also write the results as a page of tables naming the machine, the commit and this command "
                        "(docs/RESULTS.md is written so: rsl bench --markdown docs/RESULTS.md render render-accuracy "
                        "render-goal scale gl lightfit); plots are copied into its folder's gallery/");
+        app.add_option("--from-json", args->from_json,
+                       "With --markdown: write the page from a saved run (its --json-out, or its stdout lines) "
+                       "instead of running; the page names that run's machine, commit and command");
         app.add_option("--shared-assets", args->shared, "Folder of real probes/meshes (optional)")->capture_default_str();
         app.add_option("--generated-assets", args->generated, "The project's generated assets")->capture_default_str();
         app.add_option("--scenes", args->scenes, "The project's scene files")->capture_default_str();
@@ -106,14 +119,18 @@ RegisterCommand bench_command({"bench",
                 for (auto& b : registry) fmt::print("{:<16} {}\n", b.name, b.description);
                 return;
             }
+            if (!args->from_json.empty()) {
+                if (args->markdown.empty()) throw_error("--from-json {}: give the page to write with --markdown", args->from_json);
+                if (!args->names.empty()) throw_error("--from-json writes a saved run's page: name no benchmarks to run");
+                write_markdown(args->markdown, read_saved_results(args->from_json));
+                return;
+            }
             for (auto& name : args->names)
                 if (std::none_of(registry.begin(), registry.end(), [&](auto& b) { return b.name == name; }))
                     throw_error("unknown benchmark '{}' (see rsl bench --list)", name);
             BenchOptions options{args->quick, args->shared, args->generated, args->scenes, args->output, args->parts,
                                  args->reaches};
-            bench_emit({{"bench", "machine"},
-                        {"hardware_threads", std::thread::hardware_concurrency()},
-                        {"quick", args->quick}});
+            bench_emit(bench::machine_line(args->quick, args->names, args->parts, args->reaches));
             for (auto& b : registry) {
                 if (!args->names.empty() &&
                     std::find(args->names.begin(), args->names.end(), b.name) == args->names.end())
@@ -122,7 +139,7 @@ RegisterCommand bench_command({"bench",
             }
             if (!args->json_out.empty())
                 write_file_atomically(args->json_out, nlohmann::json(bench_results()).dump(2));
-            if (!args->markdown.empty()) write_markdown(*args);
+            if (!args->markdown.empty()) write_markdown(args->markdown, bench_results());
         });
     }});
 }  // namespace
