@@ -73,6 +73,28 @@ TEST_CASE("The accuracy table has one row per frame and the error at each K in i
     CHECK(std::count(page.begin(), page.end(), '\n') < 20);  // two rows, not eight
 }
 
+TEST_CASE("The light-fitting table has one row per map and rule, the error at each K in its own column",
+          "[bench][results-page]") {
+    std::vector<json> results{{{"bench", "machine"}}};
+    for (const bool cross : {true, false}) {
+        results.push_back({{"bench", "lightfit"}, {"environment", "grace"}, {"cross_face", cross}, {"lights", 30},
+                           {"resolution", 32}, {"merge_cost", "increase"}, {"seconds", cross ? 0.07 : 0.06}});
+        results.push_back({{"bench", "lightfit"}, {"environment", "grace"}, {"cross_face", cross}, {"lights", 100},
+                           {"resolution", 64}, {"merge_cost", "increase"}, {"seconds", 0.31}});
+        for (const int k : {10, 30, 60, 100})
+            for (const char* cost : {"merged", "increase"})
+                results.push_back({{"bench", "lightfit"}, {"environment", "grace"}, {"cross_face", cross},
+                                   {"lights", k}, {"resolution", 32}, {"merge_cost", cost},
+                                   {"relative_l2", (cost[0] == 'm' ? 0.5 : 1.0) / k + (cross ? 0.0 : 0.01)}});
+    }
+    const std::string page = results_page(results, {"c", "x", "m", "d", false}, ".");
+    INFO(page);
+    // The rule rsl uses (increase) only: 1/10 = 10%, 1/30 = 3.33%, ...
+    CHECK_THAT(page, Catch::Contains("| grace | true | 0.07 | 0.31 | 10.00% | 3.33% | 1.67% | 1.00% |"));
+    CHECK_THAT(page, Catch::Contains("| grace | false | 0.06 | 0.31 | 11.00% | 4.33% | 2.67% | 2.00% |"));
+    CHECK_THAT(page, !Catch::Contains("5.00%"));  // a merged-error row
+}
+
 TEST_CASE("A run's machine line names where and how it ran, for a page written later", "[bench][results-page]") {
     const json line = machine_line(true, {"render", "scale"}, {8, 128}, {16.0f, 2.5f});
     CHECK(line["bench"] == "machine");
