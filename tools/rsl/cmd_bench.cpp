@@ -1,9 +1,6 @@
 // `rsl bench [NAMES...]`: run registered benchmarks, JSON lines on stdout;
 // with --markdown also the page of their figures (tools/bench/results_page.h).
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <sstream>
 
@@ -47,17 +44,22 @@ struct BenchArgs {
 // lines a run prints on stdout.
 std::vector<nlohmann::json> read_saved_results(const std::string& file) {
     const std::string text = read_bounded_file(file, kMaxJsonFileBytes, "a results file");
+    std::vector<nlohmann::json> lines;
     try {
-        if (const size_t first = text.find_first_not_of(" \t\r\n"); first != std::string::npos && text[first] == '[')
-            return nlohmann::json::parse(text).get<std::vector<nlohmann::json>>();
-        std::vector<nlohmann::json> lines;
-        std::istringstream in(text);
-        for (std::string line; std::getline(in, line);)
-            if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(nlohmann::json::parse(line));
-        return lines;
+        if (const size_t first = text.find_first_not_of(" \t\r\n"); first != std::string::npos && text[first] == '[') {
+            lines = nlohmann::json::parse(text).get<std::vector<nlohmann::json>>();
+        } else {
+            std::istringstream in(text);
+            for (std::string line; std::getline(in, line);)
+                if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(nlohmann::json::parse(line));
+        }
     } catch (const nlohmann::json::exception& e) {
         throw_error("{}: not the results of rsl bench (a JSON array or JSON lines): {}", file, e.what());
     }
+    for (size_t i = 0; i < lines.size(); ++i)
+        if (!lines[i].is_object())
+            throw_error("{}: result {} is {}, not an object as rsl bench writes", file, i + 1, lines[i].type_name());
+    return lines;
 }
 
 // The page of a run's results; the plots it links are copied beside it
