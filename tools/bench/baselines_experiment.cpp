@@ -1,6 +1,6 @@
 // The experiment behind `rsl baselines` (docs/BASELINES.md): one static frame
-// of a scene with every method against the ground truth. SH PRT, Haar PRT and
-// the RSL renderer share the truth's vertices, camera and image formation;
+// of a scene with every method against the ground truth. SH PRT, Haar PRT,
+// eigentransport and the RSL renderer share the truth's vertices, camera and image formation;
 // images are compared with compare_images (src/frame/error_metrics.h), the
 // same definition `rsl compare` uses.
 #include "tools/rsl/progress_display.h"
@@ -13,8 +13,10 @@
 #include <chrono>
 #include <cmath>
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "tools/baselines/eigentransport.h"
 #include "tools/baselines/prt.h"
 #include "tools/baselines/raster.h"
 #include "src/core/atomic_file.h"
@@ -30,10 +32,14 @@ namespace {
 
 using Clock = ExperimentClock;
 
+// The parts that are a ground under the objects: left out of the objects'
+// error, and removed by --no-ground (a ground biases eigentransport's basis).
+const std::vector<std::string> kGroundParts = {"ground", "floor"};
+
 struct MethodResult {
-    std::string method;  // "truth", "sh", "haar", "rsl"
+    std::string method;  // "truth", "sh", "haar", "eigen", "rsl"
     int terms = 0;
-    double vertex_error = 0, image_error = 0, image_h1 = 0;
+    double vertex_error = 0, objects_error = 0, image_error = 0, image_h1 = 0;
     double frame_ms = 0, precompute_s = 0;
     size_t bytes = 0;
     Image image;
@@ -50,7 +56,9 @@ size_t field_bytes(const PartFields& fields) {
 }
 
 struct Diagnostics {
-    std::vector<std::pair<int, double>> haar, rsl;  // (terms, vertex error)
+    std::vector<std::pair<int, double>> haar, rsl;  // unshadowed (terms, vertex error)
+    nlohmann::json eigen;    // the eigentransport precompute, results.json "eigen"
+    std::string eigen_note;  // the same as a line under the table
 };
 
 // Output phase: results.json, table.md and every method's EXR and PNG; returns the table.
@@ -62,22 +70,28 @@ std::string write_results(const BaselinesExperiment& args, const Scene& scene, c
                            {"materials", args.diffuse ? "diffuse" : "scene"}, {"time", args.time},
                            {"cube_resolution", scene.environment.resolution}, {"vertices", prt.layout.total()},
                            {"shadow_rays", prt.rays}, {"transport_vs_truth_error", texel_sum_error},
-                           {"methods", nlohmann::json::array()}};
+                           {"no_ground", args.no_ground}, {"methods", nlohmann::json::array()}};
     std::string table = fmt::format(
-        "Scene `{}`, environment `{}`, {} materials, t = {}, {} vertices, cube 6×{}².\n\n"
-        "| method | terms | vertex rel. L2 | image rel. L2 | image H1 | ms / frame | precompute s | memory MB |\n"
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
-        scene.name, scene.environment.file.filename().string(), args.diffuse ? "diffuse" : "scene (glossy)", args.time,
-        prt.layout.total(), scene.environment.resolution);
+        "Scene `{}`{}, environment `{}`, {} materials, t = {}, {} vertices, cube 6×{}². "
+        "Objects: every part but {}.\n\n"
+        "| method | terms | vertex rel. L2 | objects rel. L2 | image rel. L2 | image H1 | ms / frame | precompute s | "
+        "memory MB |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        scene.name, args.no_ground ? " without its ground" : "", scene.environment.file.filename().string(),
+        args.diffuse ? "diffuse" : "scene (glossy)", args.time, prt.layout.total(), scene.environment.resolution,
+        fmt::join(kGroundParts, ", "));
     for (const MethodResult& r : results) {
         json["methods"].push_back({{"method", r.method}, {"terms", r.terms}, {"vertex_error", r.vertex_error},
-                                   {"image_error", r.image_error}, {"image_h1_error", r.image_h1}, {"frame_ms", r.frame_ms},
+                                   {"objects_error", r.objects_error}, {"image_error", r.image_error},
+                                   {"image_h1_error", r.image_h1}, {"frame_ms", r.frame_ms},
                                    {"precompute_seconds", r.precompute_s}, {"bytes", r.bytes}});
-        table += fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.4f} | {:.2f} | {:.1f} | {:.1f} |\n", r.method,
-                             r.terms, r.vertex_error, r.image_error, r.image_h1, r.frame_ms, r.precompute_s, double(r.bytes) / 1e6);
+        table += fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.4f} | {:.4f} | {:.2f} | {:.1f} | {:.1f} |\n", r.method,
+                             r.terms, r.vertex_error, r.objects_error, r.image_error, r.image_h1, r.frame_ms,
+                             r.precompute_s, double(r.bytes) / 1e6);
         const std::string stem = r.method == "truth" ? "truth" : fmt::format("{}_{}", r.method, r.terms);
         write_exr_and_png(dir / (stem + ".exr"), r.image, ToneMap{0.0f, true});
     }
+    if (!unshadowed.eigen.is_null()) json["eigen"] = unshadowed.eigen;
+    table += unshadowed.eigen_note;
     table += "\nWithout visibility (V = 1; RSL with SVDF and OVDF off) against the unshadowed truth, vertex rel. L2:\n";
     for (const auto& [name, rows] : {std::pair{"haar", &unshadowed.haar}, std::pair{"rsl", &unshadowed.rsl}}) {
         if (rows->empty()) continue;
@@ -116,16 +130,19 @@ void write_contact_sheet(const std::filesystem::path& dir, const std::vector<Met
 void write_error_plot(const std::filesystem::path& dir, const std::vector<MethodResult>& results) {
     std::vector<raster::Series> series = {{"SH", Color(0.85f, 0.2f, 0.1f), {}, {}, {}},
                                           {"HAAR", Color(0.1f, 0.45f, 0.85f), {}, {}, {}},
+                                          {"EIGEN", Color(0.6f, 0.3f, 0.75f), {}, {}, {}},
                                           {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}, {}}};
+    const std::vector<std::string> methods = {"sh", "haar", "eigen", "rsl"};  // the series' order
     for (const MethodResult& r : results) {
-        const int s = r.method == "sh" ? 0 : r.method == "haar" ? 1 : r.method == "rsl" ? 2 : -1;
-        if (s < 0) continue;
+        const int s = int(std::find(methods.begin(), methods.end(), r.method) - methods.begin());
+        if (s == int(methods.size())) continue;
         series[s].x.push_back(r.terms);
         series[s].y.push_back(std::max(r.image_error, 1e-6));
     }
     std::erase_if(series, [](const raster::Series& s) { return s.x.empty(); });
     write_png(dir / "error_plot.png",
-              raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR TERMS, RSLS)", "IMAGE REL. L2 ERROR"));
+              raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR TERMS, EIGENTRANSPORTS, RSLS)",
+                                 "IMAGE REL. L2 ERROR"));
 }
 
 // Every output file of the experiment, then the table on stdout.
@@ -164,6 +181,7 @@ struct Measurements {
     PosedScene posed;
     const PinholeCamera camera;
     const VertexLayout layout;
+    VertexColors truth_colors;
     std::vector<Color> truth_flat;
     std::vector<MethodResult> results;
 
@@ -173,12 +191,14 @@ struct Measurements {
         MethodResult r;
         r.method = method, r.terms = terms;
         r.vertex_error = relative_l2(flat, truth_flat);
-        r.image = form_image(posed, camera, layout.to_colors(scene, flat, method, t));
+        const VertexColors colors = layout.to_colors(scene, flat, method, t);
+        r.objects_error = object_errors(compare_vertex_colors(colors, truth_colors), kGroundParts).objects.relative_l2();
+        r.image = form_image(posed, camera, colors);
         const ImageErrorReport errors = compare_images(r.image, results.front().image);
         r.image_error = errors.pixels.relative_l2(), r.image_h1 = errors.relative_h1();
         r.frame_ms = frame_ms, r.precompute_s = precompute_s, r.bytes = bytes;
-        say(args, fmt::format("{} {}: vertex error {:.4f}, image error {:.4f} (H1 {:.4f}), {:.2f} ms", method, terms,
-                              r.vertex_error, r.image_error, r.image_h1, frame_ms));
+        say(args, fmt::format("{} {}: vertex error {:.4f} (objects {:.4f}), image error {:.4f} (H1 {:.4f}), {:.2f} ms",
+                              method, terms, r.vertex_error, r.objects_error, r.image_error, r.image_h1, frame_ms));
         results.push_back(std::move(r));
     }
 };
@@ -197,10 +217,10 @@ void measure_truth(const GroundTruth& truth, Measurements& m) {
     MethodResult reference;
     reference.method = "truth";
     auto truth_start = Clock::now();
-    const VertexColors truth_colors = truth.shade_vertices();
+    m.truth_colors = truth.shade_vertices();
     reference.frame_ms = 1e3 * seconds_since(truth_start);
-    reference.image = form_image(m.posed, m.camera, truth_colors);
-    m.truth_flat = flatten(truth_colors);
+    reference.image = form_image(m.posed, m.camera, m.truth_colors);
+    m.truth_flat = flatten(m.truth_colors);
     say(m.args, fmt::format("ground truth: {:.1f} s", reference.frame_ms / 1e3));
     m.results.push_back(reference);
 }
@@ -249,6 +269,42 @@ void measure_prt_methods(const PrtPrecompute& prt, const CubeMap& environment, M
             m.add_result("haar", terms, flat, ms, prt.trace_cpu_seconds + prt.haar_cpu_seconds, prt.haar.bytes());
         }
     }
+}
+
+// Phase: eigentransport rows, one per d, all from one basis of the largest
+// d, on their own pass of shadow rays (the dense transport matrix is built
+// and released inside the precompute).
+void measure_eigentransport(const GroundTruth& truth, const CubeMap& environment, Measurements& m,
+                            std::vector<Color>& flat, Diagnostics& notes) {
+    const BaselinesExperiment& args = m.args;
+    if (args.eigen_terms.empty()) return;
+    EigenOptions options;
+    options.max_terms = *std::max_element(args.eigen_terms.begin(), args.eigen_terms.end());
+    say(args, fmt::format("eigentransport precompute ({} x {} transport matrix, {:.1f} GB, d = {})...",
+                          3 * m.layout.total(), environment.texel_count(),
+                          3e-9 * double(m.layout.total()) * environment.texel_count() * sizeof(float), options.max_terms));
+    const EigenTransport eigen = precompute_eigentransport(truth, environment, options);
+    const double precompute_s = eigen.trace_cpu_seconds + eigen.pca_cpu_seconds;
+    const std::string solver = eigen.randomized ? "randomized" : "dense";
+    say(args, fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, PCA {:.1f} ({} eigensolver)", eigen.wall_seconds,
+                          eigen.trace_cpu_seconds, eigen.pca_cpu_seconds, solver));
+    notes.eigen = {{"max_terms", eigen.max_terms()}, {"solver", solver}, {"rays_cpu_seconds", eigen.trace_cpu_seconds},
+                   {"pca_cpu_seconds", eigen.pca_cpu_seconds}, {"wall_seconds", eigen.wall_seconds},
+                   {"captured_variance", nlohmann::json::object()}};
+    notes.eigen_note = fmt::format("\nEigentransport: one basis of d = {} ({} eigensolver; CPU s: rays {:.1f}, PCA {:.1f}; "
+                                   "{:.1f} s wall); transport variance captured:",
+                                   eigen.max_terms(), solver, eigen.trace_cpu_seconds, eigen.pca_cpu_seconds,
+                                   eigen.wall_seconds);
+    EigenRenderer renderer(eigen);
+    const Mat3 rotation = m.scene.environment.rotation_at(m.t);
+    for (int requested : args.eigen_terms) {
+        const int terms = std::min(requested, eigen.max_terms());  // at most the texel count
+        const double ms = median_ms(args.repeats, [&] { renderer.render(environment, rotation, terms, flat); });
+        m.add_result("eigen", terms, flat, ms, precompute_s, eigen.bytes(terms));
+        notes.eigen["captured_variance"][std::to_string(terms)] = eigen.captured_variance(terms);
+        notes.eigen_note += fmt::format(" {} → {:.4f};", terms, eigen.captured_variance(terms));
+    }
+    notes.eigen_note += "\n";
 }
 
 // Phase: the transport without visibility (V = 1), and the Haar rows'
@@ -307,11 +363,27 @@ void measure_rsl(const std::shared_ptr<Scene>& scene_ptr, const PrtPrecompute& u
     }
 }
 
+// --no-ground: the scene without its ground or floor parts, so that every
+// method (and eigentransport's basis) sees the objects alone.
+void remove_ground_parts(Scene& scene) {
+    std::vector<std::string> names;
+    for (const Part& part : scene.parts) names.push_back(part.name);
+    const size_t removed = std::erase_if(scene.parts, [](const Part& part) {
+        return std::any_of(kGroundParts.begin(), kGroundParts.end(),
+                           [&](const std::string& ground) { return is_receiver(part.name, ground); });
+    });
+    if (removed == 0)
+        throw_file_error(scene.source, "--no-ground: no part is named {} (the parts: {})",
+                         fmt::join(kGroundParts, " or "), fmt::join(names, ", "));
+    if (scene.parts.empty()) throw_file_error(scene.source, "--no-ground: every part is a ground, nothing is left");
+}
+
 }  // namespace
 
 void run_baselines_experiment(const BaselinesExperiment& args) {
     auto scene_ptr = std::make_shared<Scene>(load_scene(args.scene));
     Scene& scene = *scene_ptr;
+    if (args.no_ground) remove_ground_parts(scene);
     adapt_scene(scene, args.environment, args.resolution, args.diffuse);
     const float t = args.time;
     const CubeMap environment = load_environment(args, scene);
@@ -326,11 +398,13 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
     ShadowedPrt shadowed = precompute_shadowed_prt(truth, environment, m);
     std::vector<Color> flat;
     measure_prt_methods(shadowed.prt, environment, m, flat);
-    // Without visibility (V = 1 in the transport, fields off in RSL), against
-    // the unshadowed truth: the lighting approximations alone, like for like.
-    // The shadowed Haar transport is released first (it can be large).
+    // The shadowed Haar transport is released first (it can be large), then
+    // eigentransport's dense transport matrix comes and goes.
     shadowed.prt.haar = {};
     Diagnostics unshadowed_errors;
+    measure_eigentransport(truth, environment, m, flat, unshadowed_errors);
+    // Without visibility (V = 1 in the transport, fields off in RSL), against
+    // the unshadowed truth: the lighting approximations alone, like for like.
     const PrtPrecompute unshadowed = measure_unshadowed_haar(args, truth, environment, flat, unshadowed_errors);
     if (!args.no_rsl) measure_rsl(scene_ptr, unshadowed, m, unshadowed_errors);
     write_outputs(args, scene, m.results, shadowed.prt, shadowed.texel_sum_error, unshadowed_errors);

@@ -2,8 +2,9 @@
 // `rsl baselines` as a function: one static frame of a scene rendered with
 // every method against the ground truth (docs/BASELINES.md): SH PRT with 9,
 // 25 and 100 coefficients, Haar PRT with N = 20, 30, 60, 100 lighting terms,
-// the RSL renderer with K = 10, 30, 60, 100 lights. Environment light only
-// (local lights off for every method: the baselines have none).
+// eigentransport with d = 16, 48, 128 terms, the RSL renderer with K = 10,
+// 30, 60, 100 lights. Environment light only (local lights off for every
+// method: the baselines have none).
 #include <string>
 #include <vector>
 
@@ -16,11 +17,13 @@ struct BaselinesExperiment {
     float time = 0;
     bool diffuse = false;  // every material Lambertian (its diffuse colour kept)
     bool no_rsl = false;   // skip the RSL renderer (no field bake)
+    bool no_ground = false;  // remove the parts named ground or floor first (eigentransport's basis bias)
     bool quiet = false;    // no progress lines on stderr
     int resolution = 0;    // cube map N; 0: the scene's
     int width = 320, height = 240, repeats = 5;
     float haar_drop = 1e-3f;  // drop transport wavelets below this × the vertex's largest
     std::vector<int> sh_orders{3, 5, 10}, haar_terms{20, 30, 60, 100}, rsl_lights{10, 30, 60, 100};
+    std::vector<int> eigen_terms{16, 48, 128};  // empty: no eigentransport rows
 };
 
 // Runs every method and writes OUTPUT/table.md, results.json, sheet.png

@@ -40,7 +40,8 @@ std::vector<int> parse_list(const std::string& text, const char* what, bool allo
 }
 
 RegisterCommand baselines_command({"baselines",
-    "Render one static frame with SH PRT, Haar PRT, RSL and the ground truth (or, with --many-light, RSL against "
+    "Render one static frame with SH PRT, Haar PRT, eigentransport, RSL and the ground truth (or, with --many-light, "
+    "RSL against "
     "ray-traced and shadow-mapped many-light shadows); write the error table and figures.",
     60, [](CLI::App& app) {
         auto args = std::make_shared<BaselinesExperiment>();
@@ -48,6 +49,7 @@ RegisterCommand baselines_command({"baselines",
         auto many_light = std::make_shared<bool>(false);
         auto sh = std::make_shared<std::string>("3,5,10");
         auto haar = std::make_shared<std::string>("20,30,60,100");
+        auto eigen = std::make_shared<std::string>("16,48,128");
         auto rsl = std::make_shared<std::string>("10,30,60,100");
         auto rays = std::make_shared<std::string>("1,2,4");
         auto maps = std::make_shared<std::string>("256,1024");
@@ -61,8 +63,14 @@ RegisterCommand baselines_command({"baselines",
         app.add_option("--resolution", args->resolution, "Cube map N (a power of two; default: the scene's)");
         app.add_option("--sh-orders", *sh, "SH orders n (n^2 coefficients)")->capture_default_str();
         app.add_option("--haar-terms", *haar, "Haar lighting terms N")->capture_default_str();
+        app.add_option("--eigen-terms", *eigen,
+                       "Eigentransport terms d (one PCA basis of the largest; empty: no eigentransport rows)")
+            ->capture_default_str();
         app.add_option("--rsl-lights", *rsl, "RSL counts K (default 10,30,60,100; with --many-light 10,30,100)");
         app.add_flag("--no-rsl", args->no_rsl, "Skip the RSL renderer (no field bake)");
+        app.add_flag("--no-ground", args->no_ground,
+                     "Remove the parts named ground or floor before anything runs (a ground biases the "
+                     "eigentransport basis); an error if there is none");
         app.add_option("--haar-drop", args->haar_drop, "Drop transport wavelets below this x the vertex's largest")
             ->capture_default_str();
         app.add_option("--width", args->width, "Image width")->capture_default_str();
@@ -89,8 +97,10 @@ RegisterCommand baselines_command({"baselines",
         group->add_option("--receivers", many->receivers, "Parts left out of the objects' error")
             ->capture_default_str()
             ->delimiter(',');
-        app.callback([&app, args, many, many_light, sh, haar, rsl, rays, maps, gl_lights] {
+        app.callback([&app, args, many, many_light, sh, haar, eigen, rsl, rays, maps, gl_lights] {
             if (*many_light) {
+                if (args->no_ground)  // the many-light rows keep the ground and measure the objects apart
+                    throw_error("--no-ground is for the PRT baselines, not --many-light (see --receivers)");
                 many->scene = args->scene;
                 many->time = args->time;
                 many->environment = args->environment;
@@ -118,6 +128,7 @@ RegisterCommand baselines_command({"baselines",
             for (int order : args->sh_orders)
                 if (order > sh::kMaxOrder) throw_error("--sh-orders: order {} is above {}", order, sh::kMaxOrder);
             args->haar_terms = parse_list(*haar, "--haar-terms");
+            args->eigen_terms = parse_list(*eigen, "--eigen-terms", true);
             args->rsl_lights = parse_list(*rsl, "--rsl-lights");
             run_baselines_experiment(*args);
         });
