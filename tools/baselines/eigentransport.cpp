@@ -170,21 +170,26 @@ TransportMatrix sample_transport_matrix(const GroundTruth& truth, const CubeMap&
     matrix.rows.resize(Index(3 * vertices), texels);
     std::mutex totals_mutex;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices, 64), [&](const tbb::blocked_range<size_t>& range) {
-        const auto start = Clock::now();
         TransportSampler::Scratch scratch = sampler.make_scratch();
         std::vector<Color> f(static_cast<size_t>(texels));
         uint64_t rays = 0;
+        double trace_s = 0, fill_s = 0;
         for (size_t v = range.begin(); v != range.end(); ++v) {
+            auto start = Clock::now();
             const auto [part, vertex] = layout.locate(v);
             rays += sampler.sample(part, vertex, f.data(), scratch);
+            trace_s += seconds_since(start);
+            start = Clock::now();
             for (int c = 0; c < 3; ++c) {
                 float* row = matrix.rows.row(Index(3 * v + c)).data();
                 for (int k = 0; k < texels; ++k) row[k] = f[k][c] * environment.solid_angle(k);
             }
+            fill_s += seconds_since(start);
         }
         std::lock_guard<std::mutex> lock(totals_mutex);
         matrix.rays += rays;
-        matrix.trace_cpu_seconds += seconds_since(start);
+        matrix.trace_cpu_seconds += trace_s;
+        matrix.fill_cpu_seconds += fill_s;
     });
     return matrix;
 }
@@ -214,7 +219,7 @@ EigenTransport eigentransport_from_matrix(TransportMatrix& matrix, VertexLayout 
     // The variance each basis vector keeps, from the coefficients themselves
     // (for either solver the basis actually stored).
     pca.time([&] { eigen.eigenvalues = eigen.coefficients.cast<double>().colwise().squaredNorm().transpose(); });
-    eigen.pca_cpu_seconds = pca.total();
+    eigen.pca_cpu_seconds = matrix.fill_cpu_seconds + pca.total();
     return eigen;
 }
 

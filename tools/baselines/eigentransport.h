@@ -34,7 +34,9 @@ using RowMatrixXf = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::
 struct TransportMatrix {
     RowMatrixXf rows;  // row 3v + c: vertex v (flat, VertexLayout), channel c
     uint64_t rays = 0;
-    double trace_cpu_seconds = 0;  // summed over threads
+    // Summed over threads: the rays (TransportSampler::sample, as
+    // PrtPrecompute times them) and writing g = f Ω into the rows.
+    double trace_cpu_seconds = 0, fill_cpu_seconds = 0;
 };
 
 // Samples every vertex's g = f Ω on `environment`'s texels, directions
@@ -70,7 +72,8 @@ struct EigenTransport {
     bool randomized = false;          // which solver ran
     uint64_t rays = 0;
     // Thread-seconds (summed over threads) of the rays and of the PCA
-    // (mean, covariance, eigenvectors, coefficients); wall time of both.
+    // (filling the matrix, mean, covariance, eigenvectors, coefficients);
+    // wall time of both.
     double trace_cpu_seconds = 0, pca_cpu_seconds = 0, wall_seconds = 0;
 
     int texels() const { return int(mean.size()); }
