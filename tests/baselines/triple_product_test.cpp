@@ -7,7 +7,10 @@
 
 #include "src/frame/error_metrics.h"
 #include "tests/baselines/scene_helpers.h"
+#include "src/brdf/brdf.h"
 #include "tools/baselines/haar.h"
+#include "tools/baselines/prt.h"
+#include "tools/baselines/triple.h"
 #include "tools/baselines/triple_product.h"
 
 using namespace rsl;
@@ -128,4 +131,114 @@ TEST_CASE("Tripling coefficients: one triple at a time matches its texel sum (ev
             }
     }
     CHECK(nonzero > n * n);  // the check saw many non-zero tripling coefficients
+}
+
+namespace {
+
+// The truth of the shadow scene (environment only) seen from `camera`.
+GroundTruth shadow_truth(Scene& scene, const CubeMap& sky, const Vec3& camera) {
+    scene.camera.position = camera;
+    GroundTruthOptions options;
+    options.local_lights = false;
+    return GroundTruth(scene, sky, 0.0f, options);
+}
+
+TripleOptions exact_options() {
+    TripleOptions options;
+    options.visibility_drop = 0.0f;
+    options.block_vertices = 17;  // several blocks, one partial
+    return options;
+}
+
+}  // namespace
+
+TEST_CASE("Triple product with every lighting term and the exact BRDF slice is the truth's glossy sum", "[triple]") {
+    Scene scene = make_shadow_scene(true);
+    const CubeMap sky = make_sky(16);
+    const GroundTruth truth = shadow_truth(scene, sky, scene.camera.position);
+    const std::vector<Color> reference = flatten(truth.shade_vertices());
+    PrtOptions prt_options;
+    prt_options.sh = prt_options.haar = false;
+    prt_options.check_lighting = &sky;
+    const PrtPrecompute prt = precompute_prt(truth, sky, prt_options);
+    const TriplePrecompute pre = precompute_triple_visibility(truth, sky, exact_options());
+    CHECK(pre.rays > 0);
+    TripleRenderer renderer(pre, truth, nullptr);
+    std::vector<Color> out;
+    renderer.render(sky, sky.texel_count(), truth.camera_position(), out);
+    CHECK(relative_l2(out, prt.texel_sum) < 1e-5);
+    CHECK(relative_l2(out, reference) < 1e-5);
+    // A few lighting terms are a real approximation.
+    renderer.render(sky, 10, truth.camera_position(), out);
+    CHECK(relative_l2(out, reference) > 1e-3);
+}
+
+TEST_CASE("Triple product: changing the view changes the result as the truth does, without new visibility", "[triple]") {
+    Scene scene = make_shadow_scene(true);
+    const CubeMap sky = make_sky(16);
+    const Vec3 first_camera = scene.camera.position, second_camera(-2.5f, 1.5f, -1.0f);
+    const GroundTruth first = shadow_truth(scene, sky, first_camera);
+    const GroundTruth second = shadow_truth(scene, sky, second_camera);
+    const std::vector<Color> first_truth = flatten(first.shade_vertices()), second_truth = flatten(second.shade_vertices());
+    REQUIRE(relative_l2(first_truth, second_truth) > 0.05);  // the views do differ
+    const TriplePrecompute pre = precompute_triple_visibility(first, sky, exact_options());
+    TripleRenderer renderer(pre, first, nullptr);
+    std::vector<Color> out;
+    renderer.render(sky, sky.texel_count(), first_camera, out);
+    CHECK(relative_l2(out, first_truth) < 1e-5);
+    renderer.render(sky, sky.texel_count(), second_camera, out);
+    CHECK(relative_l2(out, second_truth) < 1e-5);
+}
+
+TEST_CASE("BRDF slice tables: a slice at a tabulated normal and view is the exact slice", "[triple]") {
+    const int n = 4;
+    const CubeMap grid(n);
+    std::vector<Vec3> directions;
+    for (int k = 0; k < grid.texel_count(); ++k) directions.push_back(grid.texel_direction(k));
+    TripleOptions options;
+    options.normal_resolution = 2, options.view_resolution = 3, options.brdf_terms = grid.texel_count();
+    const auto brdf = make_brdf(material("blinn_phong", {{"kd", {0.3f, 0.2f, 0.1f}}, {"ks", {0.5f, 0.5f, 0.5f}}, {"exponent", {20}}}));
+    const BrdfSlices table(*brdf, directions, n, options);
+    REQUIRE(table.slice_count() == 6 * 4 * 9);
+    std::vector<Color> exact(directions.size());
+    for (int s = 0; s < table.slice_count(); ++s) {
+        INFO("slice " << s);
+        REQUIRE(table.slice_of(table.normal(s), table.view(s)) == s);
+        const Frame frame = Frame::from_normal(table.normal(s));
+        brdf_slice(*brdf, frame, frame.to_local(table.view(s)), directions, exact.data());
+        std::vector<Color> tabulated(directions.size(), Color(0.0f));
+        for (int t = 0; t < table.count(s); ++t) tabulated[size_t(table.index(s)[t])] = table.value(s)[t];
+        haar::inverse_cube(reinterpret_cast<float*>(tabulated.data()), n, 3);
+        REQUIRE(relative_l2(tabulated, exact) < 1e-5);
+    }
+    // Fewer terms: the slice is cut (and only views differ for a glossy BRDF).
+    options.brdf_terms = 8;
+    const BrdfSlices cut(*brdf, directions, n, options);
+    CHECK(cut.count(0) == 8);
+    CHECK(cut.bytes() < table.bytes());
+    const auto lambert = make_brdf(material("lambert", {{"albedo", {0.5f, 0.5f, 0.5f}}}));
+    CHECK(BrdfSlices(*lambert, directions, n, options).views_per_side() == 1);
+}
+
+TEST_CASE("Triple product with tabulated slices is exact where the normals are on the table (Lambertian planes)", "[triple]") {
+    Scene scene = make_shadow_scene(false);  // every normal +Y, a cube-face centre when R_n = 1
+    const CubeMap sky = make_sky(16);
+    const GroundTruth truth = shadow_truth(scene, sky, scene.camera.position);
+    const std::vector<Color> reference = flatten(truth.shade_vertices());
+    TripleOptions options = exact_options();
+    options.normal_resolution = 1, options.brdf_terms = sky.texel_count();
+    const TriplePrecompute pre = precompute_triple_visibility(truth, sky, options);
+    const TripleBrdfTables tables = tabulate_part_brdfs(truth, pre, options);
+    REQUIRE(tables.part.size() == 2);
+    CHECK(tables.part[0] != tables.part[1]);  // two materials, two tables
+    TripleRenderer renderer(pre, truth, &tables);
+    std::vector<Color> out;
+    renderer.render(sky, sky.texel_count(), truth.camera_position(), out);
+    CHECK(relative_l2(out, reference) < 1e-5);
+    // The same table with few BRDF terms: an approximation.
+    options.brdf_terms = 16;
+    const TripleBrdfTables cut = tabulate_part_brdfs(truth, pre, options);
+    TripleRenderer cut_renderer(pre, truth, &cut);
+    cut_renderer.render(sky, sky.texel_count(), truth.camera_position(), out);
+    CHECK(relative_l2(out, reference) > 1e-3);
 }
