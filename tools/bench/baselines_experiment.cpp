@@ -17,6 +17,7 @@
 
 #include "tools/baselines/prt.h"
 #include "tools/baselines/raster.h"
+#include "tools/baselines/triple.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/frame/error_metrics.h"
@@ -51,6 +52,7 @@ size_t field_bytes(const PartFields& fields) {
 
 struct Diagnostics {
     std::vector<std::pair<int, double>> haar, rsl;  // (terms, vertex error)
+    std::vector<std::pair<int, double>> triple_exact;  // triple product with exact BRDF slices, vs the truth
 };
 
 // Output phase: results.json, table.md and every method's EXR and PNG; returns the table.
@@ -89,6 +91,14 @@ std::string write_results(const BaselinesExperiment& args, const Scene& scene, c
         }
         table += "\n";
     }
+    if (!unshadowed.triple_exact.empty()) {
+        table += "\nTriple product with exact BRDF slices (no tables), vertex rel. L2:";
+        for (const auto& [terms, error] : unshadowed.triple_exact) {
+            table += fmt::format(" {} → {:.4f};", terms, error);
+            json["triple_exact_vertex_error"][std::to_string(terms)] = error;
+        }
+        table += "\n";
+    }
     write_file_atomically(dir / "results.json", json.dump(2) + "\n");
     write_file_atomically(dir / "table.md", table);
     return table;
@@ -116,16 +126,21 @@ void write_contact_sheet(const std::filesystem::path& dir, const std::vector<Met
 void write_error_plot(const std::filesystem::path& dir, const std::vector<MethodResult>& results) {
     std::vector<raster::Series> series = {{"SH", Color(0.85f, 0.2f, 0.1f), {}, {}, {}},
                                           {"HAAR", Color(0.1f, 0.45f, 0.85f), {}, {}, {}},
-                                          {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}, {}}};
+                                          {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}, {}},
+                                          {"TRIPLE", Color(0.6f, 0.2f, 0.7f), {}, {}, {}}};
     for (const MethodResult& r : results) {
-        const int s = r.method == "sh" ? 0 : r.method == "haar" ? 1 : r.method == "rsl" ? 2 : -1;
+        const int s = r.method == "sh"       ? 0
+                      : r.method == "haar"   ? 1
+                      : r.method == "rsl"    ? 2
+                      : r.method == "triple" ? 3
+                                             : -1;
         if (s < 0) continue;
         series[s].x.push_back(r.terms);
         series[s].y.push_back(std::max(r.image_error, 1e-6));
     }
     std::erase_if(series, [](const raster::Series& s) { return s.x.empty(); });
     write_png(dir / "error_plot.png",
-              raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR TERMS, RSLS)", "IMAGE REL. L2 ERROR"));
+              raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR/TRIPLE TERMS, RSLS)", "IMAGE REL. L2 ERROR"));
 }
 
 // Every output file of the experiment, then the table on stdout.
@@ -251,6 +266,37 @@ void measure_prt_methods(const PrtPrecompute& prt, const CubeMap& environment, M
     }
 }
 
+// Phase: the wavelet triple product's rows: per-vertex visibility and the BRDF
+// tables precomputed once, one row per lighting term count; and, once per
+// count, the exact-slice mode's error (what the tables cost in accuracy).
+void measure_triple(const GroundTruth& truth, const CubeMap& environment, Measurements& m, std::vector<Color>& flat,
+                    Diagnostics& diagnostics) {
+    const BaselinesExperiment& args = m.args;
+    TripleOptions options;
+    options.visibility_drop = args.haar_drop;
+    options.normal_resolution = args.triple_normals, options.view_resolution = args.triple_views;
+    options.brdf_terms = args.triple_brdf_terms;
+    say(args, "Triple product precompute (visibility + BRDF tables)...");
+    const TriplePrecompute pre = precompute_triple_visibility(truth, environment, options);
+    const TripleBrdfTables tables = tabulate_part_brdfs(truth, pre, options);
+    const double precompute_s = pre.trace_cpu_seconds + pre.transform_cpu_seconds + tables.cpu_seconds();
+    say(args, fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, Haar {:.1f}, BRDF tables {:.1f}; {:.1f} MB visibility, "
+                          "{:.1f} MB tables",
+                          pre.wall_seconds, pre.trace_cpu_seconds, pre.transform_cpu_seconds, tables.cpu_seconds(),
+                          double(pre.visibility.bytes()) / 1e6, double(tables.bytes()) / 1e6));
+    TripleRenderer renderer(pre, truth, &tables);
+    for (int terms : args.triple_terms) {
+        const double ms = median_ms(args.repeats, [&] { renderer.render(environment, terms, truth.camera_position(), flat); });
+        const size_t lighting_bytes = size_t(terms) * (sizeof(int32_t) + sizeof(Color));
+        m.add_result("triple", terms, flat, ms, precompute_s, pre.visibility.bytes() + tables.bytes() + lighting_bytes);
+    }
+    TripleRenderer exact(pre, truth, nullptr);
+    for (int terms : args.triple_terms) {
+        exact.render(environment, terms, truth.camera_position(), flat);
+        diagnostics.triple_exact.push_back({terms, relative_l2(flat, m.truth_flat)});
+    }
+}
+
 // Phase: the transport without visibility (V = 1), and the Haar rows'
 // errors from it against its own unshadowed texel sum.
 PrtPrecompute measure_unshadowed_haar(const BaselinesExperiment& args, const GroundTruth& truth,
@@ -331,6 +377,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
     // The shadowed Haar transport is released first (it can be large).
     shadowed.prt.haar = {};
     Diagnostics unshadowed_errors;
+    measure_triple(truth, environment, m, flat, unshadowed_errors);
     const PrtPrecompute unshadowed = measure_unshadowed_haar(args, truth, environment, flat, unshadowed_errors);
     if (!args.no_rsl) measure_rsl(scene_ptr, unshadowed, m, unshadowed_errors);
     write_outputs(args, scene, m.results, shadowed.prt, shadowed.texel_sum_error, unshadowed_errors);

@@ -40,7 +40,7 @@ std::vector<int> parse_list(const std::string& text, const char* what, bool allo
 }
 
 RegisterCommand baselines_command({"baselines",
-    "Render one static frame with SH PRT, Haar PRT, RSL and the ground truth (or, with --many-light, RSL against "
+    "Render one static frame with SH PRT, Haar PRT, the wavelet triple product, RSL and the ground truth (or, with --many-light, RSL against "
     "ray-traced and shadow-mapped many-light shadows); write the error table and figures.",
     60, [](CLI::App& app) {
         auto args = std::make_shared<BaselinesExperiment>();
@@ -49,6 +49,7 @@ RegisterCommand baselines_command({"baselines",
         auto sh = std::make_shared<std::string>("3,5,10");
         auto haar = std::make_shared<std::string>("20,30,60,100");
         auto rsl = std::make_shared<std::string>("10,30,60,100");
+        auto triple = std::make_shared<std::string>("80,320");
         auto rays = std::make_shared<std::string>("1,2,4");
         auto maps = std::make_shared<std::string>("256,1024");
         auto gl_lights = std::make_shared<std::string>("30");
@@ -61,6 +62,19 @@ RegisterCommand baselines_command({"baselines",
         app.add_option("--resolution", args->resolution, "Cube map N (a power of two; default: the scene's)");
         app.add_option("--sh-orders", *sh, "SH orders n (n^2 coefficients)")->capture_default_str();
         app.add_option("--haar-terms", *haar, "Haar lighting terms N")->capture_default_str();
+        app.add_option("--triple-terms", *triple, "Wavelet triple product lighting terms N")->capture_default_str();
+        app.add_option("--triple-normals", args->triple_normals,
+                       "Triple product BRDF tables: R_n, normals at the texel centres of a 6 x R_n^2 cube")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 64));
+        app.add_option("--triple-views", args->triple_views,
+                       "Triple product BRDF tables: R_v x R_v views per normal (1 for Lambertian BRDFs)")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 64));
+        app.add_option("--triple-brdf-terms", args->triple_brdf_terms,
+                       "Triple product BRDF tables: M largest area-weighted Haar terms kept per slice")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 1 << 20));
         app.add_option("--rsl-lights", *rsl, "RSL counts K (default 10,30,60,100; with --many-light 10,30,100)");
         app.add_flag("--no-rsl", args->no_rsl, "Skip the RSL renderer (no field bake)");
         app.add_option("--haar-drop", args->haar_drop, "Drop transport wavelets below this x the vertex's largest")
@@ -89,7 +103,7 @@ RegisterCommand baselines_command({"baselines",
         group->add_option("--receivers", many->receivers, "Parts left out of the objects' error")
             ->capture_default_str()
             ->delimiter(',');
-        app.callback([&app, args, many, many_light, sh, haar, rsl, rays, maps, gl_lights] {
+        app.callback([&app, args, many, many_light, sh, haar, triple, rsl, rays, maps, gl_lights] {
             if (*many_light) {
                 many->scene = args->scene;
                 many->time = args->time;
@@ -118,6 +132,7 @@ RegisterCommand baselines_command({"baselines",
             for (int order : args->sh_orders)
                 if (order > sh::kMaxOrder) throw_error("--sh-orders: order {} is above {}", order, sh::kMaxOrder);
             args->haar_terms = parse_list(*haar, "--haar-terms");
+            args->triple_terms = parse_list(*triple, "--triple-terms");
             args->rsl_lights = parse_list(*rsl, "--rsl-lights");
             run_baselines_experiment(*args);
         });
