@@ -47,7 +47,10 @@ public:
     explicit SquareMeans(int n);
     // From texel values (6N², RGB). No allocation.
     void build(const Color* texels);
-    Color mean(const Detail& d) const { return means_[size_t(d.face_base / (n_ * n_)) * per_face_ + level_offset(d.half) + d.y * d.half + d.x]; }
+    Color mean(const Detail& d) const {
+        const size_t face = size_t(d.face_base / (n_ * n_));
+        return means_[face * per_face_ + size_t(level_offset(d.half) + d.y * d.half + d.x)];
+    }
     int resolution() const { return n_; }
 
 private:
