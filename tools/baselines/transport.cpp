@@ -50,6 +50,16 @@ TransportSampler::Scratch TransportSampler::make_scratch() const {
     return s;
 }
 
+namespace {
+
+// The truth's horizon rules: below the shading horizon ρ·cos is 0; below the
+// geometric surface the ray would enter its own surface.
+bool above_horizons(const SurfacePoint& x, const Vec3& dir, const Vec3& wi) {
+    return wi.z > 0.0f && glm::dot(dir, x.offset_normal) > 0.0f;
+}
+
+}  // namespace
+
 uint64_t TransportSampler::sample(int part, int vertex, Color* f, Scratch& scratch) const {
     const int count = texel_count();
     std::fill(f, f + count, Color(0.0f));
@@ -63,9 +73,7 @@ uint64_t TransportSampler::sample(int part, int vertex, Color* f, Scratch& scrat
     for (int k = 0; k < count; ++k) {
         const Vec3& dir = directions_[k];
         const Vec3 wi = x.frame.to_local(dir);
-        // The truth's horizon rules: below the shading horizon ρ·cos is 0;
-        // below the geometric surface the ray would enter its own surface.
-        if (wi.z <= 0.0f || glm::dot(dir, x.offset_normal) <= 0.0f) continue;
+        if (!above_horizons(x, dir, wi)) continue;
         const Color weight = brdf.eval(wi, wo) * wi.z;
         if (!(weight.r > 0.0f || weight.g > 0.0f || weight.b > 0.0f)) continue;
         scratch.dirs[rays] = dir;
@@ -81,6 +89,28 @@ uint64_t TransportSampler::sample(int part, int vertex, Color* f, Scratch& scrat
                                 scratch.visible.data());
     for (int r = 0; r < rays; ++r)
         if (scratch.visible[r]) f[scratch.texels[r]] = scratch.weights[r];
+    return uint64_t(rays);
+}
+
+uint64_t TransportSampler::sample_visibility(int part, int vertex, float* V, Scratch& scratch) const {
+    const int count = texel_count();
+    std::fill(V, V + count, 0.0f);
+    const SurfacePoint x = truth_.posed().vertex(part, vertex);
+    int rays = 0;
+    for (int k = 0; k < count; ++k) {
+        if (!above_horizons(x, directions_[k], x.frame.to_local(directions_[k]))) continue;
+        scratch.dirs[rays] = directions_[k];
+        scratch.texels[rays] = k;
+        ++rays;
+    }
+    if (!visibility_) {
+        for (int r = 0; r < rays; ++r) V[scratch.texels[r]] = 1.0f;
+        return 0;
+    }
+    truth_.posed().rays().occluded_batch(x.ray_origin(), scratch.dirs.data(), rays, 0.0f,
+                                         std::numeric_limits<float>::infinity(), scratch.visible.data());
+    for (int r = 0; r < rays; ++r)
+        if (scratch.visible[r]) V[scratch.texels[r]] = 1.0f;
     return uint64_t(rays);
 }
 

@@ -60,6 +60,10 @@ public:
     // f_k of vertex (part, vertex) into f[0 .. texel_count); returns the
     // number of shadow rays traced.
     uint64_t sample(int part, int vertex, Color* f, Scratch& scratch) const;
+    // V_k alone into V[0 .. texel_count): 1 where the texel is above the
+    // vertex's shading and geometric horizons and its ray is unoccluded, else
+    // 0; independent of the view, for the triple product (V·ρ̃ = f where ρ > 0).
+    uint64_t sample_visibility(int part, int vertex, float* V, Scratch& scratch) const;
 
 private:
     const GroundTruth& truth_;

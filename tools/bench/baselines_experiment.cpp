@@ -19,6 +19,7 @@
 #include "tools/baselines/eigentransport.h"
 #include "tools/baselines/prt.h"
 #include "tools/baselines/raster.h"
+#include "tools/baselines/triple.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/frame/error_metrics.h"
@@ -57,6 +58,7 @@ size_t field_bytes(const PartFields& fields) {
 
 struct Diagnostics {
     std::vector<std::pair<int, double>> haar, rsl;  // unshadowed (terms, vertex error)
+    std::vector<std::pair<int, double>> triple_exact;  // triple product with exact BRDF slices, vs the truth
     nlohmann::json eigen;    // the eigentransport precompute, results.json "eigen"
     std::string eigen_note;  // the same as a line under the table
 };
@@ -103,6 +105,14 @@ std::string write_results(const BaselinesExperiment& args, const Scene& scene, c
         }
         table += "\n";
     }
+    if (!unshadowed.triple_exact.empty()) {
+        table += "\nTriple product with exact BRDF slices (no tables), vertex rel. L2:";
+        for (const auto& [terms, error] : unshadowed.triple_exact) {
+            table += fmt::format(" {} → {:.4f};", terms, error);
+            json["triple_exact_vertex_error"][std::to_string(terms)] = error;
+        }
+        table += "\n";
+    }
     write_file_atomically(dir / "results.json", json.dump(2) + "\n");
     write_file_atomically(dir / "table.md", table);
     return table;
@@ -131,8 +141,9 @@ void write_error_plot(const std::filesystem::path& dir, const std::vector<Method
     std::vector<raster::Series> series = {{"SH", Color(0.85f, 0.2f, 0.1f), {}, {}, {}},
                                           {"HAAR", Color(0.1f, 0.45f, 0.85f), {}, {}, {}},
                                           {"EIGEN", Color(0.6f, 0.3f, 0.75f), {}, {}, {}},
+                                          {"TRIPLE", Color(0.85f, 0.55f, 0.1f), {}, {}, {}},
                                           {"RSL", Color(0.1f, 0.6f, 0.2f), {}, {}, {}}};
-    const std::vector<std::string> methods = {"sh", "haar", "eigen", "rsl"};  // the series' order
+    const std::vector<std::string> methods = {"sh", "haar", "eigen", "triple", "rsl"};  // the series' order
     for (const MethodResult& r : results) {
         const int s = int(std::find(methods.begin(), methods.end(), r.method) - methods.begin());
         if (s == int(methods.size())) continue;
@@ -141,7 +152,7 @@ void write_error_plot(const std::filesystem::path& dir, const std::vector<Method
     }
     std::erase_if(series, [](const raster::Series& s) { return s.x.empty(); });
     write_png(dir / "error_plot.png",
-              raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR TERMS, EIGENTRANSPORTS, RSLS)",
+              raster::line_plot(series, "TERMS (SH COEFFICIENTS, HAAR/TRIPLE TERMS, EIGENTRANSPORTS, RSLS)",
                                  "IMAGE REL. L2 ERROR"));
 }
 
@@ -307,6 +318,38 @@ void measure_eigentransport(const GroundTruth& truth, const CubeMap& environment
     notes.eigen_note += "\n";
 }
 
+// Phase: the wavelet triple product's rows: per-vertex visibility and the BRDF
+// tables precomputed once, one row per lighting term count; and, once per
+// count, the exact-slice mode's error (what the tables cost in accuracy).
+void measure_triple(const GroundTruth& truth, const CubeMap& environment, Measurements& m, std::vector<Color>& flat,
+                    Diagnostics& diagnostics) {
+    const BaselinesExperiment& args = m.args;
+    if (args.triple_terms.empty()) return;
+    TripleOptions options;
+    options.visibility_drop = args.haar_drop;
+    options.normal_resolution = args.triple_normals, options.view_resolution = args.triple_views;
+    options.brdf_terms = args.triple_brdf_terms;
+    say(args, "Triple product precompute (visibility + BRDF tables)...");
+    const TriplePrecompute pre = precompute_triple_visibility(truth, environment, options);
+    const TripleBrdfTables tables = tabulate_part_brdfs(truth, pre, options);
+    const double precompute_s = pre.trace_cpu_seconds + pre.transform_cpu_seconds + tables.cpu_seconds();
+    say(args, fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, Haar {:.1f}, BRDF tables {:.1f}; {:.1f} MB visibility, "
+                          "{:.1f} MB tables",
+                          pre.wall_seconds, pre.trace_cpu_seconds, pre.transform_cpu_seconds, tables.cpu_seconds(),
+                          double(pre.visibility.bytes()) / 1e6, double(tables.bytes()) / 1e6));
+    TripleRenderer renderer(pre, truth, &tables);
+    for (int terms : args.triple_terms) {
+        const double ms = median_ms(args.repeats, [&] { renderer.render(environment, terms, truth.camera_position(), flat); });
+        const size_t lighting_bytes = size_t(terms) * (sizeof(int32_t) + sizeof(Color));
+        m.add_result("triple", terms, flat, ms, precompute_s, pre.visibility.bytes() + tables.bytes() + lighting_bytes);
+    }
+    TripleRenderer exact(pre, truth, nullptr);
+    for (int terms : args.triple_terms) {
+        exact.render(environment, terms, truth.camera_position(), flat);
+        diagnostics.triple_exact.push_back({terms, relative_l2(flat, m.truth_flat)});
+    }
+}
+
 // Phase: the transport without visibility (V = 1), and the Haar rows'
 // errors from it against its own unshadowed texel sum.
 PrtPrecompute measure_unshadowed_haar(const BaselinesExperiment& args, const GroundTruth& truth,
@@ -403,6 +446,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
     shadowed.prt.haar = {};
     Diagnostics unshadowed_errors;
     measure_eigentransport(truth, environment, m, flat, unshadowed_errors);
+    measure_triple(truth, environment, m, flat, unshadowed_errors);
     // Without visibility (V = 1 in the transport, fields off in RSL), against
     // the unshadowed truth: the lighting approximations alone, like for like.
     const PrtPrecompute unshadowed = measure_unshadowed_haar(args, truth, environment, flat, unshadowed_errors);

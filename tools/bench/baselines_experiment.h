@@ -2,9 +2,9 @@
 // `rsl baselines` as a function: one static frame of a scene rendered with
 // every method against the ground truth (docs/BASELINES.md): SH PRT with 9,
 // 25 and 100 coefficients, Haar PRT with N = 20, 30, 60, 100 lighting terms,
-// eigentransport with d = 16, 48, 128 terms, the RSL renderer with K = 10,
-// 30, 60, 100 lights. Environment light only (local lights off for every
-// method: the baselines have none).
+// eigentransport with d = 16, 48, 128 terms, the wavelet triple product with
+// N = 80, 320, the RSL renderer with K = 10, 30, 60, 100 lights. Environment
+// light only (local lights off for every method: the baselines have none).
 #include <string>
 #include <vector>
 
@@ -24,6 +24,10 @@ struct BaselinesExperiment {
     float haar_drop = 1e-3f;  // drop transport wavelets below this × the vertex's largest
     std::vector<int> sh_orders{3, 5, 10}, haar_terms{20, 30, 60, 100}, rsl_lights{10, 30, 60, 100};
     std::vector<int> eigen_terms{16, 48, 128};  // empty: no eigentransport rows
+    // Wavelet triple product (tools/baselines/triple.h): lighting terms N, and
+    // the BRDF tables' normals R_n (6·R_n²), views R_v (R_v²) and terms M per slice.
+    std::vector<int> triple_terms{80, 320};
+    int triple_normals = 8, triple_views = 8, triple_brdf_terms = 256;
 };
 
 // Runs every method and writes OUTPUT/table.md, results.json, sheet.png

@@ -40,8 +40,8 @@ std::vector<int> parse_list(const std::string& text, const char* what, bool allo
 }
 
 RegisterCommand baselines_command({"baselines",
-    "Render one static frame with SH PRT, Haar PRT, eigentransport, RSL and the ground truth (or, with --many-light, "
-    "RSL against "
+    "Render one static frame with SH PRT, Haar PRT, eigentransport, the wavelet triple product, RSL and the ground "
+    "truth (or, with --many-light, RSL against "
     "ray-traced and shadow-mapped many-light shadows); write the error table and figures.",
     60, [](CLI::App& app) {
         auto args = std::make_shared<BaselinesExperiment>();
@@ -51,6 +51,7 @@ RegisterCommand baselines_command({"baselines",
         auto haar = std::make_shared<std::string>("20,30,60,100");
         auto eigen = std::make_shared<std::string>("16,48,128");
         auto rsl = std::make_shared<std::string>("10,30,60,100");
+        auto triple = std::make_shared<std::string>("80,320");
         auto rays = std::make_shared<std::string>("1,2,4");
         auto maps = std::make_shared<std::string>("256,1024");
         auto gl_lights = std::make_shared<std::string>("30");
@@ -66,6 +67,19 @@ RegisterCommand baselines_command({"baselines",
         app.add_option("--eigen-terms", *eigen,
                        "Eigentransport terms d (one PCA basis of the largest; empty: no eigentransport rows)")
             ->capture_default_str();
+        app.add_option("--triple-terms", *triple, "Wavelet triple product lighting terms N (empty: no triple-product rows)")->capture_default_str();
+        app.add_option("--triple-normals", args->triple_normals,
+                       "Triple product BRDF tables: R_n, normals at the texel centres of a 6 x R_n^2 cube")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 64));
+        app.add_option("--triple-views", args->triple_views,
+                       "Triple product BRDF tables: R_v x R_v views per normal (1 for Lambertian BRDFs)")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 64));
+        app.add_option("--triple-brdf-terms", args->triple_brdf_terms,
+                       "Triple product BRDF tables: M largest area-weighted Haar terms kept per slice")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 1 << 20));
         app.add_option("--rsl-lights", *rsl, "RSL counts K (default 10,30,60,100; with --many-light 10,30,100)");
         app.add_flag("--no-rsl", args->no_rsl, "Skip the RSL renderer (no field bake)");
         app.add_flag("--no-ground", args->no_ground,
@@ -97,7 +111,7 @@ RegisterCommand baselines_command({"baselines",
         group->add_option("--receivers", many->receivers, "Parts left out of the objects' error")
             ->capture_default_str()
             ->delimiter(',');
-        app.callback([&app, args, many, many_light, sh, haar, eigen, rsl, rays, maps, gl_lights] {
+        app.callback([&app, args, many, many_light, sh, haar, eigen, triple, rsl, rays, maps, gl_lights] {
             if (*many_light) {
                 if (args->no_ground)  // the many-light rows keep the ground and measure the objects apart
                     throw_error("--no-ground is for the PRT baselines, not --many-light (see --receivers)");
@@ -129,6 +143,7 @@ RegisterCommand baselines_command({"baselines",
                 if (order > sh::kMaxOrder) throw_error("--sh-orders: order {} is above {}", order, sh::kMaxOrder);
             args->haar_terms = parse_list(*haar, "--haar-terms");
             args->eigen_terms = parse_list(*eigen, "--eigen-terms", true);
+            args->triple_terms = parse_list(*triple, "--triple-terms", true);
             args->rsl_lights = parse_list(*rsl, "--rsl-lights");
             run_baselines_experiment(*args);
         });
