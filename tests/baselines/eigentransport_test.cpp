@@ -91,6 +91,45 @@ TEST_CASE("Eigentransport's basis is orthonormal and truncating it loses the dis
     CHECK(eigenvalues[47] > 1e-4 * total);  // the tail is not trivially empty
 }
 
+TEST_CASE("Eigentransport fitted to some parts is the PCA of their rows alone; the others are projected onto it") {
+    const Scene scene = make_shadow_scene(false);  // parts: ground (81 vertices), roof (9)
+    const CubeMap sky = make_sky(4);
+    const GroundTruth truth(scene, sky, 0.0f, environment_only());
+    const VertexLayout layout(scene);
+    TransportMatrix matrix = sample_transport_matrix(truth, sky, Mat3(1.0f));
+    const Eigen::MatrixXd g = matrix.rows.cast<double>();
+    // The ground's rows (shadowed by the roof: a rich basis); the roof's are projected.
+    const Eigen::MatrixXd ground_rows = g.topRows(Eigen::Index(3 * layout.first(1)));
+    const Eigen::RowVectorXd ground_mean = ground_rows.colwise().mean();
+    const Eigen::MatrixXd ground_centred = ground_rows.rowwise() - ground_mean;
+    const Eigen::VectorXd eigenvalues = Eigen::BDCSVD<Eigen::MatrixXd>(ground_centred).singularValues().array().square();
+
+    EigenOptions options;
+    options.max_terms = 8;
+    options.solver = EigenSolver::Dense;
+    options.basis_parts = {true, false};  // the ground only
+    const EigenTransport eigen = eigentransport_from_matrix(matrix, layout, options);
+    CHECK((eigen.mean.cast<double>() - ground_mean.transpose()).cwiseAbs().maxCoeff() <
+          1e-6 * ground_mean.cwiseAbs().maxCoeff());
+    CHECK(eigen.total_variance == Approx(eigenvalues.sum()).epsilon(1e-5));
+    for (int d : {1, 4, 8}) {
+        INFO("d = " << d);
+        CHECK(eigen.eigenvalues[d - 1] == Approx(eigenvalues[d - 1]).epsilon(1e-4));
+        CHECK(eigen.captured_variance(d) == Approx(eigenvalues.head(d).sum() / eigenvalues.sum()).epsilon(1e-5));
+    }
+    CHECK(eigenvalues[7] > 1e-4 * eigenvalues.sum());  // eight real directions
+    // Every row, the roof's too, has the coefficients of its projection on the ground's basis.
+    const Eigen::MatrixXd basis = eigen.basis.cast<double>();
+    const Eigen::MatrixXd expected = (g.rowwise() - ground_mean) * basis;
+    CHECK((eigen.coefficients.cast<double>() - expected).cwiseAbs().maxCoeff() < 1e-5 * expected.cwiseAbs().maxCoeff());
+    // The roof's own mean differs: the selection is not ignored.
+    options.basis_parts = {false, true};
+    options.max_terms = 1;
+    TransportMatrix again = sample_transport_matrix(truth, sky, Mat3(1.0f));
+    const EigenTransport roof = eigentransport_from_matrix(again, layout, options);
+    CHECK((roof.mean - eigen.mean).cwiseAbs().maxCoeff() > 1e-3 * eigen.mean.cwiseAbs().maxCoeff());
+}
+
 TEST_CASE("Eigentransport's randomized solver keeps the variance of the exact top eigenvectors") {
     const Scene scene = make_shadow_scene(false);
     const CubeMap sky = make_sky(8);  // 384 texels

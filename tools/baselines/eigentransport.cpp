@@ -45,16 +45,38 @@ private:
 
 using Eigen::Index;
 
-// μ: the mean row, summed in double column strip by column strip.
-Eigen::VectorXd mean_row(const RowMatrixXf& g, ThreadSeconds& seconds) {
+// Row ranges [begin, end) of the transport matrix that the basis is fitted to.
+using RowRanges = std::vector<std::pair<Index, Index>>;
+
+// The rows of the parts `options.basis_parts` selects (every row when it is empty).
+RowRanges basis_rows(const VertexLayout& layout, const EigenOptions& options) {
+    if (options.basis_parts.empty()) return {{0, Index(3 * layout.total())}};
+    RSL_CHECK_EQ(int(options.basis_parts.size()), layout.parts());
+    RowRanges ranges;
+    for (int p = 0; p < layout.parts(); ++p)
+        if (options.basis_parts[p] && layout.first(p + 1) > layout.first(p))
+            ranges.emplace_back(Index(3 * layout.first(p)), Index(3 * layout.first(p + 1)));
+    if (ranges.empty()) throw_error("eigentransport: the basis parts have no vertices");
+    return ranges;
+}
+
+Index row_count(const RowRanges& ranges) {
+    Index count = 0;
+    for (const auto& [begin, end] : ranges) count += end - begin;
+    return count;
+}
+
+// μ: the mean of the basis rows, summed in double column strip by column strip.
+Eigen::VectorXd mean_row(const RowMatrixXf& g, const RowRanges& ranges, ThreadSeconds& seconds) {
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(g.cols());
     tbb::parallel_for(tbb::blocked_range<Index>(0, g.cols(), 256), [&](const tbb::blocked_range<Index>& columns) {
         seconds.time([&] {
-            for (Index row = 0; row < g.rows(); ++row)
-                for (Index k = columns.begin(); k != columns.end(); ++k) sum[k] += g(row, k);
+            for (const auto& [begin, end] : ranges)
+                for (Index row = begin; row < end; ++row)
+                    for (Index k = columns.begin(); k != columns.end(); ++k) sum[k] += g(row, k);
         });
     });
-    return sum / double(std::max<Index>(g.rows(), 1));
+    return sum / double(std::max<Index>(row_count(ranges), 1));
 }
 
 void subtract_row(RowMatrixXf& g, const Eigen::VectorXf& mean, ThreadSeconds& seconds) {
@@ -67,9 +89,9 @@ void subtract_row(RowMatrixXf& g, const Eigen::VectorXf& mean, ThreadSeconds& se
 // triangle and sums float products of row chunks into double, so no
 // per-thread copy of the texels² matrix is needed and the result does not
 // depend on the thread count.
-Eigen::MatrixXd covariance(const RowMatrixXf& centred, ThreadSeconds& seconds) {
+Eigen::MatrixXd covariance(const RowMatrixXf& centred, const RowRanges& ranges, ThreadSeconds& seconds) {
     constexpr Index kTile = 256, kChunk = 4096;
-    const Index texels = centred.cols(), rows = centred.rows();
+    const Index texels = centred.cols();
     std::vector<std::pair<Index, Index>> tiles;
     for (Index i = 0; i < texels; i += kTile)
         for (Index j = 0; j <= i; j += kTile) tiles.emplace_back(i, j);
@@ -82,11 +104,12 @@ Eigen::MatrixXd covariance(const RowMatrixXf& centred, ThreadSeconds& seconds) {
                 const auto [i, j] = tiles[t];
                 const Index ni = std::min(kTile, texels - i), nj = std::min(kTile, texels - j);
                 tile.setZero(ni, nj);
-                for (Index r = 0; r < rows; r += kChunk) {
-                    const Index nr = std::min(kChunk, rows - r);
-                    product.noalias() = centred.block(r, i, nr, ni).transpose() * centred.block(r, j, nr, nj);
-                    tile += product.cast<double>();
-                }
+                for (const auto& [begin, end] : ranges)
+                    for (Index r = begin; r < end; r += kChunk) {
+                        const Index nr = std::min(kChunk, end - r);
+                        product.noalias() = centred.block(r, i, nr, ni).transpose() * centred.block(r, j, nr, nj);
+                        tile += product.cast<double>();
+                    }
                 sum.block(i, j, ni, nj) = tile;
                 sum.block(j, i, nj, ni) = tile.transpose();
             }
@@ -203,9 +226,10 @@ EigenTransport eigentransport_from_matrix(TransportMatrix& matrix, VertexLayout 
     RowMatrixXf& g = matrix.rows;
     const Index terms = std::min<Index>(options.max_terms, g.cols());
     ThreadSeconds pca;
-    eigen.mean = mean_row(g, pca).cast<float>();
+    const RowRanges fitted = basis_rows(eigen.layout, options);
+    eigen.mean = mean_row(g, fitted, pca).cast<float>();
     subtract_row(g, eigen.mean, pca);
-    const Eigen::MatrixXd spread = covariance(g, pca);
+    const Eigen::MatrixXd spread = covariance(g, fitted, pca);
     eigen.total_variance = spread.trace();
     eigen.randomized = use_randomized_solver(options, g.cols(), terms);
     Eigenpairs pairs;
@@ -216,9 +240,14 @@ EigenTransport eigentransport_from_matrix(TransportMatrix& matrix, VertexLayout 
     }
     eigen.basis = pairs.vectors.cast<float>();
     eigen.coefficients = project_rows(g, eigen.basis, pca);
-    // The variance each basis vector keeps, from the coefficients themselves
-    // (for either solver the basis actually stored).
-    pca.time([&] { eigen.eigenvalues = eigen.coefficients.cast<double>().colwise().squaredNorm().transpose(); });
+    // The variance of the basis rows each basis vector keeps, from the
+    // coefficients themselves (for either solver the basis actually stored).
+    pca.time([&] {
+        eigen.eigenvalues = Eigen::VectorXd::Zero(terms);
+        for (const auto& [begin, end] : fitted)
+            eigen.eigenvalues +=
+                eigen.coefficients.middleRows(begin, end - begin).cast<double>().colwise().squaredNorm().transpose();
+    });
     eigen.pca_cpu_seconds = matrix.fill_cpu_seconds + pca.total();
     return eigen;
 }

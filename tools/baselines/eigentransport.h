@@ -57,6 +57,10 @@ struct EigenOptions {
     int power_iterations = 4, oversampling = 16;  // Randomized only
     uint64_t seed = 44;                           // Randomized only: the Gaussian test matrix
     bool visibility = true;                       // false: V = 1, no rays
+    // The parts whose rows the mean and the basis are fitted to (per part;
+    // empty: all). The other parts' rows are projected onto that basis, which
+    // separates a ground's bias on the basis from its effect on the truth.
+    std::vector<bool> basis_parts;
 };
 
 struct EigenTransport {
@@ -67,8 +71,8 @@ struct EigenTransport {
     Eigen::VectorXf mean;             // μ: the mean row (texels)
     Eigen::MatrixXf basis;            // texels × d_max, orthonormal columns B_i
     RowMatrixXf coefficients;         // 3V × d_max: (g_row − μ) · B_i
-    Eigen::VectorXd eigenvalues;      // d_max, decreasing: Σ_rows ((g − μ) · B_i)²
-    double total_variance = 0;        // Σ_rows ‖g − μ‖², the squared error at d = 0
+    Eigen::VectorXd eigenvalues;      // d_max, decreasing: Σ over the basis rows of ((g − μ) · B_i)²
+    double total_variance = 0;        // Σ_rows ‖g − μ‖² over the basis rows, the squared error at d = 0
     bool randomized = false;          // which solver ran
     uint64_t rays = 0;
     // Thread-seconds (summed over threads) of the rays and of the PCA

@@ -291,6 +291,10 @@ void measure_eigentransport(const GroundTruth& truth, const CubeMap& environment
     if (args.eigen_terms.empty()) return;
     EigenOptions options;
     options.max_terms = *std::max_element(args.eigen_terms.begin(), args.eigen_terms.end());
+    if (args.eigen_objects_basis)
+        for (const Part& part : m.scene.parts)
+            options.basis_parts.push_back(std::find(kGroundParts.begin(), kGroundParts.end(), part.name) ==
+                                          kGroundParts.end());
     say(args, fmt::format("eigentransport precompute ({} x {} transport matrix, {:.1f} GB, d = {})...",
                           3 * m.layout.total(), environment.texel_count(),
                           3e-9 * double(m.layout.total()) * environment.texel_count() * sizeof(float), options.max_terms));
@@ -299,13 +303,14 @@ void measure_eigentransport(const GroundTruth& truth, const CubeMap& environment
     const std::string solver = eigen.randomized ? "randomized" : "dense";
     say(args, fmt::format("  {:.1f} s wall; CPU s: rays {:.1f}, PCA {:.1f} ({} eigensolver)", eigen.wall_seconds,
                           eigen.trace_cpu_seconds, eigen.pca_cpu_seconds, solver));
-    notes.eigen = {{"max_terms", eigen.max_terms()}, {"solver", solver}, {"rays_cpu_seconds", eigen.trace_cpu_seconds},
+    notes.eigen = {{"max_terms", eigen.max_terms()}, {"solver", solver},
+                   {"basis", args.eigen_objects_basis ? "objects" : "all"}, {"rays_cpu_seconds", eigen.trace_cpu_seconds},
                    {"pca_cpu_seconds", eigen.pca_cpu_seconds}, {"wall_seconds", eigen.wall_seconds},
                    {"captured_variance", nlohmann::json::object()}};
-    notes.eigen_note = fmt::format("\nEigentransport: one basis of d = {} ({} eigensolver; CPU s: rays {:.1f}, PCA {:.1f}; "
-                                   "{:.1f} s wall); transport variance captured:",
-                                   eigen.max_terms(), solver, eigen.trace_cpu_seconds, eigen.pca_cpu_seconds,
-                                   eigen.wall_seconds);
+    notes.eigen_note = fmt::format("\nEigentransport: one basis of d = {} fitted to {} ({} eigensolver; CPU s: rays "
+                                   "{:.1f}, PCA {:.1f}; {:.1f} s wall); transport variance captured:",
+                                   eigen.max_terms(), args.eigen_objects_basis ? "the objects' vertices" : "every vertex",
+                                   solver, eigen.trace_cpu_seconds, eigen.pca_cpu_seconds, eigen.wall_seconds);
     EigenRenderer renderer(eigen);
     const Mat3 rotation = m.scene.environment.rotation_at(m.t);
     for (int requested : args.eigen_terms) {

@@ -24,6 +24,7 @@ struct BaselinesExperiment {
     float haar_drop = 1e-3f;  // drop transport wavelets below this × the vertex's largest
     std::vector<int> sh_orders{3, 5, 10}, haar_terms{20, 30, 60, 100}, rsl_lights{10, 30, 60, 100};
     std::vector<int> eigen_terms{16, 48, 128};  // empty: no eigentransport rows
+    bool eigen_objects_basis = false;  // fit the eigentransport basis to the objects' rows only (not a ground's)
     // Wavelet triple product (tools/baselines/triple.h): lighting terms N, and
     // the BRDF tables' normals R_n (6·R_n²), views R_v (R_v²) and terms M per slice.
     std::vector<int> triple_terms{80, 320};

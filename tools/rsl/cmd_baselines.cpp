@@ -82,6 +82,9 @@ RegisterCommand baselines_command({"baselines",
             ->check(CLI::Range(1, 1 << 20));
         app.add_option("--rsl-lights", *rsl, "RSL counts K (default 10,30,60,100; with --many-light 10,30,100)");
         app.add_flag("--no-rsl", args->no_rsl, "Skip the RSL renderer (no field bake)");
+        app.add_flag("--eigen-objects-basis", args->eigen_objects_basis,
+                     "Fit the eigentransport basis to the objects' vertices only (every part but ground/floor); the "
+                     "ground's vertices are projected onto it");
         app.add_flag("--no-ground", args->no_ground,
                      "Remove the parts named ground or floor before anything runs (a ground biases the "
                      "eigentransport basis); an error if there is none");
