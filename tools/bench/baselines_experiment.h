@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/baselines/triple.h"
+
 namespace rsl {
 
 struct BaselinesExperiment {
@@ -25,9 +27,11 @@ struct BaselinesExperiment {
     std::vector<int> sh_orders{3, 5, 10}, haar_terms{20, 30, 60, 100}, rsl_lights{10, 30, 60, 100};
     std::vector<int> eigen_terms{16, 48, 128};  // empty: no eigentransport rows
     // Wavelet triple product (tools/baselines/triple.h): lighting terms N, and
-    // the BRDF tables' normals R_n (6·R_n²), views R_v (R_v²) and terms M per slice.
+    // the BRDF tables' normals R_n (6·R_n²), views R_v (R_v²) and terms M per
+    // slice, and how a vertex finds its slice (bilinear blend or nearest).
     std::vector<int> triple_terms{80, 320};
     int triple_normals = 8, triple_views = 8, triple_brdf_terms = 256;
+    TripleLookup triple_lookup = TripleLookup::bilinear;
 };
 
 // Runs every method and writes OUTPUT/table.md, results.json, sheet.png
