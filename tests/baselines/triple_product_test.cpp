@@ -1,7 +1,11 @@
 // The wavelet triple product (Ng 2004) against brute-force texel sums and the
 // ground truth; the BRDF slice tables against exact slices.
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <random>
+#include <set>
 
 #include <catch2/catch.hpp>
 
@@ -241,4 +245,205 @@ TEST_CASE("Triple product with tabulated slices is exact where the normals are o
     TripleRenderer cut_renderer(pre, truth, &cut);
     cut_renderer.render(sky, sky.texel_count(), truth.camera_position(), out);
     CHECK(relative_l2(out, reference) > 1e-3);
+}
+
+namespace {
+
+// The environment texels' directions at resolution n (the slices' domain).
+std::vector<Vec3> texel_directions(int n) {
+    const CubeMap grid(n);
+    std::vector<Vec3> directions;
+    for (int k = 0; k < grid.texel_count(); ++k) directions.push_back(grid.texel_direction(k));
+    return directions;
+}
+
+// The table's blend for a normal and view, dense (Haar coefficients), by BrdfSlices::accumulate.
+std::vector<Color> blended(const BrdfSlices& table, const Vec3& normal, const Vec3& view, size_t texels,
+                           SliceWeights& weights) {
+    table.weights(normal, view, weights);
+    std::vector<Color> dense(texels, Color(0.0f));
+    std::vector<uint8_t> touched(texels, 0);
+    std::vector<int32_t> list(texels);
+    const size_t listed = table.accumulate(weights, dense.data(), touched.data(), list.data(), 0);
+    for (size_t k = 0; k < texels; ++k) CHECK((dense[k] != Color(0.0f)) <= bool(touched[k]));  // every non-zero listed
+    CHECK(listed == size_t(std::count(touched.begin(), touched.end(), uint8_t(1))));
+    return dense;
+}
+
+// One slice of the table, dense (Haar coefficients).
+std::vector<Color> tabulated(const BrdfSlices& table, int slice, size_t texels) {
+    std::vector<Color> dense(texels, Color(0.0f));
+    for (int t = 0; t < table.count(slice); ++t) dense[size_t(table.index(slice)[t])] = table.value(slice)[t];
+    return dense;
+}
+
+// The exact slice of a tabulated normal's frame and view, Haar-transformed, every term.
+std::vector<Color> exact_coefficients(const Brdf& brdf, const Vec3& normal, const Vec3& view,
+                                      const std::vector<Vec3>& directions, int n) {
+    std::vector<Color> dense(directions.size());
+    const Frame frame = Frame::from_normal(normal);
+    brdf_slice(brdf, frame, frame.to_local(view), directions, dense.data());
+    haar::forward_cube(reinterpret_cast<float*>(dense.data()), n, 3);
+    return dense;
+}
+
+std::shared_ptr<const Brdf> glossy_brdf() {
+    return make_brdf(material("blinn_phong", {{"kd", {0.3f, 0.2f, 0.1f}}, {"ks", {0.5f, 0.5f, 0.5f}}, {"exponent", {20}}}));
+}
+
+}  // namespace
+
+TEST_CASE("BRDF slice lookup: at a tabulated normal and view the bilinear blend is that slice", "[triple]") {
+    const int n = 4;
+    const std::vector<Vec3> directions = texel_directions(n);
+    TripleOptions options;
+    options.normal_resolution = 3, options.view_resolution = 3, options.brdf_terms = int(directions.size());
+    const auto brdf = glossy_brdf();
+    const BrdfSlices table(*brdf, directions, n, options);
+    REQUIRE(table.lookup() == TripleLookup::bilinear);
+    SliceWeights weights;
+    for (int s = 0; s < table.slice_count(); ++s) {
+        INFO("slice " << s);
+        const std::vector<Color> got = blended(table, table.normal(s), table.view(s), directions.size(), weights);
+        const int largest = int(std::max_element(weights.weight, weights.weight + weights.count) - weights.weight);
+        REQUIRE(weights.slice[largest] == s);
+        REQUIRE(weights.weight[largest] > 1.0f - 1e-5f);
+        REQUIRE(relative_l2(got, tabulated(table, s, directions.size())) < 1e-5);
+    }
+}
+
+TEST_CASE("BRDF slice lookup: halfway between two tabulated normals the blend is their average", "[triple]") {
+    const int n = 4;
+    const std::vector<Vec3> directions = texel_directions(n);
+    TripleOptions options;
+    options.normal_resolution = 4, options.view_resolution = 4, options.brdf_terms = int(directions.size());
+    const CubeMap normals(options.normal_resolution);
+    SliceWeights weights;
+    SECTION("Lambertian: one view, the two slices' mean (inside a face and across a face edge)") {
+        const auto lambert = make_brdf(material("lambert", {{"albedo", {0.5f, 0.7f, 0.2f}}}));
+        const BrdfSlices table(*lambert, directions, n, options);
+        const int a = normals.index(4, 1, 1);  // +Z face; its +s neighbour, and its −s neighbour across the edge
+        for (const auto& [b, s] : {std::pair{normals.index(4, 2, 1), 0.0f}, std::pair{normals.index(4, 0, 1), -0.5f}}) {
+            const std::vector<Color> got =
+                blended(table, CubeMap::face_direction(4, s, -0.25f), Vec3(0, 0, 1), directions.size(), weights);
+            REQUIRE(weights.count == 2);
+            CHECK(weights.weight[0] == Approx(0.5f).margin(1e-5));
+            CHECK(weights.weight[1] == Approx(0.5f).margin(1e-5));
+            std::vector<Color> mean = tabulated(table, a, directions.size());
+            const std::vector<Color> other = tabulated(table, b, directions.size());
+            for (size_t k = 0; k < mean.size(); ++k) mean[k] = 0.5f * (mean[k] + other[k]);
+            CHECK(relative_l2(got, mean) < 1e-5);
+        }
+        // On the edge itself: half the edge texel, half the texel across it (CubeMap::neighbors).
+        const int edge = normals.index(4, 0, 1), across = normals.neighbors(edge)[0];
+        blended(table, CubeMap::face_direction(4, -1.0f, -0.25f), Vec3(0, 0, 1), directions.size(), weights);
+        REQUIRE(weights.count == 2);
+        CHECK(std::set<int>{weights.slice[0], weights.slice[1]} == std::set<int>{edge, across});
+        CHECK(weights.weight[0] == Approx(0.5f).margin(1e-5));
+    }
+    SECTION("Glossy: the weighted sum of the exact slices of the 2 normals x 2x2 views") {
+        const auto brdf = glossy_brdf();
+        const BrdfSlices table(*brdf, directions, n, options);
+        const Vec3 normal = CubeMap::face_direction(2, 0.0f, 0.25f);  // +Y face, between (1, 2) and (2, 2)
+        const Vec3 view = glm::normalize(normal + Vec3(0.4f, 0.3f, -0.2f));
+        const std::vector<Color> got = blended(table, normal, view, directions.size(), weights);
+        REQUIRE(weights.count == 8);
+        std::vector<Color> expected(directions.size(), Color(0.0f));
+        std::map<int, double> per_normal;
+        for (int w = 0; w < weights.count; ++w) {
+            const int slice = weights.slice[w];
+            per_normal[slice / 16] += weights.weight[w];
+            const std::vector<Color> exact = exact_coefficients(*brdf, table.normal(slice), table.view(slice), directions, n);
+            for (size_t k = 0; k < exact.size(); ++k) expected[k] += weights.weight[w] * exact[k];
+        }
+        REQUIRE(per_normal.size() == 2);
+        CHECK(per_normal.count(normals.index(2, 1, 2)) == 1);
+        CHECK(per_normal.count(normals.index(2, 2, 2)) == 1);
+        for (const auto& [index, weight] : per_normal) CHECK(weight == Approx(0.5).margin(1e-5));
+        CHECK(relative_l2(got, expected) < 1e-5);
+        // Not merely one of the slices: the blend differs from each by far more.
+        for (int w = 0; w < weights.count; ++w)
+            CHECK(relative_l2(got, tabulated(table, weights.slice[w], directions.size())) > 1e-2);
+    }
+}
+
+namespace {
+
+// The octahedral view grid's coordinates of a local view in the upper hemisphere (triple.cpp's map).
+Vec2 octahedral(const Vec3& local) {
+    const float sum = std::abs(local.x) + std::abs(local.y) + local.z;
+    return Vec2(local.x - local.y, local.x + local.y) / sum;
+}
+
+}  // namespace
+
+TEST_CASE("BRDF slice lookup: the weights sum to 1 and reproduce the direction inside the grids", "[triple]") {
+    const int n = 2;
+    const std::vector<Vec3> directions = texel_directions(n);
+    TripleOptions options;
+    options.normal_resolution = 5, options.view_resolution = 6, options.brdf_terms = 4;
+    const BrdfSlices glossy(*glossy_brdf(), directions, n, options);
+    const BrdfSlices lambert(*make_brdf(material("lambert", {{"albedo", {0.5f, 0.5f, 0.5f}}})), directions, n, options);
+    std::mt19937 rng(44);
+    std::normal_distribution<float> gauss;
+    const auto random_direction = [&] { return glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng))); };
+    int interior_views = 0;
+    SliceWeights weights;
+    for (int c = 0; c < 20000; ++c) {
+        const Vec3 normal = random_direction(), view = random_direction();  // half the views below the horizon
+        INFO("case " << c);
+        for (const BrdfSlices* table : {&glossy, &lambert}) {
+            table->weights(normal, view, weights);
+            const int views = table->views_per_side();
+            REQUIRE(weights.count >= 1);
+            REQUIRE(weights.count <= (views == 1 ? 4 : 16));
+            double sum = 0;
+            std::map<int, double> per_normal;
+            for (int w = 0; w < weights.count; ++w) {
+                REQUIRE(weights.weight[w] > 0.0f);
+                sum += weights.weight[w];
+                per_normal[weights.slice[w] / (views * views)] += weights.weight[w];
+            }
+            REQUIRE(sum == Approx(1.0).margin(1e-5));
+            if (views == 1) continue;
+            // Bilinear weights reproduce a linear function: inside each normal's
+            // view grid (away from the horizon's clamp) the weighted grid views'
+            // coordinates are the view's own.
+            for (const auto& [normal_index, normal_weight] : per_normal) {
+                const Frame frame = Frame::from_normal(glossy.normal(normal_index * views * views));
+                const Vec3 local = frame.to_local(view);
+                if (local.z <= 0.0f) continue;
+                const Vec2 target = octahedral(local);
+                if (std::max(std::abs(target.x), std::abs(target.y)) > 1.0f - 1.0f / float(views)) continue;
+                Vec2 mean(0.0f);
+                for (int w = 0; w < weights.count; ++w)
+                    if (weights.slice[w] / (views * views) == normal_index)
+                        mean += weights.weight[w] * octahedral(frame.to_local(glossy.view(weights.slice[w])));
+                REQUIRE(glm::length(mean / float(normal_weight) - target) < 1e-4f);
+                ++interior_views;
+            }
+        }
+    }
+    CHECK(interior_views > 10000);
+}
+
+TEST_CASE("Triple product: the bilinear slice lookup is closer to the truth than the nearest (glossy)", "[triple]") {
+    Scene scene = make_shadow_scene(true);
+    const CubeMap sky = make_sky(16);
+    const GroundTruth truth = shadow_truth(scene, sky, scene.camera.position);
+    const std::vector<Color> reference = flatten(truth.shade_vertices());
+    TripleOptions options = exact_options();
+    options.normal_resolution = 4, options.view_resolution = 4, options.brdf_terms = 256;
+    const TriplePrecompute pre = precompute_triple_visibility(truth, sky, options);
+    double error[2];
+    for (TripleLookup lookup : {TripleLookup::nearest, TripleLookup::bilinear}) {
+        options.lookup = lookup;
+        const TripleBrdfTables tables = tabulate_part_brdfs(truth, pre, options);
+        TripleRenderer renderer(pre, truth, &tables);
+        std::vector<Color> out;
+        renderer.render(sky, sky.texel_count(), truth.camera_position(), out);
+        error[int(lookup)] = relative_l2(out, reference);
+    }
+    INFO("nearest " << error[0] << ", bilinear " << error[1]);
+    CHECK(error[1] < 0.5 * error[0]);
 }

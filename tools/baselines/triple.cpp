@@ -62,12 +62,18 @@ void join_blocks(const std::vector<VisibilityBlock>& blocks, SparseVisibility& o
 
 // The view grid: an octahedral map of the upper hemisphere onto [−1, 1]²
 // (turned 45°), R_v × R_v cells; a view below the horizon is clamped onto it.
-int view_cell(const Vec3& local, int views) {
+// These are a local view's grid coordinates (row, column).
+Vec2 view_coords(const Vec3& local) {
     const float z = std::max(local.z, 0.0f);
     const float sum = std::abs(local.x) + std::abs(local.y) + z;
     const float px = sum > 0 ? local.x / sum : 0.0f, py = sum > 0 ? local.y / sum : 0.0f;
+    return Vec2(px - py, px + py);
+}
+
+int view_cell(const Vec3& local, int views) {
+    const Vec2 coords = view_coords(local);
     const auto cell = [views](float u) { return std::clamp(int(std::floor((u + 1.0f) * 0.5f * views)), 0, views - 1); };
-    return cell(px - py) * views + cell(px + py);
+    return cell(coords.x) * views + cell(coords.y);
 }
 
 Vec3 view_direction(int cell, int views) {
@@ -75,6 +81,69 @@ Vec3 view_direction(int cell, int views) {
     const float v = 2.0f * (float(cell / views) + 0.5f) / float(views) - 1.0f;
     const float px = 0.5f * (u + v), py = 0.5f * (u - v);
     return glm::normalize(Vec3(px, py, 1.0f - std::abs(px) - std::abs(py)));
+}
+
+// Linear interpolation along one axis of `cells` cells over [−1, 1] between
+// the centres of `first` and `first + 1`; clamped to the end cells (the view
+// grid's ends are the horizon, the normals' are a face edge the caller crosses).
+// Returns the weight of `first + 1`.
+float axis_weight(float coord, int cells, bool clamp, int& first) {
+    const float c = (coord + 1.0f) * 0.5f * float(cells) - 0.5f;
+    if (!clamp) {
+        first = int(std::floor(c));
+        return c - float(first);
+    }
+    if (cells == 1) return first = 0, 0.0f;
+    const float clamped = std::clamp(c, 0.0f, float(cells - 1));
+    first = std::min(int(clamped), cells - 2);
+    return clamped - float(first);
+}
+
+// A direction's cube face and face coordinates (s, t) ∈ [−1, 1]² (CubeMap::texel_of's projection).
+int face_coords(const Vec3& dir, float& s, float& t) {
+    const float ax = std::abs(dir.x), ay = std::abs(dir.y), az = std::abs(dir.z);
+    int face;
+    float major, sc, tc;
+    if (ax >= ay && ax >= az) {
+        face = dir.x > 0 ? 0 : 1, major = ax, sc = dir.x > 0 ? -dir.z : dir.z, tc = -dir.y;
+    } else if (ay >= az) {
+        face = dir.y > 0 ? 2 : 3, major = ay, sc = dir.x, tc = dir.y > 0 ? dir.z : -dir.z;
+    } else {
+        face = dir.z > 0 ? 4 : 5, major = az, sc = dir.z > 0 ? dir.x : -dir.x, tc = -dir.y;
+    }
+    if (!(major > 0.0f)) return s = t = 0.0f, 4;  // zero or NaN direction: any face
+    s = sc / major, t = tc / major;
+    return face;
+}
+
+// The 2×2 tabulated normals around `normal` and their bilinear weights in
+// its face's texel coordinates; returns how many have a non-zero weight. A
+// neighbour beyond the face edge is the texel across it (the point on the
+// face's plane at that texel's centre, projected as CubeMap::neighbors does),
+// so the blend runs continuously over edges instead of jumping between the
+// two faces' edge texels, the faceting interpolation removes; at a corner the
+// missing diagonal neighbour becomes one of the three corner texels.
+int normal_weights(const CubeMap& normals, const Vec3& normal, int index[4], float weight[4]) {
+    const int r = normals.resolution();
+    float s, t;
+    const int face = face_coords(normal, s, t);
+    int i0, j0;
+    const float wi = axis_weight(s, r, false, i0), wj = axis_weight(t, r, false, j0);
+    int count = 0;
+    for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) {
+            const float w = (di ? wi : 1.0f - wi) * (dj ? wj : 1.0f - wj);
+            if (!(w > 0.0f)) continue;
+            const int i = i0 + di, j = j0 + dj;
+            if (i >= 0 && i < r && j >= 0 && j < r) {
+                index[count] = normals.index(face, i, j);
+            } else {
+                const float si = -1.0f + (2.0f * float(i) + 1.0f) / float(r), tj = -1.0f + (2.0f * float(j) + 1.0f) / float(r);
+                index[count] = normals.index_of(CubeMap::face_direction(face, si, tj));
+            }
+            weight[count++] = w;
+        }
+    return count;
 }
 
 }  // namespace
@@ -141,7 +210,7 @@ BrdfSlices::BrdfSlices(const Brdf& brdf, const std::vector<Vec3>& directions, in
                        const TripleOptions& options)
     : normals_(options.normal_resolution),
       views_(brdf.model() == "lambert" ? 1 : options.view_resolution),  // ρ of a Lambertian BRDF ignores the view
-      terms_(std::min(options.brdf_terms, int(directions.size()))) {
+      terms_(std::min(options.brdf_terms, int(directions.size()))), lookup_(options.lookup) {
     RSL_CHECK_GE(options.normal_resolution, 1);
     RSL_CHECK_GE(options.view_resolution, 1);
     RSL_CHECK_GE(options.brdf_terms, 1);
@@ -185,6 +254,46 @@ int BrdfSlices::slice_of(const Vec3& normal_world, const Vec3& view_world) const
     const int normal_index = normals_.index_of(normal_world);
     const Frame frame = Frame::from_normal(normals_.texel_direction(normal_index));
     return normal_index * views_ * views_ + view_cell(frame.to_local(view_world), views_);
+}
+
+void BrdfSlices::weights(const Vec3& normal_world, const Vec3& view_world, SliceWeights& out) const {
+    out.count = 0;
+    if (lookup_ == TripleLookup::nearest) {
+        out.slice[0] = slice_of(normal_world, view_world), out.weight[0] = 1.0f, out.count = 1;
+        return;
+    }
+    int normal_index[4];
+    float normal_weight[4];
+    const int normals = normal_weights(normals_, normal_world, normal_index, normal_weight);
+    for (int a = 0; a < normals; ++a) {
+        // Each tabulated normal's views are in its own frame, so the view is found there.
+        const Frame frame = Frame::from_normal(normals_.texel_direction(normal_index[a]));
+        const Vec2 coords = view_coords(frame.to_local(view_world));
+        int row, column;
+        const float wr = axis_weight(coords.x, views_, true, row), wc = axis_weight(coords.y, views_, true, column);
+        for (int dr = 0; dr < 2; ++dr)
+            for (int dc = 0; dc < 2; ++dc) {
+                const float w = normal_weight[a] * (dr ? wr : 1.0f - wr) * (dc ? wc : 1.0f - wc);
+                if (!(w > 0.0f)) continue;
+                out.slice[out.count] = (normal_index[a] * views_ + row + dr) * views_ + column + dc;
+                out.weight[out.count++] = w;
+            }
+    }
+}
+
+size_t BrdfSlices::accumulate(const SliceWeights& weights, Color* dense, uint8_t* touched, int32_t* list,
+                              size_t listed) const {
+    for (int w = 0; w < weights.count; ++w) {
+        const int slice = weights.slice[w];
+        const int32_t* index = this->index(slice);
+        const Color* value = this->value(slice);
+        for (int t = 0; t < count(slice); ++t) {
+            const int32_t i = index[t];
+            if (!touched[i]) touched[i] = 1, list[listed++] = i;
+            dense[i] += weights.weight[w] * value[t];
+        }
+    }
+    return listed;
 }
 
 size_t BrdfSlices::bytes() const {
@@ -232,9 +341,13 @@ TripleBrdfTables tabulate_part_brdfs(const GroundTruth& truth, const TriplePreco
 // Per-thread dense arrays for one vertex's factors (zero between vertices).
 struct TripleScratch {
     explicit TripleScratch(int n)
-        : visibility(size_t(6) * n * n, 0.0f), brdf(size_t(6) * n * n, Color(0.0f)), transform(size_t(n) * n * 3) {}
+        : visibility(size_t(6) * n * n, 0.0f), brdf(size_t(6) * n * n, Color(0.0f)), brdf_touched(brdf.size(), 0),
+          brdf_index(brdf.size()), transform(size_t(n) * n * 3) {}
     std::vector<float> visibility;
     std::vector<Color> brdf;
+    std::vector<uint8_t> brdf_touched;  // the blended slice's indices, listed once each in brdf_index
+    std::vector<int32_t> brdf_index;
+    SliceWeights weights;
     std::vector<float> transform;
 };
 
@@ -295,16 +408,19 @@ void TripleRenderer::render(const CubeMap& environment, int terms, const Vec3& c
             factors.brdf_dense = scratch.brdf.data();
             if (tables_) {
                 const BrdfSlices& table = *tables_->part[size_t(part)];
-                const int slice = table.slice_of(x.frame.z, view);
-                factors.brdf_index = table.index(slice);
-                factors.brdf_count = size_t(table.count(slice));
-                for (size_t t = 0; t < factors.brdf_count; ++t) scratch.brdf[table.index(slice)[t]] = table.value(slice)[t];
+                table.weights(x.frame.z, view, scratch.weights);
+                factors.brdf_index = scratch.brdf_index.data();
+                factors.brdf_count = table.accumulate(scratch.weights, scratch.brdf.data(), scratch.brdf_touched.data(),
+                                                      scratch.brdf_index.data(), 0);
             } else {
                 exact_slice(truth_.part_brdf(part), x, view_local, precompute_.directions, n, scratch);
             }
             out[v] = triple::evaluate(state.prepared, factors);
             for (uint64_t e = first; e < last; ++e) scratch.visibility[vis.index[e]] = 0.0f;
-            for (size_t t = 0; t < factors.brdf_count; ++t) scratch.brdf[factors.brdf_index[t]] = Color(0.0f);
+            for (size_t t = 0; t < factors.brdf_count; ++t) {
+                scratch.brdf[factors.brdf_index[t]] = Color(0.0f);
+                scratch.brdf_touched[size_t(factors.brdf_index[t])] = 0;
+            }
         }
     });
 }

@@ -15,9 +15,13 @@
 //   (the texel centres of 6×R_n²) and each view of an R_v×R_v grid on the
 //   hemisphere in a frame built from that normal, the slice over the 6×N²
 //   environment texels, Haar-transformed and cut to its M largest
-//   area-weighted terms. A vertex uses the slice of its nearest normal and
-//   view (Ng 2004's nearest neighbour). A view-independent (Lambertian) BRDF
-//   gets one view per normal. The exact mode instead evaluates ρ̃ per vertex
+//   area-weighted terms. A vertex blends the slices of its 2×2 nearest
+//   normals on the cube's face grid and, in each of those normals' frames,
+//   its 2×2 nearest views, bilinearly (Ma 2006 interpolates the coefficients
+//   of nearby tabulated functions); the triple sum is linear in ρ̃, so the
+//   blend is the weighted sum of up to 16 sparse slices. `lookup = nearest`
+//   takes the single nearest slice instead (Ng 2004). A view-independent
+//   (Lambertian) BRDF gets one view per normal. The exact mode instead evaluates ρ̃ per vertex
 //   per frame for its own shading frame and view with every term: the
 //   accuracy reference (with every lighting term it is the truth's sum).
 //
@@ -34,11 +38,15 @@ namespace rsl {
 
 class Brdf;
 
+// How a vertex finds its BRDF slice in the tables.
+enum class TripleLookup { nearest, bilinear };
+
 struct TripleOptions {
     float visibility_drop = 1e-3f;  // relative to the vertex's largest |VΩ coefficient|
     int normal_resolution = 8;      // R_n: 6·R_n² tabulated normals
     int view_resolution = 8;        // R_v: R_v² views per normal (1 for a Lambertian BRDF)
     int brdf_terms = 256;           // M: kept terms per slice
+    TripleLookup lookup = TripleLookup::bilinear;
     int block_vertices = 256;
     bool visibility = true;  // false: V = 1 above the horizons, no rays
 };
@@ -68,6 +76,15 @@ struct TriplePrecompute {
 TriplePrecompute precompute_triple_visibility(const GroundTruth& truth, const CubeMap& environment,
                                               const TripleOptions& options);
 
+// A vertex's slices and their weights (summing to 1): 2×2 normals × 2×2
+// views at most; zero weights are left out.
+struct SliceWeights {
+    static constexpr int kMax = 16;
+    int count = 0;
+    int slice[kMax];
+    float weight[kMax];
+};
+
 // One BRDF's slices: normal × view, each at most M (index, RGB) terms.
 class BrdfSlices {
 public:
@@ -78,6 +95,14 @@ public:
     // The slice of the tabulated normal nearest `normal` and, in its frame,
     // the tabulated view nearest `view` (both world, unit).
     int slice_of(const Vec3& normal, const Vec3& view) const;
+    // The slices blended for a vertex of `normal` seen along `view` (world,
+    // unit), by the table's lookup mode. No allocation.
+    void weights(const Vec3& normal, const Vec3& view, SliceWeights& out) const;
+    TripleLookup lookup() const { return lookup_; }
+    // Adds Σ weight · slice to `dense` (6N² Haar coefficients) and appends each
+    // index it touches for the first time (`touched[i]` 0 → 1) to `list`;
+    // returns the list's new length. The caller clears all three. No allocation.
+    size_t accumulate(const SliceWeights& weights, Color* dense, uint8_t* touched, int32_t* list, size_t listed) const;
     // The tabulated normal and view (world) of a slice.
     Vec3 normal(int slice) const;
     Vec3 view(int slice) const;
@@ -90,6 +115,7 @@ public:
 private:
     CubeMap normals_;  // its texel centres are the tabulated normals
     int views_, terms_;
+    TripleLookup lookup_;
     std::vector<int32_t> index_;  // slice · M + t
     std::vector<Color> value_;
     std::vector<int32_t> count_;

@@ -334,6 +334,7 @@ void measure_triple(const GroundTruth& truth, const CubeMap& environment, Measur
     options.visibility_drop = args.haar_drop;
     options.normal_resolution = args.triple_normals, options.view_resolution = args.triple_views;
     options.brdf_terms = args.triple_brdf_terms;
+    options.lookup = args.triple_lookup;
     say(args, "Triple product precompute (visibility + BRDF tables)...");
     const TriplePrecompute pre = precompute_triple_visibility(truth, environment, options);
     const TripleBrdfTables tables = tabulate_part_brdfs(truth, pre, options);

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/baselines/triple.h"
+
 namespace rsl {
 
 struct BaselinesExperiment {
@@ -26,9 +28,11 @@ struct BaselinesExperiment {
     std::vector<int> eigen_terms{16, 48, 128};  // empty: no eigentransport rows
     bool eigen_objects_basis = false;  // fit the eigentransport basis to the objects' rows only (not a ground's)
     // Wavelet triple product (tools/baselines/triple.h): lighting terms N, and
-    // the BRDF tables' normals R_n (6·R_n²), views R_v (R_v²) and terms M per slice.
+    // the BRDF tables' normals R_n (6·R_n²), views R_v (R_v²) and terms M per
+    // slice, and how a vertex finds its slice (bilinear blend or nearest).
     std::vector<int> triple_terms{80, 320};
     int triple_normals = 8, triple_views = 8, triple_brdf_terms = 256;
+    TripleLookup triple_lookup = TripleLookup::bilinear;
 };
 
 // Runs every method and writes OUTPUT/table.md, results.json, sheet.png

@@ -52,6 +52,7 @@ RegisterCommand baselines_command({"baselines",
         auto eigen = std::make_shared<std::string>("16,48,128");
         auto rsl = std::make_shared<std::string>("10,30,60,100");
         auto triple = std::make_shared<std::string>("80,320");
+        auto lookup = std::make_shared<std::string>("bilinear");
         auto rays = std::make_shared<std::string>("1,2,4");
         auto maps = std::make_shared<std::string>("256,1024");
         auto gl_lights = std::make_shared<std::string>("30");
@@ -80,6 +81,11 @@ RegisterCommand baselines_command({"baselines",
                        "Triple product BRDF tables: M largest area-weighted Haar terms kept per slice")
             ->capture_default_str()
             ->check(CLI::Range(1, 1 << 20));
+        app.add_option("--triple-lookup", *lookup,
+                       "Triple product BRDF tables: bilinear (blend the 2x2 nearest normals x 2x2 nearest views) "
+                       "or nearest (one slice, as Ng 2004)")
+            ->check(CLI::IsMember({"bilinear", "nearest"}))
+            ->capture_default_str();
         app.add_option("--rsl-lights", *rsl, "RSL counts K (default 10,30,60,100; with --many-light 10,30,100)");
         app.add_flag("--no-rsl", args->no_rsl, "Skip the RSL renderer (no field bake)");
         app.add_flag("--eigen-objects-basis", args->eigen_objects_basis,
@@ -114,7 +120,7 @@ RegisterCommand baselines_command({"baselines",
         group->add_option("--receivers", many->receivers, "Parts left out of the objects' error")
             ->capture_default_str()
             ->delimiter(',');
-        app.callback([&app, args, many, many_light, sh, haar, eigen, triple, rsl, rays, maps, gl_lights] {
+        app.callback([&app, args, many, many_light, sh, haar, eigen, triple, lookup, rsl, rays, maps, gl_lights] {
             if (*many_light) {
                 if (args->no_ground)  // the many-light rows keep the ground and measure the objects apart
                     throw_error("--no-ground is for the PRT baselines, not --many-light (see --receivers)");
@@ -147,6 +153,7 @@ RegisterCommand baselines_command({"baselines",
             args->haar_terms = parse_list(*haar, "--haar-terms");
             args->eigen_terms = parse_list(*eigen, "--eigen-terms", true);
             args->triple_terms = parse_list(*triple, "--triple-terms", true);
+            args->triple_lookup = *lookup == "nearest" ? TripleLookup::nearest : TripleLookup::bilinear;
             args->rsl_lights = parse_list(*rsl, "--rsl-lights");
             run_baselines_experiment(*args);
         });
