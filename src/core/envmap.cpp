@@ -102,7 +102,7 @@ Vec3 CubeMap::texel_direction(int index) const {
     return face_direction(t.face, -1.0f + (2.0f * t.i + 1.0f) / n_, -1.0f + (2.0f * t.j + 1.0f) / n_);
 }
 
-CubeTexel CubeMap::texel_of(const Vec3& dir) const {
+int CubeMap::face_coordinates(const Vec3& dir, float& s, float& t) {
     const float ax = std::abs(dir.x), ay = std::abs(dir.y), az = std::abs(dir.z);
     int face;
     float major, sc, tc;
@@ -113,9 +113,16 @@ CubeTexel CubeMap::texel_of(const Vec3& dir) const {
     } else {
         face = dir.z > 0 ? 4 : 5, major = az, sc = dir.z > 0 ? dir.x : -dir.x, tc = -dir.y;
     }
-    if (!(major > 0.0f)) return CubeTexel{0, n_ / 2, n_ / 2};  // zero or NaN direction: any texel
-    auto cell = [&](float coord) { return std::clamp(int((coord / major + 1.0f) * 0.5f * n_), 0, n_ - 1); };
-    return CubeTexel{face, cell(sc), cell(tc)};
+    if (!(major > 0.0f)) return s = t = 0.0f, 0;  // zero or NaN direction: any face
+    s = sc / major, t = tc / major;
+    return face;
+}
+
+CubeTexel CubeMap::texel_of(const Vec3& dir) const {
+    float s, t;
+    const int face = face_coordinates(dir, s, t);
+    auto cell = [&](float coord) { return std::clamp(int((coord + 1.0f) * 0.5f * n_), 0, n_ - 1); };
+    return CubeTexel{face, cell(s), cell(t)};
 }
 
 int CubeMap::index_of(const Vec3& dir) const {

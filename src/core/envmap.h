@@ -48,6 +48,9 @@ public:
 
     // Direction through face coordinates (s, t) ∈ [−1, 1]² of a face (not normalized → normalized).
     static Vec3 face_direction(int face, float s, float t);
+    // Its inverse: the face `dir` points into and its coordinates (s, t) ∈ [−1, 1]²;
+    // a zero or NaN direction gives face 0 at (0, 0).
+    static int face_coordinates(const Vec3& dir, float& s, float& t);
     Vec3 texel_direction(int index) const;  // unit direction through the texel center
     CubeTexel texel_of(const Vec3& dir) const;
     int index_of(const Vec3& dir) const;

@@ -15,33 +15,15 @@
 #include <tbb/parallel_for.h>
 
 #include "src/core/error.h"
+#include "tools/baselines/thread_seconds.h"
 
 namespace rsl {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Time spent inside tasks, summed over the threads that ran them.
-class ThreadSeconds {
-public:
-    template <class Work>
-    void time(Work&& work) {
-        const auto start = Clock::now();
-        work();
-        const double seconds = seconds_since(start);
-        std::lock_guard<std::mutex> lock(mutex_);
-        total_ += seconds;
-    }
-    double total() const { return total_; }
-
-private:
-    std::mutex mutex_;
-    double total_ = 0;
-};
+using baselines_timing::Clock;
+using baselines_timing::seconds_since;
+using baselines_timing::ThreadSeconds;
 
 using Eigen::Index;
 

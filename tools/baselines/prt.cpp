@@ -12,15 +12,14 @@
 #include <tbb/parallel_for.h>
 
 #include "src/core/error.h"
+#include "tools/baselines/thread_seconds.h"
 
 namespace rsl {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using baselines_timing::Clock;
+using baselines_timing::seconds_since;
 
 // Builds one block's rows from per-vertex sparse coefficient lists.
 struct HaarBlockBuilder {

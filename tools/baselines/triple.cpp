@@ -14,14 +14,15 @@
 
 #include "src/brdf/brdf.h"
 #include "src/core/error.h"
+#include "tools/baselines/thread_seconds.h"
 #include "tools/baselines/triple_product.h"
 
 namespace rsl {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using baselines_timing::Clock;
+using baselines_timing::seconds_since;
 
 // One block of vertices' visibility rows, built by one thread.
 struct VisibilityBlock {
@@ -99,23 +100,6 @@ float axis_weight(float coord, int cells, bool clamp, int& first) {
     return clamped - float(first);
 }
 
-// A direction's cube face and face coordinates (s, t) ∈ [−1, 1]² (CubeMap::texel_of's projection).
-int face_coords(const Vec3& dir, float& s, float& t) {
-    const float ax = std::abs(dir.x), ay = std::abs(dir.y), az = std::abs(dir.z);
-    int face;
-    float major, sc, tc;
-    if (ax >= ay && ax >= az) {
-        face = dir.x > 0 ? 0 : 1, major = ax, sc = dir.x > 0 ? -dir.z : dir.z, tc = -dir.y;
-    } else if (ay >= az) {
-        face = dir.y > 0 ? 2 : 3, major = ay, sc = dir.x, tc = dir.y > 0 ? dir.z : -dir.z;
-    } else {
-        face = dir.z > 0 ? 4 : 5, major = az, sc = dir.z > 0 ? dir.x : -dir.x, tc = -dir.y;
-    }
-    if (!(major > 0.0f)) return s = t = 0.0f, 4;  // zero or NaN direction: any face
-    s = sc / major, t = tc / major;
-    return face;
-}
-
 // The 2×2 tabulated normals around `normal` and their bilinear weights in
 // its face's texel coordinates; returns how many have a non-zero weight. A
 // neighbour beyond the face edge is the texel across it (the point on the
@@ -126,7 +110,7 @@ int face_coords(const Vec3& dir, float& s, float& t) {
 int normal_weights(const CubeMap& normals, const Vec3& normal, int index[4], float weight[4]) {
     const int r = normals.resolution();
     float s, t;
-    const int face = face_coords(normal, s, t);
+    const int face = CubeMap::face_coordinates(normal, s, t);
     int i0, j0;
     const float wi = axis_weight(s, r, false, i0), wj = axis_weight(t, r, false, j0);
     int count = 0;
