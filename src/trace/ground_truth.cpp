@@ -97,6 +97,7 @@ GroundTruth::GroundTruth(const Scene& scene, const CubeMap& environment, float t
     RSL_CHECK_GE(options_.texel_subdivision, 1);
     RSL_CHECK_GE(options_.light_max_side, 8);
     materials_ = make_scene_brdfs(scene);
+    whole_materials_ = materials_;
     specular_.assign(materials_.size(), nullptr);
     for (size_t m = 0; m < scene.materials.size(); ++m)
         if (scene.materials[m].base_color_texture) {

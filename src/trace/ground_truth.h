@@ -64,6 +64,9 @@ public:
     // the specular one; each is integrated on its own (twice the rays).
     const Brdf& part_brdf(int part) const { return *materials_[scene_.parts[part].material]; }
     const Brdf* part_specular_brdf(int part) const { return specular_[scene_.parts[part].material].get(); }
+    // The whole material at unit texture (part_brdf + part_specular_brdf; the
+    // same as part_brdf when untextured): what colours at unit texture integrate.
+    const Brdf& part_unit_texture_brdf(int part) const { return *whole_materials_[scene_.parts[part].material]; }
     const Texture* part_texture(int part) const {
         return scene_.materials[scene_.parts[part].material].base_color_texture.get();
     }
@@ -92,6 +95,7 @@ private:
     GroundTruthOptions options_;
     PosedScene posed_;
     std::vector<std::shared_ptr<const Brdf>> materials_;
+    std::vector<std::shared_ptr<const Brdf>> whole_materials_;  // make_brdf's: both lobes at unit texture
     std::vector<std::shared_ptr<const Brdf>> specular_;  // per material: textured ones' specular lobe
     EnvironmentSamples environment_;
     std::vector<Vec3> light_positions_, light_axes_;

@@ -65,6 +65,29 @@ TEST_CASE("rsl baselines: eigentransport and the triple product with every term 
     }
 }
 
+// pbr.json's textured parts: the PRT rows integrate the whole material at unit
+// texture (both lobes), and so must the truth they are compared with, in
+// vertices and in the image (which then carries no texture).
+TEST_CASE("rsl baselines compares textured parts at unit texture, both lobes", "[baselines][cli]") {
+    const std::string dir = std::string(RSL_BINARY_DIR) + "/baselines_cli_textured";
+    std::filesystem::remove_all(dir);
+    const auto [status, output] = test::run_rsl(
+        "baselines " + std::string(RSL_SOURCE_DIR) + "/assets/scenes/pbr.json --resolution 2 --no-rsl --sh-orders 2 "
+        "--haar-terms 24 --haar-drop 0 --eigen-terms 24 --triple-terms 24 --width 64 --height 48 --repeats 1 -q -o " + dir);
+    INFO(output);
+    REQUIRE(status == 0);
+    std::ifstream file(dir + "/results.json");
+    const nlohmann::json results = nlohmann::json::parse(file);
+    CHECK(double(results["transport_vs_truth_error"]) < 1e-5);
+    for (const auto& [method, terms] : {std::pair{"haar", 24}, std::pair{"eigen", 24}}) {
+        const nlohmann::json r = row(results, method, terms);
+        INFO(method << " " << terms);
+        CHECK(double(r["vertex_error"]) < 1e-5);
+        CHECK(double(r["image_error"]) < 1e-5);
+    }
+    CHECK(double(results["triple_exact_vertex_error"]["24"]) < 1e-5);
+}
+
 TEST_CASE("rsl baselines --no-ground refuses a scene without a ground, naming it and its parts", "[baselines][cli]") {
     const std::string scene = std::string(RSL_SOURCE_DIR) + "/assets/generated/orb.obj";  // one part, no ground
     const std::string dir = std::string(RSL_BINARY_DIR) + "/baselines_cli_refused";

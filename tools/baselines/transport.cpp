@@ -67,7 +67,7 @@ uint64_t TransportSampler::sample(int part, int vertex, Color* f, Scratch& scrat
     const SurfacePoint x = posed.vertex(part, vertex);
     const Vec3 wo = x.frame.to_local(glm::normalize(truth_.camera_position() - x.position));
     if (!(wo.z > 0.0f)) return 0;  // ρ is 0 for a view below the horizon (Brdf contract)
-    const Brdf& brdf = truth_.part_brdf(part);
+    const Brdf& brdf = truth_.part_unit_texture_brdf(part);  // colours at unit texture (docs/BASELINES.md)
     const Vec3 origin = x.ray_origin();
     int rays = 0;
     for (int k = 0; k < count; ++k) {

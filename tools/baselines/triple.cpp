@@ -311,7 +311,7 @@ TripleBrdfTables tabulate_part_brdfs(const GroundTruth& truth, const TriplePreco
     TripleBrdfTables tables;
     std::map<const Brdf*, std::shared_ptr<const BrdfSlices>> by_brdf;
     for (int p = 0; p < precompute.layout.parts(); ++p) {
-        const Brdf& brdf = truth.part_brdf(p);
+        const Brdf& brdf = truth.part_unit_texture_brdf(p);
         auto& table = by_brdf[&brdf];
         if (!table)
             table = std::make_shared<BrdfSlices>(brdf, precompute.directions, precompute.visibility.resolution, options);
@@ -397,7 +397,7 @@ void TripleRenderer::render(const CubeMap& environment, int terms, const Vec3& c
                 factors.brdf_count = table.accumulate(scratch.weights, scratch.brdf.data(), scratch.brdf_touched.data(),
                                                       scratch.brdf_index.data(), 0);
             } else {
-                exact_slice(truth_.part_brdf(part), x, view_local, precompute_.directions, n, scratch);
+                exact_slice(truth_.part_unit_texture_brdf(part), x, view_local, precompute_.directions, n, scratch);
             }
             out[v] = triple::evaluate(state.prepared, factors);
             for (uint64_t e = first; e < last; ++e) scratch.visibility[vis.index[e]] = 0.0f;

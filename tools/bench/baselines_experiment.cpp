@@ -234,7 +234,9 @@ void measure_truth(const GroundTruth& truth, Measurements& m) {
     MethodResult reference;
     reference.method = "truth";
     auto truth_start = Clock::now();
-    m.truth_colors = truth.shade_vertices();
+    // At unit texture, as every PRT row is (their transport has no texture):
+    // a textured part's image is then compared like for like.
+    m.truth_colors = truth.shade_vertices().at_unit_texture();
     reference.frame_ms = 1e3 * seconds_since(truth_start);
     reference.image = form_image(m.posed, m.camera, m.truth_colors);
     m.truth_flat = flatten(m.truth_colors);
@@ -406,7 +408,7 @@ void measure_rsl(const std::shared_ptr<Scene>& scene_ptr, const PrtPrecompute& u
         renderer.set_time(t);
         VertexColors colors = renderer.make_output();
         const double ms = median_ms(args.repeats, [&] { renderer.shade(colors); });
-        m.add_result("rsl", lights, flatten(colors), ms, setup.bake_seconds + fit_s, bytes);
+        m.add_result("rsl", lights, flatten(colors.at_unit_texture()), ms, setup.bake_seconds + fit_s, bytes);
         // The same lights with every visibility factor off, against the
         // unshadowed truth: the lighting + BRDF part of RSL's error.
         RenderOptions no_shadows = options;
@@ -414,7 +416,7 @@ void measure_rsl(const std::shared_ptr<Scene>& scene_ptr, const PrtPrecompute& u
         CpuRenderer light_only(scene, renderer.environment_lights(), setup.fields, no_shadows);
         light_only.set_time(t);
         light_only.shade(colors);
-        unshadowed_errors.rsl.push_back({lights, relative_l2(flatten(colors), unshadowed.texel_sum)});
+        unshadowed_errors.rsl.push_back({lights, relative_l2(flatten(colors.at_unit_texture()), unshadowed.texel_sum)});
     }
 }
 
