@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <unistd.h>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
@@ -290,6 +291,21 @@ void measure_prt_methods(const PrtPrecompute& prt, const CubeMap& environment, M
     }
 }
 
+// Eigentransport holds the whole transport matrix (3V × texels, float) in
+// memory: a scene or cube too large for it is refused before the truth's
+// minutes are spent, not by the allocator halfway.
+void require_eigentransport_fits(const BaselinesExperiment& args, const Scene& scene, const CubeMap& environment) {
+    if (args.eigen_terms.empty()) return;
+    const double matrix_bytes = 3.0 * double(VertexLayout(scene).total()) * environment.texel_count() * sizeof(float);
+    const double machine_bytes = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE));
+    if (machine_bytes > 0 && matrix_bytes > 0.6 * machine_bytes)
+        throw_file_error(scene.source,
+                         "eigentransport needs a {:.1f} GB transport matrix ({} vertices × 3 × {} texels), more "
+                         "than 60% of this machine's {:.1f} GB: lower --resolution, or leave it out with "
+                         "--eigen-terms \"\"",
+                         matrix_bytes / 1e9, VertexLayout(scene).total(), environment.texel_count(), machine_bytes / 1e9);
+}
+
 // Phase: eigentransport rows, one per d, all from one basis of the largest
 // d, on their own pass of shadow rays (the dense transport matrix is built
 // and released inside the precompute).
@@ -444,6 +460,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
     adapt_scene(scene, args.environment, args.resolution, args.diffuse);
     const float t = args.time;
     const CubeMap environment = load_environment(args, scene);
+    require_eigentransport_fits(args, scene, environment);
 
     GroundTruthOptions truth_options;
     truth_options.local_lights = false;

@@ -92,8 +92,8 @@ RegisterCommand baselines_command({"baselines",
                      "Fit the eigentransport basis to the objects' vertices only (every part but ground/floor); the "
                      "ground's vertices are projected onto it");
         app.add_flag("--no-ground", args->no_ground,
-                     "Remove the parts named ground or floor before anything runs (a ground biases the "
-                     "eigentransport basis); an error if there is none");
+                     "Remove the parts named ground or floor before anything runs (the eigentransport paper's "
+                     "ground bias); an error if there is none");
         app.add_option("--haar-drop", args->haar_drop, "Drop transport wavelets below this x the vertex's largest")
             ->capture_default_str();
         app.add_option("--width", args->width, "Image width")->capture_default_str();
