@@ -1,12 +1,15 @@
-// `rsl bench baselines`: the SH and Haar PRT baselines' building blocks and a
-// small static scene end to end (precompute, frame time, error vs the ground
-// truth). The full comparison with RSL on real scenes is `rsl baselines`.
+// `rsl bench baselines`: the PRT baselines' building blocks, and a small
+// static scene end to end with SH, Haar, eigentransport and the triple
+// product (precompute, frame time, error against the ground truth). The full
+// comparison with RSL on real scenes is `rsl baselines`.
 #include <chrono>
 #include <cmath>
 #include <fmt/core.h>
 
 #include "src/frame/error_metrics.h"
+#include "tools/baselines/eigentransport.h"
 #include "tools/baselines/prt.h"
+#include "tools/baselines/triple.h"
 #include "tools/bench/bench.h"
 
 namespace rsl::bench {
@@ -93,6 +96,61 @@ Scene make_scene(int detail) {
     return scene;
 }
 
+// End to end on a small static scene: every precompute once, then each
+// method's frame time and vertex error against the truth.
+void bench_small_scene(const BenchOptions& options, const CubeMap& sky, int repeats) {
+    const int n = sky.resolution();
+    const Scene scene = make_scene(options.quick ? 12 : 40);
+    GroundTruthOptions truth_options;
+    truth_options.local_lights = false;
+    const GroundTruth truth(scene, sky, 0.0f, truth_options);
+    auto start = Clock::now();
+    const VertexColors truth_colors = truth.shade_vertices();
+    const double truth_s = seconds_since(start);
+    std::vector<Color> reference;
+    for (const auto& part : truth_colors.parts) reference.insert(reference.end(), part.begin(), part.end());
+    PrtOptions prt_options;
+    const PrtPrecompute prt = precompute_prt(truth, sky, prt_options);
+    bench_emit({{"bench", "baselines"}, {"case", fmt::format("{} precompute", scene.name)},
+                {"vertices", prt.layout.total()}, {"cube", n}, {"wall_seconds", prt.wall_seconds},
+                {"truth_seconds", truth_s}, {"ray_cpu_seconds", prt.trace_cpu_seconds},
+                {"sh_cpu_seconds", prt.sh_cpu_seconds}, {"haar_cpu_seconds", prt.haar_cpu_seconds},
+                {"haar_entries", prt.haar.entries()}, {"haar_bytes", prt.haar.bytes()},
+                {"sh_bytes", prt.sh.bytes()}});
+    std::vector<Color> out;
+    auto emit_frame = [&](const std::string& method, int terms, double s) {
+        bench_emit({{"bench", "baselines"}, {"case", fmt::format("{} {} {}", scene.name, method, terms)},
+                    {"frame_seconds", s}, {"vertex_error", relative_l2(out, reference)}});
+    };
+    const ShRenderer sh_renderer(prt, sky);
+    for (int order : {3, 5, 10})
+        emit_frame("sh", order * order, best_seconds(repeats, [&] { sh_renderer.render(order, Mat3(1.0f), out); }));
+    HaarRenderer haar_renderer(prt);
+    for (int terms : {20, 30, 60, 100})
+        emit_frame("haar", terms, best_seconds(repeats, [&] { haar_renderer.render(sky, terms, out); }));
+
+    const EigenTransport eigen = precompute_eigentransport(truth, sky, EigenOptions{});
+    bench_emit({{"bench", "baselines"}, {"case", fmt::format("{} eigentransport precompute", scene.name)},
+                {"wall_seconds", eigen.wall_seconds}, {"ray_cpu_seconds", eigen.trace_cpu_seconds},
+                {"pca_cpu_seconds", eigen.pca_cpu_seconds}, {"bytes_128", eigen.bytes(eigen.max_terms())}});
+    EigenRenderer eigen_renderer(eigen);
+    for (int terms : {16, 48, 128})
+        emit_frame("eigen", terms, best_seconds(repeats, [&] { eigen_renderer.render(sky, terms, out); }));
+
+    const TripleOptions triple_options;
+    const TriplePrecompute triple = precompute_triple_visibility(truth, sky, triple_options);
+    const TripleBrdfTables tables = tabulate_part_brdfs(truth, triple, triple_options);
+    bench_emit({{"bench", "baselines"}, {"case", fmt::format("{} triple product precompute", scene.name)},
+                {"wall_seconds", triple.wall_seconds}, {"ray_cpu_seconds", triple.trace_cpu_seconds},
+                {"table_cpu_seconds", tables.cpu_seconds()}, {"visibility_bytes", triple.visibility.bytes()},
+                {"table_bytes", tables.bytes()}});
+    TripleRenderer triple_renderer(triple, truth, &tables);
+    for (int terms : {80, 320})
+        emit_frame("triple", terms, best_seconds(repeats, [&] {
+                       triple_renderer.render(sky, terms, truth.camera_position(), out);
+                   }));
+}
+
 void run(const BenchOptions& options) {
     const int repeats = options.quick ? 2 : 5;
     {  // SH evaluation and rotation
@@ -125,42 +183,11 @@ void run(const BenchOptions& options) {
         bench_emit({{"bench", "baselines"}, {"case", fmt::format("lighting 6x{}^2: sh projection order 10", n)},
                     {"seconds", sh_s}});
     }
-    {  // end to end on a small static scene
-        const Scene scene = make_scene(options.quick ? 12 : 40);
-        GroundTruthOptions truth_options;
-        truth_options.local_lights = false;
-        const GroundTruth truth(scene, sky, 0.0f, truth_options);
-        auto start = Clock::now();
-        const VertexColors truth_colors = truth.shade_vertices();
-        const double truth_s = seconds_since(start);
-        std::vector<Color> reference;
-        for (const auto& part : truth_colors.parts) reference.insert(reference.end(), part.begin(), part.end());
-        PrtOptions prt_options;
-        const PrtPrecompute prt = precompute_prt(truth, sky, prt_options);
-        bench_emit({{"bench", "baselines"}, {"case", fmt::format("{} precompute", scene.name)},
-                    {"vertices", prt.layout.total()}, {"cube", n}, {"wall_seconds", prt.wall_seconds},
-                    {"truth_seconds", truth_s}, {"ray_cpu_seconds", prt.trace_cpu_seconds},
-                    {"sh_cpu_seconds", prt.sh_cpu_seconds}, {"haar_cpu_seconds", prt.haar_cpu_seconds},
-                    {"haar_entries", prt.haar.entries()}, {"haar_bytes", prt.haar.bytes()},
-                    {"sh_bytes", prt.sh.bytes()}});
-        std::vector<Color> out;
-        const ShRenderer sh_renderer(prt, sky);
-        for (int order : {3, 5, 10}) {
-            const double s = best_seconds(repeats, [&] { sh_renderer.render(order, Mat3(1.0f), out); });
-            bench_emit({{"bench", "baselines"}, {"case", fmt::format("{} sh {}", scene.name, order * order)},
-                        {"frame_seconds", s}, {"vertex_error", relative_l2(out, reference)}});
-        }
-        HaarRenderer haar_renderer(prt);
-        for (int terms : {20, 30, 60, 100}) {
-            const double s = best_seconds(repeats, [&] { haar_renderer.render(sky, terms, out); });
-            bench_emit({{"bench", "baselines"}, {"case", fmt::format("{} haar {}", scene.name, terms)},
-                        {"frame_seconds", s}, {"vertex_error", relative_l2(out, reference)}});
-        }
-    }
+    bench_small_scene(options, sky, repeats);
 }
 
 RegisterBenchmark baselines_benchmark({"baselines",
-    "SH and Haar PRT baselines: SH evaluation/rotation, lighting approximation, a small scene end to end", run});
+    "PRT baselines: SH evaluation/rotation, lighting approximation; SH, Haar, eigentransport and the triple product on a small scene end to end", run});
 
 }  // namespace
 }  // namespace rsl::bench
