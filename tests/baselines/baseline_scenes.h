@@ -8,24 +8,14 @@
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 #include "src/frame/vertex_colors.h"
+#include "tests/trace/trace_test_scenes.h"
 
 namespace rsl::test {
 
-// Square grid of side `size` in the XZ plane at height y, normal +Y.
+// trace_test_scenes.h's plane, lifted to height `y`.
 inline TriangleMesh make_plane(float size, int cells, float y, const std::string& name) {
-    TriangleMesh mesh;
-    mesh.name = name;
-    for (int j = 0; j <= cells; ++j)
-        for (int i = 0; i <= cells; ++i) {
-            mesh.positions.emplace_back(size * (float(i) / cells - 0.5f), y, size * (float(j) / cells - 0.5f));
-            mesh.normals.emplace_back(0, 1, 0);
-            mesh.tangents.emplace_back(1, 0, 0, 1);
-        }
-    for (int j = 0; j < cells; ++j)
-        for (int i = 0; i < cells; ++i) {
-            const uint32_t a = j * (cells + 1) + i, b = a + 1, c = a + (cells + 1), d = c + 1;
-            for (uint32_t index : {a, c, b, b, c, d}) mesh.indices.push_back(index);
-        }
+    TriangleMesh mesh = make_plane(size, cells, name);
+    for (Vec3& p : mesh.positions) p.y = y;
     return mesh;
 }
 
