@@ -19,16 +19,9 @@ inline TriangleMesh make_plane(float size, int cells, float y, const std::string
     return mesh;
 }
 
+// trace_test_scenes.h's part, at the identity rest transform.
 inline void add_part(Scene& scene, TriangleMesh mesh, int material) {
-    SceneNode node;
-    node.name = mesh.name;
-    scene.nodes.push_back(node);
-    Part part;
-    part.name = mesh.name;
-    part.mesh = std::move(mesh);
-    part.node = int(scene.nodes.size()) - 1;
-    part.material = material;
-    scene.parts.push_back(std::move(part));
+    add_part(scene, std::move(mesh), Transform{}, material);
 }
 
 inline MaterialDesc material(const std::string& model, std::map<std::string, std::vector<float>> params) {
