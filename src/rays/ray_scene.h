@@ -9,6 +9,7 @@
 
 #include "src/core/math.h"
 #include "src/core/mesh.h"
+#include "src/shading/ray_samples.h"
 
 namespace rsl {
 
@@ -28,12 +29,9 @@ struct RayHit {
 // coordinates are coarse, still leave their own surface).
 struct RayOffset {
     float scene_scale = 1;  // e.g. the scene's bounding-box diagonal
-    static constexpr float kRelativeToScene = 1e-5f;
-    static constexpr float kRelativeToPosition = 1.0f / (1 << 17);  // ≈ 64 ULPs
-    float distance(const Vec3& p) const {
-        const float coord = std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
-        return kRelativeToScene * scene_scale + kRelativeToPosition * coord;
-    }
+    static constexpr float kRelativeToScene = shading::kRayOffsetOfScale;
+    static constexpr float kRelativeToPosition = shading::kRayOffsetOfPosition;  // ≈ 64 ULPs
+    float distance(const Vec3& p) const { return shading::ray_offset_distance(scene_scale, p); }
     Vec3 origin(const Vec3& p, const Vec3& n) const { return p + n * distance(p); }
     // A vertex's: first one offset along `inward` (border_inward_directions:
     // into its own triangles, or 0), then along its normal.

@@ -93,7 +93,7 @@ private:
         const float* rim_floor = nullptr;  // highlights per pixel: brdf_queries' view_floor
     };
     BlockPixelTerms start_block_pixel_terms(BlockScratch& s, int part, bool textured, int n, size_t lights);
-    void block_self_visibility(BlockScratch& s, int part, const BrdfTable* specular, int m, bool keep_self,
+    void block_self_visibility(BlockScratch& s, int part, int light, const BrdfTable* specular, int m, bool keep_self,
                                RenderStats& counts) const;
     static void keep_block_pixel_terms(const BlockScratch& s, const BlockPixelTerms& kept, size_t lights, size_t l,
                                        int m);

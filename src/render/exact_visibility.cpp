@@ -2,7 +2,6 @@
 
 #include <array>
 #include <atomic>
-#include <cstring>
 
 #include "src/core/error.h"
 #include "src/core/hemisphere.h"
@@ -10,23 +9,6 @@
 namespace rsl {
 
 namespace {
-
-// splitmix64: a stateless hash of (vertex, square, sample) to uniform bits, so
-// that jittered points do not depend on which thread shades which block.
-inline uint64_t mix(uint64_t z) {
-    z += 0x9e3779b97f4a7c15ull;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-inline float unit_float(uint64_t bits) { return float(bits >> 40) * (1.0f / float(1 << 24)); }  // [0, 1)
-
-inline uint64_t float_bits(float x) {
-    uint32_t bits;
-    std::memcpy(&bits, &x, sizeof bits);
-    return bits;
-}
 
 std::atomic<uint64_t> next_id{1};
 
@@ -77,16 +59,15 @@ const RayScene& ExactVisibility::occluders_of(int part) const {
     return mode_ == ExactVisibilityMode::All ? posed_.rays() : *per_part_[part];
 }
 
-uint64_t ExactVisibility::seed(int part, int vertex, const Vec2& center) const {
-    return jitter_ ? mix((uint64_t(part) << 32 | uint32_t(vertex)) ^ mix(float_bits(center.x) << 32 | float_bits(center.y)))
-                   : 0;
+shading::uvec2 ExactVisibility::seed(int part, int vertex, int light) const {
+    return jitter_ ? shading::ray_seed(part, vertex, light) : shading::uvec2(0u);
 }
 
-float ExactVisibility::visible_fraction(int part, int vertex, const Vec2& center, float half_edge,
+float ExactVisibility::visible_fraction(int part, int vertex, int light, const Vec2& center, float half_edge,
                                         size_t* rays) const {
     const SurfacePoint x = posed_.vertex(part, vertex);
     const Vec3 origin = x.ray_origin();
-    const uint64_t bits = seed(part, vertex, center);
+    const shading::uvec2 bits = seed(part, vertex, light);
     if (mode_ == ExactVisibilityMode::SelfTimesOthers) {
         const float self = fraction(*per_part_[size_t(2 * part)], x, origin, center, half_edge, bits, rays);
         return self > 0.0f ? self * fraction(*per_part_[size_t(2 * part + 1)], x, origin, center, half_edge, bits, rays)
@@ -100,15 +81,15 @@ float ExactVisibility::visible_fraction(int part, int vertex, const Vec2& center
     return product;
 }
 
-void ExactVisibility::visible_fraction_batch(int part, int first_vertex, const int* offset, const float* center_x,
+void ExactVisibility::visible_fraction_batch(int part, int first_vertex, int light, const int* offset, const float* center_x,
                                              const float* center_y, const float* half_edge, const bool* skip, int m,
                                              float* out, size_t* rays) const {
     if (mode_ == ExactVisibilityMode::OthersProduct || mode_ == ExactVisibilityMode::SelfTimesOthers) {
         // a product of factors: one query at a time
         for (int i = 0; i < m; ++i)
             out[i] = skip && skip[i] ? 0.0f
-                                     : visible_fraction(part, first_vertex + offset[i], Vec2(center_x[i], center_y[i]),
-                                                        half_edge[i], rays);
+                                     : visible_fraction(part, first_vertex + offset[i], light,
+                                                        Vec2(center_x[i], center_y[i]), half_edge[i], rays);
         return;
     }
     thread_local BatchScratch s;
@@ -134,7 +115,7 @@ void ExactVisibility::visible_fraction_batch(int part, int first_vertex, const i
         const size_t first = s.ray_dirs.size();
         s.ray_dirs.resize(first + per_query);
         const Vec2 center(center_x[i], center_y[i]);
-        const int cast = square_directions(s.points[k], center, half_edge[i], seed(part, first_vertex + offset[i], center),
+        const int cast = square_directions(s.points[k], center, half_edge[i], seed(part, first_vertex + offset[i], light),
                                            s.ray_dirs.data() + first, s.counted[size_t(i)]);
         s.ray_dirs.resize(first + size_t(cast));
         s.ray_origins.resize(first + size_t(cast), s.origins[k]);
@@ -156,19 +137,14 @@ void ExactVisibility::visible_fraction_batch(int part, int first_vertex, const i
     }
 }
 
-int ExactVisibility::square_directions(const SurfacePoint& x, const Vec2& center, float half_edge, uint64_t seed,
-                                       Vec3* dirs, int& counted) const {
+int ExactVisibility::square_directions(const SurfacePoint& x, const Vec2& center, float half_edge,
+                                       shading::uvec2 seed, Vec3* dirs, int& counted) const {
     int cast = 0;
     counted = 0;
-    const float cell = 2.0f / float(samples_);
     for (int j = 0; j < samples_; ++j)
         for (int i = 0; i < samples_; ++i) {
-            float u = 0.5f, v = 0.5f;  // where in its cell the point lies
-            if (jitter_) {
-                const uint64_t bits = mix(seed + uint64_t(j * samples_ + i));
-                u = unit_float(bits), v = unit_float(bits << 24);
-            }
-            const Vec2 p = center + half_edge * Vec2((float(i) + u) * cell - 1.0f, (float(j) + v) * cell - 1.0f);
+            const Vec2 in_cell = jitter_ ? shading::jitter_in_cell(seed, j * samples_ + i) : Vec2(0.5f);
+            const Vec2 p = shading::square_grid_point(center, half_edge, samples_, i, j, in_cell);
             if (glm::dot(p, p) >= 1.0f) continue;  // below the shading horizon
             const Vec3 dir = x.frame.to_world(plane_to_hemisphere(p));
             ++counted;
@@ -179,7 +155,7 @@ int ExactVisibility::square_directions(const SurfacePoint& x, const Vec2& center
 }
 
 float ExactVisibility::fraction(const RayScene& rays, const SurfacePoint& x, const Vec3& origin, const Vec2& center,
-                                float half_edge, uint64_t seed, size_t* traced) const {
+                                float half_edge, shading::uvec2 seed, size_t* traced) const {
     constexpr int kMax = kMaxSamplesPerSide * kMaxSamplesPerSide;
     std::array<Vec3, kMax> dirs;
     std::array<uint8_t, kMax> visible;

@@ -23,8 +23,9 @@
 //            error of splitting self from others alone).
 // S² rays per vertex and light, in Embree packets from the vertex. With
 // `jitter` each grid cell's point is placed at random in its cell
-// (stratified sampling, seeded by the vertex and the square, so a frame is
-// reproducible): the ray-traced many-light baseline (docs/BASELINES.md),
+// (stratified sampling, seeded by the part, the vertex and the light, so a
+// frame is reproducible and the GL renderer's rays are the same:
+// src/shading/ray_samples.h): the ray-traced many-light baseline (docs/BASELINES.md),
 // where S = 1, 2, 4 are its settings and noise is its error. Without jitter
 // the points are the cell centres: the deterministic diagnostic.
 #include <memory>
@@ -47,31 +48,33 @@ public:
     ExactVisibilityMode mode() const { return mode_; }
     int samples_per_side() const { return samples_; }
 
-    // Visible fraction of the square (plane center, half-edge) in the shading
-    // frame of vertex `vertex` of part `part`; 1 when no grid point is above
-    // the horizon. `rays`, when given, is increased by the rays traced.
-    float visible_fraction(int part, int vertex, const Vec2& center, float half_edge, size_t* rays = nullptr) const;
-    // The same for m squares at once (the renderer's block of one light):
+    // Visible fraction of light `light`'s square (plane center, half-edge) in
+    // the shading frame of vertex `vertex` of part `part`; 1 when no grid
+    // point is above the horizon. The light's index only seeds the jitter.
+    // `rays`, when given, is increased by the rays traced.
+    float visible_fraction(int part, int vertex, int light, const Vec2& center, float half_edge,
+                           size_t* rays = nullptr) const;
+    // The same for m squares of light `light` at once (the renderer's block):
     // query i is vertex first_vertex + offset[i] of `part`, square
     // (center_x[i], center_y[i]) with half-edge half_edge[i]; out[i] its
     // visible fraction, 0 where skip[i] (skip may be null). The rays of all
     // queries go to Embree together, in packets of neighbouring vertices'
     // rays (coherent: one light), which is several times faster than one
     // query at a time when S is small. Thread-safe; no allocation once warm.
-    void visible_fraction_batch(int part, int first_vertex, const int* offset, const float* center_x,
+    void visible_fraction_batch(int part, int first_vertex, int light, const int* offset, const float* center_x,
                                 const float* center_y, const float* half_edge, const bool* skip, int m, float* out,
                                 size_t* rays = nullptr) const;
 
 private:
     const RayScene& occluders_of(int part) const;
-    uint64_t seed(int part, int vertex, const Vec2& center) const;
+    shading::uvec2 seed(int part, int vertex, int light) const;
     // The directions of the square's grid points that leave the surface
     // (written to dirs, at most S² of them, returned); `counted` is the
     // number of grid points above the shading horizon.
-    int square_directions(const SurfacePoint& x, const Vec2& center, float half_edge, uint64_t seed, Vec3* dirs,
-                          int& counted) const;
+    int square_directions(const SurfacePoint& x, const Vec2& center, float half_edge, shading::uvec2 seed,
+                          Vec3* dirs, int& counted) const;
     float fraction(const RayScene& rays, const SurfacePoint& x, const Vec3& origin, const Vec2& center,
-                   float half_edge, uint64_t seed, size_t* traced) const;
+                   float half_edge, shading::uvec2 seed, size_t* traced) const;
 
     ExactVisibilityMode mode_;
     int samples_;

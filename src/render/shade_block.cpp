@@ -469,8 +469,8 @@ CpuRenderer::BlockPixelTerms CpuRenderer::start_block_pixel_terms(BlockScratch& 
 // The part's own visibility of the m queried squares into s.vis: the SVDF,
 // or exact rays (RenderOptions::exact_visibility); 0 where the square adds
 // nothing, unless the pixels keep the SVDF (`keep_self`).
-void CpuRenderer::block_self_visibility(BlockScratch& s, int part, const BrdfTable* specular, int m, bool keep_self,
-                                        RenderStats& counts) const {
+void CpuRenderer::block_self_visibility(BlockScratch& s, int part, int light, const BrdfTable* specular, int m,
+                                        bool keep_self, RenderStats& counts) const {
     const Svdf* svdf = options_.self_visibility ? fields_.self[part].get() : nullptr;
     // A square whose BRDF average is 0 (clipped away below the horizon)
     // adds nothing whatever its visibility: no visibility lookups (nor rays) for it.
@@ -483,7 +483,7 @@ void CpuRenderer::block_self_visibility(BlockScratch& s, int part, const BrdfTab
     const bool exact_others = exact_mode == ExactVisibilityMode::Others || exact_mode == ExactVisibilityMode::OthersProduct;
     if (exact && !exact_others) {
         for (int i = 0; i < m; ++i) s.skip[i] = adds_nothing(i);
-        exact->visible_fraction_batch(part, 0, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.vis, &counts.shadow_rays);
+        exact->visible_fraction_batch(part, 0, light, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.vis, &counts.shadow_rays);
     } else if (svdf) {
         svdf->visible_fraction_batch(0, s.query_vertex, s.qx, s.qy, s.qh, m, s.vis);
     } else {
@@ -496,7 +496,8 @@ void CpuRenderer::block_self_visibility(BlockScratch& s, int part, const BrdfTab
             if (adds_nothing(i)) s.vis[i] = 0.0f;
     if (exact && exact_others) {
         for (int i = 0; i < m; ++i) s.skip[i] = !(s.vis[i] > 0.0f);
-        exact->visible_fraction_batch(part, 0, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.exact, &counts.shadow_rays);
+        exact->visible_fraction_batch(part, 0, light, s.query_vertex, s.qx, s.qy, s.qh, s.skip, m, s.exact,
+                                      &counts.shadow_rays);
         for (int i = 0; i < m; ++i) s.vis[i] *= s.exact[i];
     }
 }
@@ -553,7 +554,7 @@ void CpuRenderer::shade_block(const Block& block, VertexColors& out, RenderStats
         for (int i = 0; i < m; ++i) s.query_vertex[i] = s.vertex[s.index[i]];
         if (pixel.rim_floor)  // the rim's queries kept for the pixels are not the frame's lookups
             for (int i = 0; i < m; ++i) counts.lookups -= s.skip[i] ? 1 : 0;
-        block_self_visibility(s, part_index, specular, m, pixel.self, counts);
+        block_self_visibility(s, part_index, int(l), specular, m, pixel.self, counts);
         if (pixel.terms)
             for (int i = 0; i < m; ++i) s.unshadowed_vis[i] = s.vis[i];
         if (field_occluders) shadow_by_occluders(s, block_sphere, part_index, l, n, m, counts);

@@ -8,7 +8,7 @@
 // kSqrt2 for it.
 //
 // Rules of the shared part, so that it compiles as both languages:
-//  * glm type names (vec2, vec3, vec4, ivec4, mat3, mat4), functions of both
+//  * glm type names (vec2, vec3, vec4, ivec4, uvec2, uint, mat3, mat4), functions of both
 //    libraries (min, max, clamp, abs, sqrt, log, sin, tan, dot, length,
 //    normalize, cross), no swizzles (vec3(v) takes a vec4's first three);
 //  * results are small structs filled member by member (GLSL has no
@@ -33,6 +33,8 @@ using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
+using uvec2 = glm::uvec2;
+using uint = unsigned;
 using mat3 = glm::mat3;
 using mat4 = glm::mat4;
 using glm::clamp;

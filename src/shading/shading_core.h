@@ -27,5 +27,6 @@
 #include "src/shading/ovdf_small_occluder.h"
 #include "src/shading/ovdf_inside.h"
 #include "src/shading/shadow_maps.h"
+#include "src/shading/ray_samples.h"
 #include "src/shading/shapes.h"
 #include "src/shading/culling.h"

@@ -11,7 +11,7 @@ namespace rsl::shading {
 
 // RSL_GLSL_BEGIN
 
-RSL_CONST int kShadingCoreModes = 15;
+RSL_CONST int kShadingCoreModes = 16;
 
 struct CaseOutput {
     vec4 first;
@@ -147,6 +147,12 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
                        ovdf_small_occluder_fraction(radial, area, cone, ha), ovdf_fade_small_occluder(a.x, a.y, b.z));
         o.second = vec4(ovdf_pole_radial(dot(w, pole)), ovdf_small_occluder_weight(cone, ha, 2.0e30f),
                         ovdf_small_occluder_fraction(ovdf_pole_radial(dot(w, pole)), area, cone, ha), portable_acos(a.z));
+    } else if (mode == 15) {  // the ray baseline's seeds, a jittered sample and its grid point
+        uvec2 seed = ray_seed(int(4096.0f * abs(a.x)), int(1.0e6f * abs(a.y)), int(128.0f * abs(a.z)));
+        vec2 in_cell = jitter_in_cell(seed, int(256.0f * abs(b.x)));
+        vec2 p = square_grid_point(vec2(a.w, b.y), ha, 1 + int(7.0f * abs(b.z)), int(3.0f * abs(b.w)), 1, in_cell);
+        o.first = vec4(float(seed.x & 0xffffu), float(seed.x >> 16), float(seed.y & 0xffffu), float(seed.y >> 16));
+        o.second = vec4(in_cell.x, in_cell.y, p.x, p.y);
     }
     return o;
 }

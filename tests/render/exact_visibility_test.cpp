@@ -65,15 +65,15 @@ TEST_CASE("exact visibility of squares under a sphere", "[render][exact]") {
         const float want = expected(c.center, c.half_edge);
         INFO("square at " << c.center.x << ", " << c.center.y << " half-edge " << c.half_edge << ": " << want);
         // A 16² grid resolves the cap's edge to about a grid cell's share.
-        CHECK(all.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
-        CHECK(others.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
-        CHECK(product.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
-        CHECK(split.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));  // a flat ground shadows nothing of itself
-        CHECK(jittered.visible_fraction(0, center, c.center, c.half_edge) == Approx(want).margin(0.04));
-        CHECK(self.visible_fraction(0, center, c.center, c.half_edge) == 1.0f);  // a plane never shadows itself
+        CHECK(all.visible_fraction(0, center, 0, c.center, c.half_edge) == Approx(want).margin(0.04));
+        CHECK(others.visible_fraction(0, center, 0, c.center, c.half_edge) == Approx(want).margin(0.04));
+        CHECK(product.visible_fraction(0, center, 0, c.center, c.half_edge) == Approx(want).margin(0.04));
+        CHECK(split.visible_fraction(0, center, 0, c.center, c.half_edge) == Approx(want).margin(0.04));  // a flat ground shadows nothing of itself
+        CHECK(jittered.visible_fraction(0, center, 0, c.center, c.half_edge) == Approx(want).margin(0.04));
+        CHECK(self.visible_fraction(0, center, 0, c.center, c.half_edge) == 1.0f);  // a plane never shadows itself
     }
-    CHECK(all.visible_fraction(0, center, Vec2(0), 0.05f) == 0.0f);
-    CHECK(all.visible_fraction(0, center, Vec2(0.7f, 0.0f), 0.05f) == 1.0f);
+    CHECK(all.visible_fraction(0, center, 0, Vec2(0), 0.05f) == 0.0f);
+    CHECK(all.visible_fraction(0, center, 0, Vec2(0.7f, 0.0f), 0.05f) == 1.0f);
 }
 
 // The ray-traced many-light baseline's estimator: one jittered ray per
@@ -86,7 +86,7 @@ TEST_CASE("jittered ray-traced visibility is unbiased", "[render][exact]") {
     const ExactVisibility exact(scene, 0.0f, ExactVisibilityMode::All, 16);
     const Vec2 c(0.3f, 0.1f);  // straddles the ball's edge at |p| ≈ 0.366
     const float h = 0.2f;
-    const float want = exact.visible_fraction(0, center, c, h);
+    const float want = exact.visible_fraction(0, center, 0, c, h);
     REQUIRE(want > 0.2f);
     REQUIRE(want < 0.8f);
     for (int side : {1, 2}) {
@@ -94,9 +94,8 @@ TEST_CASE("jittered ray-traced visibility is unbiased", "[render][exact]") {
         double sum = 0, squares = 0;
         const int trials = 4000;
         for (int k = 0; k < trials; ++k) {
-            // A shift far below a ray's footprint changes the seed, not the geometry.
-            const Vec2 shifted = c + Vec2(1e-7f * float(k % 64), 1e-7f * float(k / 64));
-            const double v = jittered.visible_fraction(0, center, shifted, h);
+            // Another light index: another seed, the same square.
+            const double v = jittered.visible_fraction(0, center, k, c, h);
             sum += v, squares += v * v;
         }
         const double mean = sum / trials, variance = squares / trials - mean * mean;
@@ -105,6 +104,33 @@ TEST_CASE("jittered ray-traced visibility is unbiased", "[render][exact]") {
         if (side == 1) CHECK(variance == Approx(want * (1 - want)).margin(0.03));  // one Bernoulli ray
         if (side == 2) CHECK(variance < 0.5 * want * (1 - want));  // strata: less than half of one ray's
     }
+}
+
+// The shared seeds (src/shading/ray_samples.h) do 64-bit arithmetic in
+// two 32-bit words, for GLSL; they must be splitmix64 exactly.
+TEST_CASE("the ray baseline's 64-bit words are splitmix64", "[render][exact]") {
+    auto splitmix = [](uint64_t z) {
+        z += 0x9e3779b97f4a7c15ull;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    };
+    auto words = [](uint64_t z) { return shading::uvec2(uint32_t(z), uint32_t(z >> 32)); };
+    auto join = [](shading::uvec2 w) { return uint64_t(w.y) << 32 | w.x; };
+    std::mt19937_64 rng(42);
+    for (int k = 0; k < 100000; ++k) {
+        const uint64_t a = k < 4 ? ~uint64_t(0) * uint64_t(k & 1) : rng(), b = rng();
+        INFO("a " << a << " b " << b);
+        CHECK(join(shading::add64(words(a), words(b))) == a + b);
+        CHECK(join(shading::multiply64(words(a), words(b))) == a * b);
+        CHECK(join(shading::splitmix64(words(a))) == splitmix(a));
+    }
+    // u and v: bits 40-63 and 16-39, each in [0, 1).
+    const shading::uvec2 seed = shading::ray_seed(3, 1234, 17);
+    const uint64_t bits = splitmix(join(seed) + 5);
+    const Vec2 in_cell = shading::jitter_in_cell(seed, 5);
+    CHECK(in_cell.x == float(bits >> 40) / float(1 << 24));
+    CHECK(in_cell.y == float((bits << 24) >> 40) / float(1 << 24));
 }
 
 // The renderer asks for a block's squares of one light at once; the batch
@@ -137,11 +163,11 @@ TEST_CASE("ray-traced visibility: a batch equals its queries one at a time", "[r
                         skip[i] = unit(rng) < 0.2f;
                     }
                     size_t batch_rays = 0, single_rays = 0;
-                    visibility.visible_fraction_batch(0, first, offset.data(), cx.data(), cy.data(), h.data(), skip, m,
+                    visibility.visible_fraction_batch(0, first, 7, offset.data(), cx.data(), cy.data(), h.data(), skip, m,
                                                       out.data(), &batch_rays);
                     for (int i = 0; i < m; ++i) {
                         const float want = skip[i] ? 0.0f
-                                                   : visibility.visible_fraction(0, first + offset[size_t(i)],
+                                                   : visibility.visible_fraction(0, first + offset[size_t(i)], 7,
                                                                                  Vec2(cx[size_t(i)], cy[size_t(i)]),
                                                                                  h[size_t(i)], &single_rays);
                         INFO("mode " << int(mode) << " jitter " << jitter << " S " << side << " query " << i);
