@@ -9,7 +9,8 @@
 //     pack_block_candidates), its light bits for this block: the part-level
 //     bits less the lights the block-level tests cull (beyond the field's
 //     reach, the part's bounding cone seen from the whole block, the
-//     light's cone against the part's sphere), in workgroup memory;
+//     light's cone against the part's sphere), in workgroup memory, those
+//     left with no light dropped;
 //  3. per vertex and light, the BRDF and self-visibility (the light's share
 //     before the other parts' shadows);
 //  4. per vertex and candidate, the light-independent half of the lookup
@@ -19,10 +20,14 @@
 //  5. the sum, into the vertex-colour buffer the display pass draws.
 //
 // The host prepends MAX_STRIDE, SHADE_BLOCK, LIGHT_WORDS (32 lights a word), LAYERED
-// (some part has a specular table), RECORD_BLOCK_LIGHTS (tests only), the layout constants, the shading core
-// and shade_point.glsl.
+// (some part has a specular table), RECORD_BLOCK_LIGHTS (tests only), RAY_TRACED (the
+// ray-traced baseline, RenderOptions::gpu_rays), SHADOW_MAPPED (the shadow-map baseline
+// may be on), MAX_SLICES (BRDF slices per average), the layout constants, the shading core,
+// shade_point.glsl and, with RAY_TRACED, bvh_traverse.glsl and ray_visibility.glsl.
 
 layout(local_size_x = SHADE_BLOCK) in;  // kShadeBlock: a layout takes a literal
+// A software rasterizer (llvmpipe) runs both sides of every branch, uniform
+// or not: what a pass cannot need is left out at compile time (the defines).
 
 // Per block: (part, first entry of block_vertices, vertex count, 0).
 layout(std430, binding = 0) readonly buffer Blocks { ivec4 blocks[]; };
@@ -56,6 +61,7 @@ shared vec3 s_point[kShadeBlock];
 shared vec4 s_sphere;
 shared int s_occluder[kShadeBlock];
 shared uint s_lights[kShadeBlock * LIGHT_WORDS];
+shared int s_kept;  // the chunk's candidates with a light left after the block-level tests
 
 // Per vertex and light: the visibility so far (0: no share, or black; < 0:
 // the share is final, shadow-mapped), and the share before visibility.
@@ -63,6 +69,12 @@ float g_visibility[kMaxLights];
 vec3 g_share[kMaxLights];
 #if LAYERED
 vec3 g_specular_share[kMaxLights];
+#endif
+#if RAY_TRACED
+// The vertex's rays: where they start, its index in its part (the seed's), the rays traced.
+vec3 g_ray_origin;
+int g_local_vertex;
+uint g_rays = 0u;
 #endif
 
 // Step 1: the block sphere (box center, farthest vertex), as shade_block.
@@ -157,7 +169,12 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
         vec2 lp = hemisphere_to_plane(local);
         vec2 square = isotropic ? to_view_aligned(lp, alignment) : lp;
         vec3 brdf = brdf_average(material, square, light.h, wo);
+#if LAYERED
         vec3 specular_brdf = layered ? brdf_average(specular_material, square, light.h, wo) : vec3(0.0);
+#else
+        vec3 specular_brdf = vec3(0.0);
+#endif
+#if SHADOW_MAPPED
         if (u_shadow_maps && l < u_environment_lights) {  // the baseline's visibility, in place of the fields'
             float lit = shadow_visible_fraction(l, light.direction, p, frame, lp, light.h);
             g_share[l] = light.integral * brdf * lit;
@@ -167,8 +184,19 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
             g_visibility[l] = -1.0;
             continue;
         }
+#endif
         // A square whose BRDF average is 0 adds nothing: no visibility lookups for it (the CPU's adds_nothing).
         if (brdf == vec3(0.0) && specular_brdf == vec3(0.0)) continue;
+#if RAY_TRACED
+        // The ray-traced baseline: rays in place of SVDF × Π OVDF, for every light (as the CPU's rows).
+        float lit = ray_traced_fraction(part, g_local_vertex, l, g_ray_origin, frame, lp, light.h, g_rays);
+        g_share[l] = light.integral * brdf * lit;
+#if LAYERED
+        g_specular_share[l] = light.integral * specular_brdf * lit;
+#endif
+        g_visibility[l] = -1.0;
+        continue;
+#endif
         g_share[l] = light.integral * brdf;
 #if LAYERED
         g_specular_share[l] = light.integral * specular_brdf;
@@ -189,7 +217,6 @@ struct OccluderAtVertex {
     vec3 pole;       // unit, towards the occluder's field center (0 beyond its outer shell)
     float cone;      // its bounding cone's plane radius; kOvdfNoCone: no cone test
     vec4 shape;      // kSlotShape: an exact shape when w > 0
-    bool located;
     OvdfReceiver receiver;
 };
 
@@ -210,7 +237,9 @@ OccluderAtVertex occluder_at_vertex(int o, vec3 p) {
     bool cones = u_culling && part_culling[o * kCullingStride + kCullingFlags].y > 0.5;
     v.cone = !cones ? kOvdfNoCone : (inside ? (d <= center.w ? kOvdfNoCone : ovdf_cone_radius(d, center.w)) : -1.0);
     v.shape = part_texel(o, kSlotShape);
-    v.located = false;
+    // The OVDF location once per (vertex, occluder), before the lights: a
+    // software rasterizer would run a lazy one at every light.
+    v.receiver = ovdf_locate(o, v.point);
     return v;
 }
 
@@ -232,10 +261,6 @@ uint shadow_by_occluder(int o, inout OccluderAtVertex v, vec3 p, LocalFrame fram
             vec2 lp = hemisphere_to_plane(frame_to_local(frame, light.direction));
             fraction = exact_shape_fraction(o, v.shape, v.point, frame, inverse_linear, lp, light.h);
         } else {
-            if (!v.located) {
-                v.receiver = ovdf_locate(o, v.point);
-                v.located = true;
-            }
             fraction = ovdf_receiver_fraction(o, v.receiver, dir, light.h);
         }
         g_visibility[l] *= fraction;
@@ -263,6 +288,10 @@ void main() {
         mat4 transform = part_transform(part);
         p = (transform * vec4(position.xyz, 1.0)).xyz;
         frame = frame_from_normal_tangent(normalize(part_normal_matrix(part) * normal.xyz), mat3(transform) * tangent);
+#if RAY_TRACED
+        g_local_vertex = vertex - int(part_texel(part, kSlotVertices).x);
+        g_ray_origin = ray_origin(part, vertex, p, mat3(transform), frame.z);
+#endif
         vec4 svdf = part_texel(part, kSlotSvdf);
         bool self = u_self_visibility && svdf.z > 0.0 && normal.w >= 0.0;
         g_self_corners = self ? 1 : 0;
@@ -295,8 +324,23 @@ void main() {
             for (int w = 0; w < LIGHT_WORDS; ++w) tested += uint(bitCount(candidates[entry + uint(kCandidateHeader + w)]));
         }
         barrier();
+        // The candidates the block-level tests left a light, in list order,
+        // to the front (in place): the vertices walk only those.
+        if (k == 0) {
+            int kept = 0;
+            for (int j = 0; j < int(count); ++j) {
+                bool any = false;
+                for (int w = 0; w < LIGHT_WORDS; ++w) any = any || s_lights[j * LIGHT_WORDS + w] != 0u;
+                if (!any) continue;
+                s_occluder[kept] = s_occluder[j];
+                for (int w = 0; w < LIGHT_WORDS; ++w) s_lights[kept * LIGHT_WORDS + w] = s_lights[j * LIGHT_WORDS + w];
+                ++kept;
+            }
+            s_kept = kept;
+        }
+        barrier();
         if (!in_block) continue;
-        for (int j = 0; j < int(count); ++j) {
+        for (int j = 0; j < s_kept; ++j) {
             bool any = false;
             for (int w = 0; w < LIGHT_WORDS; ++w) any = any || (s_lights[j * LIGHT_WORDS + w] & live[w]) != 0u;
             if (!any) continue;
@@ -310,6 +354,9 @@ void main() {
     if (lookups > 0u) atomicAdd(counters[kCounterOccluderLookups], lookups);
     if (tested > 0u) atomicAdd(counters[kCounterBlockPairs], tested);
     if (culled > 0u) atomicAdd(counters[kCounterBlockPairsCulled], culled);
+#if RAY_TRACED
+    if (g_rays > 0u) atomicAdd(counters[kCounterShadowRays], g_rays);
+#endif
     if (!in_block) return;
     vec3 color = vec3(0.0), specular = vec3(0.0);
     for (int l = 0; l < kMaxLights; ++l) {

@@ -80,27 +80,38 @@ vec3 slice_integral(int s, SquareTaps t) {
 }
 
 // Average of ρ·cos over the square (table frame) for view `view`; material =
-// (first slice, isotropic, V, 0).
+// (first slice, isotropic: 1 / view-independent too: 2 / 0, V, 0). The
+// slices and their weights first, then MAX_SLICES slice integrals (the most
+// any table of the pass needs, a define of the host): software rasterizers
+// run both sides of every branch, so the table reads stay out of them; a
+// slice of weight 0 adds exactly 0.
+#ifndef MAX_SLICES
+#define MAX_SLICES 4
+#endif
 vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
     SquareTaps t = square_taps(c, h, u_brdf_resolution);
     if (t.clipped_area <= 0.0f) return vec3(0.0f);
     int first = int(material.x), v = int(material.z);
-    vec3 sum = vec3(0.0f);
-    if (material.y > 0.5f) {
+    int slice[4] = int[4](first, first, first, first);
+    float weight[4] = float[4](1.0f, 0.0f, 0.0f, 0.0f);
+    if (material.y > 1.5f) {  // every slice the same: the first alone, as the CPU's batch kernel
+    } else if (material.y > 0.5f) {
         LerpPair k = sample_lerp(isotropic_view_coordinate(view.z, v), v);
-        sum += (1.0f - k.upper_weight) * slice_integral(first + k.lower, t);
-        sum += k.upper_weight * slice_integral(first + k.lower + 1, t);
+        slice[0] = first + k.lower;
+        slice[1] = first + k.lower + 1;
+        weight[0] = 1.0f - k.upper_weight;
+        weight[1] = k.upper_weight;
     } else {
         vec2 p = anisotropic_view_point(view);
         LerpPair i = sample_lerp(view_grid_coordinate(p.x, v), v);
         LerpPair j = sample_lerp(view_grid_coordinate(p.y, v), v);
         float wi = i.upper_weight, wj = j.upper_weight;
         int s = first + j.lower * v + i.lower;
-        sum += ((1.0f - wi) * (1.0f - wj)) * slice_integral(s, t);
-        sum += (wi * (1.0f - wj)) * slice_integral(s + 1, t);
-        sum += ((1.0f - wi) * wj) * slice_integral(s + v, t);
-        sum += (wi * wj) * slice_integral(s + v + 1, t);
+        slice = int[4](s, s + 1, s + v, s + v + 1);
+        weight = float[4]((1.0f - wi) * (1.0f - wj), wi * (1.0f - wj), (1.0f - wi) * wj, wi * wj);
     }
+    vec3 sum = vec3(0.0f);
+    for (int k = 0; k < MAX_SLICES; ++k) sum += weight[k] * slice_integral(slice[k], t);
     return max(sum * t.inv_full_area, vec3(0.0f));  // ≥ 0 as the CPU's: a tiny square's differences can cancel below 0
 }
 
@@ -113,8 +124,14 @@ vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
 // the CPU blends the corners' kept terms). Corner c: its CPCA
 // coefficients at g_svdf_coefficients[c·MAX_STRIDE …], its cluster (< 0:
 // no SVDF), barycentric weight and shading frame.
+// SELF_CORNERS (a define of the host): the most corners a pass blends, 1
+// in the vertex pass, so that it carries no corner blend (a software
+// rasterizer would run it for every light).
+#ifndef SELF_CORNERS
+#define SELF_CORNERS 3
+#endif
 int g_self_corners = 0;
-vec4 g_svdf_coefficients[3 * MAX_STRIDE];
+vec4 g_svdf_coefficients[SELF_CORNERS * MAX_STRIDE];
 int g_corner_cluster[3];
 float g_corner_weight[3];
 LocalFrame g_corner_frame[3];
@@ -260,31 +277,31 @@ float ovdf_receiver_fraction(int part, OvdfReceiver r, vec3 light, float h) {
         zoom.zoom = record.x;
         zoom.cone = record.y;
         BilinearTaps taps = bilinear_taps(vdt_n, zoom.zoom * lp);
+        // Reconstruction is linear in the coefficients: where the four
+        // samples share a segment, blend them and reconstruct once; where
+        // they straddle segments, reconstruct each sample's. One loop for
+        // both (a software rasterizer runs both sides of a branch).
         int segment = ovdf_segment_of(shell, r.face.face, r.at.i[0], r.at.j[0], n, m);
+        bool shared_segment = segment == ovdf_segment_of(shell, r.face.face, r.at.i[3], r.at.j[3], n, m);
         float value = 0.0f;  // × ws, table units
-        if (segment == ovdf_segment_of(shell, r.face.face, r.at.i[3], r.at.j[3], n, m)) {
-            // Reconstruction is linear in the coefficients: blend them first.
+        for (int q = 0; q < (shared_segment ? 1 : 4); ++q) {
+            // Shared: the four samples, blended; else sample q alone.
+            int first = shared_segment ? 0 : q, last = shared_segment ? 4 : q + 1;
             vec4 c[MAX_STRIDE];
             for (int t = 0; t < stride; ++t) c[t] = vec4(0.0f);
-            for (int q = 0; q < 4; ++q) {
-                int sample_at = ovdf_sample_index(shell, r.face.face, r.at.i[q], r.at.j[q], n);
+            for (int k = first; k < last; ++k) {
+                float weight = shared_segment ? r.at.weight[k] : 1.0f;
+                int sample_at = ovdf_sample_index(shell, r.face.face, r.at.i[k], r.at.j[k], n);
                 for (int t = 0; t < stride; ++t)
-                    c[t] += r.at.weight[q] * fetch(u_ovdf_coefficients, coefficients + sample_at * stride + t);
+                    c[t] += weight * fetch(u_ovdf_coefficients, coefficients + sample_at * stride + t);
             }
-            c[0].x = 1.0f;  // the mean's weight (the blend weights sum to 1)
-            for (int t = 0; t < 4; ++t) value += taps.weight[t] * ovdf_row(tables, stride, dims, segment, taps.index[t], c);
-        } else {  // the four samples straddle segments: four reconstructions
-            for (int q = 0; q < 4; ++q) {
-                if (r.at.weight[q] == 0.0f) continue;
-                int sample_at = ovdf_sample_index(shell, r.face.face, r.at.i[q], r.at.j[q], n);
-                int segment_at = ovdf_segment_of(shell, r.face.face, r.at.i[q], r.at.j[q], n, m);
-                vec4 c[MAX_STRIDE];
-                for (int t = 0; t < stride; ++t) c[t] = fetch(u_ovdf_coefficients, coefficients + sample_at * stride + t);
-                float reconstructed = 0.0f;
-                for (int t = 0; t < 4; ++t)
-                    reconstructed += taps.weight[t] * ovdf_row(tables, stride, dims, segment_at, taps.index[t], c);
-                value += r.at.weight[q] * reconstructed;
-            }
+            if (shared_segment) c[0].x = 1.0f;  // the mean's weight (the blend weights sum to 1)
+            int segment_at =
+                shared_segment ? segment : ovdf_segment_of(shell, r.face.face, r.at.i[q], r.at.j[q], n, m);
+            float reconstructed = 0.0f;
+            for (int t = 0; t < 4; ++t)
+                reconstructed += taps.weight[t] * ovdf_row(tables, stride, dims, segment_at, taps.index[t], c);
+            value += shared_segment ? reconstructed : r.at.weight[q] * reconstructed;
         }
         distance += ovdf_weighted_plane_distance(ws * value, ws, zoom, radial);
     }
@@ -465,6 +482,9 @@ struct PointShade {
 // the point's frame and half-edge h (g_self_corners).
 float self_visibility(vec4 svdf, vec3 direction, vec2 lp, float h) {
     if (g_self_corners == 0) return 1.0;
+#if SELF_CORNERS == 1
+    return visible_fraction_from_distance(svdf_distance(svdf, g_corner_cluster[0], lp, 0), h);
+#else
     if (g_self_corners == 1) return visible_fraction_from_distance(svdf_distance(svdf, g_corner_cluster[0], lp, 0), h);
     float blend = 0.0;
     for (int c = 0; c < 3; ++c) {
@@ -479,6 +499,7 @@ float self_visibility(vec4 svdf, vec3 direction, vec2 lp, float h) {
         blend += g_corner_weight[c] * corner;
     }
     return blend;
+#endif
 }
 
 // The sum at world point p of `part`, shading frame `frame` (rows: tangent,

@@ -13,12 +13,14 @@ namespace rsl::gl {
 
 bool GlRenderer::highlight_part(size_t p) const {
     const size_t parts = scene_.parts.size();
-    return options_.pixel_highlights && part_tables_[parts + p] == nullptr &&
+    // With the ray-traced baseline every part is its vertex colours' blend, as the CPU's rays rows are.
+    return options_.pixel_highlights && !options_.gpu_rays.enabled && part_tables_[parts + p] == nullptr &&
            library_.desc(library_.part_material(int(p))).model != "lambert";
 }
 
 bool GlRenderer::per_pixel_part(size_t p) const {
-    return (options_.pixel_shadows != PixelShadows::Off && rectangle_parts_[p]) || highlight_part(p);
+    return (options_.pixel_shadows != PixelShadows::Off && !options_.gpu_rays.enabled && rectangle_parts_[p]) ||
+           highlight_part(p);
 }
 
 void GlRenderer::draw(const Mat4& view_projection, float exposure) {

@@ -130,7 +130,11 @@ std::string shading_prelude() {
 
 std::string srgb_prelude() { return "#line 1 1\n" + shader_text("srgb.glsl") + "#line 2 0\n"; }
 
-std::string shade_point_prelude() { return "#line 1 2\n" + shader_text("shade_point.glsl") + "#line 2 0\n"; }
+std::string shade_point_prelude() { return included_shader("shade_point.glsl", 2); }
+
+std::string included_shader(const std::string& name, int source) {
+    return fmt::format("#line 1 {}\n", source) + shader_text(name) + "#line 2 0\n";
+}
 
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines) {
     const GLuint vs = compile(GL_VERTEX_SHADER, vertex, defines);

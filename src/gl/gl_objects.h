@@ -89,6 +89,9 @@ std::string srgb_prelude();
 // shaders/shade_point.glsl, the shading sum at a point, after shading_prelude():
 // the vertex pass and the per-pixel pass run it.
 std::string shade_point_prelude();
+// shaders/<name> to go before a shader's own text, as source string
+// `source` (#line 1 source), so that the driver's messages name its lines.
+std::string included_shader(const std::string& name, int source);
 
 // A flat array of vec4 (or half4) stored row-major in a 2D texture of fixed
 // width: element i is texel (i % width, i / width). Shaders read it with

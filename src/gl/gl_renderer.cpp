@@ -65,6 +65,9 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     clock_timing_ = timer_queries_measure_nothing();
     timings_.clock = clock_timing_;
     check_shadow_map_options(options_.shadow_maps);
+    check_gpu_ray_options(options_.gpu_rays);
+    if (options_.gpu_rays.enabled && options_.shadow_maps.enabled)
+        throw_error("GL renderer: shadow maps and GPU rays are two visibility baselines; enable one");
     check_gl("creating the GL renderer");
     start();
 }
@@ -86,9 +89,11 @@ void GlRenderer::set_sampler_units(const Program& program) {
 Program GlRenderer::make_vertex_pass(size_t light_words, bool record) {
     const std::string defines =
         vertex_pass_defines_ +
-        fmt::format("#define SHADE_BLOCK {}\n#define LIGHT_WORDS {}\n#define LAYERED {}\n#define RECORD_BLOCK_LIGHTS {}\n",
-                    kShadeBlock, light_words, layered_ ? 1 : 0, record ? 1 : 0) +
-        shading_prelude() + shade_point_prelude();
+        fmt::format("#define SHADE_BLOCK {}\n#define LIGHT_WORDS {}\n#define LAYERED {}\n#define RECORD_BLOCK_LIGHTS {}\n"
+                    "#define RAY_TRACED {}\n#define SHADOW_MAPPED {}\n#define MAX_SLICES {}\n#define SELF_CORNERS 1\n",
+                    kShadeBlock, light_words, layered_ ? 1 : 0, record ? 1 : 0, options_.gpu_rays.enabled ? 1 : 0,
+                    options_.shadow_maps.enabled ? 1 : 0, max_slices()) +
+        shading_prelude() + shade_point_prelude() + (options_.gpu_rays.enabled ? RayTracedVisibility::shader_text() : "");
     Program program = build_compute_program("shade_blocks.comp.glsl", defines);
     set_sampler_units(program);
     return program;
@@ -98,6 +103,16 @@ void GlRenderer::build_vertex_pass(size_t light_words) {
     vertex_pass_ = make_vertex_pass(light_words, false);
     vertex_pass_light_words_ = light_words;
     vertex_pass_layered_ = layered_;
+    vertex_pass_rays_ = options_.gpu_rays.enabled;
+    vertex_pass_shadow_maps_ = options_.shadow_maps.enabled;
+    vertex_pass_slices_ = max_slices();
+}
+
+int GlRenderer::max_slices() const {
+    int slices = 1;
+    for (const auto& table : part_tables_)
+        if (table) slices = std::max(slices, !table->isotropic() ? 4 : table->view_independent() ? 1 : 2);
+    return slices;
 }
 
 GlRenderer::~GlRenderer() = default;
@@ -318,6 +333,8 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
     options_.occluder_culling = options.occluder_culling;
     check_shadow_map_options(options.shadow_maps);
     options_.shadow_maps = options.shadow_maps;
+    check_gpu_ray_options(options.gpu_rays);
+    options_.gpu_rays = options.gpu_rays;
     options_.pixel_shadows = options.pixel_shadows;
     options_.pixel_highlights = options.pixel_highlights;
     shadow_maps_stale_ = true;
@@ -375,7 +392,15 @@ void GlRenderer::shade_on_device() {
     upload_frame();
     render_shadow_maps();
     const size_t light_words = std::max<size_t>(frame_.occluder_lists().light_words, 1);
-    if (!vertex_pass_ || light_words != vertex_pass_light_words_ || layered_ != vertex_pass_layered_)
+    if (options_.gpu_rays.enabled) {
+        if (!rays_) rays_ = std::make_unique<RayTracedVisibility>(scene_, first_vertex_);
+        std::vector<Mat4> transforms;
+        for (const PartPose& pose : frame_.poses()) transforms.push_back(pose.transform);
+        rays_->set_poses(transforms);
+    }
+    if (!vertex_pass_ || light_words != vertex_pass_light_words_ || layered_ != vertex_pass_layered_ ||
+        options_.gpu_rays.enabled != vertex_pass_rays_ || options_.shadow_maps.enabled != vertex_pass_shadow_maps_ ||
+        max_slices() != vertex_pass_slices_)
         build_vertex_pass(light_words);
     begin_pass(kPassShade);
     run_vertex_pass(vertex_pass_);
@@ -393,6 +418,10 @@ void GlRenderer::run_vertex_pass(const Program& program) {
     glUniform1i(uniform(program, "u_part_count"), int(scene_.parts.size()));
     glUniform1i(uniform(program, "u_layer_offset"), int(layer_bytes_ / 16));
     glUniform1i(uniform(program, "u_culling"), options_.occluder_culling ? 1 : 0);
+    if (options_.gpu_rays.enabled) {
+        rays_->bind(program);
+        glUniform1i(uniform(program, "u_ray_samples"), options_.gpu_rays.samples_per_side);
+    }
     const Buffer* buffers[] = {&blocks_, &block_vertices_, &candidates_, &part_culling_, &counters_, &colors_};
     for (GLuint binding = 0; binding < 6; ++binding)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffers[binding]->id());
@@ -541,6 +570,7 @@ void GlRenderer::shade(VertexColors& out) {
     const DeviceCounts counts = device_counts();
     stats_.occluder_lookups = counts.occluder_lookups;
     stats_.block_occluders_culled = counts.block_pairs_culled;
+    stats_.shadow_rays = counts.shadow_rays;
 }
 
 DeviceCounts GlRenderer::device_counts() const {
@@ -553,6 +583,7 @@ DeviceCounts GlRenderer::device_counts() const {
     counts.occluder_lookups = words[kCounterOccluderLookups];
     counts.block_pairs = words[kCounterBlockPairs];
     counts.block_pairs_culled = words[kCounterBlockPairsCulled];
+    counts.shadow_rays = words[kCounterShadowRays];
     return counts;
 }
 

@@ -25,6 +25,11 @@
 // re-uploaded into its own slices of the stacked BRDF texture (only a change
 // of the tables' layout, e.g. isotropic → anisotropic, re-packs them all).
 //
+// A second competitor, RenderOptions::gpu_rays (GL only; docs/design/GPU_DESIGN.md
+// "Ray-traced visibility"), takes every light's visibility from the CPU
+// ray-traced rows' S×S jittered rays, traced by the vertex pass through a
+// BVH of the posed parts (ray_traced_visibility.h).
+//
 // A competitor baseline rides along (RenderOptions::shadow_maps, GL only;
 // docs/design/GPU_DESIGN.md "Shadow-mapped visibility"): with it enabled, each frame first
 // draws one depth map per environment RSL (shadow_maps.h), and the vertex
@@ -40,6 +45,7 @@
 #include "src/core/scene.h"
 #include "src/gl/gl_objects.h"
 #include "src/gl/gpu_layout.h"
+#include "src/gl/ray_traced_visibility.h"
 #include "src/gl/shadow_maps.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
@@ -63,6 +69,7 @@ struct DeviceCounts {
     size_t occluder_lookups = 0;      // (vertex, light, occluder) lookups, as RenderStats::occluder_lookups
     size_t block_pairs = 0;           // (block, light, occluder) triples the part-level lists hand the blocks
     size_t block_pairs_culled = 0;    // ... of which the block-level tests culled
+    size_t shadow_rays = 0;           // rays traced (RenderOptions::gpu_rays)
 };
 
 // How the BRDF texture was last brought up to date (counted since construction).
@@ -121,7 +128,9 @@ public:
     std::string pass_times() const override;
     // The shadow maps' sphere (centre, radius) of the last frame that drew them; (0, 0, 0, 0) before.
     Vec4 shadow_map_sphere() const { return shadow_maps_ ? shadow_maps_->sphere() : Vec4(0.0f); }
-    size_t gpu_bytes() const { return gpu_bytes_ + (shadow_maps_ ? shadow_maps_->bytes() : 0); }
+    size_t gpu_bytes() const {
+        return gpu_bytes_ + (shadow_maps_ ? shadow_maps_->bytes() : 0) + (rays_ ? rays_->bytes() : 0);
+    }
     GLuint color_buffer() const { return colors_.id(); }
     int vertex_count() const { return vertex_count_; }
 
@@ -145,6 +154,9 @@ private:
     // layers: built again when the light count crosses a multiple of 32 or
     // the first textured material comes or the last goes.
     void build_vertex_pass(size_t light_words);
+    // BRDF slices an average blends, the most over the parts' tables: 1
+    // (isotropic, view-independent), 2 (isotropic) or 4 (anisotropic).
+    int max_slices() const;
     Program make_vertex_pass(size_t light_words, bool record);
     // Dispatches `program` (a vertex pass) over every block.
     void run_vertex_pass(const Program& program);
@@ -199,6 +211,9 @@ private:
     std::string vertex_pass_defines_;  // MAX_STRIDE
     size_t vertex_pass_light_words_ = 0;
     bool vertex_pass_layered_ = false;  // built with the specular layer (LAYERED)
+    bool vertex_pass_rays_ = false;     // built with ray-traced visibility (RAY_TRACED)
+    bool vertex_pass_shadow_maps_ = false;  // built with the shadow-map branch (SHADOW_MAPPED)
+    int vertex_pass_slices_ = 0;            // MAX_SLICES it was built with
     std::vector<Vec3> face_normal_, face_s_, face_t_;  // the OVDF cube faces' uniforms
     std::vector<char> rectangle_parts_;  // per part: one flat rectangle (find_rectangle)
     std::vector<Bounds> part_bounds_;  // per part: its mesh's box (part space)
@@ -228,6 +243,7 @@ private:
     GLuint base_color_texture(const std::shared_ptr<const rsl::Texture>& texture);
     std::vector<size_t> first_index_;  // per part, into display_indices_, and the total
     std::unique_ptr<ShadowMaps> shadow_maps_;  // made when first enabled
+    std::unique_ptr<RayTracedVisibility> rays_;  // made when options_.gpu_rays is first enabled
     bool shadow_maps_stale_ = true;
     Query queries_[2][4];              // [frame parity][pass]
     bool query_pending_[2] = {false, false};

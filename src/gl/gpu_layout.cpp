@@ -269,7 +269,9 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
 }
 
 Vec4 material_record(const BrdfTable& table, int first_slice, bool specular) {
-    return Vec4(float(first_slice), table.isotropic() ? 1.0f : 0.0f, float(table.options().view_samples),
+    // 2: isotropic and the same in every view (Lambert): one slice, as the CPU's batch kernel reads.
+    const float isotropy = table.isotropic() ? (table.view_independent() ? 2.0f : 1.0f) : 0.0f;
+    return Vec4(float(first_slice), isotropy, float(table.options().view_samples),
                 specular ? 1.0f : 0.0f);
 }
 

@@ -56,7 +56,7 @@ enum PartSlot : int {
     kSlotTransform = 0,   // 4 columns
     kSlotNormal = 4,      // 3 columns
     kSlotInverse = 7,     // 4 columns
-    kSlotMaterial = 11,   // (first slice, isotropic, V, 0)
+    kSlotMaterial = 11,   // (first slice, isotropic: 1, and view-independent: 2, else 0; V, 0)
     kSlotSvdf = 12,       // (tables base, coefficients base, resolution (0: none), stride)
     kSlotVertices = 13,   // (first vertex, 0, 0, 0)
     kSlotOvdfCenter = 14, // (center, radius (0: none))
@@ -95,8 +95,12 @@ enum Counter : int {
     kCounterOccluderLookups = 0,
     kCounterBlockPairs = 1,        // (block, light, occluder) triples the part-level lists hand the blocks
     kCounterBlockPairsCulled = 2,  // ... of which the block-level tests culled
-    kCounterCount = 3,
+    kCounterShadowRays = 3,        // rays traced (RenderOptions::gpu_rays)
+    kCounterCount = 4,
 };
+// The ray-traced baseline's per-vertex storage buffer (shaders/ray_visibility.glsl):
+// per vertex, the part-space direction into its own triangles (border_inward_directions) or 0.
+inline constexpr int kRayInwardBinding = 12;
 inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
 inline constexpr int kSamplesPerTexel = 2;    // OVDF samples' (surface distance, occluded area), RG and BA
 
@@ -140,6 +144,7 @@ inline constexpr ShaderIntConstant kShaderIntConstants[] = {
     {"kCounterOccluderLookups", kCounterOccluderLookups},
     {"kCounterBlockPairs", kCounterBlockPairs},
     {"kCounterBlockPairsCulled", kCounterBlockPairsCulled},
+    {"kCounterShadowRays", kCounterShadowRays},
     {"kSamplesPerTexel", kSamplesPerTexel},
 };
 

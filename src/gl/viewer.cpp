@@ -72,7 +72,7 @@ struct ImGuiSession {
 // Mouse and keys that ImGui does not take.
 struct Input {
     double last_x = 0, last_y = 0;
-    bool space_down = false, h_down = false;
+    bool space_down = false, h_down = false, r_down = false;
 };
 
 void handle_input(GLFWwindow* window, Input& input, ViewerState& state, float dt) {
@@ -111,6 +111,10 @@ void handle_input(GLFWwindow* window, Input& input, ViewerState& state, float dt
     const bool h = glfwGetKey(window, GLFW_KEY_H) == GLFW_PRESS;
     if (h && !input.h_down) state.panel = !state.panel;
     input.h_down = h;
+    const bool r = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
+    if (r && !input.r_down)
+        state.mode = state.mode == ViewMode::Rsl ? ViewMode::Rays : state.mode == ViewMode::Rays ? ViewMode::Split : ViewMode::Rsl;
+    input.r_down = r;
     if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, GLFW_TRUE);
     state.environment_degrees = std::remainder(state.environment_degrees, 360.0f);
 }
@@ -178,6 +182,8 @@ void init_state(ViewerState& state, const ViewerOptions& options, Scene& scene, 
     state.time = options.start_time;
     state.exposure = options.exposure;
     state.panel = options.panel;
+    state.mode = options.view;
+    state.reference_rays = options.reference_rays;
     state.camera.target = scene.camera.target;
     const Vec3 offset = scene.camera.position - scene.camera.target;
     state.camera.distance = glm::length(offset);
@@ -226,15 +232,36 @@ ViewPose view_pose(const ViewerState& state) {
     return {turn, eye};
 }
 
-// Frame phase: the renderer shades the vertices at the pose; the first frame
-// sets the automatic exposure from them.
+// Frame phase: the ray-traced reference, made at its first use, given the
+// renderer's materials, lights and toggles (rays for visibility instead of
+// the fields).
+GlRenderer& synced_reference(ViewerState& state) {
+    RenderOptions options = state.toggles;
+    options.shadow_maps.enabled = false;
+    options.gpu_rays.enabled = true;
+    options.gpu_rays.samples_per_side = state.reference_rays;
+    if (!state.reference)
+        state.reference = std::make_unique<GlRenderer>(*state.scene, state.renderer->environment_lights(), PartFields{},
+                                                       options);
+    state.reference->materials() = state.renderer->materials();  // tables are shared; only changed ones upload
+    state.reference->set_toggles(options);
+    return *state.reference;
+}
+
+// Frame phase: the renderers the mode shows shade the vertices at the pose;
+// the first frame sets the automatic exposure from the first one's colours.
 void shade_view(GlRenderer& renderer, const ViewPose& pose, const ViewerOptions& options, int frame,
                 ViewerState& state) {
-    renderer.set_view(state.time, pose.eye, pose.turn);
-    renderer.shade_on_device();
+    std::vector<GlRenderer*> shown;
+    if (state.mode != ViewMode::Rays) shown.push_back(&renderer);
+    if (state.mode != ViewMode::Rsl) shown.push_back(&synced_reference(state));
+    for (GlRenderer* r : shown) {
+        r->set_view(state.time, pose.eye, pose.turn);
+        r->shade_on_device();
+    }
     if (frame == 0 && options.auto_exposure) {
-        VertexColors colors = renderer.make_output();
-        renderer.read_colors(colors);
+        VertexColors colors = shown.front()->make_output();
+        shown.front()->read_colors(colors);
         state.exposure = automatic_exposure(colors);
     }
 }
@@ -258,13 +285,33 @@ void draw_frame(GlRenderer& renderer, Skybox* skybox, const Scene& scene, const 
         skybox->draw(projection * view, pose.eye, pose.turn * environment.rotation_at(state.time), weight,
                      std::exp2(state.exposure));
     }
-    renderer.draw(projection * view, std::exp2(state.exposure));
+    const float exposure = std::exp2(state.exposure);
+    if (state.mode == ViewMode::Split) {  // RSL on the left half, the reference on the right
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, 0, width / 2, height);
+        renderer.draw(projection * view, exposure);
+        glScissor(width / 2, 0, width - width / 2, height);
+        state.reference->draw(projection * view, exposure);
+        glScissor(width / 2 - 1, 0, 2, height);  // the seam, a thin line
+        glClearColor(0.9f, 0.9f, 0.9f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glDisable(GL_SCISSOR_TEST);
+    } else {
+        (state.mode == ViewMode::Rays ? *state.reference : renderer).draw(projection * view, exposure);
+    }
     glDisable(GL_DEPTH_TEST);
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
 }  // namespace
+
+ViewMode parse_view_mode(const std::string& name) {
+    if (name == "rsl") return ViewMode::Rsl;
+    if (name == "rays") return ViewMode::Rays;
+    if (name == "split") return ViewMode::Split;
+    throw_error("view mode '{}': expected rsl, rays or split", name);
+}
 
 void run_viewer(const ViewerOptions& options) {
     const std::shared_ptr<Scene> scene = load_viewer_scene(options);
@@ -303,6 +350,7 @@ void run_viewer(const ViewerOptions& options) {
         glfwSwapBuffers(window.window);
     }
     if (state.refit.valid()) state.refit.wait();
+    state.reference.reset();  // while the window's context is current
 }
 
 }  // namespace rsl::gl

@@ -2,7 +2,8 @@
 // `rsl view SCENE`: the interactive viewer (GLFW window, Dear ImGui panel) on
 // top of the GPU renderer. Mouse: left-drag orbits, right-drag turns the
 // environment, wheel zooms, shift + left-drag moves the local light in the
-// view plane. Keys: space play/pause, ←/→ turn the environment, H hides the
+// view plane. Keys: space play/pause, ←/→ turn the environment, R cycles
+// RSL / the GPU ray-traced reference / both side by side, H hides the
 // panel, Esc quits. The panel swaps each part's BRDF, edits material
 // parameters (the table is rebuilt and uploaded the same frame), re-fits the
 // environment with another number of RSLs in a background thread, switches
@@ -16,6 +17,13 @@
 
 namespace rsl::gl {
 
+// What the window shows: the RSL renderer, the ray-traced reference
+// (RenderOptions::gpu_rays: the CPU ray rows' rays on the GPU), or both side
+// by side, RSL on the left, each with its frame time.
+enum class ViewMode { Rsl, Rays, Split };
+// "rsl", "rays" or "split"; others throw rsl::Error.
+ViewMode parse_view_mode(const std::string& name);
+
 struct ViewerOptions {
     std::filesystem::path scene;
     RenderOptions render;
@@ -25,6 +33,8 @@ struct ViewerOptions {
     bool auto_exposure = true;         // set `exposure` from the first frame's vertex colours
     int width = 1280, height = 720;
     bool panel = true;
+    ViewMode view = ViewMode::Rsl;
+    int reference_rays = 2;            // S of the ray-traced reference: S×S rays per vertex and light
     // Screenshot mode: render `frames` frames (playing), save the last to
     // `screenshot` (PNG) and exit. frames = 0: interactive.
     std::filesystem::path screenshot;

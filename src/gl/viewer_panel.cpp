@@ -48,10 +48,24 @@ void material_editor(ViewerState& state, int material) {
     ImGui::PopID();
 }
 
+// Panel section: what the window shows (R cycles) and the reference's rays.
+void view_section(ViewerState& state) {
+    int mode = int(state.mode);
+    ImGui::RadioButton("RSL", &mode, int(ViewMode::Rsl));
+    ImGui::SameLine();
+    ImGui::RadioButton("GPU rays", &mode, int(ViewMode::Rays));
+    ImGui::SameLine();
+    ImGui::RadioButton("split (R)", &mode, int(ViewMode::Split));
+    state.mode = ViewMode(mode);
+    if (state.mode != ViewMode::Rsl)
+        ImGui::SliderInt("rays per side (S)", &state.reference_rays, 1, GpuRayOptions::kMaxSamplesPerSide);
+}
+
 // Panel section: frame rate, GPU pass times and the renderer's counts.
 void timings_section(ViewerState& state) {
     const PassTimings t = state.renderer->timings();
     ImGui::Text("%.1f fps, %.2f ms/frame", state.fps, state.frame_ms);
+    view_section(state);
     ImGui::Text("GPU%s: shading %.2f ms, display %.2f ms", t.clock ? " (clock, software GL)" : "", t.shade_ms,
                 t.display_ms);
     if (t.shadow_ms > 0) ImGui::Text("shadow maps %.2f ms", t.shadow_ms);  // the shadow-map baseline's depth pass
@@ -143,14 +157,37 @@ void materials_section(ViewerState& state) {
 void apply_pending(ViewerState& state) {
     if (state.refit.valid() && state.refit.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         state.renderer->set_environment_lights(state.refit.get());
+        if (state.reference) state.reference->set_environment_lights(state.renderer->environment_lights());
     }
     if (state.lights_dirty) {
         state.renderer->set_local_lights(state.scene->lights);
+        if (state.reference) state.reference->set_local_lights(state.scene->lights);
         state.lights_dirty = false;
     }
 }
 
+void view_overlay(const ViewerState& state) {
+    if (state.mode == ViewMode::Rsl || !state.reference) return;
+    // The shading pass of each side, as the panel's GPU line times it.
+    const double rsl_ms = state.renderer->timings().shade_ms, rays_ms = state.reference->timings().shade_ms;
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(viewport->Pos.x + 0.5f * viewport->Size.x, viewport->Pos.y + 8), ImGuiCond_Always,
+                            ImVec2(0.5f, 0.0f));
+    ImGui::SetNextWindowBgAlpha(0.6f);
+    ImGui::Begin("view", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+    const int lights = int(state.renderer->environment_lights().light_count());
+    if (state.mode == ViewMode::Split)
+        ImGui::Text("RSL, K = %d: %.2f ms    |    GPU rays, S = %d: %.2f ms", lights, rsl_ms, state.reference_rays,
+                    rays_ms);
+    else
+        ImGui::Text("GPU rays, S = %d: %.2f ms", state.reference_rays, rays_ms);
+    ImGui::End();
+}
+
 void viewer_panel(ViewerState& state) {
+    view_overlay(state);
     if (!state.panel) return;
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);

@@ -8,6 +8,7 @@
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 #include "src/gl/gl_renderer.h"
+#include "src/gl/viewer.h"
 
 namespace rsl::gl {
 
@@ -25,6 +26,11 @@ struct ViewerState {
     const CubeMap* environment = nullptr;
     const CubeMap* second_environment = nullptr;  // the blend's second map; null without one
     GlRenderer* renderer = nullptr;  // its materials() is what the panel edits
+    // The ray-traced reference (made at the first frame that shows it): the
+    // renderer's materials, lights and toggles, with GPU rays for visibility.
+    std::unique_ptr<GlRenderer> reference;
+    ViewMode mode = ViewMode::Rsl;
+    int reference_rays = 2;
     OrbitCamera camera;
     float time = 0, environment_degrees = 0, exposure = 0;
     bool playing = true, panel = true;
@@ -36,8 +42,10 @@ struct ViewerState {
     double frame_ms = 0, fps = 0;
 };
 
-// Draws the panel and applies what changed (materials, toggles, RSL count).
+// Draws the panel and applies what changed (materials, toggles, RSL count);
+// with the reference shown, the two renderers' frame times on screen (view_overlay).
 void viewer_panel(ViewerState& state);
+void view_overlay(const ViewerState& state);
 // Applies finished background work (new RSL sets) and moved lights.
 void apply_pending(ViewerState& state);
 

@@ -91,7 +91,7 @@ struct RayScene::Impl {
     // the hit instance's (ExitContext). Only for a scene made with
     // origins_outside_surfaces (the others, the OVDF bake's among them, skip
     // it: their filter is not even set).
-    static constexpr float kExitOffsets = 4.0f;
+    static constexpr float kExitOffsets = shading::kRayExitOffsets;
     void set_exit(ExitContext& context, int lane, const Vec3& origin, const Vec3& dir) const {
         context.enabled = true;
         context.instance_exit = instance_exit.data();

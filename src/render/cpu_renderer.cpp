@@ -23,6 +23,9 @@ CpuRenderer::CpuRenderer(const Scene& scene, EnvironmentLights environment_light
     if (options.shadow_maps.enabled)
         throw_file_error(scene.source, "shadow-mapped visibility (RenderOptions::shadow_maps, --shadow-maps) "
                                        "exists on the GL backend only; the CPU renderer has none");
+    if (options.gpu_rays.enabled)
+        throw_file_error(scene.source, "GPU ray-traced visibility (RenderOptions::gpu_rays, --gpu-rays) exists on "
+                                       "the GL backend only; on the CPU, RenderOptions::exact_visibility traces the same rays");
     const size_t parts = scene.parts.size();
     for (size_t p = 0; p < parts; ++p) {
         const Part& part = scene.parts[p];

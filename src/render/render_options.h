@@ -29,6 +29,18 @@ struct ShadowMapOptions {
     float pcf_distance = 0.1f;  // Pcf only: the occluder distance the kernel assumes, × the bounding radius
 };
 
+// A competitor baseline, GL backend only (docs/design/GPU_DESIGN.md,
+// "Ray-traced visibility"): every light's visibility (what replaces SVDF ×
+// Π OVDF) from S×S jittered shadow rays per vertex and light, traced in the
+// vertex pass through a BVH of the posed parts: the rays of the CPU's
+// ray-traced rows (exact_visibility, jittered), from the same seeds. The
+// CPU renderer refuses it (it has exact_visibility).
+struct GpuRayOptions {
+    static constexpr int kMaxSamplesPerSide = 16;
+    bool enabled = false;
+    int samples_per_side = 1;  // S
+};
+
 enum class PixelShadows { Off, Planes, All };
 // "off", "planes" or "all" (the command line's and the API's words); others throw rsl::Error.
 PixelShadows parse_pixel_shadows(const std::string& name);
@@ -70,6 +82,7 @@ struct RenderOptions {
     // (its mode says which); it must be posed at the renderer's time.
     std::shared_ptr<const ExactVisibility> exact_visibility;
     ShadowMapOptions shadow_maps;  // GL backend only
+    GpuRayOptions gpu_rays;        // GL backend only
 };
 
 // Counters of one shading pass (for `rsl render` and the benchmarks).

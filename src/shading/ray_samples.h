@@ -81,6 +81,12 @@ RSL_SHARED float ray_offset_distance(float scale, vec3 p) {
     return kRayOffsetOfScale * scale + kRayOffsetOfPosition * coord;
 }
 
+// An occlusion query from a surface ignores a hit that leaves its triangle
+// through the front within this many ray offsets (of the hit part's scale and
+// of the origin's position) of the origin: the origin lies on that surface
+// (RayScene's origins_outside_surfaces; docs/design/TRUTH.md "Ray offsets").
+RSL_CONST float kRayExitOffsets = 4.0f;
+
 // RSL_GLSL_END
 
 }  // namespace rsl::shading

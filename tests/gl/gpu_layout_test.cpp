@@ -121,7 +121,8 @@ TEST_CASE("BRDF tables are stacked once each, in sat_data() order", "[gl-layout]
     CHECK(m.resolution == 8);
     CHECK(m.slices == 4 + 16);
     REQUIRE(m.part_material.size() == 3);
-    CHECK(m.part_material[0] == Vec4(0, 1, 4, 0));
+    REQUIRE(iso->view_independent());
+    CHECK(m.part_material[0] == Vec4(0, 2, 4, 0));  // isotropic and view-independent (Lambert): one slice
     CHECK(m.part_material[1] == Vec4(4, 0, 4, 0));
     CHECK(m.part_material[2] == m.part_material[0]);
     const size_t slice = 9 * 9 * 3;

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "src/core/error.h"
 #include "src/gl/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"
@@ -22,17 +23,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "[gl-viewer]") {
-    const fs::path overcast = fs::path(RSL_SOURCE_DIR) / "assets/generated/overcast.exr";
-    if (!fs::exists(overcast)) {
-        WARN("SKIPPED: assets/generated/overcast.exr is missing (build the generated_assets target)");
-        return;
-    }
-    const fs::path dir = fs::temp_directory_path() / fmt::format("rsl_viewer_test_{}", ::getpid());
+const Vec3 kEye(0.0f, 2.2f, 3.0f), kTarget(0.0f, 0.3f, 0.0f);
+
+// A ball over a ground plane under the overcast sky, in a new folder; its scene file.
+fs::path write_ball_scene(const fs::path& dir, const fs::path& overcast) {
     fs::create_directories(dir);
     test::write_obj(dir / "ground.obj", test::make_plane(4.0f, 24, "ground"));
     test::write_obj(dir / "ball.obj", test::make_icosphere(0.4f, 3, "ball"));
-    const Vec3 eye(0.0f, 2.2f, 3.0f), target(0.0f, 0.3f, 0.0f);
     std::ofstream(dir / "scene.json") << fmt::format(R"({{
   "name": "viewer-test",
   "parts": [
@@ -44,39 +41,90 @@ TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "
   "environment": {{ "file": "{}", "resolution": 16 }},
   "camera": {{ "position": [{}, {}, {}], "target": [{}, {}, {}], "fov_degrees": 40, "width": 320, "height": 240 }}
 }})",
-                                                     overcast.string(), eye.x, eye.y, eye.z, target.x, target.y,
-                                                     target.z);
+                                                     overcast.string(), kEye.x, kEye.y, kEye.z, kTarget.x, kTarget.y,
+                                                     kTarget.z);
+    return dir / "scene.json";
+}
+
+// The viewer's options for a 320×240 screenshot of `scene` after two frames.
+gl::ViewerOptions screenshot_options(const fs::path& scene, const fs::path& shot) {
     gl::ViewerOptions options;
-    options.scene = dir / "scene.json";
+    options.scene = scene;
     options.quick_fields = true;
     options.render.environment_lights = 20;
     options.render.local_lights = false;  // the viewer adds a movable light; judge the sky's shadow alone
     options.width = 320, options.height = 240;
     options.panel = false;
     options.frames = 2;
-    options.screenshot = dir / "shot.png";
+    options.screenshot = shot;
+    return options;
+}
+
+// Linear luminance (the display pass's sRGB curve undone), 0..255, at the pixel where `point` projects.
+float luma_at(const test::Png& shot, const Vec3& point) {
+    const Vec2 p = test::project(point, kEye, kTarget, 40, shot.width, shot.height);
+    const unsigned char* c = shot.at(std::clamp(int(p.x), 0, shot.width - 1), std::clamp(int(p.y), 0, shot.height - 1));
+    return 0.2126f * test::linear_255(c[0]) + 0.7152f * test::linear_255(c[1]) + 0.0722f * test::linear_255(c[2]);
+}
+
+TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "[gl-viewer]") {
+    const fs::path overcast = fs::path(RSL_SOURCE_DIR) / "assets/generated/overcast.exr";
+    if (!fs::exists(overcast)) {
+        WARN("SKIPPED: assets/generated/overcast.exr is missing (build the generated_assets target)");
+        return;
+    }
+    const fs::path dir = fs::temp_directory_path() / fmt::format("rsl_viewer_test_{}", ::getpid());
+    const gl::ViewerOptions options = screenshot_options(write_ball_scene(dir, overcast), dir / "shot.png");
     gl::run_viewer(options);
 
     const test::Png shot = test::read_png(options.screenshot);
-    const int width = shot.width, height = shot.height;
-    REQUIRE(width == 320);
-    REQUIRE(height == 240);
-    auto luma = [&](const Vec2& p) {
-        const unsigned char* c = shot.at(std::clamp(int(p.x), 0, width - 1), std::clamp(int(p.y), 0, height - 1));
-        // Linear luminance (undo the display pass's sRGB curve), 0..255.
-        return 0.2126f * test::linear_255(c[0]) + 0.7152f * test::linear_255(c[1]) + 0.0722f * test::linear_255(c[2]);
-    };
+    REQUIRE(shot.width == 320);
+    REQUIRE(shot.height == 240);
     // Not blank: the ball and the ground are lit, far above the old clear
     // colour (0.05 linear, 12.75 here); the background is the sky now.
-    const float ball = luma(test::project(Vec3(0, 0.85f, 0.0f), eye, target, 40, width, height));
-    const float open_ground = luma(test::project(Vec3(1.3f, 0, 0.6f), eye, target, 40, width, height));
+    const float ball = luma_at(shot, Vec3(0, 0.85f, 0.0f));
+    const float open_ground = luma_at(shot, Vec3(1.3f, 0, 0.6f));
     // Beside the ball's foot (in front of it, as the camera sees it): the
     // ball hides much of the overcast sky there.
-    const float shadowed_ground = luma(test::project(Vec3(0.0f, 0, 0.3f), eye, target, 40, width, height));
+    const float shadowed_ground = luma_at(shot, Vec3(0.0f, 0, 0.3f));
     INFO("ball " << ball << ", open ground " << open_ground << ", ground beside the ball " << shadowed_ground);
     CHECK(open_ground > 12.75f + 50.0f);
     CHECK(ball > 12.75f + 50.0f);
     CHECK(shadowed_ground < 0.7f * open_ground);
+    if (!getenv("RSL_KEEP_TEST_FILES")) fs::remove_all(dir);
+}
+
+// The split view: RSL on the left, the GPU ray-traced reference on the
+// right, a light seam between. Both halves show the ball's shadow, and
+// agree on open ground (the same light integrals and BRDF averages; only
+// the visibility differs, and open ground sees the whole sky either way).
+TEST_CASE("rsl view's split view shows RSL and the ray-traced reference side by side", "[gl-viewer]") {
+    const fs::path overcast = fs::path(RSL_SOURCE_DIR) / "assets/generated/overcast.exr";
+    if (!fs::exists(overcast)) {
+        WARN("SKIPPED: assets/generated/overcast.exr is missing (build the generated_assets target)");
+        return;
+    }
+    const fs::path dir = fs::temp_directory_path() / fmt::format("rsl_viewer_split_test_{}", ::getpid());
+    gl::ViewerOptions options = screenshot_options(write_ball_scene(dir, overcast), dir / "split.png");
+    options.view = gl::ViewMode::Split;
+    options.reference_rays = 4;
+    gl::run_viewer(options);
+
+    const test::Png shot = test::read_png(options.screenshot);
+    REQUIRE(shot.width == 320);
+    const unsigned char* seam = shot.at(shot.width / 2, shot.height - 5);
+    CHECK(int(seam[0]) > 200);
+    for (const float side : {-1.0f, 1.0f}) {  // left: RSL, right: rays
+        const float open_ground = luma_at(shot, Vec3(1.3f * side, 0, 0.6f));
+        const float shadowed_ground = luma_at(shot, Vec3(0.3f * side, 0, 0.3f));
+        INFO((side < 0 ? "RSL" : "rays") << ": open ground " << open_ground << ", beside the ball " << shadowed_ground);
+        CHECK(open_ground > 12.75f + 50.0f);
+        CHECK(shadowed_ground < 0.85f * open_ground);
+    }
+    const float rsl = luma_at(shot, Vec3(-1.3f, 0, 0.6f)), rays = luma_at(shot, Vec3(1.3f, 0, 0.6f));
+    INFO("open ground: RSL " << rsl << ", rays " << rays);
+    CHECK(rays == Approx(rsl).epsilon(0.1));
+    CHECK_THROWS_AS(gl::parse_view_mode("both"), Error);
     if (!getenv("RSL_KEEP_TEST_FILES")) fs::remove_all(dir);
 }
 

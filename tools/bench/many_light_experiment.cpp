@@ -27,7 +27,7 @@ namespace rsl {
 namespace {
 
 struct Row {
-    std::string method;   // "rsl", "rsl-gl", "rays", "rays-budget", "shadow-map"
+    std::string method;   // "rsl", "rsl-gl", "rays", "rays-gl", "rays-budget", "shadow-map"
     int setting = 0;      // K, S or the map's resolution
     int lights = 0;       // K shaded
     double frame_ms = 0;  // median shading time of one frame (GL: colours read back)
@@ -37,7 +37,7 @@ struct Row {
     Image image;
     std::string label() const {
         if (method == "rsl" || method == "rsl-gl") return fmt::format("{} K={}", method, setting);
-        if (method == "rays") return fmt::format("rays S={}", setting);
+        if (method == "rays" || method == "rays-gl") return fmt::format("{} S={}", method, setting);
         if (method == "rays-budget") return fmt::format("rays budget S={}", setting);
         return fmt::format("shadow map {}", setting);
     }
@@ -114,6 +114,7 @@ void write_pareto_plot(const std::filesystem::path& dir, const Scene& scene, con
     const std::vector<std::pair<std::string, Color>> families = {{"rsl", Color(0.1f, 0.6f, 0.2f)},
                                                                  {"rsl-gl", Color(0.5f, 0.8f, 0.2f)},
                                                                  {"rays", Color(0.85f, 0.2f, 0.1f)},
+                                                                 {"rays-gl", Color(0.95f, 0.45f, 0.6f)},
                                                                  {"rays-budget", Color(0.9f, 0.6f, 0.1f)},
                                                                  {"shadow-map", Color(0.1f, 0.45f, 0.85f)}};
     std::vector<raster::Series> series;
@@ -272,12 +273,13 @@ void measure_ray_rows(RowMeasurer& m) {
     }
 }
 
-// Phase: the GL rows, the fields' sum on the GPU path and shadow maps;
-// returns the GL device, or why the rows were skipped.
+// Phase: the GL rows, the fields' sum on the GPU path, the ray-traced rows'
+// rays traced on the GPU, and shadow maps; returns the GL device, or why
+// the rows were skipped.
 std::string measure_gl_rows(RowMeasurer& m) {
     const ManyLightExperiment& args = m.args;
     std::string gl_device = "none asked for";
-    if (!args.gl_lights.empty() || !args.shadow_map_resolutions.empty()) {
+    if (!args.gl_lights.empty() || !args.gl_ray_samples.empty() || !args.shadow_map_resolutions.empty()) {
         try {
             for (int k : args.gl_lights) {
                 RenderOptions o = m.options;
@@ -285,6 +287,15 @@ std::string measure_gl_rows(RowMeasurer& m) {
                 const auto renderer = make_renderer(Backend::Gl, m.scene, m.lights_for(k), m.setup.fields, o);
                 gl_device = renderer->device();
                 m.measure(make_row("rsl-gl", k, k), *renderer);
+            }
+            for (int samples : args.gl_ray_samples) {
+                RenderOptions o = m.options;
+                o.gpu_rays.enabled = true;
+                o.gpu_rays.samples_per_side = samples;
+                const auto renderer =
+                    make_renderer(Backend::Gl, m.scene, m.lights_for(args.baseline_lights), PartFields{}, o);
+                gl_device = renderer->device();
+                m.measure(make_row("rays-gl", samples, args.baseline_lights), *renderer);
             }
             for (int resolution : args.shadow_map_resolutions) {
                 RenderOptions o = m.options;

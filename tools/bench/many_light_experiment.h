@@ -6,7 +6,8 @@
 //   rsl     — the fields (SVDF × Π OVDF), K = 10, 30, 100 lights, on the
 //             CPU and (rsl-gl) on the GL path;
 //   rays    — S×S stratified shadow rays per vertex and light (S = 1, 2, 4),
-//             Embree packets on every core, no precomputation;
+//             Embree packets on every core, no precomputation; rays-gl: the
+//             same rays traced in the GL vertex pass (a BVH in a compute shader);
 //   budget  — the same with S set per frame from a fixed ray budget;
 //   shadow maps (GL) — one orthographic depth map per light, filtered with a
 //             kernel sized to the square's angular size.
@@ -34,6 +35,7 @@ struct ManyLightExperiment {
     uint64_t ray_budget = 0;                 // rays per frame for the budget row; 0: no such row
     std::vector<int> gl_lights{30};          // K of the RSL rows on the GL path (empty: none)
     std::vector<int> shadow_map_resolutions{256, 1024};  // GL shadow-map rows (empty: none)
+    std::vector<int> gl_ray_samples{1, 2};   // S of the GL ray-traced rows (empty: none)
     std::vector<std::string> receivers{"ground", "floor"};  // parts left out of the objects' error
 };
 

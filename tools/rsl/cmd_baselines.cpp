@@ -56,6 +56,7 @@ RegisterCommand baselines_command({"baselines",
         auto rays = std::make_shared<std::string>("1,2,4");
         auto maps = std::make_shared<std::string>("256,1024");
         auto gl_lights = std::make_shared<std::string>("30");
+        auto gl_rays = std::make_shared<std::string>("1,2");
         app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
         app.add_option("--time,-t", args->time, "Time in seconds (the static frame)")->capture_default_str();
         app.add_option("-o,--output", args->output, "Output folder (default out/baselines, or out/many_light)");
@@ -117,10 +118,14 @@ RegisterCommand baselines_command({"baselines",
             ->capture_default_str();
         group->add_option("--shadow-maps", *maps, "Shadow-map resolutions of the GL rows (empty: none)")
             ->capture_default_str();
+        group->add_option("--gl-ray-samples", *gl_rays,
+                          "S for the GL ray-traced rows: the --ray-samples rays, traced in the GL vertex pass "
+                          "(empty: none)")
+            ->capture_default_str();
         group->add_option("--receivers", many->receivers, "Parts left out of the objects' error")
             ->capture_default_str()
             ->delimiter(',');
-        app.callback([&app, args, many, many_light, sh, haar, eigen, triple, lookup, rsl, rays, maps, gl_lights] {
+        app.callback([&app, args, many, many_light, sh, haar, eigen, triple, lookup, rsl, rays, maps, gl_lights, gl_rays] {
             if (*many_light) {
                 if (args->no_ground)  // the many-light rows keep the ground and measure the objects apart
                     throw_error("--no-ground is for the PRT baselines, not --many-light (see --receivers)");
@@ -144,6 +149,10 @@ RegisterCommand baselines_command({"baselines",
                         throw_error("--shadow-maps: {} is outside [{}, {}]", r, ShadowMapOptions::kMinResolution,
                                     ShadowMapOptions::kMaxResolution);
                 many->gl_lights = parse_list(*gl_lights, "--gl-lights", true);
+                many->gl_ray_samples = parse_list(*gl_rays, "--gl-ray-samples", true);
+                for (int s : many->gl_ray_samples)
+                    if (s > GpuRayOptions::kMaxSamplesPerSide)
+                        throw_error("--gl-ray-samples: {} is above {}", s, GpuRayOptions::kMaxSamplesPerSide);
                 run_many_light_experiment(*many);
                 return;
             }

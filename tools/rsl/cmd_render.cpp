@@ -40,6 +40,7 @@ struct RenderArgs {
     bool quiet = false;
     int shadow_maps = 0;  // 0: off; else the resolution (GL only)
     std::string shadow_filter = "pcss";
+    int gpu_rays = 0;  // 0: off; else S (GL only)
 };
 
 // out.exr, frame 7 → out.0007.exr
@@ -83,6 +84,16 @@ RenderOptions render_options(const RenderArgs& args, Backend backend) {
         options.shadow_maps.enabled = true;
         options.shadow_maps.resolution = args.shadow_maps;
         options.shadow_maps.filter = args.shadow_filter == "pcf" ? ShadowFilter::Pcf : ShadowFilter::Pcss;
+    }
+    if (args.gpu_rays != 0) {
+        if (args.gpu_rays < 1 || args.gpu_rays > GpuRayOptions::kMaxSamplesPerSide)
+            throw_error("--gpu-rays {}: expected S of 1..{} (SxS rays per vertex and light)", args.gpu_rays,
+                        GpuRayOptions::kMaxSamplesPerSide);
+        if (backend == Backend::Cpu)
+            throw_error("--gpu-rays: GPU ray-traced visibility is a GL baseline (add --backend gl)");
+        if (args.shadow_maps != 0) throw_error("--gpu-rays and --shadow-maps: pick one visibility baseline");
+        options.gpu_rays.enabled = true;
+        options.gpu_rays.samples_per_side = args.gpu_rays;
     }
     return options;
 }
@@ -195,6 +206,9 @@ RegisterCommand render_command({"render",
                        "With --shadow-maps: pcss (blocker search; default) or pcf (fixed occluder distance, "
                        "0.1 x the scene's radius)")
             ->check(CLI::IsMember({"pcf", "pcss"}))->needs(shadow_maps)->capture_default_str();
+        app.add_option("--gpu-rays", args->gpu_rays,
+            "S: the ray-traced baseline (gl backend): every light's visibility from SxS jittered shadow rays per "
+            "vertex, traced on the GPU through a BVH of the posed parts, instead of the fields (1..16; docs/GPU.md)");
         app.add_flag("--quiet,-q", args->quiet, "No progress or per-frame lines (errors and warnings still go to stderr)");
         app.callback([args] { run_render(*args); });
     }});

@@ -12,8 +12,8 @@ namespace rsl::cli {
 namespace {
 
 struct ViewArgs {
-    std::string scene, screenshot;
-    int lights = 30, frames = 0, width = 1280, height = 720;
+    std::string scene, screenshot, view = "rsl";
+    int lights = 30, frames = 0, width = 1280, height = 720, reference_rays = 2;
     float time = 0, exposure = 0;
     bool quick = false, no_panel = false;
     std::vector<std::string> materials;
@@ -33,6 +33,14 @@ RegisterCommand view_command({"view",
         app.add_flag("--quick-fields", args->quick,
                      "Bake small visibility fields (seconds instead of minutes; coarser shadows)");
         app.add_flag("--no-panel", args->no_panel, "Hide the control panel (H toggles it)");
+        app.add_option("--view", args->view,
+                       "What the window shows (R cycles): rsl, rays (the ray-traced reference: SxS shadow rays per "
+                       "vertex and light traced on the GPU) or split (RSL left, rays right, each with its time)")
+            ->check(CLI::IsMember({"rsl", "rays", "split"}))
+            ->capture_default_str();
+        app.add_option("--reference-rays", args->reference_rays, "S of the ray-traced reference, 1..16")
+            ->check(CLI::Range(1, GpuRayOptions::kMaxSamplesPerSide))
+            ->capture_default_str();
         app.add_option("--screenshot", args->screenshot, "Write the last frame to this PNG and exit (with --frames)");
         app.add_option("--frames", args->frames, "Render N frames (playing the animation), then exit");
         app.callback([args, exposure] {
@@ -49,6 +57,8 @@ RegisterCommand view_command({"view",
             options.width = args->width;
             options.height = args->height;
             options.panel = !args->no_panel;
+            options.view = gl::parse_view_mode(args->view);
+            options.reference_rays = args->reference_rays;
             options.screenshot = args->screenshot;
             options.frames = args->frames;
             ProgressDisplay display;
