@@ -11,7 +11,7 @@ layout(std430, binding = BVH_INSTANCES_BINDING) readonly buffer BvhInstances { v
 layout(std430, binding = 0) readonly buffer Levels { int levels[]; };  // top nodes, deepest level first
 
 uniform int u_level_count;
-uniform int u_level_ends[32];  // per level, its end in levels[]
+uniform int u_level_ends[BVH_STACK];  // per level, its end in levels[] (GpuBvh: at most kBvhStack levels)
 uniform int u_parts;
 
 void grow(inout vec3 lo, inout vec3 hi, vec3 p) {

@@ -120,6 +120,8 @@ void GpuBvh::build_top(const std::vector<Bounds>& world_boxes) {
         if (next.empty()) break;
         levels.push_back(std::move(next));
     }
+    // bvh_refit.comp.glsl holds kBvhStack level ends; the depth limit keeps within them.
+    RSL_CHECK(int(levels.size()) <= kBvhStack);
     refit_levels_.clear(), level_ends_.clear();
     for (auto level = levels.rbegin(); level != levels.rend(); ++level) {
         for (const int n : *level) refit_levels_.push_back(top_first_ + n);
@@ -150,7 +152,7 @@ void GpuBvh::set_poses(const std::vector<Mat4>& part_to_world) {
     // The refit: one workgroup, level by level (bvh_refit.comp.glsl).
     glUseProgram(refit_.id());
     glUniform1i(uniform(refit_, "u_level_count"), int(level_ends_.size()));
-    glUniform1iv(uniform(refit_, "u_level_ends"), GLsizei(std::min<size_t>(level_ends_.size(), 64)), level_ends_.data());
+    glUniform1iv(uniform(refit_, "u_level_ends"), GLsizei(level_ends_.size()), level_ends_.data());
     glUniform1i(uniform(refit_, "u_parts"), int(parts_));
     bind(refit_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, levels_buffer_.id());

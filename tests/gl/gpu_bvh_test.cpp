@@ -111,6 +111,10 @@ TEST_CASE("GPU BVH rays equal Embree's on the robot", "[gl-bvh]") {
     test::gl_context();
     const Scene scene = load_scene(source / "assets/scenes/robot.json");
     gl::GpuBvh bvh(scene);
+    const gl::BvhStats& stats = bvh.stats();
+    WARN("robot BVH: " << stats.meshes << " meshes, " << stats.triangles << " triangles, " << stats.bottom_nodes
+                       << " nodes, depth " << stats.bottom_depth << ", built in " << stats.build_ms << " ms");
+    CHECK(stats.bottom_depth <= gl::kBvhStack - 1);
     for (const float t : {0.0f, 0.8f}) {
         size_t total = 0;
         const size_t differ = disagreements(scene, bvh, t, 3, 4, 1e30f, total);
