@@ -7,6 +7,7 @@
 #include "tools/bench/many_light_experiment.h"
 #include "src/lightfit/scene_lights.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -22,6 +23,9 @@
 #include "src/render/exact_visibility.h"
 #include "src/render/render_setup.h"
 #include "src/trace/ground_truth.h"
+#ifdef RSL_HAVE_GL
+#include "src/gl/gl_renderer.h"
+#endif
 
 namespace rsl {
 namespace {
@@ -31,6 +35,8 @@ struct Row {
     int setting = 0;      // K, S or the map's resolution
     int lights = 0;       // K shaded
     double frame_ms = 0;  // median shading time of one frame (GL: colours read back)
+    double gpu_pass_ms = 0;  // GL: median of the vertex pass's time (timer queries; the clock on llvmpipe)
+    bool gpu_clock = false;  // ... measured by the clock around glFinish
     uint64_t rays = 0;    // shadow rays per frame (ray-traced rows)
     double vertex_error = 0, objects_error = 0, worst_error = 0, image_error = 0;
     std::string worst_part;
@@ -57,6 +63,19 @@ int samples_for_budget(uint64_t budget, uint64_t pairs) {
     return std::clamp(int(std::floor(std::sqrt(per_pair))), 1, ExactVisibility::kMaxSamplesPerSide);
 }
 
+// The GL renderer's last vertex pass time (timer queries, or the clock
+// where they measure nothing: `clock`); 0 for the CPU renderer.
+double gpu_pass_ms(const VertexRenderer& renderer, bool& clock) {
+#ifdef RSL_HAVE_GL
+    if (const auto* gl_renderer = dynamic_cast<const gl::GlRenderer*>(&renderer)) {
+        const gl::PassTimings timings = gl_renderer->timings();
+        clock = timings.clock;
+        return timings.shade_ms;
+    }
+#endif
+    return 0.0;
+}
+
 // Output phase: results.json, table.md and every row's and the truth's EXR and PNG; returns the table.
 std::string write_results(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
                           double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
@@ -73,17 +92,20 @@ std::string write_results(const ManyLightExperiment& args, const Scene& scene, s
     std::string table = fmt::format(
         "Scene `{}`, environment `{}`, t = {}, {} vertices; truth {:.0f} ms. Errors: relative L2 against the "
         "truth (objects: all parts but {}). GL rows: {}.\n\n"
-        "| method | K | ms / frame | rays / frame | vertices | objects | worst part | image |\n"
-        "| --- | ---: | ---: | ---: | ---: | ---: | --- | ---: |\n",
+        "| method | K | ms / frame | GPU pass ms | rays / frame | vertices | objects | worst part | image |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: |\n",
         scene.name, scene.environment.file.filename().string(), args.time, vertices, truth_ms,
         fmt::format("{}", fmt::join(args.receivers, ", ")), gl_device);
     for (const Row& r : rows) {
         json["methods"].push_back({{"method", r.method}, {"setting", r.setting}, {"lights", r.lights},
-                                   {"frame_ms", r.frame_ms}, {"rays", r.rays}, {"vertex_error", r.vertex_error},
+                                   {"frame_ms", r.frame_ms}, {"gpu_pass_ms", r.gpu_pass_ms}, {"gpu_pass_clock", r.gpu_clock},
+                                   {"rays", r.rays}, {"vertex_error", r.vertex_error},
                                    {"objects_error", r.objects_error}, {"worst_part", r.worst_part},
                                    {"worst_part_error", r.worst_error}, {"image_error", r.image_error}});
-        table += fmt::format("| {} | {} | {:.1f} | {} | {:.4f} | {:.4f} | {} {:.4f} | {:.4f} |\n", r.label(), r.lights,
-                             r.frame_ms, r.rays ? fmt::format("{:.2f} M", double(r.rays) / 1e6) : std::string("–"),
+        const std::string gpu_ms =
+            r.gpu_pass_ms > 0 ? fmt::format("{:.1f}{}", r.gpu_pass_ms, r.gpu_clock ? " (clock)" : "") : std::string("–");
+        table += fmt::format("| {} | {} | {:.1f} | {} | {} | {:.4f} | {:.4f} | {} {:.4f} | {:.4f} |\n", r.label(), r.lights,
+                             r.frame_ms, gpu_ms, r.rays ? fmt::format("{:.2f} M", double(r.rays) / 1e6) : std::string("–"),
                              r.vertex_error, r.objects_error, r.worst_part, r.worst_error, r.image_error);
         write_exr_and_png(dir / (r.label() + ".exr"), r.image, ToneMap{0.0f, true});
     }
@@ -210,10 +232,14 @@ struct RowMeasurer {
         renderer.shade(colors);  // warm-up: per-thread scratch, GL programs and textures
         // set_time in the frame: what a moving scene pays each frame (the
         // occluder lists; the shadow maps are redrawn only after it).
+        std::vector<double> gpu_ms;
         row.frame_ms = median_ms(args.repeats, [&] {
             renderer.set_time(t);
             renderer.shade(colors);
+            gpu_ms.push_back(gpu_pass_ms(renderer, row.gpu_clock));
         });
+        std::sort(gpu_ms.begin(), gpu_ms.end());
+        row.gpu_pass_ms = gpu_ms[gpu_ms.size() / 2];
         row.rays = renderer.stats().shadow_rays;
         const VertexErrorReport report = compare_vertex_colors(colors, truth_colors);
         const ObjectErrorReport objects = object_errors(report, args.receivers);
