@@ -59,6 +59,9 @@ TEST_CASE("rsl render refuses non-finite and out-of-range numbers before loading
         {"--width 0", "--width 0: expected 1 to 16384 pixels (leave it out for the scene camera's width)"},
         {"--height -3", "--height -3: expected 1 to 16384 pixels"},
         {"--samples 1000", "--samples 1000: expected 1 to 16"},
+        {"--gpu-rays 17", "--gpu-rays 17: expected S of 1..16"},
+        {"--gpu-rays 2", "--gpu-rays: GPU ray-traced visibility is a GL baseline (add --backend gl)"},
+        {"--gpu-rays 2 --backend gl --shadow-maps 256", "--gpu-rays and --shadow-maps: pick one"},
     };
     for (const auto& [arguments, message] : cases) {
         const Run run = run_limited("render " + scene + " " + arguments + out);
