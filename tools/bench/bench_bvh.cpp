@@ -4,7 +4,7 @@
 // work of a ray, in box tests and triangle tests), which is what traversal pays.
 #include <embree3/rtcore.h>
 
-#include <cstring>
+#include <new>
 
 #include "src/core/error.h"
 #include "src/fields/field_cache.h"
