@@ -15,6 +15,13 @@ void check_gpu_ray_options(const GpuRayOptions& options) {
 }
 
 RayTracedVisibility::RayTracedVisibility(const Scene& scene, const std::vector<int>& first_vertex) : bvh_(scene) {
+    // The vertex pass's six storage blocks, the BVH's three and the border
+    // directions: more than the 8 that OpenGL 4.3 promises a compute shader.
+    GLint blocks = 0;
+    glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &blocks);
+    if (blocks < kRayTracedStorageBlocks)
+        throw_error("GPU rays need {} storage blocks in a compute shader; this driver allows {} ({})",
+                    kRayTracedStorageBlocks, blocks, context_description());
     // Per vertex of the vertex rectangle, its part-space border direction (or 0), as PosedScene moves it.
     std::vector<Vec4> inward(size_t(std::max(first_vertex.back(), 1)), Vec4(0.0f));
     for (size_t p = 0; p < scene.parts.size(); ++p) {

@@ -13,6 +13,9 @@
 
 namespace rsl::gl {
 
+// Storage blocks of the vertex pass with RAY_TRACED (the test-only recording adds two).
+inline constexpr int kRayTracedStorageBlocks = 12;
+
 // Throws rsl::Error for S outside 1..GpuRayOptions::kMaxSamplesPerSide.
 void check_gpu_ray_options(const GpuRayOptions& options);
 
