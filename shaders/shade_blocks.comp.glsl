@@ -162,10 +162,21 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
     vec2 alignment = view_alignment(wo);
     int first = u_environment_enabled ? 0 : u_environment_lights;
     int last = u_local_enabled ? u_light_count : u_environment_lights;
+    // The lights whose square reaches the vertex's hemisphere first, then
+    // the shares of those alone: the loop's turns are the most any lane
+    // has, not every light (see shadow_by_occluder).
+    uint reaching[LIGHT_WORDS];
+    for (int w = 0; w < LIGHT_WORDS; ++w) reaching[w] = 0u;
     for (int l = first; l < last; ++l) {
         PointLight light = light_at(l, p);
+        if (light.h > 0.0f && square_reaches_hemisphere(frame_to_local(frame, light.direction).z, light.h))
+            reaching[l / 32] |= 1u << uint(l % 32);
+    }
+    for (int w = 0; w < LIGHT_WORDS; ++w)
+    for (uint left = reaching[w]; left != 0u; left &= left - 1u) {
+        int l = w * 32 + findLSB(left);
+        PointLight light = light_at(l, p);
         vec3 local = frame_to_local(frame, light.direction);
-        if (!(light.h > 0.0f) || !square_reaches_hemisphere(local.z, light.h)) continue;
         vec2 lp = hemisphere_to_plane(local);
         vec2 square = isotropic ? to_view_aligned(lp, alignment) : lp;
         vec3 brdf = brdf_average(material, square, light.h, wo);
@@ -245,10 +256,17 @@ OccluderAtVertex occluder_at_vertex(int o, vec3 p) {
 
 uint shadow_by_occluder(int o, inout OccluderAtVertex v, vec3 p, LocalFrame frame, int w, uint bits,
                         inout uint live[LIGHT_WORDS]) {
-    uint lookups = 0u;
     mat3 inverse_linear = mat3(v.inverse);
-    for (; bits != 0u; bits &= bits - 1u) {
-        int bit = findLSB(bits);
+    // The cheap answers first, in one loop over the lights: the vertex's own
+    // culling tests, a receiver inside the part (0), the small-occluder rule
+    // alone; the lights left for the tables (or an exact shape) after, in a
+    // loop of their own. A software rasterizer runs every loop for the most
+    // turns any lane of its vector takes and runs both sides of an `if`,
+    // so the tables' reads must not ride in the loop of every light.
+    bool shape = v.shape.w > 0.5;
+    uint lookups = 0u, needed = 0u;
+    for (uint left = bits; left != 0u; left &= left - 1u) {
+        int bit = findLSB(left);
         int l = w * 32 + bit;
         PointLight light = light_at(l, p);
         vec3 toward = inverse_linear * light.direction;  // not normalized
@@ -256,12 +274,29 @@ uint shadow_by_occluder(int o, inout OccluderAtVertex v, vec3 p, LocalFrame fram
         if (ovdf_unshadowed(dot(dir, v.pole), v.cone, light.h)) continue;
         if (clears_box_face_scaled(v.sides, toward, v.face_scale, square_cone_sine(light.h))) continue;
         ++lookups;
+        if (shape || v.receiver.kind == kOvdfOutside) {
+            if (shape) needed |= 1u << uint(bit);
+            continue;  // an outside receiver's factor is 1
+        }
+        OvdfSmall small = ovdf_receiver_small(v.receiver, dir, light.h);
+        if (v.receiver.kind == kOvdfLocated && small.weight < 1.0f) {
+            needed |= 1u << uint(bit);
+            continue;
+        }
+        g_visibility[l] *= v.receiver.kind == kOvdfInside ? 0.0f : small.fraction;
+        if (!(g_visibility[l] > 0.0)) live[w] &= ~(1u << uint(bit));
+    }
+    for (; needed != 0u; needed &= needed - 1u) {
+        int bit = findLSB(needed);
+        int l = w * 32 + bit;
+        PointLight light = light_at(l, p);
         float fraction;
-        if (v.shape.w > 0.5) {
+        if (shape) {
             vec2 lp = hemisphere_to_plane(frame_to_local(frame, light.direction));
             fraction = exact_shape_fraction(o, v.shape, v.point, frame, inverse_linear, lp, light.h);
         } else {
-            fraction = ovdf_receiver_fraction(o, v.receiver, dir, light.h);
+            vec3 dir = normalize(inverse_linear * light.direction);
+            fraction = ovdf_receiver_tables(o, v.receiver, dir, light.h, ovdf_receiver_small(v.receiver, dir, light.h));
         }
         g_visibility[l] *= fraction;
         if (!(g_visibility[l] > 0.0)) live[w] &= ~(1u << uint(bit));

@@ -110,8 +110,12 @@ vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
         slice = int[4](s, s + 1, s + v, s + v + 1);
         weight = float[4]((1.0f - wi) * (1.0f - wj), wi * (1.0f - wj), (1.0f - wi) * wj, wi * wj);
     }
+    // The material's own slice count bounds the loop too: a block is one
+    // part, so its lanes stop together (a Lambert part reads one slice in
+    // a pass whose most is four).
+    int slices = material.y > 1.5f ? 1 : (material.y > 0.5f ? 2 : 4);
     vec3 sum = vec3(0.0f);
-    for (int k = 0; k < MAX_SLICES; ++k) sum += weight[k] * slice_integral(slice[k], t);
+    for (int k = 0; k < MAX_SLICES && k < slices; ++k) sum += weight[k] * slice_integral(slice[k], t);
     return max(sum * t.inv_full_area, vec3(0.0f));  // ≥ 0 as the CPU's: a tiny square's differences can cancel below 0
 }
 
@@ -243,20 +247,30 @@ OvdfReceiver ovdf_locate(int part, vec3 point) {
     return r;
 }
 
-// The light's half (OvdfLookup::visible_fraction) for a unit light in the
-// occluder's frame and a square of half-edge h: the small-occluder rule
-// where the square is wider than the part's cone, else the tables.
-float ovdf_receiver_fraction(int part, OvdfReceiver r, vec3 light, float h) {
-    if (r.kind == kOvdfOutside) return 1.0f;
-    if (r.kind == kOvdfInside) return 0.0f;
-    // A part narrower than the square: the small-occluder rule, which needs
-    // neither the pole frame nor the tables (the light's radius from the pole
-    // as the CPU's OvdfLookup takes it).
-    float small_weight = ovdf_small_occluder_weight(r.cone, h, r.occluded_area);
-    float small = small_weight > 0.0f ? ovdf_small_occluder_fraction(ovdf_pole_radial(dot(light, normalize(-r.dir))),
-                                                                       r.occluded_area, r.cone, h)
-                                      : 1.0f;
-    if (small_weight >= 1.0f) return small;
+// The light's half (OvdfLookup::visible_fraction, ovdf_receiver_fraction
+// below) for a unit light in the occluder's frame and a square of half-edge
+// h: the small-occluder rule where the square is wider than the part's
+// cone, else the tables. Split in two for the vertex pass, which runs the tables' half only for
+// the lights that need it: the small-occluder rule of a located receiver,
+// for a part narrower than the square (weight > 0; it needs neither the
+// pole frame nor the tables; the light's radius from the pole as the CPU's
+// OvdfLookup takes it), then the tables faded into it (weight < 1).
+struct OvdfSmall {
+    float weight;
+    float fraction;
+};
+OvdfSmall ovdf_receiver_small(OvdfReceiver r, vec3 light, float h) {
+    OvdfSmall small;
+    small.weight = ovdf_small_occluder_weight(r.cone, h, r.occluded_area);
+    small.fraction = small.weight > 0.0f ? ovdf_small_occluder_fraction(ovdf_pole_radial(dot(light, normalize(-r.dir))),
+                                                                          r.occluded_area, r.cone, h)
+                                         : 1.0f;
+    return small;
+}
+
+// The tables' half (OvdfLookup::visible_fraction past the small-occluder
+// rule) of a located receiver, faded into `small`.
+float ovdf_receiver_tables(int part, OvdfReceiver r, vec3 light, float h, OvdfSmall small) {
     vec4 bases = part_texel(part, kSlotOvdfBases);
     vec4 grid = part_texel(part, kSlotOvdfGrid);
     vec4 records = part_texel(part, kSlotOvdfRecords);
@@ -307,7 +321,15 @@ float ovdf_receiver_fraction(int part, OvdfReceiver r, vec3 light, float h) {
     }
     float by_tables = ovdf_area_bound(visible_fraction_from_distance(ovdf_receiver_distance(distance, radial, r.cone), h),
                                       r.occluded_area, h);
-    return ovdf_fade_small_occluder(by_tables, small, small_weight);
+    return ovdf_fade_small_occluder(by_tables, small.fraction, small.weight);
+}
+
+float ovdf_receiver_fraction(int part, OvdfReceiver r, vec3 light, float h) {
+    if (r.kind == kOvdfOutside) return 1.0f;
+    if (r.kind == kOvdfInside) return 0.0f;
+    OvdfSmall small = ovdf_receiver_small(r, light, h);
+    if (small.weight >= 1.0f) return small.fraction;
+    return ovdf_receiver_tables(part, r, light, h, small);
 }
 
 // Ovdf::visible_fraction (AlignedCoefficients) as OvdfLookup computes it:
