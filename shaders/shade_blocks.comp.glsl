@@ -19,10 +19,11 @@
 //     candidate's lights that the vertex's own tests keep;
 //  5. the sum, into the vertex-colour buffer the display pass draws.
 //
-// The host prepends MAX_STRIDE, SHADE_BLOCK, LIGHT_WORDS (32 lights a word), LAYERED
+// The host prepends MAX_STRIDE, SVDF_STRIDE, OVDF_STRIDE, SHADE_BLOCK, LIGHT_WORDS (32 lights a word), LAYERED
 // (some part has a specular table), RECORD_BLOCK_LIGHTS (tests only), RAY_TRACED (the
 // ray-traced baseline, RenderOptions::gpu_rays), SHADOW_MAPPED (the shadow-map baseline
-// may be on), MAX_SLICES (BRDF slices per average), the layout constants, the shading core,
+// may be on), LOCAL_LIGHTS (the frame has sphere lights), MAX_SLICES (BRDF slices per average),
+// the layout constants, the shading core,
 // shade_point.glsl and, with RAY_TRACED, bvh_traverse.glsl and ray_visibility.glsl.
 
 layout(local_size_x = SHADE_BLOCK) in;  // kShadeBlock: a layout takes a literal

@@ -10,7 +10,7 @@
 // light-independent half of each lookup) and the per-pixel pass (shade_pixels.*.glsl, the
 // parts shaded per pixel drawn from the camera). The host prepends, in
 // order (gl_objects.cpp shading_prelude, shade_point_prelude): MAX_STRIDE
-// (texels of a CPCA row), the layout constants of src/gl/gpu_layout.h
+// (texels of a CPCA row), SVDF_STRIDE and OVDF_STRIDE (below), the layout constants of src/gl/gpu_layout.h
 // (kPartStride, kSlot*, kArrayWidth, kArrayShift, kLightTexels,
 // kSamplesPerTexel, kPi, kSqrt2), the shading core
 // src/shading/shading_core.h, whose functions (frames, the equal-area map,
@@ -21,6 +21,22 @@
 // With u_shadow_maps (RenderOptions::shadow_maps, a competitor baseline;
 // docs/design/GPU_DESIGN.md "Shadow-mapped visibility") every environment light's
 // visibility comes from its depth map instead (shadow_visible_fraction).
+
+// SVDF_STRIDE, OVDF_STRIDE (the host's): the texels of a CPCA row when every
+// field of the kind shares them, so that the loops over a row have a
+// constant count (a software rasterizer pays a loop's every turn); 0: read
+// from the field's record.
+#ifndef SVDF_STRIDE
+#define SVDF_STRIDE 0
+#endif
+#ifndef OVDF_STRIDE
+#define OVDF_STRIDE 0
+#endif
+// LOCAL_LIGHTS (the vertex pass's define): 0 when the frame has no sphere
+// lights, so that light_at compiles the environment squares' path alone.
+#ifndef LOCAL_LIGHTS
+#define LOCAL_LIGHTS 1
+#endif
 
 uniform sampler2D u_positions;     // vertex rectangle: part-space position, part
 uniform sampler2D u_normals;       // normal, SVDF cluster
@@ -142,14 +158,14 @@ LocalFrame g_corner_frame[3];
 
 // Corner `corner`'s CPCA coefficients: those of the part's vertex `local_vertex`.
 void load_svdf_coefficients(vec4 svdf, int local_vertex, int corner) {
-    int stride = int(svdf.w);
+    int stride = SVDF_STRIDE > 0 ? SVDF_STRIDE : int(svdf.w);
     for (int t = 0; t < stride; ++t)
         g_svdf_coefficients[corner * MAX_STRIDE + t] = fetch(u_svdf_coefficients, int(svdf.y) + local_vertex * stride + t);
 }
 
 // Corner `corner`'s reconstructed SVDF distance at plane point p.
 float svdf_distance(vec4 svdf, int cluster, vec2 p, int corner) {
-    int n = int(svdf.z), stride = int(svdf.w), dims = n * n;
+    int n = int(svdf.z), stride = SVDF_STRIDE > 0 ? SVDF_STRIDE : int(svdf.w), dims = n * n;
     BilinearTaps taps = bilinear_taps(n, p);
     float d = 0.0f;
     for (int k = 0; k < 4; ++k) {
@@ -274,7 +290,7 @@ float ovdf_receiver_tables(int part, OvdfReceiver r, vec3 light, float h, OvdfSm
     vec4 bases = part_texel(part, kSlotOvdfBases);
     vec4 grid = part_texel(part, kSlotOvdfGrid);
     vec4 records = part_texel(part, kSlotOvdfRecords);
-    int n = int(grid.x), vdt_n = int(grid.y), stride = int(grid.z), m = int(grid.w);
+    int n = int(grid.x), vdt_n = int(grid.y), stride = OVDF_STRIDE > 0 ? OVDF_STRIDE : int(grid.z), m = int(grid.w);
     int tables = int(bases.x), coefficients = int(bases.y), dims = vdt_n * vdt_n;
     // The receiver's own pole frame, twisted by the face rule like its
     // samples: one plane point for all eight samples.
@@ -473,25 +489,26 @@ struct PointLight {
 };
 PointLight light_at(int l, vec3 p) {
     vec4 a = fetch(u_lights, kLightTexels * l), b = fetch(u_lights, kLightTexels * l + 1);
-    PointLight light;
-    if (l < u_environment_lights) {
-        light.direction = a.xyz;
-        light.h = a.w;
-        light.integral = b.rgb;
-        return light;
+    PointLight light;  // an environment square: direction, half-edge, 2r²·I
+    light.direction = a.xyz;
+    light.h = a.w;
+    light.integral = b.rgb;
+#if LOCAL_LIGHTS
+    if (l >= u_environment_lights) {
+        // A sphere light: center a.xyz, radius a.w, radiance b.rgb; spot axis c.xyz, cone (b.w, c.w).
+        vec3 to_center = a.xyz - p;
+        float distance = length(to_center);
+        light.h = 0.0;
+        light.integral = vec3(0.0);
+        light.direction = vec3(0.0, 0.0, 1.0);
+        if (!(distance > a.w)) return light;
+        light.direction = to_center / distance;
+        float solid_angle = sphere_cap_solid_angle(a.w, distance);
+        light.h = half_edge_for_solid_angle(solid_angle);
+        vec4 c = fetch(u_lights, kLightTexels * l + 2);
+        light.integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -light.direction, b.w, c.w));
     }
-    // A sphere light: center a.xyz, radius a.w, radiance b.rgb; spot axis c.xyz, cone (b.w, c.w).
-    vec3 to_center = a.xyz - p;
-    float distance = length(to_center);
-    light.h = 0.0;
-    light.integral = vec3(0.0);
-    light.direction = vec3(0.0, 0.0, 1.0);
-    if (!(distance > a.w)) return light;
-    light.direction = to_center / distance;
-    float solid_angle = sphere_cap_solid_angle(a.w, distance);
-    light.h = half_edge_for_solid_angle(solid_angle);
-    vec4 c = fetch(u_lights, kLightTexels * l + 2);
-    light.integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -light.direction, b.w, c.w));
+#endif
     return light;
 }
 

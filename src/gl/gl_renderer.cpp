@@ -41,7 +41,10 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     : VertexRenderer(scene, std::move(environment_lights), std::move(fields), options) {
     require_gl_version(4, 3, "the GL renderer");
     const PackedGeometry geometry = pack_geometry(scene, fields_, options_.exact_shapes);
-    vertex_pass_defines_ = fmt::format("#define MAX_STRIDE {}\n", geometry.max_stride);
+    // SVDF_STRIDE, OVDF_STRIDE: a row's texels when every field shares them, else 0 (shade_point.glsl).
+    vertex_pass_defines_ = fmt::format("#define MAX_STRIDE {}\n#define SVDF_STRIDE {}\n#define OVDF_STRIDE {}\n",
+                                       geometry.max_stride, std::max(geometry.svdf_stride, 0),
+                                       std::max(geometry.ovdf_stride, 0));
     face_normal_.assign(geometry.face_normal.begin(), geometry.face_normal.end());
     face_s_.assign(geometry.face_s.begin(), geometry.face_s.end());
     face_t_.assign(geometry.face_t.begin(), geometry.face_t.end());
@@ -86,33 +89,31 @@ void GlRenderer::set_sampler_units(const Program& program) {
     glUniform3fv(uniform(program, "u_face_t"), 6, &face_t_[0].x);
 }
 
-Program GlRenderer::make_vertex_pass(size_t light_words, bool record) {
+Program GlRenderer::make_vertex_pass(const VertexPassVariant& variant, bool record) {
     const std::string defines =
         vertex_pass_defines_ +
         fmt::format("#define SHADE_BLOCK {}\n#define LIGHT_WORDS {}\n#define LAYERED {}\n#define RECORD_BLOCK_LIGHTS {}\n"
-                    "#define RAY_TRACED {}\n#define SHADOW_MAPPED {}\n#define MAX_SLICES {}\n#define SELF_CORNERS 1\n",
-                    kShadeBlock, light_words, layered_ ? 1 : 0, record ? 1 : 0, options_.gpu_rays.enabled ? 1 : 0,
-                    options_.shadow_maps.enabled ? 1 : 0, max_slices()) +
-        shading_prelude() + shade_point_prelude() + (options_.gpu_rays.enabled ? RayTracedVisibility::shader_text() : "");
+                    "#define RAY_TRACED {}\n#define SHADOW_MAPPED {}\n#define LOCAL_LIGHTS {}\n#define MAX_SLICES {}\n"
+                    "#define SELF_CORNERS 1\n",
+                    kShadeBlock, variant.light_words, variant.layered ? 1 : 0, record ? 1 : 0, variant.rays ? 1 : 0,
+                    variant.shadow_maps ? 1 : 0, variant.local_lights ? 1 : 0, variant.slices) +
+        shading_prelude() + shade_point_prelude() + (variant.rays ? RayTracedVisibility::shader_text() : "");
     Program program = build_compute_program("shade_blocks.comp.glsl", defines);
     set_sampler_units(program);
     return program;
 }
 
-void GlRenderer::build_vertex_pass(size_t light_words) {
-    vertex_pass_ = make_vertex_pass(light_words, false);
-    vertex_pass_light_words_ = light_words;
-    vertex_pass_layered_ = layered_;
-    vertex_pass_rays_ = options_.gpu_rays.enabled;
-    vertex_pass_shadow_maps_ = options_.shadow_maps.enabled;
-    vertex_pass_slices_ = max_slices();
-}
-
-int GlRenderer::max_slices() const {
-    int slices = 1;
+GlRenderer::VertexPassVariant GlRenderer::frame_vertex_pass_variant() const {
+    VertexPassVariant variant;
+    variant.light_words = std::max<size_t>(frame_.occluder_lists().light_words, 1);
+    variant.layered = layered_;
+    variant.rays = options_.gpu_rays.enabled;
+    variant.shadow_maps = options_.shadow_maps.enabled;
+    variant.local_lights = !frame_.light_positions().empty();
+    variant.slices = 1;
     for (const auto& table : part_tables_)
-        if (table) slices = std::max(slices, !table->isotropic() ? 4 : table->view_independent() ? 1 : 2);
-    return slices;
+        if (table) variant.slices = std::max(variant.slices, !table->isotropic() ? 4 : table->view_independent() ? 1 : 2);
+    return variant;
 }
 
 GlRenderer::~GlRenderer() = default;
@@ -391,17 +392,16 @@ void GlRenderer::shade_on_device() {
     sync_materials();
     upload_frame();
     render_shadow_maps();
-    const size_t light_words = std::max<size_t>(frame_.occluder_lists().light_words, 1);
     if (options_.gpu_rays.enabled) {
         if (!rays_) rays_ = std::make_unique<RayTracedVisibility>(scene_, first_vertex_);
         std::vector<Mat4> transforms;
         for (const PartPose& pose : frame_.poses()) transforms.push_back(pose.transform);
         rays_->set_poses(transforms);
     }
-    if (!vertex_pass_ || light_words != vertex_pass_light_words_ || layered_ != vertex_pass_layered_ ||
-        options_.gpu_rays.enabled != vertex_pass_rays_ || options_.shadow_maps.enabled != vertex_pass_shadow_maps_ ||
-        max_slices() != vertex_pass_slices_)
-        build_vertex_pass(light_words);
+    if (const VertexPassVariant variant = frame_vertex_pass_variant(); !vertex_pass_ || variant != vertex_pass_variant_) {
+        vertex_pass_ = make_vertex_pass(variant, false);
+        vertex_pass_variant_ = variant;
+    }
     begin_pass(kPassShade);
     run_vertex_pass(vertex_pass_);
     end_pass(kPassShade);
@@ -452,7 +452,7 @@ std::vector<std::vector<uint32_t>> GlRenderer::block_candidate_lights() {
                  GL_STATIC_DRAW);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, recorded.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, record_offsets.id());
-    const Program program = make_vertex_pass(words, true);
+    const Program program = make_vertex_pass(frame_vertex_pass_variant(), true);
     run_vertex_pass(program);
     std::vector<uint32_t> flat(std::max<size_t>(total, 1));
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, recorded.id());

@@ -150,14 +150,20 @@ private:
     // pose is the caller's (the vertex colours' view is the frame's camera).
     Image draw_image(const PinholeCamera& camera);
     void upload_geometry(const PackedGeometry& geometry);
-    // The vertex pass for the frame's light words (32 lights a word) and
-    // layers: built again when the light count crosses a multiple of 32 or
-    // the first textured material comes or the last goes.
-    void build_vertex_pass(size_t light_words);
-    // BRDF slices an average blends, the most over the parts' tables: 1
-    // (isotropic, view-independent), 2 (isotropic) or 4 (anisotropic).
-    int max_slices() const;
-    Program make_vertex_pass(size_t light_words, bool record);
+    // What the vertex pass is compiled for (its defines): it is built again
+    // when the frame needs another, e.g. when the light count crosses a
+    // multiple of 32 or the first textured material comes.
+    struct VertexPassVariant {
+        size_t light_words = 0;     // LIGHT_WORDS (32 lights a word)
+        bool layered = false;       // LAYERED: the specular layer
+        bool rays = false;          // RAY_TRACED: ray-traced visibility
+        bool shadow_maps = false;   // SHADOW_MAPPED: the shadow-map branch
+        bool local_lights = false;  // LOCAL_LIGHTS: the frame has sphere lights
+        int slices = 0;             // MAX_SLICES: BRDF slices an average blends, the most over the parts' tables
+        bool operator==(const VertexPassVariant&) const = default;
+    };
+    VertexPassVariant frame_vertex_pass_variant() const;
+    Program make_vertex_pass(const VertexPassVariant& variant, bool record);
     // Dispatches `program` (a vertex pass) over every block.
     void run_vertex_pass(const Program& program);
     // The sampler units and the OVDF cube faces' uniforms of a program that shades (shade_point.glsl).
@@ -208,12 +214,8 @@ private:
     size_t gpu_bytes_ = 0;
 
     Program vertex_pass_, display_program_, pixel_program_;
-    std::string vertex_pass_defines_;  // MAX_STRIDE
-    size_t vertex_pass_light_words_ = 0;
-    bool vertex_pass_layered_ = false;  // built with the specular layer (LAYERED)
-    bool vertex_pass_rays_ = false;     // built with ray-traced visibility (RAY_TRACED)
-    bool vertex_pass_shadow_maps_ = false;  // built with the shadow-map branch (SHADOW_MAPPED)
-    int vertex_pass_slices_ = 0;            // MAX_SLICES it was built with
+    std::string vertex_pass_defines_;  // MAX_STRIDE, SVDF_STRIDE, OVDF_STRIDE
+    VertexPassVariant vertex_pass_variant_;  // what vertex_pass_ was built for
     std::vector<Vec3> face_normal_, face_s_, face_t_;  // the OVDF cube faces' uniforms
     std::vector<char> rectangle_parts_;  // per part: one flat rectangle (find_rectangle)
     std::vector<Bounds> part_bounds_;  // per part: its mesh's box (part space)

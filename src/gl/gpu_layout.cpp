@@ -113,6 +113,7 @@ void pack_part_svdf(const Svdf& svdf, PackedGeometry& g, SharedFieldRecords& sha
     const CpcaModel& m = svdf.model;
     const int stride = cpca_stride(m.vectors);
     g.max_stride = std::max(g.max_stride, stride);
+    g.svdf_stride = shared_stride(g.svdf_stride, stride);
     const size_t tables = append_tables(m, g.svdf_tables, g.svdf_tables_half);
     const size_t coefficients = append_coefficients(m, g.svdf_coefficients);
     record[kSlotSvdf] = Vec4(float(tables), float(coefficients), float(svdf.resolution()), float(stride));
@@ -215,6 +216,7 @@ void pack_part_ovdf(const Scene& scene, size_t p, const OccluderField* field, Pa
     check_clustered_by_segment(scene, p, o);
     const int stride = cpca_stride(o.model.vectors);
     g.max_stride = std::max(g.max_stride, stride);
+    g.ovdf_stride = shared_stride(g.ovdf_stride, stride);
     const size_t tables = append_tables(o.model, g.ovdf_tables, g.ovdf_tables_half);
     const size_t coefficients = append_coefficients(o.model, g.ovdf_coefficients);
     const OvdfFrameBlocks blocks = append_ovdf_frames(o, g.ovdf_frames);

@@ -165,6 +165,8 @@ inline size_t block_start(size_t size) { return (size + kBlockAlign - 1) / kBloc
 
 // Texels of a reconstruction row or coefficient row for k basis vectors.
 inline int cpca_stride(int vectors) { return (vectors + 1 + 3) / 4; }
+// `shared` (PackedGeometry::svdf_stride, ovdf_stride) after a field of `stride`.
+inline int shared_stride(int shared, int stride) { return shared == 0 || shared == stride ? stride : -1; }
 
 struct PackedGeometry {
     std::vector<Vec4> positions, normals, tangents;  // per vertex (the vertex rectangle)
@@ -174,6 +176,9 @@ struct PackedGeometry {
     std::vector<Vec4> ovdf_tables, ovdf_coefficients, ovdf_frames;
     bool svdf_tables_half = true, ovdf_tables_half = true;  // every table value exactly a half
     int max_stride = 1;
+    // The stride every SVDF (OVDF) shares: the shaders' loops over a row then
+    // have a constant count; 0 when there is none, -1 when strides differ.
+    int svdf_stride = 0, ovdf_stride = 0;
     std::array<Vec3, 6> face_normal{}, face_s{}, face_t{};  // OVDF cube faces (as Ovdf::prepare)
 };
 

@@ -133,6 +133,27 @@ TEST_CASE("GL vertex colours equal the CPU renderer's (fields, local lights, iso
     check_against_cpu(scene, test::random_rsls(16, 3), fields, RenderOptions{}, {0.0f, 0.5f, 1.0f});
 }
 
+TEST_CASE("GL matches the CPU when the parts' fields have rows of different lengths", "[gl-renderer]") {
+    // One stride for every field compiles the row loops with a constant
+    // count (SVDF_STRIDE, OVDF_STRIDE); fields of 4 and 8 PCA vectors (2 and
+    // 3 texels a row) mixed make the shader read each field's own.
+    Scene scene = moving_scene();
+    const PartFields four = bake_part_fields(scene, FieldBakeOptions{});
+    scene.precompute.svdf_vectors = 8, scene.precompute.ovdf_vectors = 8;
+    const PartFields eight = bake_part_fields(scene, FieldBakeOptions{});
+    PartFields mixed = four;
+    for (size_t p = 1; p < scene.parts.size(); p += 2) {
+        mixed.self[p] = eight.self[p];
+        mixed.occluder[p] = eight.occluder[p];
+    }
+    const gl::PackedGeometry uniform = gl::pack_geometry(scene, four), varied = gl::pack_geometry(scene, mixed);
+    CHECK(uniform.svdf_stride == 2);
+    CHECK(uniform.ovdf_stride == 2);
+    CHECK(varied.svdf_stride == -1);
+    CHECK(varied.ovdf_stride == -1);
+    check_against_cpu(scene, test::random_rsls(16, 3), mixed, RenderOptions{}, {0.0f, 0.5f});
+}
+
 TEST_CASE("GL shades a textured part in two layers as the CPU does", "[gl-renderer]") {
     // The ground's gltf_pbr material gets a base colour texture: its colours
     // become a diffuse layer at unit texture and a specular layer, each from
