@@ -83,24 +83,6 @@ GLuint compile(GLenum type, const std::string& name, const std::string& defines)
     return compile_shader(type, with_defines(shader_text(name), defines), "shaders/" + name);
 }
 
-// Links the compiled `shaders` (deleted here) into a program; throws
-// rsl::Error with the driver's log, naming `label`.
-Program link_program(std::initializer_list<GLuint> shaders, const std::string& label) {
-    Program program(glCreateProgram());
-    for (const GLuint shader : shaders) glAttachShader(program.id(), shader);
-    glLinkProgram(program.id());
-    for (const GLuint shader : shaders) glDeleteShader(shader);
-    GLint ok = 0;
-    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
-        throw Error(fmt::format("{}: link failed:\n{}", label, log));
-    }
-    return program;
-}
 
 }  // namespace
 
@@ -146,6 +128,23 @@ Program build_program(const std::string& vertex, const std::string& fragment, co
         throw;
     }
     return link_program({vs, fs}, fmt::format("shaders/{} + shaders/{}", vertex, fragment));
+}
+
+Program link_program(std::initializer_list<GLuint> shaders, const std::string& label) {
+    Program program(glCreateProgram());
+    for (const GLuint shader : shaders) glAttachShader(program.id(), shader);
+    glLinkProgram(program.id());
+    for (const GLuint shader : shaders) glDeleteShader(shader);
+    GLint ok = 0;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+        throw Error(fmt::format("{}: link failed:\n{}", label, log));
+    }
+    return program;
 }
 
 Program build_compute_program(const std::string& compute, const std::string& defines) {

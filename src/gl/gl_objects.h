@@ -3,6 +3,7 @@
 // shader programs built from embedded sources, and flat arrays stored in 2D
 // textures (2D textures are the one kind every driver sizes generously).
 #include <cstddef>
+#include <initializer_list>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,6 +65,10 @@ Query make_query();
 // Compiles one shader from `source`; throws rsl::Error with the driver's log,
 // naming `label` (the shader file, or what the source is).
 GLuint compile_shader(GLenum type, const std::string& source, const std::string& label);
+
+// Links the compiled `shaders` (deleted here) into a program; throws
+// rsl::Error with the driver's log, naming `label`.
+Program link_program(std::initializer_list<GLuint> shaders, const std::string& label);
 
 // Compiles and links the embedded shaders/<vertex> and shaders/<fragment>;
 // `defines` (e.g. "#define MAX_PARTS 32\n") go right after the #version line.
