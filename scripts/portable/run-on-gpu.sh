@@ -4,7 +4,8 @@
 # run-on-gpu.sh; docs/GPU.md, "Running on an NVIDIA GPU server"):
 #   ./run-on-gpu.sh [--quick] [--yard 128,1024] [--out DIR]
 # It checks that rsl starts, runs `rsl bench gl` (robot and kitchen; --quick:
-# small fields, a smoke test), then renders three frames of each yard scene
+# small fields, a smoke test) and `rsl bench gl-costs` (what a read and a
+# branch cost on the device), then renders three frames of each yard scene
 # with the GPU and the CPU backends. What it prints also goes to DIR/log.txt
 # (default results/), the benchmark's JSON lines to DIR/bench-gl.jsonl.
 set -euo pipefail
@@ -72,8 +73,8 @@ fi
 
 scenes=$root/assets/scenes
 generated=$root/assets/generated
-echo "== rsl bench gl ${quick[*]}"
-"$rsl" bench gl "${quick[@]}" --scenes "$scenes" --generated-assets "$generated" --out "$out/bench-out" |
+echo "== rsl bench gl gl-costs ${quick[*]}"
+"$rsl" bench gl gl-costs "${quick[@]}" --scenes "$scenes" --generated-assets "$generated" --out "$out/bench-out" |
   tee "$out/bench-gl.jsonl"
 device=$(sed -n 's/.*"device":"\([^"]*\)".*/\1/p' "$out/bench-gl.jsonl" | head -1)
 echo "OpenGL device: ${device:-none reported}"
