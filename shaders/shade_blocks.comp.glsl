@@ -275,10 +275,11 @@ uint shadow_by_occluder(int o, inout OccluderAtVertex v, vec3 p, LocalFrame fram
         if (ovdf_unshadowed(dot(dir, v.pole), v.cone, light.h)) continue;
         if (clears_box_face_scaled(v.sides, toward, v.face_scale, square_cone_sine(light.h))) continue;
         ++lookups;
-        if (shape || v.receiver.kind == kOvdfOutside) {
-            if (shape) needed |= 1u << uint(bit);
-            continue;  // an outside receiver's factor is 1
+        if (shape) {
+            needed |= 1u << uint(bit);
+            continue;
         }
+        if (v.receiver.kind == kOvdfOutside) continue;  // its factor is 1
         OvdfSmall small = ovdf_receiver_small(v.receiver, dir, light.h);
         if (v.receiver.kind == kOvdfLocated && small.weight < 1.0f) {
             needed |= 1u << uint(bit);

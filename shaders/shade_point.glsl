@@ -266,11 +266,12 @@ OvdfReceiver ovdf_locate(int part, vec3 point) {
 // The light's half (OvdfLookup::visible_fraction, ovdf_receiver_fraction
 // below) for a unit light in the occluder's frame and a square of half-edge
 // h: the small-occluder rule where the square is wider than the part's
-// cone, else the tables. Split in two for the vertex pass, which runs the tables' half only for
-// the lights that need it: the small-occluder rule of a located receiver,
-// for a part narrower than the square (weight > 0; it needs neither the
-// pole frame nor the tables; the light's radius from the pole as the CPU's
-// OvdfLookup takes it), then the tables faded into it (weight < 1).
+// cone, else the tables. In two halves for the vertex pass, which reads the
+// tables only for the lights that need them: the small-occluder rule of a
+// located receiver, for a part narrower than the square (weight > 0; it
+// needs neither the pole frame nor the tables; the light's radius from the
+// pole as the CPU's OvdfLookup takes it), then the tables faded into it
+// (weight < 1).
 struct OvdfSmall {
     float weight;
     float fraction;

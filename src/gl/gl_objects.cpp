@@ -83,7 +83,6 @@ GLuint compile(GLenum type, const std::string& name, const std::string& defines)
     return compile_shader(type, with_defines(shader_text(name), defines), "shaders/" + name);
 }
 
-
 }  // namespace
 
 GLuint compile_shader(GLenum type, const std::string& source, const std::string& label) {
