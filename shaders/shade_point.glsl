@@ -44,7 +44,7 @@ uniform sampler2D u_tangents;      // tangent
 uniform sampler2D u_parts;         // part records (kPartStride texels each)
 uniform sampler2D u_lights;        // kLightTexels per light
 uniform usampler2D u_occluder_lists;  // FrameState::occluder_list_texels: offsets, then part indices
-uniform sampler3D u_brdf;          // SAT corners, slices stacked
+uniform sampler3D u_brdf;          // per slice: rows of corner sums, then texels (append_texture_rows)
 uniform sampler2D u_brdf_offsets;  // per slice mean offset
 uniform sampler2D u_svdf_tables;
 uniform sampler2D u_svdf_coefficients;
@@ -88,19 +88,15 @@ uint list_texel(int i) { return uint_fetch(u_occluder_lists, i); }
 
 // ---- BRDF summed-area tables (brdf_table.cpp) ----
 
-vec3 slice_integral(int s, SquareTaps t) {
-    vec3 sum = vec3(0.0);
-    for (int n = 0; n < 4; ++n)
-        for (int m = 0; m < 4; ++m) sum += (t.wx[m] * t.wy[n]) * texelFetch(u_brdf, ivec3(t.ax[m], t.by[n], s), 0).rgb;
-    return sum + fetch(u_brdf_offsets, s).rgb * t.clipped_area;
-}
 
 // Average of ρ·cos over the square (table frame) for view `view`; material =
 // (first slice, isotropic: 1 / view-independent too: 2 / 0, V, 0). The
-// slices and their weights first, then MAX_SLICES slice integrals (the most
-// any table of the pass needs, a define of the host): software rasterizers
-// run both sides of every branch, so the table reads stay out of them; a
-// slice of weight 0 adds exactly 0.
+// slices and their weights first, then the taps of each slice summed in
+// the order of the CPU's batch kernel (brdf_table_lookup.cpp: per pair of
+// columns over the rows, the column weights last), so that the two round
+// alike. Software rasterizers run both sides of every branch, so the table
+// reads stay out of them; MAX_SLICES (a define of the host) is the most
+// slices any table of the pass needs.
 #ifndef MAX_SLICES
 #define MAX_SLICES 4
 #endif
@@ -130,9 +126,27 @@ vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
     // part, so its lanes stop together (a Lambert part reads one slice in
     // a pass whose most is four).
     int slices = material.y > 1.5f ? 1 : (material.y > 0.5f ? 2 : 4);
-    vec3 sum = vec3(0.0f);
-    for (int k = 0; k < MAX_SLICES && k < slices; ++k) sum += weight[k] * slice_integral(slice[k], t);
-    return max(sum * t.inv_full_area, vec3(0.0f));  // ≥ 0 as the CPU's: a tiny square's differences can cancel below 0
+    // Columns ax[0], ax[1] (the first pair) and ax[2], ax[3] (the second), summed over the rows.
+    vec3 first_a = vec3(0.0f), first_b = vec3(0.0f), second_a = vec3(0.0f), second_b = vec3(0.0f);
+    vec3 offset = vec3(0.0f);
+    ivec4 column = t.ax + t.texels * (u_brdf_resolution + 1);  // the texels sit beside the corner sums
+    for (int k = 0; k < MAX_SLICES && k < slices; ++k) {
+        vec3 fa = vec3(0.0f), fb = vec3(0.0f), sa = vec3(0.0f), sb = vec3(0.0f);
+        for (int m = 0; m < 4; ++m) {
+            float w = weight[k] * t.wy[m];
+            fa += w * texelFetch(u_brdf, ivec3(column[0], t.by[m], slice[k]), 0).rgb;
+            fb += w * texelFetch(u_brdf, ivec3(column[1], t.by[m], slice[k]), 0).rgb;
+            sa += w * texelFetch(u_brdf, ivec3(column[2], t.by[m], slice[k]), 0).rgb;
+            sb += w * texelFetch(u_brdf, ivec3(column[3], t.by[m], slice[k]), 0).rgb;
+        }
+        first_a += fa;
+        first_b += fb;
+        second_a += sa;
+        second_b += sb;
+        offset += (weight[k] * t.offset_area) * fetch(u_brdf_offsets, slice[k]).rgb;
+    }
+    vec3 sum = (first_a * t.wx[0] + second_a * t.wx[2]) + (first_b * t.wx[1] + second_b * t.wx[3]) + offset;
+    return max(sum * t.inv_full_area, vec3(0.0f));  // ≥ 0 as the CPU's: a square's differences can cancel below 0
 }
 
 // ---- visibility distance tables (src/fields/vdt.h, svdf.h, ovdf.cpp) ----

@@ -10,7 +10,7 @@
 namespace rsl {
 
 std::shared_ptr<const BrdfTable> BrdfTable::build(const Brdf& brdf, const BrdfTableOptions& options) {
-    RSL_CHECK_GE(options.resolution, 2);
+    RSL_CHECK_GE(options.resolution, 4);  // a small square reads 4 texels per axis (brdf_sat.h)
     RSL_CHECK_GE(options.view_samples, 2);
     std::shared_ptr<BrdfTable> table(new BrdfTable());
     table->isotropic_ = brdf.isotropic();
@@ -34,34 +34,34 @@ std::shared_ptr<const BrdfTable> BrdfTable::build(const Brdf& brdf, const BrdfTa
     const int slices = table->slice_count();
     const size_t texels = table->grid_.size();
     const size_t corners = static_cast<size_t>(options.resolution + 1) * (options.resolution + 1);
-    table->texels_.resize(slices * texels);
-    table->sat_.resize(slices * corners * 3);
+    table->slice_floats_ = corners * 2 * 3;
+    std::vector<Color> texel_averages(slices * texels);
+    table->lookup_.resize(slices * corners * 2 * 3);
     table->offsets_.resize(slices);
 
     const TexelSampler sampler(table->grid_, options.interior_supersampling, options.edge_supersampling);
     tbb::parallel_for(tbb::blocked_range<int>(0, slices), [&](const tbb::blocked_range<int>& range) {
         for (int s = range.begin(); s < range.end(); ++s) {
-            Color* slice = table->texels_.data() + s * texels;
+            Color* slice = texel_averages.data() + s * texels;
             sampler.texel_averages(brdf, table->slice_views_[s], slice);
             table->store_slice(s, slice);
         }
     });
-    table->slice_floats_ = corners * 3;
     table->last_slice_ = slices - 1;
-    const float* last = table->sat_.data() + (slices - 1) * table->slice_floats_;
+    const float* last = table->lookup_.data() + table->last_slice_ * table->slice_floats_;
     table->last_slice_padded_.assign(last, last + table->slice_floats_);
     table->last_slice_padded_.resize(table->slice_floats_ + 8, 0.0f);
     table->detect_view_independence();
     return table;
 }
 
-// Bitwise-equal texels give bitwise-equal SATs and offsets (store_slice is
-// deterministic), so one slice then stands for all of them exactly.
+// Bitwise-equal texels give bitwise-equal corner sums and offsets
+// (store_slice is deterministic), and the texels are in the slice's entries:
+// where the entries are equal, one slice stands for all of them exactly.
 void BrdfTable::detect_view_independence() {
-    const size_t texels = grid_.size();
     view_independent_ = true;
-    for (size_t t = texels; t < texels_.size() && view_independent_; ++t)
-        view_independent_ = texels_[t] == texels_[t % texels];
+    for (size_t f = slice_floats_; f < lookup_.size() && view_independent_; ++f)
+        view_independent_ = lookup_[f] == lookup_[f % slice_floats_];
 }
 
 void BrdfTable::store_slice(int s, const Color* texels) {
@@ -74,7 +74,15 @@ void BrdfTable::store_slice(int s, const Color* texels) {
     offsets_[s] = Color(mean);
     // The offset actually added back at lookup is the float one; subtract exactly that.
     const DVec3 offset(offsets_[s]);
-    float* out = sat_.data() + static_cast<size_t>(s) * (n + 1) * (n + 1) * 3;
+    const size_t row = static_cast<size_t>(n + 1) * 3;  // lookup_data()'s layout
+    float* const slice = lookup_.data() + static_cast<size_t>(s) * slice_floats_;
+    float* const texel_layer = slice + (n + 1) * row;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const Color& texel = texels[grid_.index(i, j)];
+            float* entry = texel_layer + static_cast<size_t>(j) * row + static_cast<size_t>(i) * 3;
+            entry[0] = texel.r, entry[1] = texel.g, entry[2] = texel.b;
+        }
     std::vector<DVec3> row_above(n + 1, DVec3(0.0));  // S(·, b−1), double
     for (int b = 0; b <= n; ++b) {
         DVec3 row_sum(0.0);
@@ -83,15 +91,15 @@ void BrdfTable::store_slice(int s, const Color* texels) {
             const DVec3 sum = row_above[a] + row_sum;
             if (b > 0) row_above[a] = sum;
             const DVec3 stored = sum - offset * static_cast<double>(a) * static_cast<double>(b);
-            float* corner = out + (static_cast<size_t>(b) * (n + 1) + a) * 3;
+            float* corner = slice + static_cast<size_t>(b) * row + static_cast<size_t>(a) * 3;
             for (int c = 0; c < 3; ++c) corner[c] = static_cast<float>(stored[c]);
         }
     }
 }
 
 size_t BrdfTable::memory_bytes() const {
-    return (sat_.size() + last_slice_padded_.size()) * sizeof(float) + texels_.size() * sizeof(Color) +
-           offsets_.size() * sizeof(Color) + slice_views_.size() * sizeof(Vec3);
+    return (lookup_.size() + last_slice_padded_.size()) * sizeof(float) + offsets_.size() * sizeof(Color) +
+           slice_views_.size() * sizeof(Vec3);
 }
 
 }  // namespace rsl

@@ -80,7 +80,11 @@ public:
     // The view direction slice s was tabulated for (table frame).
     const Vec3& slice_view(int s) const { return slice_views_[s]; }
     // The tabulated texel average of ρ·cos, texel (i, j) of slice s.
-    Color texel(int s, int i, int j) const { return texels_[static_cast<size_t>(s) * grid_.size() + grid_.index(i, j)]; }
+    Color texel(int s, int i, int j) const {
+        const size_t layer = slice_floats_ / 2, entry_index = size_t(j) * (grid_.n + 1) + size_t(i);
+        const float* entry = lookup_.data() + s * slice_floats_ + layer + 3 * entry_index;
+        return Color(entry[0], entry[1], entry[2]);
+    }
 
     // Average of ρ·cos over the axis-aligned square of center `center` and
     // half-edge `half_edge` (plane units, table frame) for view direction `view`
@@ -96,10 +100,12 @@ public:
     // a batch of one, so the two agree bit for bit (brdf_table_lookup.cpp).
     void square_average_batch(const SquareQueries& queries, const ColorOutputs& out) const;
 
-    // Raw storage (for the GL uploader): per slice (N+1)² corners × RGB floats,
-    // row b, column a at ((s·(N+1) + b)·(N+1) + a)·3; add offset(s)·a·b per
-    // channel to get S(a, b) (offsets are 0 with SatStorage::Float).
-    const std::vector<float>& sat_data() const { return sat_; }
+    // Raw storage (for the GL uploader), what shading::square_taps reads:
+    // per slice s two layers of (N+1)² RGB entries, entry (a, b) of layer l
+    // at (((2s + l)·(N+1) + b)·(N+1) + a)·3. Layer 0: the corner sums (add
+    // offset(s)·a·b per channel to get S(a, b); offsets are 0 with
+    // SatStorage::Float); layer 1: the texels (row N and column N zero).
+    const std::vector<float>& lookup_data() const { return lookup_; }
     const Color& offset(int s) const { return offsets_[s]; }
     size_t memory_bytes() const;
 
@@ -112,16 +118,15 @@ private:
 
     bool isotropic_ = true;
     bool view_independent_ = false;
-    size_t slice_floats_ = 0;  // (N+1)² × 3
+    size_t slice_floats_ = 0;  // 2 layers × (N+1)² × 3
     int last_slice_ = 0;
     BrdfTableOptions options_;
     PlaneGrid grid_;
     std::vector<Vec3> slice_views_;
-    std::vector<Color> texels_;  // slice-major texel averages
-    std::vector<float> sat_;
-    // The batch kernel reads a corner pair as 8 floats, 2 past the pair: past
-    // the end of sat_ on the last slice's last row. It reads that slice here.
-    std::vector<float> last_slice_padded_;  // the last slice's corners + 8 zeros
+    std::vector<float> lookup_;  // lookup_data()
+    // The batch kernel reads a pair of entries as 8 floats, 2 past the pair:
+    // past the end of lookup_ on the last slice's last row. It reads that slice here.
+    std::vector<float> last_slice_padded_;  // the last slice + 8 zeros
     std::vector<Color> offsets_;
 };
 

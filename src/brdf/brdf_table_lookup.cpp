@@ -2,10 +2,11 @@
 // block of vertices and light) works in two passes over blocks of 64 queries:
 //   1. 8 queries at a time in vector lanes: the 4×4 SAT corner taps of each
 //      square and its view weights (which slices, how much of each);
-//   2. one query at a time: per slice, the 4 corner rows × 2 corner pairs as
-//      8 unaligned loads of 8 floats (lanes R G B R G B of corners a and a+1,
-//      2 unused), scaled by (view weight × row weight) and summed; the column
-//      weights and the two corners of a pair are combined once at the end.
+//   2. one query at a time: per slice, the 4 rows × 2 pairs of neighbouring
+//      entries (corner sums, or texels for a small square: shading::square_taps)
+//      as 8 unaligned loads of 8 floats (lanes R G B R G B of entries a and
+//      a+1, 2 unused), scaled by (view weight × row weight) and summed; the
+//      column weights and the two entries of a pair are combined once at the end.
 // The split keeps pass 2's dependency chains short (addresses are ready), so
 // consecutive queries overlap. square_average is a batch of one.
 #include <algorithm>
@@ -36,14 +37,14 @@ Color BrdfTable::slice_square_average(int s, const Vec2& center, float half_edge
     const SquareTaps t = square_taps(center, half_edge, grid_.n);
     if (t.clipped_area <= 0.0f) return Color(0.0f);
     const size_t row = static_cast<size_t>(grid_.n + 1) * 3;
-    const float* corners = sat_.data() + static_cast<size_t>(s) * slice_floats_;
+    const float* entries = lookup_.data() + static_cast<size_t>(s) * slice_floats_ + t.texels * (slice_floats_ / 2);
     Color sum(0.0f);
     for (int m = 0; m < 4; ++m)
         for (int l = 0; l < 4; ++l) {
-            const float* c = corners + size_t(t.by[m]) * row + 3 * size_t(t.ax[l]);
+            const float* c = entries + size_t(t.by[m]) * row + 3 * size_t(t.ax[l]);
             sum += t.wx[l] * t.wy[m] * Color(c[0], c[1], c[2]);
         }
-    return (sum + offsets_[s] * t.clipped_area) * t.inv_full_area;
+    return (sum + offsets_[s] * t.offset_area) * t.inv_full_area;
 }
 
 namespace {
@@ -59,12 +60,11 @@ inline Float8 load8(const float* p) {
     return v;
 }
 
-// Weights of a corner pair's lanes: 1 − f on the first corner's R G B, f on
-// the second's, as one FMA (f·B + A) rather than lane by lane.
-inline Float8 pair_weights(float f) {
-    constexpr Float8 a{1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-    constexpr Float8 b{-1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f, 0.0f, 0.0f};
-    return f * b + a;
+// Weights of a pair's lanes: `first` on the first entry's R G B, `second`
+// on the second's (and on the 2 unused lanes), as one blend.
+inline Float8 pair_weights(float first, float second) {
+    constexpr Int8 second_lanes{0, 0, 0, -1, -1, -1, -1, -1};
+    return second_lanes ? (Float8{} + second) : (Float8{} + first);
 }
 
 inline void store8(float* p, const Float8& v) { std::memcpy(p, &v, sizeof v); }
@@ -74,6 +74,16 @@ inline Int8 splat(int x) { return Int8{} + x; }
 inline Float8 to_float(const Int8& x) { return __builtin_convertvector(x, Float8); }
 inline Int8 truncate(const Float8& x) { return __builtin_convertvector(x, Int8); }
 inline Int8 min8(const Int8& a, const Int8& b) { return a < b ? a : b; }
+inline Float8 min8(const Float8& a, const Float8& b) { return a < b ? a : b; }
+inline bool any8(const Int8& mask) {
+#if defined(__AVX__)
+    return _mm256_movemask_ps((__m256)mask) != 0;
+#else
+    int any = 0;
+    for (int i = 0; i < 8; ++i) any |= mask[i];
+    return any != 0;
+#endif
+}
 inline Float8 max8(const Float8& a, const Float8& b) { return a > b ? a : b; }
 inline Float8 clamp8(const Float8& x, const Float8& hi) {  // clamp_to, lane by lane
     const Float8 y = max8(x, Float8{});
@@ -104,6 +114,12 @@ inline void bracket8(const Float8& x, int n, Int8& lower, Float8& upper_weight) 
     lower = min8(truncate(x), splat(n - 1));
     upper_weight = x - to_float(lower);
 }
+// shading::texel_overlaps, for 8 lanes.
+inline void overlaps8(const Int8& first, const Float8& lo, const Float8& hi, Float8 w[4]) {
+    const Float8 left = to_float(first);  // + k: exact, as float(first + k)
+    for (int k = 0; k < 4; ++k)
+        w[k] = max8(min8(hi, left + float(k + 1)) - max8(lo, left + float(k)), Float8{});
+}
 // shading::sample_lerp, for 8 lanes: linear interpolation between V samples
 // at (k + ½)/V of a coordinate in [0, 1] scaled by V (t = u·V − ½), clamped
 // to the first and last sample.
@@ -119,12 +135,12 @@ constexpr int kBlock = 64;  // queries per pass
 // table, with the view weights already multiplied into the row weights.
 template <int Slices>
 struct BlockTaps {
-    alignas(32) int row_upper[kBlock], row_lower[kBlock];  // b1·(N+1)·3, b0·(N+1)·3
-    alignas(32) int col_upper[kBlock], col_lower[kBlock];  // 3·a1, 3·a0
+    alignas(32) int row_first[kBlock], row_second[kBlock];  // by[0]·(N+1)·3, by[2]·(N+1)·3
+    alignas(32) int col_first[kBlock], col_second[kBlock];  // 3·ax[0], 3·ax[2]; + a layer for texels
     alignas(32) int first_slice[kBlock];
-    alignas(32) float f_upper[kBlock], f_lower[kBlock];    // f1, f0
-    alignas(32) float weight[Slices][4][kBlock];           // view weight × wy
-    alignas(32) float offset_weight[Slices][kBlock];       // view weight × clipped area
+    alignas(32) float wx[4][kBlock];                         // the column weights
+    alignas(32) float weight[Slices][4][kBlock];             // view weight × wy
+    alignas(32) float offset_weight[Slices][kBlock];         // view weight × offset area
     alignas(32) float clipped[kBlock], inv_area[kBlock];
 };
 
@@ -135,6 +151,7 @@ struct BlockTaps {
 template <int Slices>
 inline void block_square_taps(const SquareQueries& q, size_t begin, size_t count, int n, int v, BlockTaps<Slices>& b) {
     const int row = (n + 1) * 3;
+    const int layer = (n + 1) * row;  // the texels' layer follows the corner sums'
     const float scale = 0.5f * static_cast<float>(n);
     for (size_t g = 0; g < count; g += 8) {
         const size_t i = begin + g;
@@ -144,15 +161,30 @@ inline void block_square_taps(const SquareQueries& q, size_t begin, size_t count
         const Float8 fn = splat(static_cast<float>(n));
         const Float8 x0 = clamp8((cx - h + 1.0f) * scale, fn), x1 = clamp8((cx + h + 1.0f) * scale, fn);
         const Float8 y0 = clamp8((cy - h + 1.0f) * scale, fn), y1 = clamp8((cy + h + 1.0f) * scale, fn);
+        const Float8 clipped = (x1 - x0) * (y1 - y0);
+        const Float8 edge = 2.0f * h * scale;
+        // The corner sums' taps, and small squares' texels (lanes `small`).
         Int8 a0, a1, b0, b1;
         Float8 f0, f1, g0, g1;
         bracket8(x0, n, a0, f0);
         bracket8(x1, n, a1, f1);
         bracket8(y0, n, b0, g0);
         bracket8(y1, n, b1, g1);
-        const Float8 clipped = (x1 - x0) * (y1 - y0);
-        const Float8 edge = 2.0f * h * scale;
-        const Float8 wy[4] = {1.0f - g1, g1, g0 - 1.0f, -g0};
+        Float8 wx[4] = {1.0f - f1, f1, f0 - 1.0f, -f0};
+        Float8 wy[4] = {1.0f - g1, g1, g0 - 1.0f, -g0};
+        Int8 row_first = b1 * row, row_second = b0 * row, col_first = a1 * 3, col_second = a0 * 3;
+        Float8 offset_area = clipped;
+        const Int8 small = edge <= shading::kMaxTexelSquareTexels;
+        if (any8(small)) {  // a batch of one environment light's queries has all its squares small, or none
+            const Int8 ta = min8(truncate(x0), splat(n - 3)), tb = min8(truncate(y0), splat(n - 3));  // texel (ta, tb) first
+            Float8 texel_wx[4], texel_wy[4];
+            overlaps8(ta, x0, x1, texel_wx);
+            overlaps8(tb, y0, y1, texel_wy);
+            for (int m = 0; m < 4; ++m) wx[m] = small ? texel_wx[m] : wx[m], wy[m] = small ? texel_wy[m] : wy[m];
+            row_first = small ? tb * row : row_first, row_second = small ? (tb + 2) * row : row_second;
+            col_first = small ? ta * 3 + layer : col_first, col_second = small ? (ta + 2) * 3 + layer : col_second;
+            offset_area = small ? Float8{} : offset_area;
+        }
         Float8 view_weight[Slices];
         Int8 first = Int8{};
         if constexpr (Slices == 1) {
@@ -179,36 +211,36 @@ inline void block_square_taps(const SquareQueries& q, size_t begin, size_t count
             view_weight[0] = (1.0f - wi) * (1.0f - wj), view_weight[1] = wi * (1.0f - wj);
             view_weight[2] = (1.0f - wi) * wj, view_weight[3] = wi * wj;
         }
-        store8(b.row_upper + g, b1 * row);
-        store8(b.row_lower + g, b0 * row);
-        store8(b.col_upper + g, a1 * 3);
-        store8(b.col_lower + g, a0 * 3);
+        store8(b.row_first + g, row_first);
+        store8(b.row_second + g, row_second);
+        store8(b.col_first + g, col_first);
+        store8(b.col_second + g, col_second);
         store8(b.first_slice + g, first);
-        store8(b.f_upper + g, f1);
-        store8(b.f_lower + g, f0);
+        for (int m = 0; m < 4; ++m) store8(b.wx[m] + g, wx[m]);
         for (int s = 0; s < Slices; ++s) {
             for (int m = 0; m < 4; ++m) store8(b.weight[s][m] + g, view_weight[s] * wy[m]);
-            store8(b.offset_weight[s] + g, view_weight[s] * clipped);
+            store8(b.offset_weight[s] + g, view_weight[s] * offset_area);
         }
         store8(b.clipped + g, clipped);
         store8(b.inv_area + g, 1.0f / (edge * edge));
     }
 }
 
-// Where pass 2 reads: the slices' corner sums (the last slice padded so that
-// an 8-float load past its end stays inside), and each slice's mean offset.
-struct SliceCorners {
+// Where pass 2 reads: the slices' entries (lookup_data(); the last slice
+// padded so that an 8-float load past its end stays inside), and each
+// slice's mean offset.
+struct SliceEntries {
     int row = 0, view_samples = 0, last = 0;
     size_t slice_floats = 0;
-    const float* sat = nullptr;
+    const float* entries = nullptr;
     const float* padded = nullptr;
     const Color* offsets = nullptr;
 };
 
-// Pass 2 for the block's `count` queries: per query and slice, the 4 corner
-// rows × 2 corner pairs as 8-float loads, weighted and summed, into out[begin + k].
+// Pass 2 for the block's `count` queries: per query and slice, the 4 rows ×
+// 2 pairs as 8-float loads, weighted and summed, into out[begin + k].
 template <int Slices>
-inline void block_averages(const SliceCorners& t, const BlockTaps<Slices>& b, size_t begin, size_t count,
+inline void block_averages(const SliceEntries& t, const BlockTaps<Slices>& b, size_t begin, size_t count,
                            const ColorOutputs& out) {
     for (size_t k = 0; k < count; ++k) {
         float* const r = out.r + begin + k;
@@ -218,25 +250,25 @@ inline void block_averages(const SliceCorners& t, const BlockTaps<Slices>& b, si
             *r = *gr = *bl = 0.0f;
             continue;
         }
-        const int rows[4] = {b.row_upper[k], b.row_upper[k] + t.row, b.row_lower[k], b.row_lower[k] + t.row};
-        Float8 upper[Slices], lower[Slices];  // corner pairs (a1, a1+1) and (a0, a0+1)
+        const int rows[4] = {b.row_first[k], b.row_first[k] + t.row, b.row_second[k], b.row_second[k] + t.row};
+        Float8 first[Slices], second[Slices];  // pairs (ax[0], ax[1]) and (ax[2], ax[3])
         Color offset(0.0f);
         for (int s = 0; s < Slices; ++s) {
             const int slice = b.first_slice[k] + (s & 1) + (s >> 1) * t.view_samples;
-            const float* corners = slice == t.last ? t.padded : t.sat + slice * t.slice_floats;
-            const float* upper_pair = corners + b.col_upper[k];
-            const float* lower_pair = corners + b.col_lower[k];
-            upper[s] = Float8{}, lower[s] = Float8{};
+            const float* entries = slice == t.last ? t.padded : t.entries + slice * t.slice_floats;
+            const float* first_pair = entries + b.col_first[k];
+            const float* second_pair = entries + b.col_second[k];
+            first[s] = Float8{}, second[s] = Float8{};
             for (int m = 0; m < 4; ++m) {
                 const float w = b.weight[s][m][k];
-                upper[s] += w * load8(upper_pair + rows[m]);
-                lower[s] += w * load8(lower_pair + rows[m]);
+                first[s] += w * load8(first_pair + rows[m]);
+                second[s] += w * load8(second_pair + rows[m]);
             }
             offset += b.offset_weight[s][k] * t.offsets[slice];
         }
-        for (int s = 1; s < Slices; ++s) upper[0] += upper[s], lower[0] += lower[s];
-        // Upper pair: weights (1 − f1, f1); lower: (f0 − 1, −f0) = −(1 − f0, f0).
-        const Float8 sum = upper[0] * pair_weights(b.f_upper[k]) - lower[0] * pair_weights(b.f_lower[k]);
+        for (int s = 1; s < Slices; ++s) first[0] += first[s], second[0] += second[s];
+        const Float8 sum = first[0] * pair_weights(b.wx[0][k], b.wx[1][k]) +
+                           second[0] * pair_weights(b.wx[2][k], b.wx[3][k]);
         // An average of ρ·cos ≥ 0; the table's differences over a square
         // of a texel or less (a sun) can cancel to a rounding below 0.
         *r = std::max((sum[0] + sum[3] + offset.r) * b.inv_area[k], 0.0f);
@@ -250,13 +282,13 @@ inline void block_averages(const SliceCorners& t, const BlockTaps<Slices>& b, si
 // The two passes (see the top of the file), block by block.
 template <int Slices>
 void BrdfTable::batch_kernel(const SquareQueries& q, const ColorOutputs& out) const {
-    const SliceCorners corners{(grid_.n + 1) * 3, options_.view_samples, last_slice_, slice_floats_,
-                               sat_.data(), last_slice_padded_.data(), offsets_.data()};
+    const SliceEntries entries{(grid_.n + 1) * 3, options_.view_samples, last_slice_, slice_floats_,
+                               lookup_.data(), last_slice_padded_.data(), offsets_.data()};
     BlockTaps<Slices> b;
     for (size_t begin = 0; begin < q.count; begin += kBlock) {
         const size_t count = std::min(q.count - begin, static_cast<size_t>(kBlock));
         block_square_taps(q, begin, count, grid_.n, options_.view_samples, b);
-        block_averages(corners, b, begin, count, out);
+        block_averages(entries, b, begin, count, out);
     }
 }
 

@@ -238,7 +238,7 @@ void GlRenderer::set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> t
 void GlRenderer::upload_all_tables() {
     set_part_tables(wanted_tables());
     const size_t parts = scene_.parts.size();
-    const size_t old_bytes = materials_.sat.size() * sizeof(float) + materials_.offsets.size() * 16;
+    const size_t old_bytes = materials_.texture.size() * sizeof(float) + materials_.offsets.size() * 16;
     materials_ = pack_materials({part_tables_.begin(), part_tables_.begin() + std::ptrdiff_t(parts)},
                                 {part_tables_.begin() + std::ptrdiff_t(parts), part_tables_.end()});
     const int corners = materials_.resolution + 1;
@@ -250,8 +250,8 @@ void GlRenderer::upload_all_tables() {
     if (!brdf_) brdf_ = make_texture();
     glBindTexture(GL_TEXTURE_3D, brdf_.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, corners, corners, materials_.slices, 0, GL_RGB, GL_FLOAT,
-                 materials_.sat.data());
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, 2 * corners, corners, materials_.slices, 0, GL_RGB, GL_FLOAT,
+                 materials_.texture.data());
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
@@ -268,7 +268,7 @@ void GlRenderer::upload_all_tables() {
             std::none_of(slots_.begin(), slots_.end(), [&](const TableSlot& s) { return s.first_slice == first; }))
             slots_.push_back(TableSlot{part_tables_[i], first, table->slice_count()});
     }
-    gpu_bytes_ = gpu_bytes_ - old_bytes + materials_.sat.size() * sizeof(float) + materials_.offsets.size() * 16;
+    gpu_bytes_ = gpu_bytes_ - old_bytes + materials_.texture.size() * sizeof(float) + materials_.offsets.size() * 16;
     ++uploads_.full;
     check_gl("uploading the BRDF tables");
 }
@@ -309,12 +309,15 @@ void GlRenderer::sync_materials() {
     const int corners = materials_.resolution + 1;
     glBindTexture(GL_TEXTURE_3D, brdf_.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    std::vector<float> rows;
     for (const auto& [s, table] : moves) {
         TableSlot& slot = slots_[size_t(s)];
         slot.table = table;
-        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, slot.first_slice, corners, corners, slot.slices, GL_RGB, GL_FLOAT,
-                        table->sat_data().data());
-        // The CPU copy of the SAT stays as packed (it is only read by a full upload).
+        rows.clear();
+        append_texture_rows(*table, rows);
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, slot.first_slice, 2 * corners, corners, slot.slices, GL_RGB,
+                        GL_FLOAT, rows.data());
+        // The CPU copy of the tables stays as packed (it is only read by a full upload).
         for (int i = 0; i < slot.slices; ++i)
             materials_.offsets[size_t(slot.first_slice + i)] = Vec4(table->offset(i), 0.0f);
         ++uploads_.tables;

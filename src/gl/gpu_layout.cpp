@@ -270,6 +270,18 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
     return g;
 }
 
+void append_texture_rows(const BrdfTable& table, std::vector<float>& out) {
+    const size_t row = size_t(table.grid().n + 1) * 3, layer = row * size_t(table.grid().n + 1);
+    const float* data = table.lookup_data().data();
+    out.reserve(out.size() + table.lookup_data().size());
+    for (int s = 0; s < table.slice_count(); ++s)
+        for (size_t b = 0; b * row < layer; ++b)
+            for (const size_t texels : {size_t(0), layer}) {
+                const float* from = data + 2 * layer * size_t(s) + texels + b * row;
+                out.insert(out.end(), from, from + row);
+            }
+}
+
 Vec4 material_record(const BrdfTable& table, int first_slice, bool specular) {
     // 2: isotropic and the same in every view (Lambert): one slice, as the CPU's batch kernel reads.
     const float isotropy = table.isotropic() ? (table.view_independent() ? 2.0f : 1.0f) : 0.0f;
@@ -290,7 +302,7 @@ PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable
                                     out.resolution, n));
         auto [it, inserted] = first_slice.emplace(&table, out.slices);
         if (inserted) {
-            out.sat.insert(out.sat.end(), table.sat_data().begin(), table.sat_data().end());
+            append_texture_rows(table, out.texture);
             for (int s = 0; s < table.slice_count(); ++s) out.offsets.push_back(Vec4(table.offset(s), 0.0f));
             out.slices += table.slice_count();
         }

@@ -26,8 +26,9 @@
 // The shader writes none of these numbers: shader_layout_constants() turns
 // kShaderIntConstants (and π, √2) into GLSL constants that the host prepends
 // to the shading pass, so this header is their one source.
-//  BRDF: one 3D texture (N+1)×(N+1)×slices of SAT corners (sat_data() order),
-//    all tables stacked along z; per slice its mean offset (RGB)
+//  BRDF: one 3D texture 2(N+1)×(N+1)×slices, per slice its corner sums beside
+//    its texels (append_texture_rows), all tables stacked along z; per slice
+//    its mean offset (RGB)
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -191,11 +192,17 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
 struct PackedMaterials {
     int resolution = 0;  // N
     int slices = 0;
-    std::vector<float> sat;      // (N+1)² × slices × RGB, 3D-texture order
+    std::vector<float> texture;  // 2(N+1) × (N+1) × slices × RGB: append_texture_rows of each table
     std::vector<Vec4> offsets;   // per slice
     std::vector<Vec4> part_material;  // per part: (first slice, isotropic, V, 0)
     std::vector<Vec4> part_specular;  // per part: (first slice, isotropic, V, 1), or 0 without a specular table
 };
+
+// A table's slices as the BRDF texture holds them: per slice N+1 rows of
+// 2(N+1) RGB entries, a row of corner sums, then the same row of texels
+// (BrdfTable::lookup_data() has them as two layers; the texture's depth,
+// which holds the slices, is too short for twice as many).
+void append_texture_rows(const BrdfTable& table, std::vector<float>& out);
 
 // The kSlotMaterial / kSlotSpecular record of a table whose slices start at
 // `first_slice`; `specular` sets w (the shader's "layered" flag).

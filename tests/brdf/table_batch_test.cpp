@@ -1,6 +1,7 @@
 // The vectorized batch lookup (brdf_table_lookup.cpp) against the lookup as
-// documented, written out plainly from the public storage (sat_data(),
-// offset()): 16 corner taps per slice summed in double, views interpolated
+// documented, written out plainly from the public storage (lookup_data(),
+// offset(), texel()): 16 corner taps per slice summed in double, or for a
+// square up to three texels wide the texels it overlaps, views interpolated
 // between all slices, for isotropic, anisotropic and view-independent tables,
 // batch sizes that end mid-group and mid-block, and squares on the table's
 // last row and column (the kernel's 8-float loads reach 2 floats past them).
@@ -33,6 +34,8 @@ Reference reference_average(const BrdfTable& t, Vec2 c, float h, Vec3 view) {
     }
     const double clipped = double(hi[0] - lo[0]) * double(hi[1] - lo[1]);
     if (clipped <= 0.0) return {DVec3(0.0), 0.0};
+    const double edge = 2.0 * h * scale;
+    const bool small = 2.0f * h * scale <= shading::kMaxTexelSquareTexels;
     // Corner (index, weight) pairs along one axis: +upper edge, −lower edge.
     auto axis = [&](int d, int index[4], double weight[4]) {
         const int u = std::min(int(hi[d]), n - 1), l = std::min(int(lo[d]), n - 1);
@@ -68,13 +71,26 @@ Reference reference_average(const BrdfTable& t, Vec2 c, float h, Vec3 view) {
                   {(j0 + 1) * v + i0 + 1, wi * wj}};
     }
     const size_t stride = size_t(n) + 1;
-    const float* sat = t.sat_data().data();
+    const float* entries = t.lookup_data().data();
     DVec3 sum(0.0);
     double magnitude = 0.0;
+    if (small) {  // each texel the square overlaps, by the overlap
+        for (auto [s, weight] : slices)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    const double wx = std::max(0.0, std::min<double>(hi[0], i + 1) - std::max<double>(lo[0], i));
+                    const double wy = std::max(0.0, std::min<double>(hi[1], j + 1) - std::max<double>(lo[1], j));
+                    if (wx * wy == 0.0) continue;
+                    const Color texel = t.texel(s, i, j);
+                    sum += weight * wx * wy * DVec3(texel);
+                    magnitude += wx * wy * (std::abs(texel.r) + std::abs(texel.g) + std::abs(texel.b));
+                }
+        return {sum / (edge * edge), magnitude / (edge * edge)};
+    }
     for (auto [s, weight] : slices) {
         for (int m = 0; m < 4; ++m)
             for (int l = 0; l < 4; ++l) {
-                const float* corner = sat + ((size_t(s) * stride + by[m]) * stride + ax[l]) * 3;
+                const float* corner = entries + ((size_t(2 * s) * stride + by[m]) * stride + ax[l]) * 3;  // layer 0
                 const double w = wx[l] * wy[m];
                 for (int k = 0; k < 3; ++k) {
                     sum[k] += weight * w * corner[k];
@@ -84,7 +100,6 @@ Reference reference_average(const BrdfTable& t, Vec2 c, float h, Vec3 view) {
         sum += weight * clipped * DVec3(t.offset(s));
         magnitude += clipped * (std::abs(t.offset(s).r) + std::abs(t.offset(s).g) + std::abs(t.offset(s).b));
     }
-    const double edge = 2.0 * h * scale;
     return {sum / (edge * edge), magnitude / (edge * edge)};
 }
 

@@ -18,9 +18,9 @@ MaterialDesc glossy() { return material("cook_torrance_ggx", {{"kd", {0.3f, 0.2f
 MaterialDesc aniso() { return material("ward_anisotropic", {{"kd", {0.2f}}, {"ks", {0.6f}}, {"alpha_x", {0.1f}}, {"alpha_y", {0.3f}}}); }
 
 float max_abs_stored(const BrdfTable& t, int s) {
-    const size_t corners = size_t(t.grid().n + 1) * (t.grid().n + 1) * 3;
+    const size_t corners = size_t(t.grid().n + 1) * (t.grid().n + 1) * 3;  // layer 0 of the slice
     float m = 0;
-    for (size_t k = 0; k < corners; ++k) m = std::max(m, std::abs(t.sat_data()[s * corners + k]));
+    for (size_t k = 0; k < corners; ++k) m = std::max(m, std::abs(t.lookup_data()[2 * s * corners + k]));
     return m;
 }
 

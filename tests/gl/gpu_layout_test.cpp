@@ -111,7 +111,7 @@ BrdfTableOptions small_tables() {
     return options;
 }
 
-TEST_CASE("BRDF tables are stacked once each, in sat_data() order", "[gl-layout]") {
+TEST_CASE("BRDF tables are stacked once each, corner sums beside texels", "[gl-layout]") {
     MaterialDesc lambert = test::lambert(Color(0.5f));
     const MaterialDesc ward = anisotropic_ward();
     BrdfTableOptions options = small_tables();
@@ -125,8 +125,13 @@ TEST_CASE("BRDF tables are stacked once each, in sat_data() order", "[gl-layout]
     CHECK(m.part_material[0] == Vec4(0, 2, 4, 0));  // isotropic and view-independent (Lambert): one slice
     CHECK(m.part_material[1] == Vec4(4, 0, 4, 0));
     CHECK(m.part_material[2] == m.part_material[0]);
-    const size_t slice = 9 * 9 * 3;
-    CHECK(std::equal(aniso->sat_data().begin(), aniso->sat_data().end(), m.sat.begin() + 4 * slice));
+    const size_t slice = 9 * 18 * 3;  // 9 rows of 9 corner sums and 9 texel entries
+    REQUIRE(m.texture.size() == 20 * slice);
+    // Slice 5 of the anisotropic table, row 7: its corner sums, then its texels (texel (i, 7) at column 9 + i).
+    const float* row = m.texture.data() + (4 + 5) * slice + 7 * 18 * 3;
+    CHECK(row[3 * 2 + 1] == aniso->lookup_data()[((2 * 5 * 9 + 7) * 9 + 2) * 3 + 1]);
+    for (int i = 0; i < 8; ++i) CHECK(row[3 * (9 + i)] == aniso->texel(5, i, 7).r);
+    CHECK(row[3 * 17] == 0.0f);  // the texels' last column
     CHECK(m.offsets[4 + 5] == Vec4(aniso->offset(5), 0.0f));
     options.resolution = 16;
     CHECK_THROWS_AS(gl::pack_materials({iso, BrdfTable::build(*make_brdf(lambert), options)}), Error);
@@ -156,9 +161,10 @@ TEST_CASE("Specular tables of textured parts get their own records and slices", 
     CHECK(m.part_specular[1] == Vec4(0.0f));
     CHECK(m.part_specular[2] == m.part_specular[0]);
     CHECK(m.part_material[0].w == 0.0f);  // the diffuse record is not layered
-    const size_t slice = 9 * 9 * 3;
-    CHECK(std::equal(specular->sat_data().begin(), specular->sat_data().end(),
-                     m.sat.begin() + size_t(diffuse->slice_count()) * slice));
+    const size_t slice = 9 * 18 * 3;
+    std::vector<float> rows;
+    gl::append_texture_rows(*specular, rows);
+    CHECK(std::equal(rows.begin(), rows.end(), m.texture.begin() + size_t(diffuse->slice_count()) * slice));
     CHECK(m.offsets[size_t(diffuse->slice_count())] == Vec4(specular->offset(0), 0.0f));
     const auto aniso = BrdfTable::build(*make_brdf(ward), options);
     CHECK_THROWS_AS(gl::pack_materials({diffuse}, {aniso}), Error);

@@ -58,7 +58,7 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
             o.second = taps.wx;
         } else {
             o.first = taps.wy;
-            o.second = vec4(taps.clipped_area, taps.inv_full_area, 0.0f, 0.0f);
+            o.second = vec4(taps.clipped_area, taps.inv_full_area, taps.offset_area, float(taps.texels));
         }
     } else if (mode == 6) {  // view samples
         int v = 2 + int(8.0f * abs(b.z));

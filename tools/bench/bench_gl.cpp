@@ -190,7 +190,7 @@ void bench_sat_precision(const fs::path& path) {
     for (const MaterialDesc& material : scene.materials) {
         const auto table = BrdfTable::build(*make_brdf(material));
         const int n = table->grid().n, stride = n + 1;
-        const std::vector<float>& sat = table->sat_data();
+        const std::vector<float>& entries = table->lookup_data();
         std::vector<double> float_errors, half_errors;
         for (int s = 0; s < table->slice_count(); ++s)
             for (int j = 0; j < n; ++j)
@@ -199,7 +199,7 @@ void bench_sat_precision(const fs::path& path) {
                     for (int c = 0; c < 3; ++c) {
                         if (!(texel[c] > 1e-3f * table->offset(s)[c])) continue;  // below the horizon / negligible
                         auto corner = [&](int a, int b, bool half) {
-                            const float v = sat[((size_t(s) * stride + b) * stride + a) * 3 + c];
+                            const float v = entries[((size_t(2 * s) * stride + b) * stride + a) * 3 + c];  // layer 0: corner sums
                             return double(half ? round_to_half(v) : v);
                         };
                         for (const bool half : {false, true}) {
