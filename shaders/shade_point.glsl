@@ -88,7 +88,6 @@ uint list_texel(int i) { return uint_fetch(u_occluder_lists, i); }
 
 // ---- BRDF summed-area tables (brdf_table.cpp) ----
 
-
 // Average of ρ·cos over the square (table frame) for view `view`; material =
 // (first slice, isotropic: 1 / view-independent too: 2 / 0, V, 0). The
 // slices and their weights first, then the taps of each slice summed in

@@ -36,7 +36,7 @@ std::shared_ptr<const BrdfTable> BrdfTable::build(const Brdf& brdf, const BrdfTa
     const size_t corners = static_cast<size_t>(options.resolution + 1) * (options.resolution + 1);
     table->slice_floats_ = corners * 2 * 3;
     std::vector<Color> texel_averages(slices * texels);
-    table->lookup_.resize(slices * corners * 2 * 3);
+    table->lookup_.resize(slices * table->slice_floats_);
     table->offsets_.resize(slices);
 
     const TexelSampler sampler(table->grid_, options.interior_supersampling, options.edge_supersampling);

@@ -1,7 +1,8 @@
 // BRDF table lookups. The batched kernel (the CPU renderer calls it once per
 // block of vertices and light) works in two passes over blocks of 64 queries:
-//   1. 8 queries at a time in vector lanes: the 4×4 SAT corner taps of each
-//      square and its view weights (which slices, how much of each);
+//   1. 8 queries at a time in vector lanes: the 4×4 taps of each square (its
+//      corner sums, or a small square's texels) and its view weights (which
+//      slices, how much of each);
 //   2. one query at a time: per slice, the 4 rows × 2 pairs of neighbouring
 //      entries (corner sums, or texels for a small square: shading::square_taps)
 //      as 8 unaligned loads of 8 floats (lanes R G B R G B of entries a and
@@ -269,8 +270,8 @@ inline void block_averages(const SliceEntries& t, const BlockTaps<Slices>& b, si
         for (int s = 1; s < Slices; ++s) first[0] += first[s], second[0] += second[s];
         const Float8 sum = first[0] * pair_weights(b.wx[0][k], b.wx[1][k]) +
                            second[0] * pair_weights(b.wx[2][k], b.wx[3][k]);
-        // An average of ρ·cos ≥ 0; the table's differences over a square
-        // of a texel or less (a sun) can cancel to a rounding below 0.
+        // An average of ρ·cos ≥ 0; the corner sums' differences over a dark
+        // region can cancel to a rounding below 0.
         *r = std::max((sum[0] + sum[3] + offset.r) * b.inv_area[k], 0.0f);
         *gr = std::max((sum[1] + sum[4] + offset.g) * b.inv_area[k], 0.0f);
         *bl = std::max((sum[2] + sum[5] + offset.b) * b.inv_area[k], 0.0f);

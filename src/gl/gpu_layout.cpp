@@ -271,12 +271,13 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
 }
 
 void append_texture_rows(const BrdfTable& table, std::vector<float>& out) {
-    const size_t row = size_t(table.grid().n + 1) * 3, layer = row * size_t(table.grid().n + 1);
+    const int n = table.grid().n;
+    const size_t row = size_t(n + 1) * 3, layer = row * size_t(n + 1);
     const float* data = table.lookup_data().data();
     out.reserve(out.size() + table.lookup_data().size());
     for (int s = 0; s < table.slice_count(); ++s)
-        for (size_t b = 0; b * row < layer; ++b)
-            for (const size_t texels : {size_t(0), layer}) {
+        for (size_t b = 0; b <= size_t(n); ++b)
+            for (const size_t texels : {size_t(0), layer}) {  // row b of the corner sums, then of the texels
                 const float* from = data + 2 * layer * size_t(s) + texels + b * row;
                 out.insert(out.end(), from, from + row);
             }
