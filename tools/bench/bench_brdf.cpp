@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "src/brdf/brdf_table.h"
+#include "src/shading/brdf_sat.h"
 #include "tools/bench/bench.h"
 #include "src/core/hemisphere.h"
 
@@ -141,11 +142,13 @@ void bench_lookups(const BenchOptions& options) {
     }
 }
 
-// Float storage precision: square averages from the stored float SAT vs the
-// exact (double) integral of the same texels, for both storages.
+// Float storage precision: square averages from the stored table vs the
+// exact (double) integral of the same texels, for both storages. A square
+// is read at least one texel wide (shading::kMinSquareTexels), so is this one.
 DVec3 exact_square_integral(const BrdfTable& t, int s, Vec2 c, float h) {
     const int n = t.grid().n;
     const double scale = 0.5 * n;
+    h = std::max(h, shading::kMinSquareTexels / float(n));
     const double x0 = std::clamp((c.x - h + 1.0) * scale, 0.0, double(n)), x1 = std::clamp((c.x + h + 1.0) * scale, 0.0, double(n));
     const double y0 = std::clamp((c.y - h + 1.0) * scale, 0.0, double(n)), y1 = std::clamp((c.y + h + 1.0) * scale, 0.0, double(n));
     DVec3 sum(0.0);
