@@ -13,6 +13,7 @@ packages=(build-essential cmake ninja-build pkg-config ccache
   libembree-dev libglfw3-dev libglm-dev libopenexr-dev libeigen3-dev libtinygltf-dev catch2
   libtbb-dev libstb-dev nlohmann-json3-dev libcli11-dev libimgui-dev libfmt-dev
   libgl-dev libegl-dev libopengl-dev libgl1-mesa-dri xvfb xauth
+  glslang-tools  # the Khronos reference GLSL compiler (tests/gl/shader_reference_test.cpp)
   pybind11-dev python3-dev python3-numpy python3-matplotlib dpkg-dev file
   clang-14 libclang-rt-14-dev)  # the sanitizer build and the fuzzers (scripts/sanitize.sh, scripts/fuzz.sh)
 missing=()

@@ -83,9 +83,16 @@ GLuint compile(GLenum type, const std::string& name, const std::string& defines)
     return compile_shader(type, with_defines(shader_text(name), defines), "shaders/" + name);
 }
 
+thread_local ShaderSourceObserver shader_source_observer;
+
 }  // namespace
 
+ShaderSourceObserver observe_shader_sources(ShaderSourceObserver observer) {
+    return std::exchange(shader_source_observer, std::move(observer));
+}
+
 GLuint compile_shader(GLenum type, const std::string& source, const std::string& label) {
+    if (shader_source_observer) shader_source_observer(type, label, source);
     const GLuint shader = glCreateShader(type);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);

@@ -3,6 +3,7 @@
 // shader programs built from embedded sources, and flat arrays stored in 2D
 // textures (2D textures are the one kind every driver sizes generously).
 #include <cstddef>
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -65,6 +66,13 @@ Query make_query();
 // Compiles one shader from `source`; throws rsl::Error with the driver's log,
 // naming `label` (the shader file, or what the source is).
 GLuint compile_shader(GLenum type, const std::string& source, const std::string& label);
+
+// Called by compile_shader with every source it hands the driver (stage,
+// label, the whole text), so that a test can give the very same text to
+// another compiler (tests/gl/shader_reference_test.cpp).
+using ShaderSourceObserver = std::function<void(GLenum type, const std::string& label, const std::string& source)>;
+// Sets this thread's observer (an empty one: none); returns the one it replaces.
+ShaderSourceObserver observe_shader_sources(ShaderSourceObserver observer);
 
 // Links the compiled `shaders` (deleted here) into a program; throws
 // rsl::Error with the driver's log, naming `label`.
