@@ -24,7 +24,8 @@
 // ray-traced baseline, RenderOptions::gpu_rays), SHADOW_MAPPED (the shadow-map baseline
 // may be on), LOCAL_LIGHTS (the frame has sphere lights), MAX_SLICES (BRDF slices per average),
 // the layout constants, the shading core,
-// shade_point.glsl and, with RAY_TRACED, bvh_traverse.glsl and ray_visibility.glsl.
+// shading_data.glsl, visibility_fields.glsl, shade_point.glsl and, with RAY_TRACED,
+// bvh_traverse.glsl and ray_visibility.glsl.
 
 layout(local_size_x = SHADE_BLOCK) in;  // kShadeBlock: a layout takes a literal
 // A software rasterizer (llvmpipe) runs both sides of every branch, uniform

@@ -118,7 +118,10 @@ std::string shading_prelude() {
 
 std::string srgb_prelude() { return "#line 1 1\n" + shader_text("srgb.glsl") + "#line 2 0\n"; }
 
-std::string shade_point_prelude() { return included_shader("shade_point.glsl", 2); }
+std::string shade_point_prelude() {
+    return included_shader("shading_data.glsl", 2) + included_shader("visibility_fields.glsl", 3) +
+           included_shader("shade_point.glsl", 4);
+}
 
 std::string included_shader(const std::string& name, int source) {
     return fmt::format("#line 1 {}\n", source) + shader_text(name) + "#line 2 0\n";

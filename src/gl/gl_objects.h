@@ -99,8 +99,10 @@ std::string shading_prelude();
 // What the viewer's display passes get before their text: the sRGB curve
 // (shaders/srgb.glsl), then a #line for the shader's own line numbers.
 std::string srgb_prelude();
-// shaders/shade_point.glsl, the shading sum at a point, after shading_prelude():
-// the vertex pass and the per-pixel pass run it.
+// The shading sum at a point, after shading_prelude(): shaders/shading_data.glsl
+// (the data and the BRDF average), visibility_fields.glsl (SVDF, OVDF,
+// exact shapes) and shade_point.glsl (the sum), as source strings 2, 3 and
+// 4. The vertex pass and the per-pixel pass run it.
 std::string shade_point_prelude();
 // shaders/<name> to go before a shader's own text, as source string
 // `source` (#line 1 source), so that the driver's messages name its lines.

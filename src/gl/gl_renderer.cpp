@@ -41,7 +41,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     : VertexRenderer(scene, std::move(environment_lights), std::move(fields), options) {
     require_gl_version(4, 3, "the GL renderer");
     const PackedGeometry geometry = pack_geometry(scene, fields_, options_.exact_shapes);
-    // SVDF_STRIDE, OVDF_STRIDE: a row's texels when every field shares them, else 0 (shade_point.glsl).
+    // SVDF_STRIDE, OVDF_STRIDE: a row's texels when every field shares them, else 0 (shading_data.glsl).
     vertex_pass_defines_ = fmt::format("#define MAX_STRIDE {}\n#define SVDF_STRIDE {}\n#define OVDF_STRIDE {}\n",
                                        geometry.max_stride, std::max(geometry.svdf_stride, 0),
                                        std::max(geometry.ovdf_stride, 0));

@@ -166,7 +166,7 @@ private:
     Program make_vertex_pass(const VertexPassVariant& variant, bool record);
     // Dispatches `program` (a vertex pass) over every block.
     void run_vertex_pass(const Program& program);
-    // The sampler units and the OVDF cube faces' uniforms of a program that shades (shade_point.glsl).
+    // The sampler units and the OVDF cube faces' uniforms of a program that shades (shading_data.glsl).
     void set_sampler_units(const Program& program);
     void upload_frame();
     // Brings the BRDF texture up to the library: in place when only tables of

@@ -175,7 +175,7 @@ std::vector<uint8_t> GpuBvh::occluded(const std::vector<Vec3>& origins, const st
     RSL_CHECK(top_built_);
     if (!trace_)
         trace_ = build_compute_program("trace_rays.comp.glsl", shader_defines() + shading_prelude() +
-                                                                   included_shader("bvh_traverse.glsl", 3));
+                                                                   included_shader("bvh_traverse.glsl", 5));
     std::vector<Vec4> rays;
     for (size_t i = 0; i < origins.size(); ++i) rays.push_back(Vec4(origins[i], 0.0f)), rays.push_back(Vec4(directions[i], 0.0f));
     Buffer ray_buffer, hit_buffer;

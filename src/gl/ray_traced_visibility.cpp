@@ -48,8 +48,8 @@ size_t RayTracedVisibility::bytes() const { return bvh_.bytes() + inward_bytes_;
 std::string RayTracedVisibility::shader_text() {
     // A binding in a layout must be a literal in GLSL 4.30: the layout constant as a macro.
     return fmt::format("#define RAY_INWARD_BINDING {}\n", kRayInwardBinding) + GpuBvh::shader_defines() +
-           included_shader("bvh_traverse.glsl", 3) +
-           included_shader("ray_visibility.glsl", 4);
+           included_shader("bvh_traverse.glsl", 5) +
+           included_shader("ray_visibility.glsl", 6);
 }
 
 }  // namespace rsl::gl
