@@ -1,9 +1,11 @@
-#version 330 core
+#version 430 core
 // The per-pixel pass (docs/design/GPU_DESIGN.md "Per-pixel pass"): each pixel of a part
-// shaded per pixel takes the whole sum at the point it sees (shade_point.glsl):
-// every light's square in the pixel's own frame, the BRDF averages at its own
-// view, sphere lights from its own position, and the other parts' occluder
-// factor at the point. Two kinds of parts come here:
+// shaded per pixel takes the whole sum at the point it sees, as the vertex
+// pass takes it at a vertex (point_sum.glsl): every light's square in the
+// pixel's own frame, the BRDF averages at its own view, sphere lights from
+// its own position, and the other parts' occluder factor at the point, from
+// the part's candidate occluders with the CPU's per-vertex tests. Two kinds
+// of parts come here:
 //  * one flat rectangle (a ground, a floor, a wall; RenderOptions::
 //    pixel_shadows), whose vertices are often coarser than the shadows on
 //    it. It cannot shadow itself: no SVDF is read.
@@ -85,7 +87,25 @@ void main() {
     if (dot(n, face) < 0.0) n = -n;
     g_self_corners = 0;
     if (u_corners) set_corners();
-    PointShade shaded = shade_point(u_part, v_position, frame_from_normal_tangent(n, v_tangent));
-    vec3 color = u_textured ? shaded.color * texture(u_base_color, v_texcoord).rgb + shaded.specular : shaded.color;
+    LocalFrame frame = frame_from_normal_tangent(n, v_tangent);
+    vec3 p = v_position;
+    uint live[LIGHT_WORDS];
+    light_shares(u_part, p, frame, live);
+    // The part's candidate occluders (pack_block_candidates), each with the
+    // lights the part-level tests left it; the point's own tests do the rest.
+    uint header = uint(u_part_count + 1);
+    for (uint c = candidates[u_part]; c < candidates[u_part + 1]; ++c) {
+        uint entry = header + c * uint(kCandidateHeader + LIGHT_WORDS);
+        bool any = false;
+        for (int w = 0; w < LIGHT_WORDS; ++w) any = any || (candidates[entry + uint(kCandidateHeader + w)] & live[w]) != 0u;
+        if (!any) continue;
+        int o = int(candidates[entry]);
+        OccluderAtVertex at = occluder_at_vertex(o, p);
+        for (int w = 0; w < LIGHT_WORDS; ++w)
+            shadow_by_occluder(o, at, p, frame, w, candidates[entry + uint(kCandidateHeader + w)] & live[w], live);
+    }
+    vec3 specular;
+    vec3 diffuse = point_sum(specular);
+    vec3 color = u_textured ? diffuse * texture(u_base_color, v_texcoord).rgb + specular : diffuse;
     o_color = u_linear ? vec4(color, 1.0) : vec4(srgb(color * u_exposure), 1.0);
 }

@@ -1,17 +1,17 @@
-// What the shading sum reads, and how (shade_point.glsl sums it): the
+// What the shading sum reads, and how (point_sum.glsl sums it): the
 // host's defines, the samplers and uniforms of the scene's data (layout of
 // every texture: src/gl/gpu_layout.h), the fetches by integer index, and
 // the BRDF tables' square average, with the same arithmetic as the CPU
 // (src/brdf/brdf_table.cpp). The host prepends, in order (gl_objects.cpp
-// shading_prelude, shade_point_prelude): MAX_STRIDE (texels of a CPCA
+// shading_prelude, shading_inputs_prelude): MAX_STRIDE (texels of a CPCA
 // row), SVDF_STRIDE and OVDF_STRIDE (below), the layout constants of
 // src/gl/gpu_layout.h (kPartStride, kSlot*, kArrayWidth, kArrayShift,
 // kLightTexels, kSamplesPerTexel, kPi, kSqrt2), the shading core
 // src/shading/shading_core.h, whose functions (frames, the equal-area map,
 // square taps, bilinear taps, the VDT rule, the OVDF's shells, faces, zoom
 // and cone bounds, the slab rule) are the CPU's own, then this file,
-// visibility_fields.glsl and shade_point.glsl. What stays in these three
-// is data access: texelFetch and the loops over it.
+// visibility_fields.glsl, shadow_map_filter.glsl and, last, point_sum.glsl.
+// What stays in these files is data access: texelFetch and the loops over it.
 
 // SVDF_STRIDE, OVDF_STRIDE (the host's): the texels of a CPCA row when every
 // field of the kind shares them, so that the loops over a row have a
@@ -34,7 +34,6 @@ uniform sampler2D u_normals;       // normal, SVDF cluster
 uniform sampler2D u_tangents;      // tangent
 uniform sampler2D u_parts;         // part records (kPartStride texels each)
 uniform sampler2D u_lights;        // kLightTexels per light
-uniform usampler2D u_occluder_lists;  // FrameState::occluder_list_texels: offsets, then part indices
 uniform sampler3D u_brdf;          // per slice: rows of corner sums, then texels (append_texture_rows)
 uniform sampler2D u_brdf_offsets;  // per slice mean offset
 uniform sampler2D u_svdf_tables;
@@ -75,7 +74,6 @@ mat3 part_normal_matrix(int part) {
                 part_texel(part, kSlotNormal + 2).xyz);
 }
 uint uint_fetch(usampler2D array, int i) { return texelFetch(array, ivec2(i & (kArrayWidth - 1), i >> kArrayShift), 0).r; }
-uint list_texel(int i) { return uint_fetch(u_occluder_lists, i); }
 
 // ---- BRDF summed-area tables (brdf_table.cpp) ----
 

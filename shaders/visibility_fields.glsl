@@ -6,7 +6,7 @@
 
 // ---- visibility distance tables (src/fields/vdt.h, svdf.h, ovdf.cpp) ----
 
-// The self-visibility shade_point multiplies each light by: g_self_corners
+// The self-visibility point_sum.glsl multiplies each light by: g_self_corners
 // = 0: none (a flat rectangle, or the SVDF switched off); 1: the vertex's
 // own SVDF (the vertex pass); 3: the blend of a triangle's corners' SVDFs,
 // each in its corner's own frame (the per-pixel pass on glossy parts, as
@@ -132,8 +132,7 @@ OvdfReceiver ovdf_locate(int part, vec3 point) {
     return r;
 }
 
-// The light's half (OvdfLookup::visible_fraction, ovdf_receiver_fraction
-// below) for a unit light in the occluder's frame and a square of half-edge
+// The light's half (OvdfLookup::visible_fraction) for a unit light in the occluder's frame and a square of half-edge
 // h: the small-occluder rule where the square is wider than the part's
 // cone, else the tables. In two halves for the vertex pass, which reads the
 // tables only for the lights that need them: the small-occluder rule of a
@@ -210,28 +209,6 @@ float ovdf_receiver_tables(int part, OvdfReceiver r, vec3 light, float h, OvdfSm
     return ovdf_fade_small_occluder(by_tables, small.fraction, small.weight);
 }
 
-float ovdf_receiver_fraction(int part, OvdfReceiver r, vec3 light, float h) {
-    if (r.kind == kOvdfOutside) return 1.0f;
-    if (r.kind == kOvdfInside) return 0.0f;
-    OvdfSmall small = ovdf_receiver_small(r, light, h);
-    if (small.weight >= 1.0f) return small.fraction;
-    return ovdf_receiver_tables(part, r, light, h, small);
-}
-
-// Ovdf::visible_fraction (AlignedCoefficients) as OvdfLookup computes it:
-// point and unit light in the occluder's frame; the per-pixel pass's lookup.
-float ovdf_visible_fraction(int part, vec3 point, vec3 light, float h) {
-    vec4 center = part_texel(part, kSlotOvdfCenter);
-    vec3 v = point - center.xyz;
-    float d = length(v);
-    if (d >= part_texel(part, kSlotOvdfBases).w) return 1.0f;
-    // The receiver's own bounding cone (the CPU's per-vertex test,
-    // OvdfLookup::unshadowed): the lookup gives 1 beyond it.
-    vec3 dir = d > 0.0f ? v / d : vec3(0.0f, 0.0f, 1.0f);
-    if (ovdf_unshadowed(dot(light, -dir), ovdf_zoom(d, center.w).cone, h)) return 1.0f;
-    return ovdf_receiver_fraction(part, ovdf_locate(part, point), light, h);
-}
-
 // The exact shadow of a part that is a rectangle or a box
 // (shape_visible_fraction): shape = (center, kind), point in the part's
 // frame, `axes` the receiver's shading frame and `linear` the part's inverse
@@ -253,9 +230,3 @@ float exact_shape_fraction(int part, vec4 shape, vec3 point, LocalFrame axes, ma
 // The slab rule (clears_box_face_scaled): point in the part's frame, light =
 // inverse_linear·(world direction), not normalized; the face normals are the
 // rows of inverse_linear.
-bool clears_box(int part, vec3 point, vec3 light, mat3 inverse_linear, float h) {
-    vec3 sides = box_sides(part_texel(part, kSlotBoxLow).xyz, part_texel(part, kSlotBoxHigh).xyz, point);
-    mat3 rows = transpose(inverse_linear);
-    vec3 face_scale = vec3(length(rows[0]), length(rows[1]), length(rows[2]));
-    return clears_box_face_scaled(sides, light, face_scale, square_cone_sine(h));
-}

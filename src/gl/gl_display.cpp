@@ -70,8 +70,16 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
     // The per-pixel pass: the sum at each pixel's point, with the frame's
     // lights, occluder lists and camera (the vertex pass's inputs).
     if (any_per_pixel) {
+        if (const VertexPassVariant variant = frame_vertex_pass_variant(); !pixel_program_ || variant != pixel_pass_variant_) {
+            pixel_program_ = make_pixel_pass(variant);
+            pixel_pass_variant_ = variant;
+        }
         glUseProgram(pixel_program_.id());
         bind_shading_inputs(pixel_program_);
+        glUniform1i(uniform(pixel_program_, "u_part_count"), int(scene_.parts.size()));
+        glUniform1i(uniform(pixel_program_, "u_culling"), options_.occluder_culling ? 1 : 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, candidates_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, part_culling_.id());
         glUniformMatrix4fv(uniform(pixel_program_, "u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
         glUniform1f(uniform(pixel_program_, "u_exposure"), exposure);
         glUniform1i(uniform(pixel_program_, "u_linear"), linear ? 1 : 0);

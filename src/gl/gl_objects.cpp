@@ -118,9 +118,9 @@ std::string shading_prelude() {
 
 std::string srgb_prelude() { return "#line 1 1\n" + shader_text("srgb.glsl") + "#line 2 0\n"; }
 
-std::string shade_point_prelude() {
+std::string shading_inputs_prelude() {
     return included_shader("shading_data.glsl", 2) + included_shader("visibility_fields.glsl", 3) +
-           included_shader("shade_point.glsl", 4);
+           included_shader("shadow_map_filter.glsl", 4);
 }
 
 std::string included_shader(const std::string& name, int source) {
@@ -128,10 +128,15 @@ std::string included_shader(const std::string& name, int source) {
 }
 
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines) {
-    const GLuint vs = compile(GL_VERTEX_SHADER, vertex, defines);
+    return build_program(vertex, fragment, defines, defines);
+}
+
+Program build_program(const std::string& vertex, const std::string& fragment, const std::string& vertex_defines,
+                      const std::string& fragment_defines) {
+    const GLuint vs = compile(GL_VERTEX_SHADER, vertex, vertex_defines);
     GLuint fs = 0;
     try {
-        fs = compile(GL_FRAGMENT_SHADER, fragment, defines);
+        fs = compile(GL_FRAGMENT_SHADER, fragment, fragment_defines);
     } catch (...) {
         glDeleteShader(vs);
         throw;

@@ -82,6 +82,9 @@ Program link_program(std::initializer_list<GLuint> shaders, const std::string& l
 // `defines` (e.g. "#define MAX_PARTS 32\n") go right after the #version line.
 // Throws rsl::Error with the driver's log, naming the shader file.
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines = "");
+// The same with each stage's own defines.
+Program build_program(const std::string& vertex, const std::string& fragment, const std::string& vertex_defines,
+                      const std::string& fragment_defines);
 
 // Compiles and links the embedded compute shader shaders/<compute>, `defines`
 // after its #version line; throws rsl::Error with the driver's log.
@@ -99,11 +102,12 @@ std::string shading_prelude();
 // What the viewer's display passes get before their text: the sRGB curve
 // (shaders/srgb.glsl), then a #line for the shader's own line numbers.
 std::string srgb_prelude();
-// The shading sum at a point, after shading_prelude(): shaders/shading_data.glsl
+// What the shading passes read, after shading_prelude(): shaders/shading_data.glsl
 // (the data and the BRDF average), visibility_fields.glsl (SVDF, OVDF,
-// exact shapes) and shade_point.glsl (the sum), as source strings 2, 3 and
-// 4. The vertex pass and the per-pixel pass run it.
-std::string shade_point_prelude();
+// exact shapes) and shadow_map_filter.glsl (the shadow-map baseline), as
+// source strings 2, 3 and 4. The sum itself (point_sum.glsl, source 7)
+// comes after them (and after the GPU rays' text, with RAY_TRACED).
+std::string shading_inputs_prelude();
 // shaders/<name> to go before a shader's own text, as source string
 // `source` (#line 1 source), so that the driver's messages name its lines.
 std::string included_shader(const std::string& name, int source);

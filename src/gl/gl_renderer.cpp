@@ -49,9 +49,6 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     face_s_.assign(geometry.face_s.begin(), geometry.face_s.end());
     face_t_.assign(geometry.face_t.begin(), geometry.face_t.end());
     display_program_ = build_program("display.vert.glsl", "display.frag.glsl", srgb_prelude());
-    pixel_program_ = build_program("shade_pixels.vert.glsl", "shade_pixels.frag.glsl",
-                                   vertex_pass_defines_ + shading_prelude() + shade_point_prelude() + srgb_prelude());
-    set_sampler_units(pixel_program_);
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
         const Part& part = scene_.parts[p];
         rectangle_parts_.push_back(find_rectangle(part.mesh) ? 1 : 0);
@@ -77,7 +74,7 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
 
 void GlRenderer::set_sampler_units(const Program& program) {
     const char* samplers[kUnitCount] = {"u_positions",       "u_normals",           "u_tangents",
-                                        "u_parts",           "u_lights",            "u_occluder_lists",
+                                        "u_parts",           "u_lights",
                                         "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
                                         "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
                                         "u_ovdf_frames",     "u_shadow_depths",     "u_base_color",
@@ -89,16 +86,30 @@ void GlRenderer::set_sampler_units(const Program& program) {
     glUniform3fv(uniform(program, "u_face_t"), 6, &face_t_[0].x);
 }
 
+std::string GlRenderer::variant_defines(const VertexPassVariant& variant, bool record) const {
+    return vertex_pass_defines_ +
+           fmt::format("#define LIGHT_WORDS {}\n#define LAYERED {}\n#define RECORD_BLOCK_LIGHTS {}\n"
+                       "#define RAY_TRACED {}\n#define SHADOW_MAPPED {}\n#define LOCAL_LIGHTS {}\n#define MAX_SLICES {}\n",
+                       variant.light_words, variant.layered ? 1 : 0, record ? 1 : 0, variant.rays ? 1 : 0,
+                       variant.shadow_maps ? 1 : 0, variant.local_lights ? 1 : 0, variant.slices);
+}
+
 Program GlRenderer::make_vertex_pass(const VertexPassVariant& variant, bool record) {
-    const std::string defines =
-        vertex_pass_defines_ +
-        fmt::format("#define SHADE_BLOCK {}\n#define LIGHT_WORDS {}\n#define LAYERED {}\n#define RECORD_BLOCK_LIGHTS {}\n"
-                    "#define RAY_TRACED {}\n#define SHADOW_MAPPED {}\n#define LOCAL_LIGHTS {}\n#define MAX_SLICES {}\n"
-                    "#define SELF_CORNERS 1\n",
-                    kShadeBlock, variant.light_words, variant.layered ? 1 : 0, record ? 1 : 0, variant.rays ? 1 : 0,
-                    variant.shadow_maps ? 1 : 0, variant.local_lights ? 1 : 0, variant.slices) +
-        shading_prelude() + shade_point_prelude() + (variant.rays ? RayTracedVisibility::shader_text() : "");
+    const std::string defines = variant_defines(variant, record) +
+                                fmt::format("#define SHADE_BLOCK {}\n#define SELF_CORNERS 1\n", kShadeBlock) +
+                                shading_prelude() + shading_inputs_prelude() +
+                                (variant.rays ? RayTracedVisibility::shader_text() : "") +
+                                included_shader("point_sum.glsl", 7);
     Program program = build_compute_program("shade_blocks.comp.glsl", defines);
+    set_sampler_units(program);
+    return program;
+}
+
+Program GlRenderer::make_pixel_pass(VertexPassVariant variant) {
+    variant.rays = false;  // the ray-traced baseline draws no part per pixel (per_pixel_part)
+    const std::string common = variant_defines(variant, false) + shading_prelude() + shading_inputs_prelude();
+    Program program = build_program("shade_pixels.vert.glsl", "shade_pixels.frag.glsl", common + srgb_prelude(),
+                                    common + included_shader("point_sum.glsl", 7) + srgb_prelude());
     set_sampler_units(program);
     return program;
 }
@@ -231,7 +242,6 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
 void GlRenderer::frame_changed() {
     shadow_maps_stale_ = true;  // poses or lights may have moved
     shaded_current_frame_ = false;
-    pack_occluder_lists(frame_.occluder_lists(), occluder_list_texels_);
     pack_block_candidates(frame_.occluder_lists(), candidate_words_);
     pack_part_culling(frame_.poses(), local_reach_, split_fields_, part_culling_records_);
     stats_.lights = frame_.environment_squares().size() + frame_.light_positions().size();
@@ -261,7 +271,6 @@ void GlRenderer::upload_frame() {
     if (light_texels_.empty()) light_texels_.push_back(Vec4(0.0f));
     update_array_texture(lights_, light_texels_);
 
-    upload_uint_array(occluder_lists_, occluder_list_texels_);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, candidates_.id());
     glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(candidate_words_.size() * sizeof(uint32_t)),
                  candidate_words_.data(), GL_STREAM_DRAW);
@@ -361,7 +370,6 @@ void GlRenderer::bind_shading_inputs(const Program& program) {
     bind_texture(kUnitTangents, GL_TEXTURE_2D, tangents_.id());
     bind_texture(kUnitParts, GL_TEXTURE_2D, parts_.texture.id());
     bind_texture(kUnitLights, GL_TEXTURE_2D, lights_.texture.id());
-    bind_texture(kUnitOccluders, GL_TEXTURE_2D, occluder_lists_.texture.id());
     bind_texture(kUnitBrdf, GL_TEXTURE_3D, brdf_.id());
     bind_texture(kUnitBrdfOffsets, GL_TEXTURE_2D, brdf_offsets_.texture.id());
     bind_texture(kUnitSvdfTables, GL_TEXTURE_2D, svdf_tables_.texture.id());

@@ -163,7 +163,11 @@ private:
         bool operator==(const VertexPassVariant&) const = default;
     };
     VertexPassVariant frame_vertex_pass_variant() const;
+    // The passes' defines for `variant` (RECORD_BLOCK_LIGHTS: `record`).
+    std::string variant_defines(const VertexPassVariant& variant, bool record) const;
     Program make_vertex_pass(const VertexPassVariant& variant, bool record);
+    // The per-pixel pass for the frame's variant (no ray-traced branch).
+    Program make_pixel_pass(VertexPassVariant variant);
     // Dispatches `program` (a vertex pass) over every block.
     void run_vertex_pass(const Program& program);
     // The sampler units and the OVDF cube faces' uniforms of a program that shades (shading_data.glsl).
@@ -201,8 +205,6 @@ private:
     };
     std::vector<TableSlot> slots_;
     MaterialUploads uploads_;
-    // The frame's occluder lists as the shader walks them (pack_occluder_lists).
-    std::vector<uint32_t> occluder_list_texels_;
     // Whether the colour buffer holds the current frame's shading (the
     // display pass draws it with the current frame's poses and lights).
     bool shaded_current_frame_ = false;
@@ -216,12 +218,12 @@ private:
     Program vertex_pass_, display_program_, pixel_program_;
     std::string vertex_pass_defines_;  // MAX_STRIDE, SVDF_STRIDE, OVDF_STRIDE
     VertexPassVariant vertex_pass_variant_;  // what vertex_pass_ was built for
+    VertexPassVariant pixel_pass_variant_;   // ... and pixel_program_ (built on first use)
     std::vector<Vec3> face_normal_, face_s_, face_t_;  // the OVDF cube faces' uniforms
     std::vector<char> rectangle_parts_;  // per part: one flat rectangle (find_rectangle)
     std::vector<Bounds> part_bounds_;  // per part: its mesh's box (part space)
     Texture positions_, normals_, tangents_;
     ArrayTexture parts_, lights_, brdf_offsets_;
-    ArrayTexture occluder_lists_;  // occluder_list_texels_
     ArrayTexture indices_;         // every part's triangle indices (part-local), first_index_ order
     ArrayTexture svdf_tables_, svdf_coefficients_, ovdf_tables_, ovdf_coefficients_, ovdf_frames_;
     Texture brdf_;

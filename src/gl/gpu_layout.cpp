@@ -324,15 +324,6 @@ PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable
     return out;
 }
 
-void pack_occluder_lists(const OccluderLists& lists, std::vector<uint32_t>& texels) {
-    const size_t slots = lists.offsets.size();  // P·L + 1
-    if (slots + lists.occluders.size() > size_t(UINT32_MAX))
-        throw Error(fmt::format("{} occluder list entries are more than the GPU lists can index", lists.occluders.size()));
-    texels.resize(slots + lists.occluders.size());
-    for (size_t s = 0; s < slots; ++s) texels[s] = uint32_t(slots + lists.offsets[s]);
-    for (size_t e = 0; e < lists.occluders.size(); ++e) texels[slots + e] = uint32_t(lists.occluders[e]);
-}
-
 PackedBlocks pack_blocks(const Scene& scene, const std::vector<int>& first_vertex) {
     std::vector<std::vector<int>> orders;
     for (const Part& part : scene.parts) orders.push_back(spatial_block_order(part.mesh.positions, kShadeBlock));

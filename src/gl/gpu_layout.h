@@ -217,13 +217,6 @@ PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable
 // The pose slots of one part record.
 void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, Vec4* record);
 
-// The CPU renderer's occluder lists (culling.h) as the shader walks them:
-// texel s = p·L + l (light l of receiver part p, environment lights first)
-// holds the index of the slot's first occluder texel and texel s + 1 the
-// end; the occluder part indices follow the P·L + 1 offsets. Throws
-// rsl::Error past what uint texels index.
-void pack_occluder_lists(const OccluderLists& lists, std::vector<uint32_t>& texels);
-
 // The CPU renderer's vertex blocks (vertex_blocks.h) as the vertex pass's
 // workgroups take them: per block (part, first entry of `vertices`, vertex
 // count, 0), and per entry the vertex's index in the vertex rectangle.

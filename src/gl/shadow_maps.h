@@ -10,7 +10,7 @@
 // sphere), through the shading core's shadow_map_point, which the shading
 // pass calls too, so a vertex finds itself where it was drawn. The shading
 // pass reads the depths with texelFetch and compares each texel itself
-// (with the receiver's plane at that texel: shaders/shade_point.glsl).
+// (with the receiver's plane at that texel: shaders/shadow_map_filter.glsl).
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -52,7 +52,7 @@ public:
     int layers() const { return layers_; }
     size_t bytes() const { return size_t(resolution_) * size_t(resolution_) * size_t(layers_) * 4; }
     // The array on texture unit `unit`, and the shading pass's uniforms of
-    // the maps and the filter (shaders/shade_point.glsl, u_shadow_*);
+    // the maps and the filter (shaders/shadow_map_filter.glsl, u_shadow_*);
     // `shading` in use.
     void bind_for_shading(const Program& shading, const ShadowMapOptions& options, int unit) const;
 

@@ -75,8 +75,10 @@ void check_pixel_pass(const PixelPassImages& images) {
     // The CPU keeps the corners' blend for the dimmest lights of a shadowed
     // triangle (pixel_shading.cpp kBlendedShare); the GPU takes every light
     // at the pixel: close, not equal.
-    CHECK(per_pixel_pair < 0.02);
-    CHECK(per_pixel < 0.6 * per_vertex);
+    CHECK(per_pixel_pair < 0.01);  // measured 2.8e-3 (textured) and 5.3e-3 (llvmpipe)
+    // Sharp shadows per pixel: measured 0.54× (textured) and 0.61× the
+    // per-vertex error; the CPU's own per-pixel image 0.60×.
+    CHECK(per_pixel < 0.65 * per_vertex);
     CHECK(per_pixel < 0.05);
     CHECK(per_pixel < cpu_per_pixel + 0.005);
 }

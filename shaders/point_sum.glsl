@@ -1,0 +1,285 @@
+// The sum at a point with the CPU renderer's per-vertex tests
+// (src/render/shade_block.cpp), as the vertex pass and the per-pixel pass
+// both take it:
+//
+//  1. light_shares: per light the BRDF and self-visibility (the light's
+//     share before the other parts' shadows), for the lights whose square
+//     reaches the point's hemisphere;
+//  2. per candidate occluder of the part, occluder_at_vertex: the
+//     light-independent half of the lookup once (the point in the
+//     occluder's frame, the box sides, the bounding cone, the OVDF
+//     location), then shadow_by_occluder: the cheap answers per light (the
+//     cone, the box, inside, the small-occluder rule) and the tables for
+//     the lights left;
+//  3. point_sum: Σ share × visibility.
+//
+// The sum is the RSL paper's (§5.2, Figure 8),
+//
+//   Σ_lights  2r²·I  ×  BRDF-SAT average  ×  SVDF average  ×  Π_occluders OVDF average,
+//
+// with the same arithmetic as the CPU renderer (src/render/shade_block.cpp,
+// src/brdf/brdf_table.cpp, src/fields/svdf.h, src/fields/ovdf.cpp), so that
+// the two agree to float rounding. After shading_data.glsl,
+// visibility_fields.glsl and shadow_map_filter.glsl (and, with RAY_TRACED,
+// ray_visibility.glsl). The
+// host defines LIGHT_WORDS (32 lights a word), LAYERED (some part has a
+// specular table), RAY_TRACED and SHADOW_MAPPED (the baselines).
+
+const int kMaxLights = LIGHT_WORDS * 32;
+
+// Light l at world point p: its direction, square half-edge and integral;
+// a sphere light that contains p has h = 0 (no share).
+struct PointLight {
+    vec3 direction;
+    float h;
+    vec3 integral;
+};
+PointLight light_at(int l, vec3 p) {
+    vec4 a = fetch(u_lights, kLightTexels * l), b = fetch(u_lights, kLightTexels * l + 1);
+    PointLight light;  // an environment square: direction, half-edge, 2r²·I
+    light.direction = a.xyz;
+    light.h = a.w;
+    light.integral = b.rgb;
+#if LOCAL_LIGHTS
+    if (l >= u_environment_lights) {
+        // A sphere light: center a.xyz, radius a.w, radiance b.rgb; spot axis c.xyz, cone (b.w, c.w).
+        vec3 to_center = a.xyz - p;
+        float distance = length(to_center);
+        light.h = 0.0;
+        light.integral = vec3(0.0);
+        light.direction = vec3(0.0, 0.0, 1.0);
+        if (!(distance > a.w)) return light;
+        light.direction = to_center / distance;
+        float solid_angle = sphere_cap_solid_angle(a.w, distance);
+        light.h = half_edge_for_solid_angle(solid_angle);
+        vec4 c = fetch(u_lights, kLightTexels * l + 2);
+        light.integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -light.direction, b.w, c.w));
+    }
+#endif
+    return light;
+}
+
+// Self-visibility of the light with direction `direction`, plane point lp in
+// the point's frame and half-edge h (g_self_corners).
+float self_visibility(vec4 svdf, vec3 direction, vec2 lp, float h) {
+    if (g_self_corners == 0) return 1.0;
+#if SELF_CORNERS == 1
+    return visible_fraction_from_distance(svdf_distance(svdf, g_corner_cluster[0], lp, 0), h);
+#else
+    if (g_self_corners == 1) return visible_fraction_from_distance(svdf_distance(svdf, g_corner_cluster[0], lp, 0), h);
+    float blend = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        // A corner whose hemisphere the square misses has no share (the
+        // CPU's vertex pass queries no such square).
+        vec3 local = frame_to_local(g_corner_frame[c], direction);
+        if (!square_reaches_hemisphere(local.z, h)) continue;
+        float corner = g_corner_cluster[c] < 0
+                           ? 1.0
+                           : visible_fraction_from_distance(
+                                 svdf_distance(svdf, g_corner_cluster[c], hemisphere_to_plane(local), c), h);
+        blend += g_corner_weight[c] * corner;
+    }
+    return blend;
+#endif
+}
+
+// The frame's candidates (gpu_layout.h pack_block_candidates): parts + 1
+// offsets, then per candidate kCandidateHeader + LIGHT_WORDS words.
+layout(std430, binding = 2) readonly buffer Candidates { uint candidates[]; };
+// Per part, kCullingStride vec4 (gpu_layout.h pack_part_culling).
+layout(std430, binding = 3) readonly buffer PartCulling { vec4 part_culling[]; };
+uniform int u_part_count;
+uniform bool u_culling;  // RenderOptions::occluder_culling
+
+// Per vertex and light: the visibility so far (0: no share, or black; < 0:
+// the share is final, shadow-mapped), and the share before visibility.
+float g_visibility[kMaxLights];
+vec3 g_share[kMaxLights];
+#if LAYERED
+vec3 g_specular_share[kMaxLights];
+#endif
+#if RAY_TRACED
+// The vertex's rays: where they start, its index in its part (the seed's), the rays traced.
+vec3 g_ray_origin;
+int g_local_vertex;
+uint g_rays = 0u;
+#endif
+
+// Every light's share and self-visibility at the point (g_share,
+// g_visibility); `live`: the lights with a share and some light left.
+void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORDS]) {
+    for (int w = 0; w < LIGHT_WORDS; ++w) live[w] = 0u;
+    for (int l = 0; l < kMaxLights; ++l) {
+        g_visibility[l] = 0.0;
+        g_share[l] = vec3(0.0);
+#if LAYERED
+        g_specular_share[l] = vec3(0.0);
+#endif
+    }
+    vec4 material = part_texel(part, kSlotMaterial);
+    vec4 specular_material = part_texel(part, kSlotSpecular);
+    bool layered = specular_material.w > 0.5;
+    vec4 svdf = part_texel(part, kSlotSvdf);
+    bool isotropic = material.y > 0.5;
+    vec3 wo = frame_to_local(frame, normalize(u_camera - p));
+    if (!(wo.z > 0.0)) return;
+    vec2 alignment = view_alignment(wo);
+    int first = u_environment_enabled ? 0 : u_environment_lights;
+    int last = u_local_enabled ? u_light_count : u_environment_lights;
+    // The lights whose square reaches the vertex's hemisphere first, then
+    // the shares of those alone: the loop's turns are the most any lane
+    // has, not every light (see shadow_by_occluder).
+    uint reaching[LIGHT_WORDS];
+    for (int w = 0; w < LIGHT_WORDS; ++w) reaching[w] = 0u;
+    for (int l = first; l < last; ++l) {
+        PointLight light = light_at(l, p);
+        if (light.h > 0.0f && square_reaches_hemisphere(frame_to_local(frame, light.direction).z, light.h))
+            reaching[l / 32] |= 1u << uint(l % 32);
+    }
+    for (int w = 0; w < LIGHT_WORDS; ++w)
+    for (uint left = reaching[w]; left != 0u; left &= left - 1u) {
+        int l = w * 32 + findLSB(left);
+        PointLight light = light_at(l, p);
+        vec3 local = frame_to_local(frame, light.direction);
+        vec2 lp = hemisphere_to_plane(local);
+        vec2 square = isotropic ? to_view_aligned(lp, alignment) : lp;
+        vec3 brdf = brdf_average(material, square, light.h, wo);
+#if LAYERED
+        vec3 specular_brdf = layered ? brdf_average(specular_material, square, light.h, wo) : vec3(0.0);
+#else
+        vec3 specular_brdf = vec3(0.0);
+#endif
+#if SHADOW_MAPPED
+        if (u_shadow_maps && l < u_environment_lights) {  // the baseline's visibility, in place of the fields'
+            float lit = shadow_visible_fraction(l, light.direction, p, frame, lp, light.h);
+            g_share[l] = light.integral * brdf * lit;
+#if LAYERED
+            g_specular_share[l] = light.integral * specular_brdf * lit;
+#endif
+            g_visibility[l] = -1.0;
+            continue;
+        }
+#endif
+        // A square whose BRDF average is 0 adds nothing: no visibility lookups for it (the CPU's adds_nothing).
+        if (brdf == vec3(0.0) && specular_brdf == vec3(0.0)) continue;
+#if RAY_TRACED
+        // The ray-traced baseline: rays in place of SVDF × Π OVDF, for every light (as the CPU's rows).
+        float lit = ray_traced_fraction(part, g_local_vertex, l, g_ray_origin, frame, lp, light.h, g_rays);
+        g_share[l] = light.integral * brdf * lit;
+#if LAYERED
+        g_specular_share[l] = light.integral * specular_brdf * lit;
+#endif
+        g_visibility[l] = -1.0;
+        continue;
+#endif
+        g_share[l] = light.integral * brdf;
+#if LAYERED
+        g_specular_share[l] = light.integral * specular_brdf;
+#endif
+        g_visibility[l] = self_visibility(svdf, light.direction, lp, light.h);
+        if (g_visibility[l] > 0.0) live[l / 32] |= 1u << uint(l % 32);
+    }
+}
+
+// For one candidate occluder o and the point p: multiplies its
+// factor into every light of `bits` (the block's, word w) that still has a
+// share; returns the lookups made.
+struct OccluderAtVertex {
+    mat4 inverse;
+    vec3 point;      // the vertex in the occluder's frame
+    vec3 sides;      // box_sides
+    vec3 face_scale; // the lengths of inverse_linear's rows (clears_box_face_scaled)
+    vec3 pole;       // unit, towards the occluder's field center (0 beyond its outer shell)
+    float cone;      // its bounding cone's plane radius; kOvdfNoCone: no cone test
+    vec4 shape;      // kSlotShape: an exact shape when w > 0
+    OvdfReceiver receiver;
+};
+
+OccluderAtVertex occluder_at_vertex(int o, vec3 p) {
+    OccluderAtVertex v;
+    v.inverse = mat4(part_texel(o, kSlotInverse), part_texel(o, kSlotInverse + 1), part_texel(o, kSlotInverse + 2),
+                     part_texel(o, kSlotInverse + 3));
+    v.point = (v.inverse * vec4(p, 1.0)).xyz;
+    v.sides = box_sides(part_texel(o, kSlotBoxLow).xyz, part_texel(o, kSlotBoxHigh).xyz, v.point);
+    mat3 rows = transpose(mat3(v.inverse));
+    v.face_scale = vec3(length(rows[0]), length(rows[1]), length(rows[2]));
+    vec4 center = part_texel(o, kSlotOvdfCenter);
+    float outer = part_texel(o, kSlotOvdfBases).w;
+    vec3 offset = v.point - center.xyz;
+    float d = length(offset);
+    bool inside = d < outer;
+    v.pole = inside && d > 0.0 ? -offset / d : vec3(0.0);
+    bool cones = u_culling && part_culling[o * kCullingStride + kCullingFlags].y > 0.5;
+    v.cone = !cones ? kOvdfNoCone : (inside ? (d <= center.w ? kOvdfNoCone : ovdf_cone_radius(d, center.w)) : -1.0);
+    v.shape = part_texel(o, kSlotShape);
+    // The OVDF location once per (vertex, occluder), before the lights: a
+    // software rasterizer would run a lazy one at every light.
+    v.receiver = ovdf_locate(o, v.point);
+    return v;
+}
+
+uint shadow_by_occluder(int o, inout OccluderAtVertex v, vec3 p, LocalFrame frame, int w, uint bits,
+                        inout uint live[LIGHT_WORDS]) {
+    mat3 inverse_linear = mat3(v.inverse);
+    // The cheap answers first, in one loop over the lights: the vertex's own
+    // culling tests, a receiver inside the part (0), the small-occluder rule
+    // alone; the lights left for the tables (or an exact shape) after, in a
+    // loop of their own. A software rasterizer runs every loop for the most
+    // turns any lane of its vector takes and runs both sides of an `if`,
+    // so the tables' reads must not ride in the loop of every light.
+    bool shape = v.shape.w > 0.5;
+    uint lookups = 0u, needed = 0u;
+    for (uint left = bits; left != 0u; left &= left - 1u) {
+        int bit = findLSB(left);
+        int l = w * 32 + bit;
+        PointLight light = light_at(l, p);
+        vec3 toward = inverse_linear * light.direction;  // not normalized
+        vec3 dir = normalize(toward);
+        if (ovdf_unshadowed(dot(dir, v.pole), v.cone, light.h)) continue;
+        if (clears_box_face_scaled(v.sides, toward, v.face_scale, square_cone_sine(light.h))) continue;
+        ++lookups;
+        if (shape) {
+            needed |= 1u << uint(bit);
+            continue;
+        }
+        if (v.receiver.kind == kOvdfOutside) continue;  // its factor is 1
+        OvdfSmall small = ovdf_receiver_small(v.receiver, dir, light.h);
+        if (v.receiver.kind == kOvdfLocated && small.weight < 1.0f) {
+            needed |= 1u << uint(bit);
+            continue;
+        }
+        g_visibility[l] *= v.receiver.kind == kOvdfInside ? 0.0f : small.fraction;
+        if (!(g_visibility[l] > 0.0)) live[w] &= ~(1u << uint(bit));
+    }
+    for (; needed != 0u; needed &= needed - 1u) {
+        int bit = findLSB(needed);
+        int l = w * 32 + bit;
+        PointLight light = light_at(l, p);
+        float fraction;
+        if (shape) {
+            vec2 lp = hemisphere_to_plane(frame_to_local(frame, light.direction));
+            fraction = exact_shape_fraction(o, v.shape, v.point, frame, inverse_linear, lp, light.h);
+        } else {
+            vec3 dir = normalize(inverse_linear * light.direction);
+            fraction = ovdf_receiver_tables(o, v.receiver, dir, light.h, ovdf_receiver_small(v.receiver, dir, light.h));
+        }
+        g_visibility[l] *= fraction;
+        if (!(g_visibility[l] > 0.0)) live[w] &= ~(1u << uint(bit));
+    }
+    return lookups;
+}
+
+// Σ share × visibility over the lights: the colour, and with LAYERED the
+// specular layer into `specular`.
+vec3 point_sum(out vec3 specular) {
+    vec3 color = vec3(0.0);
+    specular = vec3(0.0);
+    for (int l = 0; l < kMaxLights; ++l) {
+        float visibility = g_visibility[l] < 0.0 ? 1.0 : g_visibility[l];
+        color += g_share[l] * visibility;
+#if LAYERED
+        specular += g_specular_share[l] * visibility;
+#endif
+    }
+    return color;
+}
