@@ -21,9 +21,9 @@
 // src/brdf/brdf_table.cpp, src/fields/svdf.h, src/fields/ovdf.cpp), so that
 // the two agree to float rounding. After shading_data.glsl,
 // visibility_fields.glsl and shadow_map_filter.glsl (and, with RAY_TRACED,
-// ray_visibility.glsl). The
-// host defines LIGHT_WORDS (32 lights a word), LAYERED (some part has a
-// specular table), RAY_TRACED and SHADOW_MAPPED (the baselines).
+// ray_visibility.glsl). The host defines LIGHT_WORDS (32 lights a word),
+// LAYERED (some part has a specular table), RAY_TRACED and SHADOW_MAPPED
+// (the baselines).
 
 const int kMaxLights = LIGHT_WORDS * 32;
 
@@ -181,9 +181,7 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
     }
 }
 
-// For one candidate occluder o and the point p: multiplies its
-// factor into every light of `bits` (the block's, word w) that still has a
-// share; returns the lookups made.
+// The light-independent half of a lookup of occluder o at a point.
 struct OccluderAtVertex {
     mat4 inverse;
     vec3 point;      // the vertex in the occluder's frame
@@ -218,6 +216,9 @@ OccluderAtVertex occluder_at_vertex(int o, vec3 p) {
     return v;
 }
 
+// For one candidate occluder o and the point p: multiplies its factor into
+// every light of `bits` (word w of the lights the candidate keeps) that
+// still has a share; returns the lookups made.
 uint shadow_by_occluder(int o, inout OccluderAtVertex v, vec3 p, LocalFrame frame, int w, uint bits,
                         inout uint live[LIGHT_WORDS]) {
     mat3 inverse_linear = mat3(v.inverse);

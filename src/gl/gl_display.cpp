@@ -68,7 +68,8 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
     }
 
     // The per-pixel pass: the sum at each pixel's point, with the frame's
-    // lights, occluder lists and camera (the vertex pass's inputs).
+    // lights, occluder candidates and camera (the vertex pass's inputs),
+    // compiled for the vertex pass's variant.
     if (any_per_pixel) {
         if (const VertexPassVariant variant = frame_vertex_pass_variant(); !pixel_program_ || variant != pixel_pass_variant_) {
             pixel_program_ = make_pixel_pass(variant);

@@ -150,9 +150,10 @@ private:
     // pose is the caller's (the vertex colours' view is the frame's camera).
     Image draw_image(const PinholeCamera& camera);
     void upload_geometry(const PackedGeometry& geometry);
-    // What the vertex pass is compiled for (its defines): it is built again
-    // when the frame needs another, e.g. when the light count crosses a
-    // multiple of 32 or the first textured material comes.
+    // What the vertex pass and the per-pixel pass are compiled for (their
+    // defines): they are built again when the frame needs another, e.g. when
+    // the light count crosses a multiple of 32 or the first textured
+    // material comes.
     struct VertexPassVariant {
         size_t light_words = 0;     // LIGHT_WORDS (32 lights a word)
         bool layered = false;       // LAYERED: the specular layer
