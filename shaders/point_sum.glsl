@@ -105,6 +105,16 @@ int g_local_vertex;
 uint g_rays = 0u;
 #endif
 
+// Light l's share with a baseline's visibility `lit` in place of the
+// fields' (shadow maps, rays): final, no lookups follow (g_visibility < 0).
+void final_share(int l, vec3 integral, vec3 brdf, vec3 specular_brdf, float lit) {
+    g_share[l] = integral * brdf * lit;
+#if LAYERED
+    g_specular_share[l] = integral * specular_brdf * lit;
+#endif
+    g_visibility[l] = -1.0;
+}
+
 // Every light's share and self-visibility at the point (g_share,
 // g_visibility); `live`: the lights with a share and some light left.
 void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORDS]) {
@@ -151,12 +161,8 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
 #endif
 #if SHADOW_MAPPED
         if (u_shadow_maps && l < u_environment_lights) {  // the baseline's visibility, in place of the fields'
-            float lit = shadow_visible_fraction(l, light.direction, p, frame, lp, light.h);
-            g_share[l] = light.integral * brdf * lit;
-#if LAYERED
-            g_specular_share[l] = light.integral * specular_brdf * lit;
-#endif
-            g_visibility[l] = -1.0;
+            final_share(l, light.integral, brdf, specular_brdf,
+                        shadow_visible_fraction(l, light.direction, p, frame, lp, light.h));
             continue;
         }
 #endif
@@ -164,12 +170,8 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
         if (brdf == vec3(0.0) && specular_brdf == vec3(0.0)) continue;
 #if RAY_TRACED
         // The ray-traced baseline: rays in place of SVDF × Π OVDF, for every light (as the CPU's rows).
-        float lit = ray_traced_fraction(part, g_local_vertex, l, g_ray_origin, frame, lp, light.h, g_rays);
-        g_share[l] = light.integral * brdf * lit;
-#if LAYERED
-        g_specular_share[l] = light.integral * specular_brdf * lit;
-#endif
-        g_visibility[l] = -1.0;
+        final_share(l, light.integral, brdf, specular_brdf,
+                    ray_traced_fraction(part, g_local_vertex, l, g_ray_origin, frame, lp, light.h, g_rays));
         continue;
 #endif
         g_share[l] = light.integral * brdf;
