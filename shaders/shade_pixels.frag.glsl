@@ -92,17 +92,29 @@ void main() {
     uint live[LIGHT_WORDS];
     light_shares(u_part, p, frame, live);
     // The part's candidate occluders (pack_block_candidates), each with the
-    // lights the part-level tests left it; the point's own tests do the rest.
-    uint header = uint(u_part_count + 1);
-    for (uint c = candidates[u_part]; c < candidates[u_part + 1]; ++c) {
-        uint entry = header + c * uint(kCandidateHeader + LIGHT_WORDS);
-        bool any = false;
-        for (int w = 0; w < LIGHT_WORDS; ++w) any = any || (candidates[entry + uint(kCandidateHeader + w)] & live[w]) != 0u;
-        if (!any) continue;
-        int o = int(candidates[entry]);
-        OccluderAtVertex at = occluder_at_vertex(o, p);
-        for (int w = 0; w < LIGHT_WORDS; ++w)
-            shadow_by_occluder(o, at, p, frame, w, candidates[entry + uint(kCandidateHeader + w)] & live[w], live);
+    // lights the part-level tests left it, 32 at a time: first those with a
+    // lit light whose reach holds the point (the vertex pass's block test
+    // for a block of one point; beyond it the factor is 1), then the lookups
+    // for those alone, so that a loop's turns are the candidates some pixel
+    // needs (a software rasterizer runs the most turns of its lanes).
+    uint header = uint(u_part_count + 1), stride = uint(kCandidateHeader + LIGHT_WORDS);
+    uint first = candidates[u_part], last = candidates[u_part + 1];
+    for (uint chunk = first; chunk < last; chunk += 32u) {
+        uint kept = 0u;
+        for (uint j = 0u; j < min(last - chunk, 32u); ++j) {
+            uint entry = header + (chunk + j) * stride;
+            bool any = false;
+            for (int w = 0; w < LIGHT_WORDS; ++w) any = any || (candidates[entry + uint(kCandidateHeader + w)] & live[w]) != 0u;
+            vec4 reach = part_culling[int(candidates[entry]) * kCullingStride + kCullingReach];
+            if (any && !(u_culling && beyond_reach(vec4(p, 0.0), reach))) kept |= 1u << j;
+        }
+        for (; kept != 0u; kept &= kept - 1u) {
+            uint entry = header + (chunk + uint(findLSB(kept))) * stride;
+            int o = int(candidates[entry]);
+            OccluderAtVertex at = occluder_at_vertex(o, p);
+            for (int w = 0; w < LIGHT_WORDS; ++w)
+                shadow_by_occluder(o, at, p, frame, w, candidates[entry + uint(kCandidateHeader + w)] & live[w], live);
+        }
     }
     vec3 specular;
     vec3 diffuse = point_sum(specular);

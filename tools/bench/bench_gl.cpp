@@ -90,7 +90,7 @@ ShadingComparison compare_shading(gl::GlRenderer& gpu, CpuRenderer& cpu, const s
 
 // `full_frames`: also time the display pass (with and without the per-pixel
 // pass); the yards measure the vertex pass alone (on llvmpipe a yard-128 frame
-// with the per-pixel pass takes about 20 s).
+// with the per-pixel pass takes about 8 s).
 void bench_scene(std::shared_ptr<Scene> scene, const std::string& name, const BenchOptions& options,
                  const std::string& device, bool full_frames) {
     // The paper's settings take minutes to bake; --quick benches small fields
