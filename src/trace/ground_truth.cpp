@@ -5,84 +5,51 @@
 #include "src/core/scene_environment.h"
 #include "src/frame/image_formation.h"
 
-#include <array>
-#include <limits>
+#include <cmath>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "src/core/error.h"
+#include "src/trace/shadow_batch.h"
 
 namespace rsl {
 
 namespace {
 
-constexpr float kInfinity = std::numeric_limits<float>::infinity();
-
-// Shadow rays are queued here and traced in packets; stack storage, so the
-// per-point loops never allocate.
-class ShadowBatch {
-public:
-    static constexpr int kCapacity = 64;
-
-    ShadowBatch(const RayScene& rays, const Vec3& origin) : rays_(rays), origin_(origin) {}
-
-    void add(const Vec3& dir, const Color& weight, float t_far = kInfinity) {
-        dirs_[count_] = dir;
-        weights_[count_] = weight;
-        t_fars_[count_] = t_far;
-        if (++count_ == kCapacity) flush();
-    }
-    // Sum of the weights of the visible rays so far.
-    DVec3 flush_and_sum() {
-        flush();
-        return sum_;
-    }
-    uint64_t rays() const { return rays_traced_; }
-
-private:
-    void flush() {
-        if (count_ == 0) return;
-        rays_.occluded_batch(origin_, dirs_.data(), t_fars_.data(), count_, 0.0f, visible_.data());
-        for (int k = 0; k < count_; ++k)
-            if (visible_[k]) sum_ += DVec3(weights_[k]);
-        rays_traced_ += uint64_t(count_);
-        count_ = 0;
-    }
-
-    const RayScene& rays_;
-    Vec3 origin_;
-    std::array<Vec3, kCapacity> dirs_;
-    std::array<Color, kCapacity> weights_;
-    std::array<float, kCapacity> t_fars_;
-    std::array<uint8_t, kCapacity> visible_;
-    int count_ = 0;
-    DVec3 sum_{0.0};
-    uint64_t rays_traced_ = 0;
-};
-
 bool is_black(const Color& c) { return !(c.r > 0.0f || c.g > 0.0f || c.b > 0.0f); }
 
 }  // namespace
 
-EnvironmentSamples EnvironmentSamples::from_cube(const CubeMap& map, const Mat3& rotation, int subdivision) {
+EnvironmentSamples EnvironmentSamples::from_cube(const CubeMap& map, const Mat3& rotation, int subdivision,
+                                                 float max_sample_share) {
     RSL_CHECK_GE(subdivision, 1);
+    RSL_CHECK_GE(max_sample_share, 0.0f);
     EnvironmentSamples samples;
     const int n = map.resolution();
+    double total = 0.0;  // the map's luminance integral
+    if (max_sample_share > 0.0f)
+        for (int k = 0; k < map.texel_count(); ++k) total += double(luminance(map.radiance(k))) * map.solid_angle(k);
     for (int k = 0; k < map.texel_count(); ++k) {
         const Color radiance = map.radiance(k);
         if (is_black(radiance)) continue;  // contributes nothing: no ray
-        if (subdivision == 1) {
+        int cells = subdivision;
+        if (total > 0.0) {
+            const double share = double(luminance(radiance)) * map.solid_angle(k) / total;
+            const double side = std::ceil(std::sqrt(share / double(max_sample_share)) - 1e-9);
+            cells = std::max(cells, int(std::min(side, double(GroundTruthOptions::kMaxAdaptiveSubdivision))));
+        }
+        if (cells == 1) {
             samples.directions.push_back(glm::normalize(rotation * map.texel_direction(k)));
             samples.radiance_weights.push_back(radiance * map.solid_angle(k));
             continue;
         }
         const CubeTexel texel = map.texel(k);
-        const double cell = 2.0 / (double(n) * subdivision);
-        for (int b = 0; b < subdivision; ++b)
-            for (int a = 0; a < subdivision; ++a) {
-                const double s0 = -1.0 + (double(texel.i) * subdivision + a) * cell;
-                const double t0 = -1.0 + (double(texel.j) * subdivision + b) * cell;
+        const double cell = 2.0 / (double(n) * cells);
+        for (int b = 0; b < cells; ++b)
+            for (int a = 0; a < cells; ++a) {
+                const double s0 = -1.0 + (double(texel.i) * cells + a) * cell;
+                const double t0 = -1.0 + (double(texel.j) * cells + b) * cell;
                 const Vec3 dir = CubeMap::face_direction(texel.face, float(s0 + 0.5 * cell), float(t0 + 0.5 * cell));
                 samples.directions.push_back(glm::normalize(rotation * glm::normalize(dir)));
                 samples.radiance_weights.push_back(
@@ -93,32 +60,9 @@ EnvironmentSamples EnvironmentSamples::from_cube(const CubeMap& map, const Mat3&
 }
 
 GroundTruth::GroundTruth(const Scene& scene, const CubeMap& environment, float t, GroundTruthOptions options)
-    : scene_(scene), cube_(environment), options_(options), posed_(scene, t) {
+    : scene_(scene), cube_(environment), options_(options), posed_(scene, t), lobes_(scene) {
     RSL_CHECK_GE(options_.texel_subdivision, 1);
     RSL_CHECK_GE(options_.light_max_side, 8);
-    materials_ = make_scene_brdfs(scene);
-    whole_materials_ = materials_;
-    specular_.assign(materials_.size(), nullptr);
-    for (size_t m = 0; m < scene.materials.size(); ++m)
-        if (scene.materials[m].base_color_texture) {
-            BrdfLobes lobes = make_brdf_lobes(scene.materials[m]);
-            materials_[m] = std::move(lobes.diffuse);
-            specular_[m] = std::move(lobes.specular);
-        }
-    for (size_t p = 0; p < scene.parts.size(); ++p) {
-        const Part& part = scene.parts[p];
-        if (part.material < 0 || part.material >= int(materials_.size()))
-            throw_file_error(scene.source, "part '{}' has material index {} of {}", part.name, part.material,
-                             materials_.size());
-        if (specular_[size_t(part.material)] && part.mesh.texcoords.size() != part.mesh.positions.size())
-            throw_file_error(scene.source, "part '{}': its material has a base colour texture, the part no "
-                             "texture coordinates", part.name);
-        if (part.mesh.normals.size() != part.mesh.positions.size())
-            throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
-                             part.mesh.normals.size(), part.mesh.positions.size());
-    }
-    for (const LocalLight& light : scene.lights)
-        if (!(light.radius > 0.0f)) throw_file_error(scene.source, "local light with radius {}", light.radius);
     set_time(t);
 }
 
@@ -126,7 +70,7 @@ void GroundTruth::set_time(float t) {
     if (posed_.time() != t) posed_.set_time(t);
     if (options_.environment && cube_.resolution() > 0)
         environment_ = EnvironmentSamples::from_cube(cube_, scene_.environment.rotation_at(t),
-                                                     options_.texel_subdivision);
+                                                     options_.texel_subdivision, options_.max_sample_share);
     else
         environment_ = {};
     // Each sun, a direction of irradiance E (a delta light: one shadow ray),
@@ -137,14 +81,7 @@ void GroundTruth::set_time(float t) {
                 glm::normalize(scene_.environment.rotation_at(t) * sun_direction_in_map(scene_, sun)));
             environment_.radiance_weights.push_back(sun.irradiance);
         }
-    light_positions_.clear();
-    light_axes_.clear();
-    light_cones_.clear();
-    for (const LocalLight& light : scene_.lights) {
-        light_positions_.push_back(light.position_at(scene_, t));
-        light_axes_.push_back(light.axis_at(scene_, t));
-        light_cones_.push_back(spot_cone_scale_offset(light));
-    }
+    lights_.set(scene_, t);
     camera_ = scene_.camera.position_at(t);
 }
 
@@ -158,9 +95,9 @@ Color GroundTruth::shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf
     if (options_.local_lights)
         for (size_t i = 0; i < scene_.lights.size(); ++i) {
             // A spot's cone scales the light by the direction from its centre to x.
-            const float cone = spot_cone_factor_at(x.position, light_positions_[i], light_axes_[i], light_cones_[i]);
+            const float cone = spot_cone_factor_at(x.position, lights_.positions[i], lights_.axes[i], lights_.cones[i]);
             if (!(cone > 0.0f)) continue;
-            result += shade_light(x, origin, wo, brdf, light_positions_[i], scene_.lights[i].radius,
+            result += shade_light(x, origin, wo, brdf, lights_.positions[i], scene_.lights[i].radius,
                                   sphere_light_radiance(scene_.lights[i]) * cone, rays);
         }
     rays_traced_.fetch_add(rays, std::memory_order_relaxed);
@@ -173,16 +110,22 @@ Color GroundTruth::shade_environment(const SurfacePoint& x, const Vec3& origin, 
     const Vec3* dirs = environment_.directions.data();
     const Color* weights = environment_.radiance_weights.data();
     const size_t count = environment_.size();
+    DVec3 unshadowed(0.0);
     for (size_t k = 0; k < count; ++k) {
         const Vec3 wi = x.frame.to_local(dirs[k]);
         // Below the shading horizon ρ·cos is 0; below the geometric surface the
         // ray would enter the surface it starts on (occluded by definition).
-        if (wi.z <= 0.0f || glm::dot(dirs[k], x.offset_normal) <= 0.0f) continue;
+        if (wi.z <= 0.0f) continue;
+        if (!options_.shadows) {
+            unshadowed += DVec3(brdf.eval(wi, wo) * (wi.z * weights[k]));
+            continue;
+        }
+        if (glm::dot(dirs[k], x.offset_normal) <= 0.0f) continue;
         const Color f = brdf.eval(wi, wo) * (wi.z * weights[k]);
         if (is_black(f)) continue;
         batch.add(dirs[k], f);
     }
-    const DVec3 sum = batch.flush_and_sum();
+    const DVec3 sum = batch.flush_and_sum() + unshadowed;
     rays += batch.rays();
     return Color(sum);
 }
@@ -242,35 +185,11 @@ Color GroundTruth::shade_hit(const RayHit& hit, const Vec3& ray_direction) const
 }
 
 VertexColors GroundTruth::shade_vertices(const ProgressCallback& progress) const {
-    VertexColors colors;
-    colors.scene_name = scene_.name;
-    colors.producer = "truth";
-    colors.time = time();
-    std::vector<size_t> first;  // flattened index of each part's first vertex
-    size_t total = 0;
-    for (size_t p = 0; p < scene_.parts.size(); ++p) {
-        const Part& part = scene_.parts[p];
-        colors.add_part(part.name, part.mesh.vertex_count(),
-                        specular_[size_t(part.material)] ? scene_.materials[size_t(part.material)].base_color_texture
-                                                         : nullptr);
-        first.push_back(total);
-        total += part.mesh.vertex_count();
-    }
-    std::atomic<size_t> done{0};
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, total, 64), [&](const tbb::blocked_range<size_t>& range) {
-        int part = int(std::upper_bound(first.begin(), first.end(), range.begin()) - first.begin()) - 1;
-        for (size_t index = range.begin(); index != range.end(); ++index) {
-            while (part + 1 < int(first.size()) && index >= first[part + 1]) ++part;
-            const int vertex = int(index - first[part]);
-            const SurfacePoint x = posed_.vertex(part, vertex);
-            const Vec3 wo = glm::normalize(camera_ - x.position);
-            colors.parts[part][vertex] = shade(x, wo, part_brdf(part));
-            if (const Brdf* specular = part_specular_brdf(part)) colors.specular[part][vertex] = shade(x, wo, *specular);
-        }
-        const size_t now = done.fetch_add(range.size()) + range.size();
-        if (progress) progress(now, total);
-    });
-    return colors;
+    return shade_every_vertex(scene_, lobes_, "truth", time(), 64, [&](int part, int vertex, bool specular) {
+        const SurfacePoint x = posed_.vertex(part, vertex);
+        const Vec3 wo = glm::normalize(camera_ - x.position);
+        return shade(x, wo, specular ? *part_specular_brdf(part) : part_brdf(part));
+    }, progress);
 }
 
 }  // namespace rsl

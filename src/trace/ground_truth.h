@@ -24,15 +24,27 @@
 #include "src/rays/posed_scene.h"
 #include "src/core/progress.h"
 #include "src/frame/vertex_colors.h"
+#include "src/trace/scene_integrand.h"
 
 namespace rsl {
 
 struct GroundTruthOptions {
-    // Sub-texel grid: S×S rays per texel, each with its own exact solid angle
-    // (midpoint rule on a finer grid of the same piecewise-constant map).
+    // Sub-texel grid: at least S×S rays per texel, each with its own exact
+    // solid angle (midpoint rule on a finer grid of the same piecewise-constant map).
     int texel_subdivision = 1;
+    // Bright texels are cut finer, until no sample carries more than this
+    // share of the map's luminance (at most kMaxAdaptiveSubdivision² samples
+    // a texel): a sun's one texel would otherwise cast a hard shadow from its
+    // centre where the map's integral has a penumbra (docs/design/TRUTH.md).
+    // 0: every texel gets texel_subdivision² samples.
+    float max_sample_share = kDefaultMaxSampleShare;
+    static constexpr float kDefaultMaxSampleShare = 4e-4f;
+    static constexpr int kMaxAdaptiveSubdivision = 32;
     bool environment = true;
     bool local_lights = true;
+    // false: every sample above the shading horizon counts as visible (no
+    // shadow ray, no geometric-side test): the unshadowed integral.
+    bool shadows = true;
     // Sphere lights: grids of side 8, 16, 32, … up to light_max_side; stop
     // when the luminance of two successive estimates differs by less than
     // light_tolerance (relative).
@@ -46,7 +58,11 @@ struct EnvironmentSamples {
     std::vector<Vec3> directions;         // world space, unit
     std::vector<Color> radiance_weights;  // L_k · Ω_k
     size_t size() const { return directions.size(); }
-    static EnvironmentSamples from_cube(const CubeMap& map, const Mat3& rotation, int subdivision);
+    // Each texel cut into S×S cells, S = max(subdivision, the least S that
+    // brings the texel's share of the map's luminance per cell to
+    // max_sample_share or below, at most kMaxAdaptiveSubdivision); 0: no adaptive cut.
+    static EnvironmentSamples from_cube(const CubeMap& map, const Mat3& rotation, int subdivision,
+                                        float max_sample_share = 0.0f);
 };
 
 class GroundTruth {
@@ -62,11 +78,15 @@ public:
     // A textured part's material is two lobes (make_brdf_lobes): part_brdf is
     // its diffuse lobe at unit texture, part_specular_brdf (null otherwise)
     // the specular one; each is integrated on its own (twice the rays).
-    const Brdf& part_brdf(int part) const { return *materials_[scene_.parts[part].material]; }
-    const Brdf* part_specular_brdf(int part) const { return specular_[scene_.parts[part].material].get(); }
+    const Brdf& part_brdf(int part) const { return *lobes_.lobe[size_t(scene_.parts[size_t(part)].material)]; }
+    const Brdf* part_specular_brdf(int part) const {
+        return lobes_.specular[size_t(scene_.parts[size_t(part)].material)].get();
+    }
     // The whole material at unit texture (part_brdf + part_specular_brdf; the
     // same as part_brdf when untextured): what colours at unit texture integrate.
-    const Brdf& part_unit_texture_brdf(int part) const { return *whole_materials_[scene_.parts[part].material]; }
+    const Brdf& part_unit_texture_brdf(int part) const {
+        return *lobes_.whole[size_t(scene_.parts[size_t(part)].material)];
+    }
     const Texture* part_texture(int part) const {
         return scene_.materials[scene_.parts[part].material].base_color_texture.get();
     }
@@ -94,12 +114,9 @@ private:
     CubeMap cube_;  // a copy: small (6N² colours) and it frees callers from lifetimes
     GroundTruthOptions options_;
     PosedScene posed_;
-    std::vector<std::shared_ptr<const Brdf>> materials_;
-    std::vector<std::shared_ptr<const Brdf>> whole_materials_;  // make_brdf's: both lobes at unit texture
-    std::vector<std::shared_ptr<const Brdf>> specular_;  // per material: textured ones' specular lobe
+    SceneLobes lobes_;
     EnvironmentSamples environment_;
-    std::vector<Vec3> light_positions_, light_axes_;
-    std::vector<Vec2> light_cones_;  // spot_cone_scale_offset
+    PosedLights lights_;
     Vec3 camera_{0};
     mutable std::atomic<uint64_t> rays_traced_{0};
 };

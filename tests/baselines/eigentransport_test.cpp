@@ -26,6 +26,7 @@ std::vector<Color> transport_sum(const GroundTruth& truth, const CubeMap& grid, 
 GroundTruthOptions environment_only() {
     GroundTruthOptions options;
     options.local_lights = false;
+    options.max_sample_share = 0.0f;  // the texel-centre sum the transports sample
     return options;
 }
 

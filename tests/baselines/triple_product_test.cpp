@@ -144,6 +144,7 @@ GroundTruth shadow_truth(Scene& scene, const CubeMap& sky, const Vec3& camera) {
     scene.camera.position = camera;
     GroundTruthOptions options;
     options.local_lights = false;
+    options.max_sample_share = 0.0f;  // the texel-centre sum the transports sample
     return GroundTruth(scene, sky, 0.0f, options);
 }
 

@@ -52,6 +52,34 @@ bool ray_meets_sphere(DVec3 o, DVec3 d, DVec3 c, double r) {
     return b > 0 && glm::dot(oc, oc) - b * b < r * r;
 }
 
+// A 6 × 6 floor (albedo 1) under a sphere of `radius` at `center`.
+Scene sphere_over_floor(const std::string& name, Vec3 center, float radius, int subdivisions) {
+    Scene scene = test::make_scene(name);
+    test::add_part(scene, test::make_plane(6.0f, 2));
+    Transform at;
+    at.translation = center;
+    test::add_part(scene, test::make_icosphere(radius, subdivisions), at);
+    return scene;
+}
+
+// The cosine-weighted fraction of the top-face block [i0, i1)² of an n×n
+// face that a floor point p sees past the sphere (center, radius): 1024²
+// samples over the block in face coordinates, exact sphere, no Embree.
+double lit_fraction_of_top_block(Vec3 p, int n, int i0, int i1, Vec3 center, float radius) {
+    const int m = 1024;
+    const double s0 = -1.0 + 2.0 * i0 / n, s1 = -1.0 + 2.0 * i1 / n;
+    double lit = 0, all = 0;
+    for (int b = 0; b < m; ++b)
+        for (int a = 0; a < m; ++a) {
+            const double s = s0 + (s1 - s0) * (a + 0.5) / m, t = s0 + (s1 - s0) * (b + 0.5) / m;
+            const DVec3 d = glm::normalize(DVec3(s, 1.0, t));
+            const double weight = d.y / std::pow(s * s + 1.0 + t * t, 1.5);  // cos · dω/ds dt
+            all += weight;
+            if (!ray_meets_sphere(DVec3(p), d, DVec3(center), radius)) lit += weight;
+        }
+    return lit / all;
+}
+
 }  // namespace
 
 TEST_CASE("Furnace: white unit environment, albedo 1, no occluders gives 1 at every vertex", "[trace][truth]") {
@@ -111,11 +139,7 @@ TEST_CASE("A sphere's shadow from a small source has the analytic shadowed fract
     const int n = 32, i0 = 14, i1 = 18;  // a 4×4-texel source at the zenith (about 14° wide)
     const Vec3 center(0, 1.5f, 0);
     const float radius = 0.5f;
-    Scene scene = test::make_scene("sphere-shadow");
-    test::add_part(scene, test::make_plane(6.0f, 2));
-    Transform at;
-    at.translation = center;
-    test::add_part(scene, test::make_icosphere(radius, 5), at);
+    const Scene scene = sphere_over_floor("sphere-shadow", center, radius, 5);
     GroundTruthOptions options;
     options.texel_subdivision = 16;
     const GroundTruth truth(scene, test::block_cube(n, kFaceTop, i0, i1, i0, i1, Color(100)), 0.0f, options);
@@ -124,25 +148,62 @@ TEST_CASE("A sphere's shadow from a small source has the analytic shadowed fract
 
     for (Vec3 p : {Vec3(0, 0, 0), Vec3(0.3f, 0, 0), Vec3(0.4f, 0, 0), Vec3(0.5f, 0, 0), Vec3(0.6f, 0, 0),
                    Vec3(0.35f, 0, 0.35f), Vec3(0.7f, 0, 0), Vec3(1.2f, 0, 0)}) {
-        // Reference: the cosine-weighted fraction of the source (exact sphere,
-        // 1024² samples over the block in face coordinates), no Embree.
-        const int m = 1024;
-        const double s0 = -1.0 + 2.0 * i0 / n, s1 = -1.0 + 2.0 * i1 / n;
-        double lit = 0, all = 0;
-        for (int b = 0; b < m; ++b)
-            for (int a = 0; a < m; ++a) {
-                const double s = s0 + (s1 - s0) * (a + 0.5) / m, t = s0 + (s1 - s0) * (b + 0.5) / m;
-                const DVec3 d = glm::normalize(DVec3(s, 1.0, t));
-                const double weight = d.y / std::pow(s * s + 1.0 + t * t, 1.5);  // cos · dω/ds dt
-                all += weight;
-                if (!ray_meets_sphere(DVec3(p), d, DVec3(center), radius)) lit += weight;
-            }
-        const double reference = lit / all;
+        const double reference = lit_fraction_of_top_block(p, n, i0, i1, center, radius);
         const double measured = luminance(truth.shade(point_on_floor(p), Vec3(0, 1, 0), truth.part_brdf(0))) /
                                 luminance(Color(float(unshadowed)));
         INFO("point " << p.x << ", " << p.z << ": reference " << reference << ", truth " << measured);
         REQUIRE(measured == Approx(reference).margin(3e-3));
     }
+}
+
+TEST_CASE("A one-texel sun casts the penumbra of its texel, not the hard shadow of its centre", "[trace][truth]") {
+    // The map is piecewise constant: the truth's integral of a bright texel
+    // has a penumbra as wide as the texel (about 3.6° here), which one ray
+    // through its centre would miss; bright texels are cut finer.
+    const int n = 32, i0 = 16, i1 = 17;
+    const Vec3 center(0, 1.5f, 0);
+    const float radius = 0.5f;
+    const Scene scene = sphere_over_floor("sun-penumbra", center, radius, 6);
+    const CubeMap sun = test::block_cube(n, kFaceTop, i0, i1, i0, i1, Color(1000));
+    const double unshadowed = 1000.0 / kPi *
+        polygon_cosine_integral(block_corners(n, kFaceTop, i0, i1, i0, i1, Mat3(1.0f)), DVec3(0, 1, 0));
+    GroundTruthOptions one_ray;
+    one_ray.max_sample_share = 0.0f;
+    const GroundTruth truth(scene, sun, 0.0f), centre_only(scene, sun, 0.0f, one_ray);
+    REQUIRE(truth.environment_sample_count() ==
+            size_t(GroundTruthOptions::kMaxAdaptiveSubdivision * GroundTruthOptions::kMaxAdaptiveSubdivision));
+    REQUIRE(centre_only.environment_sample_count() == 1);
+    double worst_centre_only = 0;
+    int penumbra = 0;
+    for (float x = 0.46f; x <= 0.62f; x += 0.01f) {
+        const Vec3 p(x, 0, 0.02f);
+        const double reference = lit_fraction_of_top_block(p, n, i0, i1, center, radius);
+        const double measured =
+            luminance(truth.shade(point_on_floor(p), Vec3(0, 1, 0), truth.part_brdf(0))) / unshadowed;
+        const double centre =
+            luminance(centre_only.shade(point_on_floor(p), Vec3(0, 1, 0), centre_only.part_brdf(0))) / unshadowed;
+        INFO("x " << x << ": reference " << reference << ", truth " << measured << ", one ray " << centre);
+        REQUIRE(measured == Approx(reference).margin(1e-2));
+        worst_centre_only = std::max(worst_centre_only, std::abs(centre - reference));
+        if (reference > 0.05 && reference < 0.95) ++penumbra;
+    }
+    REQUIRE(penumbra >= 4);              // the points cross the penumbra
+    REQUIRE(worst_centre_only > 0.25);   // where one ray a texel is wrong
+}
+
+TEST_CASE("Without shadows the truth is the unshadowed integral", "[trace][truth]") {
+    const int n = 32, i0 = 14, i1 = 18;
+    const Scene scene = sphere_over_floor("unshadowed", Vec3(0, 1.5f, 0), 0.5f, 3);
+    const CubeMap source = test::block_cube(n, kFaceTop, i0, i1, i0, i1, Color(100));
+    GroundTruthOptions options;
+    options.shadows = false;
+    const GroundTruth shadowed(scene, source, 0.0f), unshadowed(scene, source, 0.0f, options);
+    const double expected = 100.0 / kPi *
+        polygon_cosine_integral(block_corners(n, kFaceTop, i0, i1, i0, i1, Mat3(1.0f)), DVec3(0, 1, 0));
+    const SurfacePoint under = point_on_floor(Vec3(0));
+    REQUIRE(luminance(shadowed.shade(under, Vec3(0, 1, 0), shadowed.part_brdf(0))) == 0.0f);
+    REQUIRE(luminance(unshadowed.shade(under, Vec3(0, 1, 0), unshadowed.part_brdf(0))) ==
+            Approx(expected).epsilon(2e-3));
 }
 
 TEST_CASE("Moving a part moves its shadow without rebuilding the scene", "[trace][truth]") {

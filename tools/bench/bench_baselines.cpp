@@ -103,6 +103,7 @@ void bench_small_scene(const BenchOptions& options, const CubeMap& sky, int repe
     const Scene scene = make_scene(options.quick ? 12 : 40);
     GroundTruthOptions truth_options;
     truth_options.local_lights = false;
+    truth_options.max_sample_share = 0.0f;  // the texel-centre sum the transports sample
     const GroundTruth truth(scene, sky, 0.0f, truth_options);
     auto start = Clock::now();
     const VertexColors truth_colors = truth.shade_vertices();

@@ -33,7 +33,7 @@ struct TruthArgs {
     int subdivision = 1;
     std::vector<float> background;
     float exposure = 0;
-    bool no_lights = false, quiet = false;
+    bool no_lights = false, no_shadows = false, quiet = false;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -68,6 +68,7 @@ void run_truth(const TruthArgs& args) {
     GroundTruthOptions options;
     options.texel_subdivision = args.subdivision;
     options.local_lights = !args.no_lights;
+    options.shadows = !args.no_shadows;
 
     const auto start = Clock::now();
     const GroundTruth truth(scene, environment, args.time, options);
@@ -147,12 +148,15 @@ RegisterCommand truth_command({"truth",
         app.add_option("--height", args->height, "Image height (default: the scene camera's)");
         app.add_option("--samples", args->samples, "S×S primary rays per pixel")->capture_default_str();
         app.add_option("--subdivision", args->subdivision,
-                       "S×S shadow rays per texel on a sub-grid with exact sub-texel solid angles")
+                       "At least S×S shadow rays per texel on a sub-grid with exact sub-texel solid angles (bright "
+                       "texels are cut finer anyway, up to 32×32: a sun casts its texel's penumbra)")
             ->capture_default_str();
         app.add_option("--background", args->background, "Opaque background colour R G B (default: black, alpha 0)")
             ->expected(3);
         app.add_option("--exposure", args->exposure, "PNG exposure in stops (default: automatic)");
         app.add_flag("--no-lights", args->no_lights, "Leave out the scene's local lights");
+        app.add_flag("--no-shadows", args->no_shadows,
+                     "The unshadowed integral: every direction above the shading horizon counts as visible (no shadow rays)");
         app.add_flag("--quiet,-q", args->quiet, "No progress or summary line (errors and warnings still go to stderr)");
         app.callback([args] { run_truth(*args); });
     }});

@@ -1,0 +1,79 @@
+#include "src/trace/scene_integrand.h"
+
+#include <algorithm>
+#include <atomic>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "src/core/error.h"
+#include "src/core/sphere_light.h"
+
+namespace rsl {
+
+SceneLobes::SceneLobes(const Scene& scene) {
+    lobe = make_scene_brdfs(scene);
+    whole = lobe;
+    specular.assign(lobe.size(), nullptr);
+    for (size_t m = 0; m < scene.materials.size(); ++m)
+        if (scene.materials[m].base_color_texture) {
+            BrdfLobes lobes = make_brdf_lobes(scene.materials[m]);
+            lobe[m] = std::move(lobes.diffuse);
+            specular[m] = std::move(lobes.specular);
+        }
+    for (const Part& part : scene.parts) {
+        if (part.material < 0 || part.material >= int(lobe.size()))
+            throw_file_error(scene.source, "part '{}' has material index {} of {}", part.name, part.material,
+                             lobe.size());
+        if (specular[size_t(part.material)] && part.mesh.texcoords.size() != part.mesh.positions.size())
+            throw_file_error(scene.source, "part '{}': its material has a base colour texture, the part no "
+                             "texture coordinates", part.name);
+        if (part.mesh.normals.size() != part.mesh.positions.size())
+            throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
+                             part.mesh.normals.size(), part.mesh.positions.size());
+    }
+    for (const LocalLight& light : scene.lights)
+        if (!(light.radius > 0.0f)) throw_file_error(scene.source, "local light with radius {}", light.radius);
+}
+
+void PosedLights::set(const Scene& scene, float t) {
+    positions.clear(), axes.clear(), cones.clear();
+    for (const LocalLight& light : scene.lights) {
+        positions.push_back(light.position_at(scene, t));
+        axes.push_back(light.axis_at(scene, t));
+        cones.push_back(spot_cone_scale_offset(light));
+    }
+}
+
+VertexColors shade_every_vertex(const Scene& scene, const SceneLobes& lobes, const std::string& producer, float time,
+                                size_t grain, const std::function<Color(int part, int vertex, bool specular)>& shade,
+                                const ProgressCallback& progress) {
+    VertexColors colors;
+    colors.scene_name = scene.name;
+    colors.producer = producer;
+    colors.time = time;
+    std::vector<size_t> first;  // flattened index of each part's first vertex
+    size_t total = 0;
+    for (const Part& part : scene.parts) {
+        const bool layered = lobes.specular[size_t(part.material)] != nullptr;
+        colors.add_part(part.name, part.mesh.vertex_count(),
+                        layered ? scene.materials[size_t(part.material)].base_color_texture : nullptr);
+        first.push_back(total);
+        total += part.mesh.vertex_count();
+    }
+    std::atomic<size_t> done{0};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, total, grain), [&](const tbb::blocked_range<size_t>& range) {
+        int part = int(std::upper_bound(first.begin(), first.end(), range.begin()) - first.begin()) - 1;
+        for (size_t index = range.begin(); index != range.end(); ++index) {
+            while (part + 1 < int(first.size()) && index >= first[size_t(part + 1)]) ++part;
+            const int vertex = int(index - first[size_t(part)]);
+            colors.parts[size_t(part)][size_t(vertex)] = shade(part, vertex, false);
+            if (colors.layered(size_t(part))) colors.specular[size_t(part)][size_t(vertex)] = shade(part, vertex, true);
+        }
+        const size_t now = done.fetch_add(range.size()) + range.size();
+        if (progress) progress(now, total);
+    });
+    return colors;
+}
+
+}  // namespace rsl
