@@ -1,5 +1,6 @@
 #include "src/brdf/brdf_table.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <tbb/parallel_for.h>
@@ -9,28 +10,33 @@
 
 namespace rsl {
 
+std::vector<Vec3> BrdfTable::slice_views(bool isotropic, int v) {
+    std::vector<Vec3> views;
+    if (isotropic) {
+        for (int k = 0; k < v; ++k) views.push_back(plane_to_hemisphere(Vec2(0.0f, (float(k) + 0.5f) / float(v))));
+        return views;
+    }
+    const float max_radius = (float(v) - 0.5f) / float(v);
+    const PlaneGrid view_grid{v};
+    for (int j = 0; j < v; ++j)
+        for (int i = 0; i < v; ++i) {
+            Vec2 q = view_grid.texel_center(i, j);
+            const float len = glm::length(q);
+            if (len > max_radius) q *= max_radius / len;
+            views.push_back(plane_to_hemisphere(q));
+        }
+    return views;
+}
+
 std::shared_ptr<const BrdfTable> BrdfTable::build(const Brdf& brdf, const BrdfTableOptions& options) {
     RSL_CHECK_GE(options.resolution, 4);  // a small square reads 4 texels per axis (brdf_sat.h)
     RSL_CHECK_GE(options.view_samples, 2);
     std::shared_ptr<BrdfTable> table(new BrdfTable());
     table->isotropic_ = brdf.isotropic();
     table->options_ = options;
+    if (!table->isotropic_) table->options_.view_samples = std::min(options.view_samples, options.anisotropic_view_samples);
     table->grid_ = PlaneGrid{options.resolution};
-    const int v = options.view_samples;
-    // The last isotropic sample's radius; anisotropic grid points beyond it are pulled in to it.
-    const float max_radius = (v - 0.5f) / v;
-    if (table->isotropic_) {
-        for (int k = 0; k < v; ++k) table->slice_views_.push_back(plane_to_hemisphere(Vec2(0.0f, (k + 0.5f) / v)));
-    } else {
-        const PlaneGrid view_grid{v};
-        for (int j = 0; j < v; ++j)
-            for (int i = 0; i < v; ++i) {
-                Vec2 q = view_grid.texel_center(i, j);
-                const float len = glm::length(q);
-                if (len > max_radius) q *= max_radius / len;
-                table->slice_views_.push_back(plane_to_hemisphere(q));
-            }
-    }
+    table->slice_views_ = slice_views(table->isotropic_, table->options_.view_samples);
     const int slices = table->slice_count();
     const size_t texels = table->grid_.size();
     const size_t corners = static_cast<size_t>(options.resolution + 1) * (options.resolution + 1);

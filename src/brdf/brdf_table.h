@@ -36,11 +36,14 @@ enum class SatStorage {
 };
 
 struct BrdfTableOptions {
-    // N: light directions on the N×N equal-area grid. 64, not the 32 of the
-    // other tables: a glossy lobe under the sun is only a few texels wide at
-    // 32 (docs/journal/parameter-sweeps.md).
-    int resolution = 64;
-    int view_samples = 32;           // V: isotropic V polar samples, anisotropic V×V directions
+    // N: light directions on the N×N equal-area grid, and V: isotropic
+    // views. A glossy lobe under a sun is only a few texels wide at N = 64, and
+    // it moves between two views by twice their spacing, so both were the
+    // largest part of the glossy robot's unshadowed error under the sun
+    // (docs/design/BRDF.md, "Table resolution").
+    int resolution = 96;
+    int view_samples = 64;             // V: isotropic V polar samples
+    int anisotropic_view_samples = 32; // anisotropic tables: min(V, this)² directions (each slice is N² texels)
     int interior_supersampling = 2;  // sub-samples per texel side inside the disk
     int edge_supersampling = 4;      // ... on texels the horizon crosses
     SatStorage storage = SatStorage::FloatMeanOffset;
@@ -69,6 +72,10 @@ class BrdfTable {
 public:
     // Tabulates `brdf` (multi-threaded over slices). The table does not keep the BRDF.
     static std::shared_ptr<const BrdfTable> build(const Brdf& brdf, const BrdfTableOptions& options = {});
+    // The views tabulated for V view samples: isotropic, V polar views at
+    // plane radius (k + ½)/V; anisotropic, the V×V grid's texel centres, those
+    // beyond radius (V − ½)/V pulled in to it.
+    static std::vector<Vec3> slice_views(bool isotropic, int view_samples);
 
     bool isotropic() const { return isotropic_; }
     // Every slice holds the same texels (e.g. Lambert, or Phong with ks = 0),

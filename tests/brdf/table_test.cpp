@@ -82,10 +82,11 @@ TEST_CASE("square averages are continuous in center, size and view", "[brdf][tab
         auto brdf = make_brdf(m);
         auto table = BrdfTable::build(*brdf);
         const float texel = table->grid().texel_size();
+        const int n = table->grid().n;
         float peak = 0;
         for (int s = 0; s < table->slice_count(); ++s)
-            for (int j = 0; j < 32; ++j)
-                for (int i = 0; i < 32; ++i) peak = std::max(peak, luminance(table->texel(s, i, j)));
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) peak = std::max(peak, luminance(table->texel(s, i, j)));
         std::mt19937 rng(31);
         std::uniform_real_distribution<float> u(-1, 1);
         const float d = 2e-4f;

@@ -290,11 +290,12 @@ TEST_CASE("GL matches the CPU under a glTF sun (a light of the sun's size) and a
     // Read from the corner sums, their float rounding (about 1e-4 of the
     // texel's value, rounded differently on the GPU) made GL and CPU differ
     // by 2e-5; read from the texels it overlaps (shading::square_taps), they
-    // agree to 2e-7–4e-7, with the visibility factors off as with them.
-    check_against_cpu(scene, lights, fields, RenderOptions{}, {0.0f, 0.5f}, false, 2e-6);
+    // agree to 2e-7–4e-7 with 64² × 32 tables and to 5e-6 with the default
+    // 96² × 64 (measured), with the visibility factors off as with them.
+    check_against_cpu(scene, lights, fields, RenderOptions{}, {0.0f, 0.5f}, false, 1e-5);
     RenderOptions unshadowed;
     unshadowed.self_visibility = unshadowed.occluders = false;
-    check_against_cpu(scene, lights, fields, unshadowed, {0.0f}, false, 2e-6);
+    check_against_cpu(scene, lights, fields, unshadowed, {0.0f}, false, 1e-5);
 }
 
 TEST_CASE("GL material edits re-upload only the changed table and match the CPU", "[gl-renderer]") {
