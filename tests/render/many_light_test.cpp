@@ -88,7 +88,9 @@ TEST_CASE("rsl baselines --many-light refuses out-of-range settings", "[render][
                  {"--ray-samples 0", "every value must be at least 1"},
                  {"--shadow-maps 2x", "expected comma-separated integers"},
                  {"--shadow-maps 256,8", "--shadow-maps: 8 is outside [16, 8192]"},
-                 {"--baseline-lights 0", "--baseline-lights"}};
+                 {"--baseline-lights 0", "--baseline-lights"},
+                 {"--env-ray-samples 4,1025", "--env-ray-samples: 1025 is above 1024"},
+                 {"--env-ray-samples 0", "every value must be at least 1"}};
     for (const auto& c : cases) {
         const std::string output_dir = std::string(RSL_BINARY_DIR) + "/many_light_cli_refused";
         const auto [status, output] = test::run_rsl("baselines " + scene + " --many-light -q -o " + output_dir + " " +

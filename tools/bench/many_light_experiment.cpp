@@ -22,6 +22,7 @@
 #include "src/frame/image_formation.h"
 #include "src/render/exact_visibility.h"
 #include "src/render/render_setup.h"
+#include "src/trace/environment_rays.h"
 #include "src/trace/ground_truth.h"
 #ifdef RSL_HAVE_GL
 #include "src/gl/gl_renderer.h"
@@ -31,9 +32,9 @@ namespace rsl {
 namespace {
 
 struct Row {
-    std::string method;   // "rsl", "rsl-gl", "rays", "rays-gl", "rays-budget", "shadow-map"
-    int setting = 0;      // K, S or the map's resolution
-    int lights = 0;       // K shaded
+    std::string method;   // "rsl", "rsl-gl", "rays", "rays-gl", "rays-budget", "shadow-map", "env-rays"
+    int setting = 0;      // K, S, the map's resolution or env-rays' N
+    int lights = 0;       // K shaded (0: env-rays, which shades the map itself)
     double frame_ms = 0;  // median shading time of one frame (GL: colours read back)
     double gpu_pass_ms = 0;  // GL: median of the vertex pass's time (timer queries; the clock on llvmpipe)
     bool gpu_clock = false;  // ... measured by the clock around glFinish
@@ -45,6 +46,7 @@ struct Row {
         if (method == "rsl" || method == "rsl-gl") return fmt::format("{} K={}", method, setting);
         if (method == "rays" || method == "rays-gl") return fmt::format("{} S={}", method, setting);
         if (method == "rays-budget") return fmt::format("rays budget S={}", setting);
+        if (method == "env-rays") return fmt::format("env-rays N={}", setting);
         return fmt::format("shadow map {}", setting);
     }
 };
@@ -104,7 +106,8 @@ std::string write_results(const ManyLightExperiment& args, const Scene& scene, s
                                    {"worst_part_error", r.worst_error}, {"image_error", r.image_error}});
         const std::string gpu_ms =
             r.gpu_pass_ms > 0 ? fmt::format("{:.1f}{}", r.gpu_pass_ms, r.gpu_clock ? " (clock)" : "") : std::string("–");
-        table += fmt::format("| {} | {} | {:.1f} | {} | {} | {:.4f} | {:.4f} | {} {:.4f} | {:.4f} |\n", r.label(), r.lights,
+        table += fmt::format("| {} | {} | {:.1f} | {} | {} | {:.4f} | {:.4f} | {} {:.4f} | {:.4f} |\n", r.label(),
+                             r.lights ? fmt::format("{}", r.lights) : std::string("–"),
                              r.frame_ms, gpu_ms, r.rays ? fmt::format("{:.2f} M", double(r.rays) / 1e6) : std::string("–"),
                              r.vertex_error, r.objects_error, r.worst_part, r.worst_error, r.image_error);
         write_exr_and_png(dir / (r.label() + ".exr"), r.image, ToneMap{0.0f, true});
@@ -138,15 +141,19 @@ void write_pareto_plot(const std::filesystem::path& dir, const Scene& scene, con
                                                                  {"rays", Color(0.85f, 0.2f, 0.1f)},
                                                                  {"rays-gl", Color(0.95f, 0.45f, 0.6f)},
                                                                  {"rays-budget", Color(0.9f, 0.6f, 0.1f)},
-                                                                 {"shadow-map", Color(0.1f, 0.45f, 0.85f)}};
+                                                                 {"shadow-map", Color(0.1f, 0.45f, 0.85f)},
+                                                                 {"env-rays", Color(0.55f, 0.25f, 0.75f)}};
     std::vector<raster::Series> series;
     for (const auto& [family, color] : families) {
         raster::Series s{family, color, {}, {}, {}};
         for (const Row& r : rows)
             if (r.method == family) {
                 s.x.push_back(std::max(r.frame_ms, 1e-3)), s.y.push_back(std::max(r.objects_error, 1e-6));
-                s.labels.push_back(fmt::format("{}{}", family.starts_with("rsl") ? "K" : family.starts_with("rays") ? "S" : "",
-                                               r.setting));
+                const char* prefix = family.starts_with("rsl")    ? "K"
+                                     : family.starts_with("rays") ? "S"
+                                     : family == "env-rays"       ? "N"
+                                                                  : "";
+                s.labels.push_back(fmt::format("{}{}", prefix, r.setting));
             }
         if (!s.x.empty()) series.push_back(std::move(s));
     }
@@ -241,6 +248,12 @@ struct RowMeasurer {
         std::sort(gpu_ms.begin(), gpu_ms.end());
         row.gpu_pass_ms = gpu_ms[gpu_ms.size() / 2];
         row.rays = renderer.stats().shadow_rays;
+        add_row(std::move(row), colors);
+    }
+
+    // Measures a row's colours against the truth (vertices, objects, worst
+    // part, the image they form) and keeps it.
+    void add_row(Row row, const VertexColors& colors) {
         const VertexErrorReport report = compare_vertex_colors(colors, truth_colors);
         const ObjectErrorReport objects = object_errors(report, args.receivers);
         row.vertex_error = report.total.relative_l2();
@@ -252,6 +265,21 @@ struct RowMeasurer {
                               row.label(), row.frame_ms, row.rays ? fmt::format(", {} rays", row.rays) : std::string(),
                               row.vertex_error, row.objects_error, row.worst_part, row.worst_error, row.image_error));
         rows.push_back(std::move(row));
+    }
+
+    // env-rays at N samples per vertex: the map and the BRDF importance
+    // sampled (src/trace/environment_rays.h); a frame is shade_vertices.
+    void measure_env_ray_row(int samples) {
+        EnvironmentRaysOptions o;
+        o.samples = samples;
+        o.local_lights = false;  // as the truth's and every row's
+        const EnvironmentRays env_rays(scene, setup.environment_at(t), t, o);
+        VertexColors colors = env_rays.shade_vertices();  // warm-up
+        const uint64_t rays_before = env_rays.rays_traced();
+        Row row = make_row("env-rays", samples, 0);
+        row.frame_ms = median_ms(args.repeats, [&] { colors = env_rays.shade_vertices(); });
+        row.rays = (env_rays.rays_traced() - rays_before) / uint64_t(std::max(args.repeats, 1));
+        add_row(std::move(row), colors);
     }
 
     // Ray-traced many-light: the fields unused, every visibility factor by
@@ -356,6 +384,7 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
     say(args, fmt::format("ground truth: {:.1f} s", m.truth_ms / 1e3));
     measure_rsl_rows(m);
     measure_ray_rows(m);
+    for (int samples : args.env_ray_samples) m.measure_env_ray_row(samples);
     const std::string gl_device = measure_gl_rows(m);
     write_outputs(args, scene, m.truth_colors.vertex_count(), m.truth_image, m.truth_ms, m.rows, gl_device);
 }

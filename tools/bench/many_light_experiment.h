@@ -10,7 +10,10 @@
 //             same rays traced in the GL vertex pass (a BVH in a compute shader);
 //   budget  — the same with S set per frame from a fixed ray budget;
 //   shadow maps (GL) — one orthographic depth map per light, filtered with a
-//             kernel sized to the square's angular size.
+//             kernel sized to the square's angular size;
+//   env-rays — no lights at all: N rays per vertex, the map and the BRDF
+//             importance sampled (src/trace/environment_rays.h); it
+//             converges to the truth as N grows.
 // Each row: error against the ground truth (all vertices, the objects, the
 // worst part, the image) and the frame time, all from one run. Environment
 // light only (local lights off for every method and for the truth).
@@ -36,6 +39,8 @@ struct ManyLightExperiment {
     std::vector<int> gl_lights{30};          // K of the RSL rows on the GL path (empty: none)
     std::vector<int> shadow_map_resolutions{256, 1024};  // GL shadow-map rows (empty: none)
     std::vector<int> gl_ray_samples{1, 2};   // S of the GL ray-traced rows (empty: none)
+    std::vector<int> env_ray_samples{1, 4, 16, 64, 256};  // N of the env-rays rows (empty: none)
+    static constexpr int kMaxEnvRaySamples = 1024;
     std::vector<std::string> receivers{"ground", "floor"};  // parts left out of the objects' error
 };
 

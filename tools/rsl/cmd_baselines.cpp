@@ -57,6 +57,7 @@ RegisterCommand baselines_command({"baselines",
         auto maps = std::make_shared<std::string>("256,1024");
         auto gl_lights = std::make_shared<std::string>("30");
         auto gl_rays = std::make_shared<std::string>("1,2");
+        auto env_rays = std::make_shared<std::string>("1,4,16,64,256");
         app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
         app.add_option("--time,-t", args->time, "Time in seconds (the static frame)")->capture_default_str();
         app.add_option("-o,--output", args->output, "Output folder (default out/baselines, or out/many_light)");
@@ -122,10 +123,15 @@ RegisterCommand baselines_command({"baselines",
                           "S for the GL ray-traced rows: the --ray-samples rays, traced in the GL vertex pass "
                           "(empty: none)")
             ->capture_default_str();
+        group->add_option("--env-ray-samples", *env_rays,
+                          "N of the env-rays rows: N rays per vertex, the map and the BRDF importance sampled "
+                          "(empty: none)")
+            ->capture_default_str();
         group->add_option("--receivers", many->receivers, "Parts left out of the objects' error")
             ->capture_default_str()
             ->delimiter(',');
-        app.callback([&app, args, many, many_light, sh, haar, eigen, triple, lookup, rsl, rays, maps, gl_lights, gl_rays] {
+        app.callback([&app, args, many, many_light, sh, haar, eigen, triple, lookup, rsl, rays, maps, gl_lights, gl_rays,
+                      env_rays] {
             if (*many_light) {
                 if (args->no_ground)  // the many-light rows keep the ground and measure the objects apart
                     throw_error("--no-ground is for the PRT baselines, not --many-light (see --receivers)");
@@ -153,6 +159,10 @@ RegisterCommand baselines_command({"baselines",
                 for (int s : many->gl_ray_samples)
                     if (s > GpuRayOptions::kMaxSamplesPerSide)
                         throw_error("--gl-ray-samples: {} is above {}", s, GpuRayOptions::kMaxSamplesPerSide);
+                many->env_ray_samples = parse_list(*env_rays, "--env-ray-samples", true);
+                for (int n : many->env_ray_samples)
+                    if (n > ManyLightExperiment::kMaxEnvRaySamples)
+                        throw_error("--env-ray-samples: {} is above {}", n, ManyLightExperiment::kMaxEnvRaySamples);
                 run_many_light_experiment(*many);
                 return;
             }
