@@ -1,141 +1,197 @@
-// `rsl bench render-factors`: which approximation of the RSL renderer is to
-// blame for its error against the ground truth. One ground truth per frame,
-// then the renderer with one factor at a time replaced by its exact value
-// (ray-traced visibility over each square, src/render/exact_visibility.h; the
-// exact integral under the RSLs' own map) or with other field settings
-// (OVDF outer radius and shells, cube resolution). docs/RESULTS.md.
-#include <chrono>
+// `rsl bench render-factors`: the error budget of the RSL renderer against the
+// ground truth, per scene and probe. One truth per frame (shadowed and
+// unshadowed), then the renderer with one approximation at a time replaced by
+// its exact value: visibility by rays over each square
+// (src/render/exact_visibility.h); the light split into the BRDF tables' error
+// (the truth's integral with ρ·cos read from the tables) and the squares'
+// (the renderer's against that). docs/RESULTS.md carries its table ("Error budget").
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 
-#include "src/lightfit/scene_lights.h"
-#include "src/lightfit/reconstruct.h"
-#include "tools/bench/bench.h"
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "src/backend/make_renderer.h"
-#include "src/render/exact_visibility.h"
-#include "tools/bench/render_bench_cases.h"
-#include "src/render/render_setup.h"
-#include "src/frame/error_metrics.h"
-#include "src/trace/ground_truth.h"
+#include "src/brdf/material_library.h"
+#include "src/core/hemisphere.h"
+#include "src/rays/posed_scene.h"
+#include "src/shading/squares.h"
 #include "src/core/scene_environment.h"
+#include "src/frame/error_metrics.h"
+#include "src/lightfit/scene_lights.h"
+#include "src/render/exact_visibility.h"
+#include "src/render/render_setup.h"
+#include "src/trace/ground_truth.h"
+#include "tools/bench/bench.h"
+#include "tools/bench/render_bench_cases.h"
 
 namespace rsl::bench {
 namespace {
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-struct Variant {
-    std::string name;
-    std::function<void(PrecomputeSettings&)> fields;  // field settings (null: the bench's)
-    std::function<void(RenderOptions&, const Scene&, float)> options;
+struct BudgetCase {
+    std::string scene, file;
+    std::string environment;  // "scene": the scene's own map; else a probe under the shared assets
+    float time = 0;
+    bool needs_shared = false;
 };
 
-std::vector<Variant> variants(bool quick) {
-    auto exact = [](ExactVisibilityMode mode) {
-        return [mode](RenderOptions& o, const Scene& scene, float t) {
-            o.exact_visibility = std::make_shared<const ExactVisibility>(scene, t, mode);
-        };
-    };
-    std::vector<Variant> v = {
-        {"renderer", nullptr, nullptr},
-        {"no OVDF", nullptr, [](RenderOptions& o, const Scene&, float) { o.occluders = false; }},
-        {"exact visibility (rays over each square)", nullptr, exact(ExactVisibilityMode::All)},
-        {"exact self-visibility, OVDF", nullptr, exact(ExactVisibilityMode::Self)},
-        {"SVDF, exact others' visibility", nullptr, exact(ExactVisibilityMode::Others)},
-        {"SVDF, exact others' visibility per part, multiplied", nullptr, exact(ExactVisibilityMode::OthersProduct)},
-        {"exact self × exact others' visibility, averaged apart", nullptr, exact(ExactVisibilityMode::SelfTimesOthers)},
-        {"OVDF outer 6R, 8 shells", [](PrecomputeSettings& p) { p.ovdf_outer_radius = 6.0f, p.ovdf_shells = 8; },
-         nullptr},
-        {"OVDF outer 12R, 11 shells", [](PrecomputeSettings& p) { p.ovdf_outer_radius = 12.0f, p.ovdf_shells = 11; },
-         nullptr},
-        {"OVDF outer 20R, 13 shells", [](PrecomputeSettings& p) { p.ovdf_outer_radius = 20.0f, p.ovdf_shells = 13; },
-         nullptr},
-    };
-    if (!quick) {
-        v.push_back({"OVDF outer 20R, 26 shells", [](PrecomputeSettings& p) {
-                         p.ovdf_outer_radius = 20.0f, p.ovdf_shells = 26;
-                     }, nullptr});
-        v.push_back({"OVDF outer 20R, 13 shells, 32² cube", [](PrecomputeSettings& p) {
-                         p.ovdf_outer_radius = 20.0f, p.ovdf_shells = 13, p.ovdf_cube_resolution = 32;
-                     }, nullptr});
-        v.push_back({"OVDF outer 20R, 13 shells, 32² VDTs, 12 vectors", [](PrecomputeSettings& p) {
-                         p.ovdf_outer_radius = 20.0f, p.ovdf_shells = 13, p.ovdf_vdt_resolution = 32, p.ovdf_vectors = 12;
-                     }, nullptr});
+std::vector<BudgetCase> budget_cases(bool quick) {
+    if (quick) return {{"robot", "robot.json", "scene", 0.0f}};
+    return {{"robot", "robot.json", "scene", 0.0f},       {"robot", "robot.json", "grace", 0.0f, true},
+            {"bunny", "bunny.json", "scene", 0.0f, true}, {"kitchen", "kitchen.json", "scene", 1.0f},
+            {"kitchen", "kitchen.json", "sunsky", 1.0f}};
+}
+
+// The renderer's vertex colours at t with the RSLs `rsls` and the options `edit` sets.
+VertexColors render(const Scene& scene, const RslSet& rsls, const PartFields& fields, float t,
+                    const std::function<void(RenderOptions&)>& edit) {
+    RenderOptions options;
+    options.environment_lights = int(rsls.lights.size());
+    edit(options);
+    const std::unique_ptr<VertexRenderer> renderer = make_renderer(Backend::Cpu, scene, rsls, fields, options);
+    renderer->set_time(t);
+    return renderer->shade();
+}
+
+// The exact unshadowed integral times the renderer's shadowed-to-unshadowed
+// ratio, per vertex and channel: what the renderer would give if its light
+// (squares and BRDF tables) were exact and only its visibility approximate.
+VertexColors ratio_with_exact_unshadowed(const VertexColors& shaded, const VertexColors& unshadowed,
+                                         const VertexColors& exact_unshadowed) {
+    VertexColors out = exact_unshadowed;
+    for (size_t p = 0; p < out.parts.size(); ++p)
+        for (size_t v = 0; v < out.parts[p].size(); ++v) {
+            const Color& s = shaded.parts[p][v];
+            const Color& u = unshadowed.parts[p][v];
+            Color& c = out.parts[p][v];
+            c.r = u.r > 0.0f ? c.r * s.r / u.r : 0.0f;
+            c.g = u.g > 0.0f ? c.g * s.g / u.g : 0.0f;
+            c.b = u.b > 0.0f ? c.b * s.b / u.b : 0.0f;
+        }
+    return out;
+}
+
+// The unshadowed integral over every (sub-)texel of the truth, with each
+// part's ρ·cos read from its BRDF table as the renderer reads a square
+// narrower than a texel: the tables' own error, against the unshadowed truth.
+VertexColors unshadowed_with_tables(const Scene& scene, const CubeMap& map, float t) {
+    const MaterialLibrary library = MaterialLibrary::from_scene(scene);
+    const PosedScene posed(scene, t);
+    const EnvironmentSamples samples = EnvironmentSamples::from_cube(
+        map, scene.environment.rotation_at(t), 1, GroundTruthOptions::kDefaultMaxSampleShare);
+    const Vec3 camera = scene.camera.position_at(t);
+    VertexColors colors;
+    colors.scene_name = scene.name;
+    for (size_t p = 0; p < scene.parts.size(); ++p) colors.add_part(scene.parts[p].name, scene.parts[p].mesh.vertex_count());
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        const BrdfTable& table = library.part_table(int(p));
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, scene.parts[p].mesh.vertex_count(), 16),
+                          [&](const tbb::blocked_range<size_t>& range) {
+            std::vector<float> cx, cy, vx, vy, vz, r, g, b;
+            std::vector<Color> weight;
+            for (size_t v = range.begin(); v != range.end(); ++v) {
+                const SurfacePoint x = posed.vertex(int(p), int(v));
+                const Vec3 wo = x.frame.to_local(glm::normalize(camera - x.position));
+                if (!(wo.z > 0.0f)) continue;
+                const Vec2 alignment = shading::view_alignment(wo);
+                cx.clear(), cy.clear(), weight.clear();
+                for (size_t k = 0; k < samples.size(); ++k) {
+                    const Vec3 wi = x.frame.to_local(samples.directions[k]);
+                    if (!(wi.z > 0.0f)) continue;
+                    const Vec2 plane = hemisphere_to_plane(wi);
+                    const Vec2 at = table.isotropic() ? shading::to_view_aligned(plane, alignment) : plane;
+                    cx.push_back(at.x), cy.push_back(at.y), weight.push_back(samples.radiance_weights[k]);
+                }
+                const size_t m = cx.size();
+                vx.assign(m, wo.x), vy.assign(m, wo.y), vz.assign(m, wo.z), r.resize(m), g.resize(m), b.resize(m);
+                SquareQueries queries;
+                queries.center_x = cx.data(), queries.center_y = cy.data();
+                queries.uniform_half_edge = 1e-6f;  // read one texel wide, as a sub-texel square
+                queries.view_x = vx.data(), queries.view_y = vy.data(), queries.view_z = vz.data();
+                queries.count = m;
+                table.square_average_batch(queries, ColorOutputs{r.data(), g.data(), b.data()});
+                DVec3 sum(0.0);
+                for (size_t i = 0; i < m; ++i) sum += DVec3(weight[i]) * DVec3(r[i], g[i], b[i]);
+                colors.parts[p][v] = Color(sum);
+            }
+        });
     }
-    return v;
+    return colors;
 }
 
 void bench_factors(const BenchOptions& options) {
-    struct Frame {
-        std::string environment;  // "scene": the scene's own map; else a probe under shared assets
-        float time;
-    };
-    // The scene's own sun and sky at mid-stride, then, with the shared probes,
-    // the small bright window of ennis and the broad grace.
-    std::vector<Frame> frames = {{"scene", 0.5f}};
-    if (!options.quick)
-        for (const Frame& probe : {Frame{"ennis", 0.5f}, Frame{"grace", 0.0f}})
-            if (fs::exists(options.shared_assets / "probes" / (probe.environment + ".hdr"))) frames.push_back(probe);
     const std::vector<int> light_counts = options.quick ? std::vector<int>{30} : std::vector<int>{30, 100};
-    const RenderBenchCase robot{"robot", "robot.json", false, 30, 0.5f};
-    for (const Frame& frame : frames) {
-        const auto base = load_bench_scene(robot, options);
+    for (const BudgetCase& c : budget_cases(options.quick)) {
+        if (c.needs_shared && !fs::exists(options.shared_assets)) {
+            bench_emit({{"bench", "render-factors"}, {"case", c.scene + " " + c.environment},
+                        {"skipped", "needs the shared assets (--shared-assets)"}});
+            continue;
+        }
+        auto scene = std::make_shared<Scene>(load_scene(options.scenes / c.file));
+        if (options.quick) scene->precompute = bench_precompute();  // fields in seconds
+        scene->environment.second_file.clear();                     // one map, as every row's RSLs
         const std::string env_name =
-            frame.environment == "scene" ? base->environment.file.stem().string() : frame.environment;
-        const CubeMap map = frame.environment == "scene"
-                                ? scene_environment_map(*base, base->environment.resolution)
-                                : load_environment(options.shared_assets / "probes" / (frame.environment + ".hdr"),
-                                                   base->environment.resolution);
-        auto start = Clock::now();
-        const VertexColors reference = GroundTruth(*base, map, frame.time).shade_vertices();
-        const double truth_seconds = since(start);
+            c.environment == "scene" ? scene->environment.file.stem().string() : c.environment;
+        const CubeMap map = c.environment == "scene"
+                                ? scene_environment_map(*scene, scene->environment.resolution)
+                                : load_environment(options.shared_assets / "probes" / (c.environment + ".hdr"),
+                                                   scene->environment.resolution);
+        RenderOptions bake;
+        bake.environment = false;  // the fields only; every row fits its own RSLs
+        const RenderSetup setup = prepare_render(scene, bake);
+        const float t = c.time;
+        GroundTruthOptions no_lights;
+        no_lights.local_lights = false;  // the budget of the environment's light
+        const VertexColors reference = GroundTruth(*scene, map, t, no_lights).shade_vertices();
+        GroundTruthOptions unshadowed_options = no_lights;
+        unshadowed_options.shadows = false;
+        const VertexColors unshadowed_reference = GroundTruth(*scene, map, t, unshadowed_options).shade_vertices();
+
+        const VertexColors tables = unshadowed_with_tables(*scene, map, t);
         for (int k : light_counts) {
             const RslSet rsls = fit_environment_lights(map, k);
-            // All vertices, the objects (every part but the ground) and the worst part.
-            auto emit = [&](const std::string& variant, const VertexColors& colors, double seconds) {
-                const VertexErrorReport error = compare_vertex_colors(colors, reference);
+            auto emit = [&](const std::string& variant, const VertexColors& colors, const VertexColors& against) {
+                const VertexErrorReport error = compare_vertex_colors(colors, against);
                 const ObjectErrorReport objects = object_errors(error);
-                bench_emit({{"bench", "render-factors"}, {"scene", "robot"}, {"environment", env_name},
-                            {"time", frame.time}, {"lights", k}, {"variant", variant},
-                            {"relative_l2", error.total.relative_l2()},
+                bench_emit({{"bench", "render-factors"}, {"scene", c.scene}, {"environment", env_name},
+                            {"time", t}, {"lights", k}, {"precompute", options.quick ? "bench" : "scene"},
+                            {"variant", variant}, {"relative_l2", error.total.relative_l2()},
                             {"objects_relative_l2", objects.objects.relative_l2()}, {"worst_part", objects.worst_part},
-                            {"worst_part_relative_l2", objects.worst}, {"seconds", seconds},
-                            {"truth_seconds", truth_seconds}});
-                std::fprintf(stderr, "robot %s t=%.2f K=%d %s: %.4f, objects %.4f, worst %s %.4f (%.1f s)\n",
-                             env_name.c_str(), frame.time, k, variant.c_str(), error.total.relative_l2(),
-                             objects.objects.relative_l2(), objects.worst_part.c_str(), objects.worst, seconds);
+                            {"worst_part_relative_l2", objects.worst}});
+                std::fprintf(stderr, "%s %s t=%.2f K=%d %s: %.4f, objects %.4f, worst %s %.4f\n", c.scene.c_str(),
+                             env_name.c_str(), t, k, variant.c_str(), error.total.relative_l2(),
+                             objects.objects.relative_l2(), objects.worst_part.c_str(), objects.worst);
             };
-            // The square-vs-region light approximation alone: the exact
-            // integral under the map the RSLs stand for.
-            start = Clock::now();
-            const VertexColors light_only =
-                GroundTruth(*base, lightfit::reconstruct(rsls, map.resolution()), frame.time).shade_vertices();
-            emit("light only (truth under the RSLs' map)", light_only, since(start));
-            for (const Variant& v : variants(options.quick)) {
-                auto scene = std::make_shared<Scene>(*base);
-                if (v.fields) v.fields(scene->precompute);
-                RenderOptions render_options;
-                render_options.environment_lights = k;
-                render_options.environment = false;  // fields only; the RSLs are `rsls`
-                const RenderSetup setup = prepare_render(scene, render_options);
-                render_options.environment = true;
-                start = Clock::now();
-                if (v.options) v.options(render_options, *scene, frame.time);
-                const std::unique_ptr<VertexRenderer> renderer =
-                    make_renderer(Backend::Cpu, *scene, rsls, setup.fields, render_options);
-                renderer->set_time(frame.time);
-                const VertexColors colors = renderer->shade();
-                emit(v.name, colors, since(start));
+            auto no_local = [](RenderOptions& o) { o.local_lights = false; };
+            const VertexColors shaded = render(*scene, rsls, setup.fields, t, no_local);
+            emit("renderer", shaded, reference);
+            // The light alone: the squares and the BRDF tables, no visibility on either side.
+            const VertexColors unshadowed = render(*scene, rsls, setup.fields, t, [&](RenderOptions& o) {
+                no_local(o), o.self_visibility = false, o.occluders = false;
+            });
+            emit("unshadowed", unshadowed, unshadowed_reference);
+            emit("tables", tables, unshadowed_reference);
+            emit("squares", unshadowed, tables);
+            emit("ratio_oracle", ratio_with_exact_unshadowed(shaded, unshadowed, unshadowed_reference), reference);
+            for (const auto& [variant, mode] : {std::pair{"exact_self", ExactVisibilityMode::Self},
+                                                std::pair{"exact_others", ExactVisibilityMode::Others},
+                                                std::pair{"exact_visibility", ExactVisibilityMode::All}}) {
+                const auto exact = std::make_shared<const ExactVisibility>(*scene, t, mode);
+                emit(variant, render(*scene, rsls, setup.fields, t, [&](RenderOptions& o) {
+                         no_local(o), o.exact_visibility = exact;
+                     }),
+                     reference);
             }
         }
     }
 }
 
-RegisterBenchmark render_factors_benchmark({"render-factors",
-    "RSL renderer error vs truth with each approximation replaced by its exact value (slow)", bench_factors});
+RegisterBenchmark render_factors_benchmark(
+    {"render-factors",
+     "The renderer's error budget per scene and probe: each approximation replaced by its exact value (slow)",
+     bench_factors});
 
 }  // namespace
 }  // namespace rsl::bench

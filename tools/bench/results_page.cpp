@@ -119,6 +119,18 @@ std::vector<json> lightfit_by_lights(const std::vector<json>& rows) {
     });
 }
 
+// Error budget: one row per frame and K, each variant's error (all vertices /
+// objects) in its own column.
+std::vector<json> budget_by_variant(const std::vector<json>& rows) {
+    return merge_rows(rows, {"scene", "environment", "time", "lights", "precompute"}, [](const json& row, json& m) {
+        const std::string variant = row.value("variant", "");
+        if (!row.contains("relative_l2") || !row.contains("objects_relative_l2")) return;
+        m["budget_" + variant] = fmt::format("{:.2f}% / {:.2f}%", 100.0 * row["relative_l2"].get<double>(),
+                                             100.0 * row["objects_relative_l2"].get<double>());
+        if (variant == "renderer" && row.contains("worst_part_cell")) m["worst_part_cell"] = row["worst_part_cell"];
+    });
+}
+
 std::vector<Section> sections() {
     const Column worst{"worst_part_cell", "worst part", Format::Text};
     return {
@@ -157,6 +169,30 @@ std::vector<Section> sections() {
           worst,
           {"relative_l2_without_occluders", "without OVDF", Format::Percent}},
          [](const json&) { return true; }, accuracy_by_lights},
+        {"render-factors", "Error budget",
+         "`rsl bench render-factors`: where the renderer's error comes from. Each column is the error against the "
+         "ground truth, all vertices / the objects, with one approximation replaced by its exact value: "
+         "*unshadowed* is the light alone (the squares and the BRDF tables, every visibility factor off, against the "
+         "unshadowed truth), split into the *tables* (the truth's unshadowed integral with ρ·cos read from the BRDF "
+         "tables) and the *squares* (the unshadowed renderer against that); *exact self*, "
+         "*exact others* and *exact visibility* trace rays over each square (8×8 per square) in place of the SVDF, "
+         "the OVDFs or both; *exact light* multiplies the exact unshadowed integral by the renderer's own ratio of "
+         "shadowed to unshadowed light (the visibility's error alone). The scene files' field settings; local "
+         "lights off.",
+         {{"scene", "scene", Format::Text},
+          {"environment", "environment", Format::Text},
+          {"time", "t", Format::Decimal},
+          {"lights", "K", Format::Count},
+          {"budget_renderer", "renderer", Format::Text},
+          worst,
+          {"budget_unshadowed", "unshadowed", Format::Text},
+          {"budget_tables", "tables", Format::Text},
+          {"budget_squares", "squares", Format::Text},
+          {"budget_exact_self", "exact self", Format::Text},
+          {"budget_exact_others", "exact others", Format::Text},
+          {"budget_exact_visibility", "exact visibility", Format::Text},
+          {"budget_ratio_oracle", "exact light", Format::Text}},
+         [](const json& row) { return row.contains("variant"); }, budget_by_variant},
         {"scale", "Many moving parts",
          "`rsl bench scale`: yard-N, N instances of four small meshes bouncing, tumbling and orbiting on a ground "
          "(`rsl assets --yard N`), K = 30, the median of five frames; the errors are the means over them (the "
