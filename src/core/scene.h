@@ -163,7 +163,7 @@ struct AnimationRange {
 struct PrecomputeSettings {
     int svdf_resolution = 32;
     int svdf_clusters = 256;
-    int svdf_vectors = 8;
+    int svdf_vectors = 16;  // docs/design/FIELDS.md "SVDF": the bunny's error falls most per byte here
     int svdf_supersampling = 4;  // rays per texel side
     int ovdf_shells = 16;
     float ovdf_inner_radius = 0.0f;  // × bounding radius; 0: per mesh (src/fields/ovdf.h ovdf_params_for_mesh)
