@@ -59,6 +59,41 @@ PointLight light_at(int l, vec3 p) {
     return light;
 }
 
+// The environment's exact irradiance at a world normal (as
+// environment_irradiance, src/render/frame_setup.cpp): the maps' bilinear
+// taps, blended.
+vec3 irradiance_taps(int base, CubeNodeTaps taps) {
+    vec3 n0 = fetch(u_lights, base + taps.first).rgb, n1 = fetch(u_lights, base + taps.first + 1).rgb;
+    vec3 n2 = fetch(u_lights, base + taps.first + taps.row).rgb, n3 = fetch(u_lights, base + taps.first + taps.row + 1).rgb;
+    float wx = taps.weight.x, wy = taps.weight.y;
+    return (1.0 - wy) * ((1.0 - wx) * n0 + wx * n1) + wy * ((1.0 - wx) * n2 + wx * n3);
+}
+vec3 environment_irradiance(vec3 world_normal) {
+    CubeNodeTaps taps = cube_node_taps(transpose(u_environment_rotation) * world_normal, u_irradiance_resolution);
+    vec3 e = u_irradiance_weights.x * irradiance_taps(u_irradiance_first, taps);
+    if (u_irradiance_second >= 0 && u_irradiance_weights.y > 0.0)
+        e += u_irradiance_weights.y * irradiance_taps(u_irradiance_second, taps);
+    return e;
+}
+
+// The exact diffuse light's gain g at a point (CpuRenderer::diffuse_light_gains):
+// a·(E(n) / Σ_l I_l c_l − 1) over the environment's squares; 0 without it.
+vec3 diffuse_light_gain_at(int part, LocalFrame frame) {
+    vec3 a = part_texel(part, kSlotDiffuseLight).rgb;
+    if (u_irradiance_resolution == 0 || !u_environment_enabled || a == vec3(0.0) || u_environment_lights == 0)
+        return vec3(0.0);
+    vec3 squares = vec3(0.0);
+    for (int l = 0; l < u_environment_lights; ++l) {
+        vec4 square = fetch(u_lights, kLightTexels * l);
+        vec3 local = frame_to_local(frame, square.xyz);
+        if (!square_reaches_hemisphere(local.z, square.w)) continue;
+        squares += fetch(u_lights, kLightTexels * l + 1).rgb * square_average_cosine(hemisphere_to_plane(local), square.w);
+    }
+    vec3 e = environment_irradiance(frame.z);
+    return vec3(diffuse_light_gain(a.r, e.r, squares.r), diffuse_light_gain(a.g, e.g, squares.g),
+                diffuse_light_gain(a.b, e.b, squares.b));
+}
+
 // Self-visibility of the light with direction `direction`, plane point lp in
 // the point's frame and half-edge h (g_self_corners).
 float self_visibility(vec4 svdf, vec3 direction, vec2 lp, float h) {
@@ -134,6 +169,7 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
     vec3 wo = frame_to_local(frame, normalize(u_camera - p));
     if (!(wo.z > 0.0)) return;
     vec2 alignment = view_alignment(wo);
+    vec3 gain = diffuse_light_gain_at(part, frame);
     int first = u_environment_enabled ? 0 : u_environment_lights;
     int last = u_local_enabled ? u_light_count : u_environment_lights;
     // The lights whose square reaches the vertex's hemisphere first, then
@@ -154,6 +190,7 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
         vec2 lp = hemisphere_to_plane(local);
         vec2 square = isotropic ? to_view_aligned(lp, alignment) : lp;
         vec3 brdf = brdf_average(material, square, light.h, wo);
+        if (l < u_environment_lights) brdf += gain * square_average_cosine(lp, light.h);
 #if LAYERED
         vec3 specular_brdf = layered ? brdf_average(specular_material, square, light.h, wo) : vec3(0.0);
 #else

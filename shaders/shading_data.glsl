@@ -43,6 +43,13 @@ uniform sampler2D u_ovdf_coefficients;
 uniform sampler2D u_ovdf_frames;
 
 uniform int u_environment_lights;  // lights [0, E) are environment squares, [E, L) local sphere lights
+// The exact diffuse light (src/shading/diffuse_light.h): the irradiance maps'
+// nodes in u_lights after the lights, read at the normal turned into the maps' frame.
+uniform int u_irradiance_resolution;  // M; 0: none (the squares' own diffuse light)
+uniform int u_irradiance_first;       // the first map's node 0 in u_lights
+uniform int u_irradiance_second;      // the second map's (a blend), -1 without one
+uniform vec2 u_irradiance_weights;    // the blend's weights
+uniform mat3 u_environment_rotation;  // the maps' frame -> the world
 uniform int u_light_count;
 uniform bool u_environment_enabled;  // RenderOptions::environment
 uniform bool u_local_enabled;        // RenderOptions::local_lights

@@ -68,6 +68,12 @@ std::string CookTorranceBrdf::model() const {
     return distribution_ == MicrofacetDistribution::Beckmann ? "cook_torrance_beckmann" : "cook_torrance_ggx";
 }
 
+Color CookTorranceBrdf::constant_part() const {
+    if (lobe_ == BrdfLobe::Specular) return Color(0);
+    const Color transmitted = Color(1.0f) - f0_;
+    return kd_over_pi_ * transmitted * transmitted;
+}
+
 float CookTorranceBrdf::distribution(float cos_h) const {
     if (cos_h <= 0.0f) return 0.0f;
     const float c2 = cos_h * cos_h, a2 = alpha_ * alpha_;

@@ -14,6 +14,7 @@ public:
     Color eval(const Vec3& wi, const Vec3& wo) const override;
     bool isotropic() const override { return true; }
     std::string model() const override { return "lambert"; }
+    Color constant_part() const override { return albedo_ * (1.0f / kPi); }
 
 private:
     Color albedo_;
@@ -27,6 +28,7 @@ public:
     Color eval(const Vec3& wi, const Vec3& wo) const override;
     bool isotropic() const override { return true; }
     std::string model() const override { return "phong"; }
+    Color constant_part() const override { return diffuse_; }
 
 private:
     Color diffuse_, specular_;  // kd/π, ks·(n+2)/(2π)
@@ -42,6 +44,7 @@ public:
     Color eval(const Vec3& wi, const Vec3& wo) const override;
     bool isotropic() const override { return true; }
     std::string model() const override { return "blinn_phong"; }
+    Color constant_part() const override { return diffuse_; }
     static double normalization(double exponent);
 
 private:
@@ -70,6 +73,9 @@ public:
     Color eval(const Vec3& wi, const Vec3& wo) const override;
     bool isotropic() const override { return true; }
     std::string model() const override;
+    // The diffuse term at normal incidence both ways, kd/π·(1 − f0)²: its
+    // Fresnel factors vary little until grazing, and the rest stays in the table.
+    Color constant_part() const override;
 
     float distribution(float cos_theta_h) const;     // D(h), normalized: ∫ D cosθ_h dω = 1
     float smith_lambda(float cos_theta) const;        // Λ(ω) of the chosen distribution
@@ -97,6 +103,7 @@ public:
     Color eval(const Vec3& wi, const Vec3& wo) const override;
     bool isotropic() const override { return isotropic_; }
     std::string model() const override { return isotropic_ ? "ward" : "ward_anisotropic"; }
+    Color constant_part() const override { return diffuse_; }
 
 private:
     Color diffuse_, specular_;  // kd/π, ks/(π α_x α_y)

@@ -22,6 +22,10 @@ public:
     // Isotropic models depend on φ_i − φ_o only (3D tables); others need 4D tables.
     virtual bool isotropic() const = 0;
     virtual std::string model() const = 0;
+    // A constant part a of ρ (ρ = a + the rest), what the renderers shade
+    // with the environment's exact irradiance (docs/design/RENDERER.md
+    // "Exact diffuse light"); 0 for models without one.
+    virtual Color constant_part() const { return Color(0); }
 };
 
 // Builds a model from a scene material; throws rsl::Error naming the material

@@ -6,6 +6,7 @@
 
 #include "src/brdf/material_library.h"
 #include "src/core/error.h"
+#include "src/lightfit/irradiance.h"
 #include "src/render/occluder_shape.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/core/sphere_light.h"
@@ -268,6 +269,17 @@ void GlRenderer::upload_frame() {
         light_texels_.push_back(Vec4(sphere_light_radiance(local_lights_[i]), cone.x));
         light_texels_.push_back(Vec4(frame_.light_axes()[i], cone.y));
     }
+    // The exact diffuse light's irradiance maps after the lights (shaders/point_sum.glsl).
+    irradiance_first_ = irradiance_second_ = -1;
+    if (options_.exact_diffuse_light && has_irradiance(environment_)) {
+        auto append = [&](const IrradianceMap& map) {
+            const int first = int(light_texels_.size());
+            for (const Color& node : map.nodes) light_texels_.push_back(Vec4(node, 0.0f));
+            return first;
+        };
+        irradiance_first_ = append(*environment_.first.irradiance);
+        if (environment_.blends()) irradiance_second_ = append(*environment_.second.irradiance);
+    }
     if (light_texels_.empty()) light_texels_.push_back(Vec4(0.0f));
     update_array_texture(lights_, light_texels_);
 
@@ -383,6 +395,12 @@ void GlRenderer::bind_shading_inputs(const Program& program) {
     glUniform1i(uniform(program, "u_local_enabled"), options_.local_lights ? 1 : 0);
     glUniform1i(uniform(program, "u_self_visibility"), options_.self_visibility ? 1 : 0);
     glUniform1i(uniform(program, "u_brdf_resolution"), materials_.resolution);
+    const bool irradiance = irradiance_first_ >= 0;
+    glUniform1i(uniform(program, "u_irradiance_resolution"), irradiance ? environment_.first.irradiance->resolution : 0);
+    glUniform1i(uniform(program, "u_irradiance_first"), irradiance_first_);
+    glUniform1i(uniform(program, "u_irradiance_second"), irradiance_second_);
+    glUniform2f(uniform(program, "u_irradiance_weights"), frame_.blend().first, frame_.blend().second);
+    glUniformMatrix3fv(uniform(program, "u_environment_rotation"), 1, GL_FALSE, &frame_.environment_rotation()[0][0]);
     const Vec3 camera = frame_.camera();
     glUniform3f(uniform(program, "u_camera"), camera.x, camera.y, camera.z);
     bind_shadow_uniforms(program);

@@ -213,6 +213,7 @@ private:
     std::vector<int> first_vertex_;
     std::vector<Vec4> part_records_;
     std::vector<Vec4> light_texels_;
+    int irradiance_first_ = -1, irradiance_second_ = -1;  // the irradiance maps' first texels in lights_ (-1: none)
     PackedMaterials materials_;
     size_t gpu_bytes_ = 0;
 

@@ -23,6 +23,9 @@ void GlRenderer::write_material_record(size_t i, const BrdfTable* table, int fir
     const bool specular = i >= parts;
     part_records_[(i % parts) * kPartStride + (specular ? kSlotSpecular : kSlotMaterial)] =
         table ? material_record(*table, first_slice, specular) : Vec4(0.0f);
+    if (!specular)
+        part_records_[i * kPartStride + kSlotDiffuseLight] =
+            Vec4(library_.brdf(library_.part_material(int(i))).constant_part(), 0.0f);
 }
 
 void GlRenderer::set_part_tables(std::vector<std::shared_ptr<const BrdfTable>> tables) {

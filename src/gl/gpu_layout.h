@@ -51,7 +51,7 @@ inline constexpr int kArrayTextureWidth = 2048;
 inline constexpr int kArrayTextureShift = 11;
 static_assert(1 << kArrayTextureShift == kArrayTextureWidth);
 
-inline constexpr int kPartStride = 28;
+inline constexpr int kPartStride = 29;
 // Texel slots inside a part record.
 enum PartSlot : int {
     kSlotTransform = 0,   // 4 columns
@@ -76,8 +76,9 @@ enum PartSlot : int {
     kSlotShapeNormal = 25,
     kSlotShapeLow = 26,
     kSlotShapeHigh = 27,
+    kSlotDiffuseLight = 28,  // (the BRDF's constant term a, 0): the exact diffuse light (src/shading/diffuse_light.h)
 };
-static_assert(kSlotShapeHigh < kPartStride);
+static_assert(kSlotDiffuseLight < kPartStride);
 
 inline constexpr int kLightTexels = 3;        // per light in the lights texture
 // The vertex pass's storage buffers (shaders/shade_blocks.comp.glsl).
@@ -134,6 +135,7 @@ inline constexpr ShaderIntConstant kShaderIntConstants[] = {
     {"kSlotShapeNormal", kSlotShapeNormal},
     {"kSlotShapeLow", kSlotShapeLow},
     {"kSlotShapeHigh", kSlotShapeHigh},
+    {"kSlotDiffuseLight", kSlotDiffuseLight},
     {"kLightTexels", kLightTexels},
     {"kShadeBlock", kShadeBlock},
     {"kCandidateHeader", kCandidateHeader},

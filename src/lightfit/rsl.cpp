@@ -74,6 +74,7 @@ DVec3 RslSet::total_energy() const {
 void RslSet::rotate(const Mat3& rotation) {
     for (auto& light : lights) light.center = glm::normalize(rotation * light.center);
     region_of_texel.clear();
+    irradiance.reset();
 }
 
 void save_rsl_set(const std::filesystem::path& path, const RslSet& set) {

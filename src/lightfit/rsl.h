@@ -10,12 +10,15 @@
 // vertex's local frame). Its light integral 2r²·I equals the energy of the
 // region it was fitted to, per RGB channel.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "src/core/math.h"
 
 namespace rsl {
+
+struct IrradianceMap;  // src/lightfit/irradiance.h
 
 struct RotatableSquareLight {
     Vec3 center{0, 0, 1};       // unit direction (world space)
@@ -35,11 +38,17 @@ struct RslSet {
     // Region (light index) of every texel of that cube map, in CubeMap::index
     // order; empty when unknown (e.g. after a rotation). For previews and tests.
     std::vector<int> region_of_texel;
+    // The exact irradiance over normals of the map (and suns) the set was
+    // fitted to, in the set's frame; null when unknown (a set loaded from a
+    // file or rotated): renderers then shade the diffuse light with the
+    // squares alone (docs/design/RENDERER.md "Exact diffuse light").
+    std::shared_ptr<const IrradianceMap> irradiance;
 
     DVec3 total_energy() const;
 
     // Rotating the environment by R rotates every center: the set is fitted
-    // once. Region labels describe the unrotated map, so they are dropped.
+    // once. Region labels and the irradiance describe the unrotated map, so
+    // they are dropped.
     void rotate(const Mat3& rotation);
 };
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "src/lightfit/decompose.h"
+#include "src/lightfit/irradiance.h"
 #include "src/core/scene_environment.h"
 
 namespace rsl {
@@ -16,13 +17,21 @@ RslSet fit_environment_lights(const CubeMap& environment, int lights, bool cross
     lightfit::DecomposeOptions options;
     options.lights = lights;
     options.cross_face = cross_face;
-    return lightfit::decompose(environment, options);
+    RslSet set = lightfit::decompose(environment, options);
+    set.irradiance = std::make_shared<const IrradianceMap>(irradiance_map(environment));
+    return set;
 }
 
 RslSet fit_scene_lights(const Scene& scene, const CubeMap& environment, int lights, bool cross_face) {
     RslSet set = fit_environment_lights(environment, lights, cross_face);
     const std::vector<RotatableSquareLight> suns = sun_lights(scene);
     set.lights.insert(set.lights.end(), suns.begin(), suns.end());
+    if (!suns.empty()) {  // the suns' irradiance joins the map's (a black map has none yet)
+        IrradianceMap irradiance = set.irradiance ? *set.irradiance : irradiance_map(environment);
+        for (const RotatableSquareLight& sun : suns)
+            add_directional_irradiance(irradiance, sun.center, Color(sun.light_integral()));
+        set.irradiance = std::make_shared<const IrradianceMap>(std::move(irradiance));
+    }
     return set;
 }
 

@@ -109,6 +109,19 @@ struct CpuRenderer::BlockScratch {
     alignas(64) float dx[kShadeBlock], dy[kShadeBlock], dz[kShadeBlock], half[kShadeBlock], ir[kShadeBlock], ig[kShadeBlock], ib[kShadeBlock];
     // Local plane point of the light's center and the light's local z.
     alignas(64) float lpx[kShadeBlock], lpy[kShadeBlock], lz[kShadeBlock];
+    // The exact diffuse light (RenderOptions::exact_diffuse_light): per point
+    // its gain g (shading/diffuse_light.h), and per slot 1 for an environment
+    // light, 0 for a local one; `gains` false: none this block.
+    alignas(64) float gain_r[kShadeBlock], gain_g[kShadeBlock], gain_b[kShadeBlock];
+    alignas(64) float environment_slot[kShadeBlock];
+    bool gains = false;
+    // With gains, per environment light l and point k, c_l at k:
+    // cosines[l·kShadeBlock + k] (sized at the first block); light_cosines
+    // points at the current light's row (set_light), null where brdf_queries
+    // computes c itself (a pixel's lights, local lights).
+    std::vector<float> cosines;
+    const float* light_cosines = nullptr;
+    alignas(64) int32_t crossing[kShadeBlock];
     // Compacted queries.
     int index[kShadeBlock];
     int query_vertex[kShadeBlock];  // the vertex of each query (shade_block)

@@ -53,6 +53,7 @@ CpuRenderer::CpuRenderer(const Scene& scene, EnvironmentLights environment_light
     enclosed_vertices_.resize(parts);
     part_tables_.assign(parts, nullptr);
     part_specular_tables_.assign(parts, nullptr);
+    part_constant_terms_.assign(parts, Color(0));
     synced_material_.assign(parts, -1);
     sync_materials();
     start();
@@ -77,6 +78,7 @@ void CpuRenderer::sync_materials() {
         if (m != synced_material_[p] || library_.revision(m) != synced_revision_[size_t(m)] || !part_tables_[p]) {
             part_tables_[p] = &library_.part_table(int(p));
             part_specular_tables_[p] = library_.part_specular_table(int(p));
+            part_constant_terms_[p] = library_.brdf(m).constant_part();
             synced_material_[p] = m;
         }
     }

@@ -103,6 +103,8 @@ private:
     void put_local_light(BlockScratch& s, int k, size_t local_light) const;
     void project_lights(BlockScratch& s, int n) const;
     void set_lights_at_point(BlockScratch& s, size_t lights) const;
+    // The exact diffuse light's gains of the n points (s.gain_*; s.gains).
+    void diffuse_light_gains(BlockScratch& s, int part, int n) const;
     // view_floor (per point k): points that face away from the camera with a
     // view cosine above view_floor[k] are queried too, with BRDF averages 0
     // (a part shaded with highlights per pixel keeps their self-visibility
@@ -145,6 +147,7 @@ private:
     // frame when a material's revision or a part's assignment changed.
     std::vector<const BrdfTable*> part_tables_;
     std::vector<const BrdfTable*> part_specular_tables_;  // null for untextured parts
+    std::vector<Color> part_constant_terms_;  // per part: its (diffuse) BRDF's constant_part()
     std::vector<int> synced_material_;
     std::vector<uint64_t> synced_revision_;
     std::vector<Block> blocks_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "src/core/error.h"
+#include "src/lightfit/irradiance.h"
 
 namespace rsl {
 
@@ -74,6 +75,7 @@ void FrameSetup::update(const Scene& scene, const EnvironmentLights& environment
     }
     // Both maps turn together: the blend is of the two rotated maps.
     const Mat3 rotation = extra_rotation * scene.environment.rotation_at(t);
+    environment_rotation_ = rotation;
     blend_ = environment_blend_weights(scene.environment, environment, t);
     squares_.clear();
     append_squares(environment.first, rotation, blend_.first, squares_);
@@ -91,6 +93,18 @@ void FrameSetup::update(const Scene& scene, const EnvironmentLights& environment
         culling_parts_[p].world_bounds = poses_[p].world_bounds;
     }
     update_occluder_lists(culling_parts_, CullingLights{squares_, light_positions_, lights}, options, lists_);
+}
+
+bool has_irradiance(const EnvironmentLights& environment) {
+    return environment.first.irradiance && (!environment.blends() || environment.second.irradiance);
+}
+
+Color environment_irradiance(const EnvironmentLights& environment, const FrameSetup& frame, const Vec3& world_normal) {
+    const Vec3 n = glm::transpose(frame.environment_rotation()) * world_normal;
+    const BlendWeights w = frame.blend();
+    Color e = w.first * environment.first.irradiance->at(n);
+    if (environment.blends() && w.second > 0.0f) e += w.second * environment.second.irradiance->at(n);
+    return e;
 }
 
 }  // namespace rsl

@@ -83,6 +83,8 @@ public:
     const std::vector<Vec3>& light_axes() const { return light_axes_; }  // spot axes (unit), per local light
     const Vec3& camera() const { return camera_; }
     BlendWeights blend() const { return blend_; }
+    // The environment's rotation at t (the map's frame → the world).
+    const Mat3& environment_rotation() const { return environment_rotation_; }
     // Occluders of receiver p for light l (culling.h): occluders[offsets[p·L + l] ..
     // offsets[p·L + l + 1]), L = environment_squares().size() + light_positions().size().
     const OccluderLists& occluder_lists() const { return lists_; }
@@ -98,6 +100,13 @@ private:
     std::vector<Vec3> light_axes_;
     Vec3 camera_{0};
     BlendWeights blend_;
+    Mat3 environment_rotation_{1.0f};
 };
+
+// The environment's exact irradiance at world normal n in this frame
+// (src/lightfit/irradiance.h): the blend of the sets' maps at the normal
+// turned back into the maps' frame. Valid only where has_irradiance.
+bool has_irradiance(const EnvironmentLights& environment);
+Color environment_irradiance(const EnvironmentLights& environment, const FrameSetup& frame, const Vec3& world_normal);
 
 }  // namespace rsl

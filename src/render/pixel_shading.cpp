@@ -337,6 +337,9 @@ Color CpuRenderer::pixel_highlights(BlockScratch& s, PixelOccluders& o, size_t p
     const PixelTerms& terms = pixel_terms_[part];
     RSL_CHECK(lights <= size_t(kShadeBlock));  // CpuRenderer::shade keeps no highlight terms for more
     set_lights_at_point(s, lights);
+    diffuse_light_gains(s, int(part), 1);  // every slot holds the pixel's point
+    for (size_t l = 1; l < lights; ++l)
+        s.gain_r[l] = s.gain_r[0], s.gain_g[l] = s.gain_g[0], s.gain_b[l] = s.gain_b[0];
     const int m = brdf_queries(s, *part_tables_[part], nullptr, int(lights));
     // An enclosed corner's self-visibility is the inside's: the seen point is outside.
     float ws[3] = {w[0], w[1], w[2]};

@@ -52,6 +52,10 @@ struct RenderOptions {
     bool local_lights = true;        // shade with the scene's sphere lights
     bool self_visibility = true;     // multiply by the SVDF average
     bool occluders = true;           // multiply by the other parts' OVDF averages
+    // Shade each BRDF's constant (diffuse) term with the environment's exact
+    // irradiance, the squares giving its shadows as a ratio (docs/design/RENDERER.md
+    // "Exact diffuse light"); off: the squares' own light, as the RSL paper.
+    bool exact_diffuse_light = true;
     bool occluder_culling = true;    // skip occluders that cannot shadow (never changes the result)
     // OVDF lookups split into a per-(vertex, occluder) half and a per-light half
     // (src/render/ovdf_lookup.h; same values as the field's own lookup, faster).

@@ -16,6 +16,7 @@
 #include "src/render/block_scratch.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/cpu_renderer.h"
+#include "src/shading/diffuse_light.h"
 #include "src/shading/frames.h"
 #include "src/shading/squares.h"
 #include "src/shading/ovdf_tables.h"
@@ -227,6 +228,9 @@ void CpuRenderer::set_light(BlockScratch& s, size_t l, int n) const {
     } else {
         for (int k = 0; k < n; ++k) put_local_light(s, k, l - environment);
     }
+    const float slot = l < environment ? 1.0f : 0.0f;
+    for (int k = 0; k < n; ++k) s.environment_slot[k] = slot;
+    s.light_cosines = s.gains && l < environment ? s.cosines.data() + l * kShadeBlock : nullptr;
     project_lights(s, n);
 }
 
@@ -273,7 +277,9 @@ void CpuRenderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
             put_light(s, k, environment_squares_[l], 1.0f);
         else
             put_local_light(s, k, l - environment);
+        s.environment_slot[k] = l < environment ? 1.0f : 0.0f;
     }
+    s.light_cosines = nullptr;  // each slot's c from its own square (brdf_queries)
     project_lights(s, int(lights));
 }
 
@@ -321,6 +327,14 @@ int CpuRenderer::brdf_queries(BlockScratch& s, const BrdfTable& table, const Brd
     queries.count = size_t(m);
     table.square_average_batch(queries, ColorOutputs{s.br, s.bg, s.bb});
     if (specular) specular->square_average_batch(queries, ColorOutputs{s.spr, s.spg, s.spb});
+    if (s.gains)  // the exact diffuse light: g·c_l on the (diffuse) table's average
+        for (int i = 0; i < m; ++i) {
+            const int k = s.index[i];
+            const float c = s.light_cosines ? s.light_cosines[k]
+                                            : s.environment_slot[k] *
+                                                  shading::square_average_cosine(Vec2(s.lpx[k], s.lpy[k]), s.half[k]);
+            s.br[i] += s.gain_r[k] * c, s.bg[i] += s.gain_g[k] * c, s.bb[i] += s.gain_b[k] * c;
+        }
     if (away)
         for (int i = 0; i < m; ++i)
             if (s.skip[i]) {
@@ -534,6 +548,7 @@ void CpuRenderer::shade_block(const Block& block, VertexColors& out, RenderStats
     RSL_CHECK(!specular || specular->isotropic() == table.isotropic());
     const int n = block.end - block.begin;
     load_block_points(s, block);
+    diffuse_light_gains(s, part_index, n);
     const BoundingSphere block_sphere = options_.occluder_culling ? block_bounding_sphere(s, n) : BoundingSphere{};
     for (int k = 0; k < n; ++k) {
         s.r[k] = s.g[k] = s.b[k] = 0.0f;

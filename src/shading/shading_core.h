@@ -21,6 +21,7 @@
 #include "src/shading/frames.h"
 #include "src/shading/interpolation.h"
 #include "src/shading/squares.h"
+#include "src/shading/diffuse_light.h"
 #include "src/shading/vdt.h"
 #include "src/shading/brdf_sat.h"
 #include "src/shading/ovdf_tables.h"

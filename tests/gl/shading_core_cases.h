@@ -11,7 +11,7 @@ namespace rsl::shading {
 
 // RSL_GLSL_BEGIN
 
-RSL_CONST int kShadingCoreModes = 16;
+RSL_CONST int kShadingCoreModes = 17;
 
 struct CaseOutput {
     vec4 first;
@@ -153,6 +153,12 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
         vec2 p = square_grid_point(vec2(a.w, b.y), ha, 1 + int(7.0f * abs(b.z)), int(3.0f * abs(b.w)), 1, in_cell);
         o.first = vec4(float(seed.x & 0xffffu), float(seed.x >> 16), float(seed.y & 0xffffu), float(seed.y >> 16));
         o.second = vec4(in_cell.x, in_cell.y, p.x, p.y);
+    } else if (mode == 16) {  // the exact diffuse light: a square's mean cosine (across the horizon too), the gain, cube taps
+        vec2 c = 1.3f * vec2(a.x, a.y);
+        CubeNodeTaps taps = cube_node_taps(w, n);
+        o.first = vec4(square_average_cosine(c, 0.5f * ha), square_average_cosine(0.3f * c, 0.2f * ha),
+                       diffuse_light_gain(abs(b.x), abs(b.y), abs(b.w) - 0.1f), float(taps.first));
+        o.second = vec4(float(taps.row), taps.weight.x, taps.weight.y, diffuse_light_gain(abs(b.x), abs(b.y), 0.5f + abs(b.w)));
     }
     return o;
 }

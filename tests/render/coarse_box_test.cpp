@@ -107,14 +107,15 @@ TEST_CASE("Coarse stacked boxes vs the truth: each box within 5%, coarse and sub
 TEST_CASE("Coarse stacked boxes: exact shapes beat the OVDFs near contacts", "[render][accuracy][subdivide]") {
     const BoxRuns& runs = box_runs();
     BOX_ERRORS_INFO(runs);
-    // Measured (all / bottom / top): exact shapes 1.77% / 1.47% / 0.54%,
-    // OVDFs 3.51% / 1.78% / 0.61%. Before the OVDF's inside shells held the
+    // Measured (all / bottom / top): exact shapes 0.25% / 0.41% / 0.30%,
+    // OVDFs 2.99% / 0.62% / 0.30% (the top box, shadowed by nothing, is the
+    // exact diffuse light's alone either way). Before the OVDF's inside shells held the
     // whole sphere of directions (field format 6) the OVDFs were at 3.46% /
     // 2.59% / 2.23%: the ground's samples above it read its horizon texels
     // for the lights away from its centre.
     CHECK(runs.coarse.all < 0.7 * runs.coarse_ovdf.all);
     CHECK(runs.coarse.bottom < 0.9 * runs.coarse_ovdf.bottom);
-    CHECK(runs.coarse.top < runs.coarse_ovdf.top);
+    CHECK(runs.coarse.top < runs.coarse_ovdf.top + 0.001);
 }
 
 }  // namespace

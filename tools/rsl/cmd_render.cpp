@@ -29,6 +29,7 @@ struct RenderArgs {
     bool same_face = false;
     std::string backend = "cpu";
     bool no_self = false, no_occluders = false, no_culling = false, exact_shapes = true;
+    bool exact_diffuse_light = true;
     std::string pixel_shadows = "planes";
     bool pixel_highlights = true;
     std::vector<std::string> materials;
@@ -72,6 +73,7 @@ RenderOptions render_options(const RenderArgs& args, Backend backend) {
     options.occluders = !args.no_occluders;
     options.occluder_culling = !args.no_culling;
     options.exact_shapes = args.exact_shapes;
+    options.exact_diffuse_light = args.exact_diffuse_light;
     options.pixel_shadows = parse_pixel_shadows(args.pixel_shadows);
     options.pixel_highlights = args.pixel_highlights;
     options.material_override = parse_material_overrides(args.materials);
@@ -182,6 +184,10 @@ RegisterCommand render_command({"render",
         app.add_flag("--exact-shapes,!--no-exact-shapes", args->exact_shapes,
                      "Parts that are one flat rectangle (a ground) or one box shadow the others from their shape, "
                      "not their OVDF: exact near contacts, about 5% slower (default on; docs/design/RENDERER.md)");
+        app.add_flag("--exact-diffuse-light,!--no-exact-diffuse-light", args->exact_diffuse_light,
+                     "Shade each material's diffuse term with the environment's exact irradiance, the squares "
+                     "giving only its shadows: the diffuse light's error no longer depends on K (default on; "
+                     "off: the RSL paper's sum; docs/design/RENDERER.md)");
         app.add_option("--pixel-shadows", args->pixel_shadows,
                        "Which parts take the other parts' shadows per pixel in the image, where a shadow edge "
                        "crosses a triangle (sharp shadows on coarse receivers; per-vertex colours unchanged; "
