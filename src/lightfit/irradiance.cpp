@@ -26,24 +26,42 @@ IrradianceMap irradiance_map(const CubeMap& environment, int resolution) {
     IrradianceMap map;
     map.resolution = resolution;
     map.nodes.assign(size_t(6 * (resolution + 1) * (resolution + 1)), Color(0));
-    // The texels as structure of arrays, radiance × solid angle, dark ones left out.
-    std::vector<float> x, y, z, r, g, b;
+    // Per block of texels and channel, the first moment M = Σ L Ω ω, so that
+    // Σ L Ω max(0, n·ω) = max(0, n·M) wherever the block lies on one side of
+    // n's horizon (the cosine is linear in ω): a block is one texel up to
+    // kMaxDirectResolution, several above, and only blocks that straddle a
+    // horizon approximate. Structure of arrays, dark blocks left out.
+    const int side = environment.resolution();
+    const int block = (side + kMaxDirectResolution - 1) / kMaxDirectResolution;
+    const int blocks = (side + block - 1) / block;
+    std::vector<DVec3> moments(size_t(6 * blocks * blocks) * 3, DVec3(0.0));
     for (int k = 0; k < environment.texel_count(); ++k) {
         const Color e = environment.radiance(k) * environment.solid_angle(k);
         if (e == Color(0)) continue;
-        const Vec3 d = environment.texel_direction(k);
-        x.push_back(d.x), y.push_back(d.y), z.push_back(d.z);
-        r.push_back(e.r), g.push_back(e.g), b.push_back(e.b);
+        const CubeTexel t = environment.texel(k);
+        const size_t b = size_t((t.face * blocks + t.j / block) * blocks + t.i / block) * 3;
+        const DVec3 d(environment.texel_direction(k));
+        for (int c = 0; c < 3; ++c) moments[b + size_t(c)] += double(e[c]) * d;
     }
-    const size_t texels = x.size();
+    std::vector<float> x[3], y[3], z[3];
+    for (size_t b = 0; b < moments.size(); b += 3) {
+        if (moments[b] == DVec3(0.0) && moments[b + 1] == DVec3(0.0) && moments[b + 2] == DVec3(0.0)) continue;
+        for (int c = 0; c < 3; ++c) {
+            x[c].push_back(float(moments[b + size_t(c)].x));
+            y[c].push_back(float(moments[b + size_t(c)].y));
+            z[c].push_back(float(moments[b + size_t(c)].z));
+        }
+    }
+    const size_t texels = x[0].size();
     tbb::parallel_for(size_t(0), map.nodes.size(), [&](size_t node) {
         const Vec3 n = map.node_direction(int(node));
         double sr = 0, sg = 0, sb = 0;
         for (size_t first = 0; first < texels; first += 256) {  // float runs, summed in double
             float fr = 0, fg = 0, fb = 0;
             for (size_t k = first; k < std::min(first + 256, texels); ++k) {
-                const float c = std::max(n.x * x[k] + n.y * y[k] + n.z * z[k], 0.0f);
-                fr += c * r[k], fg += c * g[k], fb += c * b[k];
+                fr += std::max(n.x * x[0][k] + n.y * y[0][k] + n.z * z[0][k], 0.0f);
+                fg += std::max(n.x * x[1][k] + n.y * y[1][k] + n.z * z[1][k], 0.0f);
+                fb += std::max(n.x * x[2][k] + n.y * y[2][k] + n.z * z[2][k], 0.0f);
             }
             sr += fr, sg += fg, sb += fb;
         }

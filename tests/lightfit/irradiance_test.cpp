@@ -63,6 +63,22 @@ TEST_CASE("irradiance map: nodes and lookups equal the brute-force integral", "[
     WARN("worst relative error " << worst);
 }
 
+TEST_CASE("irradiance map: a map above 64² summed by blocks agrees with the texels' own sum", "[lightfit][irradiance]") {
+    const CubeMap map = sky_and_sun(128);
+    const IrradianceMap irradiance = irradiance_map(map, 32);
+    std::mt19937 rng(5);
+    std::normal_distribution<float> normal;
+    for (int trial = 0; trial < 60; ++trial) {
+        const Vec3 n = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+        const Color truth = brute_force_irradiance(map, n, 1);
+        const Color got = irradiance.at(n);
+        for (int c = 0; c < 3; ++c) {
+            INFO("normal " << n.x << " " << n.y << " " << n.z << ": map " << got[c] << ", texels " << truth[c]);
+            CHECK(std::abs(double(got[c]) - truth[c]) < 0.01 * (truth[c] + 1e-3));
+        }
+    }
+}
+
 TEST_CASE("irradiance map: the lookup at a node is the node, and the faces agree at their edges",
           "[lightfit][irradiance]") {
     const IrradianceMap irradiance = irradiance_map(sky_and_sun(8), 8);
