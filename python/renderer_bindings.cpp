@@ -202,6 +202,7 @@ void bind_renderer(py::module_& m) {
         .def("form_image",
              [](const PyRenderer& r, const FloatArray& colors, int width, int height, int samples) {
                  const api::VertexColors c = r.colors(colors, "colors");
+                 check_finite(colors, "form_image", "colors", false);
                  api::Image image;
                  {
                      py::gil_scoped_release release;
@@ -245,6 +246,7 @@ void bind_renderer(py::module_& m) {
         .def("write_vertex_colors",
              [](const PyRenderer& r, const std::string& path, const FloatArray& colors, const std::string& producer) {
                  api::VertexColors c = r.colors(colors, "colors");
+                 check_finite(colors, path, "colors", true);
                  c.producer = producer;
                  c.scene_name = r.scene_name;
                  c.time = r.renderer.time();

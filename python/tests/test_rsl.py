@@ -276,6 +276,23 @@ class ModuleTest(unittest.TestCase):
         self.assertEqual(status, 0)
         self.assertTrue(text.startswith(f"rsl {info['version']}\ncommit: {info['commit']}\n"), text)
 
+    def test_non_finite_values_are_refused_before_anything_is_formed_or_written(self):
+        colors = self.renderer.shade().copy()
+        colors[3, 1] = np.nan
+        with self.assertRaisesRegex(ValueError, re.escape("form_image: colors[3, 1] is NaN")):
+            self.renderer.form_image(colors)
+        rslv = os.path.join(self.folder, "nan.rslv")
+        with self.assertRaisesRegex(ValueError, re.escape(rslv + ": colors[3, 1] is NaN") + ".*nothing written"):
+            self.renderer.write_vertex_colors(rslv, colors)
+        self.assertFalse(os.path.exists(rslv))
+        image = np.ones((2, 3, 4), dtype=np.float32)
+        image[1, 2, 0] = -np.inf
+        exr = os.path.join(self.folder, "inf.exr")
+        with self.assertRaisesRegex(ValueError, re.escape(exr + ": image[1, 2, 0] is infinite")):
+            rsl.write_image(exr, image)
+        self.assertFalse(os.path.exists(exr))
+        self.assertFalse(os.path.exists(os.path.join(self.folder, "inf.png")))
+
 
 class HostileInputTest(unittest.TestCase):
     """Issue 43: nothing hangs, nothing lies: special files and out-of-range values raise rsl.Error at once."""
