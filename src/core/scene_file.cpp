@@ -17,6 +17,7 @@
 #include "src/core/json_file.h"
 #include "src/core/precompute_limits.h"
 #include "src/core/scene.h"
+#include "src/core/scene_limits.h"
 
 namespace rsl {
 
@@ -149,9 +150,10 @@ public:
     }
 
 private:
+    // A key holds the file's own names (materials, parts), so it is quoted as echo_value allows.
     [[noreturn]] void fail(const std::string& key, const std::string& message) const {
         if (key.empty()) throw_file_error(path_, "{}", message);
-        throw_file_error(path_, "{}: {}", key, message);
+        throw_file_error(path_, "{}: {}", echo_value(key), message);
     }
 
     // Runs a loader of a file the scene names; its error (which names that
@@ -243,10 +245,12 @@ private:
         return vec3(object.at(name), join(where, name));
     }
 
-    std::filesystem::path existing_file(const Json& j, const std::string& key) const {
+    // Every file a scene file names comes through here, and is recorded as an input.
+    std::filesystem::path existing_file(const Json& j, const std::string& key) {
         if (!j.is_string()) fail(key, fmt::format("expected a file name, got {}", j.type_name()));
         const std::filesystem::path file = dir_ / j.get<std::string>();
-        if (const std::string why = why_not_regular_file(file); !why.empty()) fail(key, fmt::format("file {} {}", file.string(), why));
+        if (const std::string why = why_not_regular_file(file); !why.empty()) fail(key, fmt::format("file {} {}", echo_value(file.string()), why));
+        scene_.input_files.push_back(file);
         return file;
     }
 
@@ -274,7 +278,7 @@ private:
 
     int material_named(const std::string& name, const std::string& key) const {
         auto it = material_index_.find(name);
-        if (it == material_index_.end()) fail(key, fmt::format("no material named '{}' in `materials`", name));
+        if (it == material_index_.end()) fail(key, fmt::format("no material named '{}' in `materials`", echo_value(name)));
         return it->second;
     }
 
@@ -587,10 +591,15 @@ Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
 Scene load_scene(const std::filesystem::path& path) {
     check_regular_file(path);
     const std::string ext = lowercase_extension(path);
-    if (ext == ".json") return SceneFileReader(path).read();
-    if (ext == ".gltf" || ext == ".glb") return scene_from_mesh_file(path, true);
-    if (ext == ".obj") return scene_from_mesh_file(path, false);
-    throw_file_error(path, "unknown scene type '{}' (expected .json, .gltf, .glb or .obj)", ext);
+    Scene scene;
+    if (ext == ".json") scene = SceneFileReader(path).read();
+    else if (ext == ".gltf" || ext == ".glb") scene = scene_from_mesh_file(path, true);
+    else if (ext == ".obj") scene = scene_from_mesh_file(path, false);
+    else throw_file_error(path, "unknown scene type '{}' (expected .json, .gltf, .glb or .obj)", ext);
+    scene.input_files.insert(scene.input_files.begin(), path);
+    check_light_limits(scene, path);
+    check_part_transforms(scene, path);
+    return scene;
 }
 
 }  // namespace rsl

@@ -7,6 +7,7 @@
 #include "src/lightfit/decompose.h"
 #include "src/lightfit/reconstruct.h"
 #include "tools/rsl/command.h"
+#include "src/core/atomic_file.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 
@@ -40,6 +41,7 @@ void run_fit(const FitArgs& args) {
     if (!options.cross_face && options.lights < 6)
         throw_error("--lights {} with --same-face: regions never cross a cube face, so at least 6", options.lights);
 
+    check_outputs_apart({args.output, args.preview}, {args.environment});
     const CubeMap map = load_environment(args.environment, args.resolution);
     const auto start = std::chrono::steady_clock::now();
     const RslSet set = lightfit::decompose(map, options);
