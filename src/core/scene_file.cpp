@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/core/file_reading.h"
 #include "src/core/gltf_camera.h"
@@ -383,7 +384,7 @@ private:
         EnvironmentDesc& env = scene_.environment;
         if (!j.contains("file")) fail(where, "`file` is required");
         env.file = existing_file(j["file"], "environment.file");
-        if (j.contains("resolution")) env.resolution = int_at(j, "resolution", where, 1, 4096);
+        if (j.contains("resolution")) env.resolution = int_at(j, "resolution", where, 1, kMaxCubeResolution);
         if (j.contains("rotation")) {
             const Json& r = expect_object(j["rotation"], "environment.rotation");
             check_keys(r, "environment.rotation", {"axis", "degrees", "degrees_per_second"});

@@ -6,6 +6,7 @@
 // raised, never written as NaN.
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <cmath>
 
 #include "src/core/image.h"
@@ -243,5 +244,20 @@ TEST_CASE("errors never echo a data: URI's payload, and cut any quoted value to 
         CHECK_FALSE(contains(text, std::string(80, 'x')));
         CHECK_FALSE(contains(text, std::string(80, 'y')));
         CHECK((contains(text, "a data: URI of 1639 bytes") || contains(text, "… (")));
+    }
+}
+
+TEST_CASE("cube maps past 512 texels a side are refused at once by every command, as by rsl fit",
+          "[cli][issue-56]") {
+    const fs::path dir = scratch_dir("nothing_destroyed_cube_size");
+    const fs::path scene = small_scene(dir);
+    for (const std::string command : {"truth", "baselines"}) {
+        const auto start = std::chrono::steady_clock::now();
+        const auto [status, text] = run_rsl(command + " " + scene.string() + " -q --resolution 4096 -o " +
+                                            (dir / (command == "truth" ? "t.exr" : "out")).string());
+        INFO(text);
+        CHECK(status == 1);
+        CHECK(contains(text, "--resolution 4096: expected 1 to 512 texels per cube-face edge"));
+        CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 5);
     }
 }

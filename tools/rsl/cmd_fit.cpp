@@ -27,8 +27,8 @@ struct FitArgs {
 };
 
 void run_fit(const FitArgs& args) {
-    if (args.resolution < 1 || args.resolution > 512)
-        throw_error("--resolution {}: expected 1..512 texels per cube-face edge", args.resolution);
+    if (args.resolution < 1 || args.resolution > kMaxCubeResolution)
+        throw_error("--resolution {}: expected 1..{} texels per cube-face edge", args.resolution, kMaxCubeResolution);
     if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
     if (args.max_error < 0) throw_error("--max-error {}: expected ≥ 0", args.max_error);
 

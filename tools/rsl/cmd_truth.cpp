@@ -60,6 +60,9 @@ void run_truth(const TruthArgs& args) {
     check_image_size(args.width, args.height, args.samples);
     check_time("--time", args.time);
     check_exposure(args.exposure);
+    if (args.resolution != 0 && (args.resolution < 1 || args.resolution > kMaxCubeResolution))
+        throw_error("--resolution {}: expected 1 to {} texels per cube-face edge (leave it out for the scene's)",
+                    args.resolution, kMaxCubeResolution);
     if (args.subdivision < 1 || args.subdivision > 16)
         throw_error("--subdivision {}: expected 1 to 16", args.subdivision);
     if (!args.background.empty() && args.background.size() != 3)
