@@ -276,6 +276,35 @@ class ModuleTest(unittest.TestCase):
         self.assertEqual(status, 0)
         self.assertTrue(text.startswith(f"rsl {info['version']}\ncommit: {info['commit']}\n"), text)
 
+    def test_calls_from_several_threads_take_turns(self):
+        # Issue 56: with the GIL released, a set_time in one thread landed in the middle of another's shade.
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        frames = []
+        for t in (0.25, 0.5):
+            r.set_time(t)
+            frames.append(r.shade())
+        self.assertFalse(np.array_equal(frames[0], frames[1]))  # the scene moves between the two
+        seen, errors = [], []
+
+        def work(t):
+            try:
+                for _ in range(6):
+                    r.set_time(t)
+                    seen.append(r.shade())
+                    r.render_image(width=24, height=18)
+            except Exception as e:  # reported below, not lost in the thread
+                errors.append(e)
+
+        threads = [threading.Thread(target=work, args=(t,)) for t in (0.25, 0.5, 0.25, 0.5)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        self.assertEqual(errors, [])
+        self.assertEqual(len(seen), 24)
+        for colors in seen:  # each shade saw one pose whole: one of the two frames, never a mixture
+            self.assertTrue(any(np.array_equal(colors, frame) for frame in frames))
+
     def test_non_finite_values_are_refused_before_anything_is_formed_or_written(self):
         colors = self.renderer.shade().copy()
         colors[3, 1] = np.nan
