@@ -305,6 +305,20 @@ class ModuleTest(unittest.TestCase):
         for colors in seen:  # each shade saw one pose whole: one of the two frames, never a mixture
             self.assertTrue(any(np.array_equal(colors, frame) for frame in frames))
 
+    def test_sizes_and_lights_follow_the_programs_limits(self):
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        with self.assertRaisesRegex(rsl.Error, re.escape("image size 100000×100000: expected 1 to 16384 pixels a side")):
+            r.render_image(width=100000, height=100000)  # was a MemoryError after minutes
+        with self.assertRaisesRegex(rsl.Error, re.escape("samples 1000: expected 1 to 16")):
+            r.form_image(r.shade(), width=8, height=8, samples=1000)
+        with self.assertRaisesRegex(rsl.Error, re.escape("camera size 1000000×1000000: expected 1 to 16384")):
+            r.set_camera([0, 1, 4], [0, 0, 0], width=10**6, height=10**6)
+        one = np.zeros((1, 3), dtype=np.float32)
+        with self.assertRaisesRegex(rsl.Error, re.escape("local light 0.power: 3e+38 W is past the limit")):
+            r.set_sphere_lights(one, np.array([0.05], dtype=np.float32), np.full((1, 3), 3e38, dtype=np.float32))
+        with self.assertRaisesRegex(rsl.Error, re.escape("local light 0: radiance power / (4π² radius²)")):
+            r.set_sphere_lights(one, np.array([1e-9], dtype=np.float32), np.full((1, 3), 100, dtype=np.float32))
+
     def test_non_finite_values_are_refused_before_anything_is_formed_or_written(self):
         colors = self.renderer.shade().copy()
         colors[3, 1] = np.nan

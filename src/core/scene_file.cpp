@@ -477,8 +477,8 @@ private:
             c.fov_y_degrees = positive_number_at(j, "fov_degrees", where);
             if (c.fov_y_degrees >= 180) fail("camera.fov_degrees", "must be below 180");
         }
-        if (j.contains("width")) c.width = int_at(j, "width", where, 1, 16384);
-        if (j.contains("height")) c.height = int_at(j, "height", where, 1, 16384);
+        if (j.contains("width")) c.width = int_at(j, "width", where, 1, kMaxImageSide);
+        if (j.contains("height")) c.height = int_at(j, "height", where, 1, kMaxImageSide);
         if (j.contains("path")) {
             const Json& path = expect_object(j["path"], "camera.path");
             check_keys(path, "camera.path", {"times", "positions", "targets"});

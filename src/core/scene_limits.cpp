@@ -7,21 +7,29 @@
 
 namespace rsl {
 
+std::string light_limit_problem(const LocalLight& light) {
+    const float most = std::max({light.power.r, light.power.g, light.power.b});
+    const float least = std::min({light.power.r, light.power.g, light.power.b});
+    if (!(most <= kMaxLightPower && least >= 0))
+        return fmt::format(".power: {:g} W is past the limit; expected 0 to {:g} W per channel",
+                           most <= kMaxLightPower ? least : most, kMaxLightPower);
+    if (!(light.radius > 0)) return fmt::format(".radius: {:g}, expected a positive radius", light.radius);
+    const double radiance = double(most) / (4.0 * kPi * kPi * double(light.radius) * double(light.radius));
+    if (!(radiance <= double(kMaxLightRadiance)))
+        return fmt::format(": radiance power / (4π² radius²) = {:g} (power {:g} W, radius {:g}) is past the limit "
+                           "{:g}; give a larger radius or a smaller power", radiance, most, light.radius,
+                           kMaxLightRadiance);
+    return "";
+}
+
 // Checked where the scene loads: minutes of work would otherwise end in Inf and NaN pixels.
 void check_light_limits(const Scene& scene, const std::filesystem::path& path) {
     size_t scene_file_light = 0;
     for (const LocalLight& light : scene.lights) {
         const std::string where = light.name.empty() ? fmt::format("lights[{}]", scene_file_light++)
                                                      : fmt::format("glTF light '{}'", light.name);
-        const float most = std::max({light.power.r, light.power.g, light.power.b});
-        if (!(most <= kMaxLightPower))
-            throw_file_error(path, "{}.power: {:g} W is past the limit; expected 0 to {:g} W per channel", where, most,
-                             kMaxLightPower);
-        const double radiance = double(most) / (4.0 * kPi * kPi * double(light.radius) * double(light.radius));
-        if (!(radiance <= double(kMaxLightRadiance)))
-            throw_file_error(path, "{}: radiance power / (4π² radius²) = {:g} (power {:g} W, radius {:g}) is past the "
-                             "limit {:g}; give a larger radius or a smaller power", where, radiance, most,
-                             light.radius, kMaxLightRadiance);
+        if (const std::string problem = light_limit_problem(light); !problem.empty())
+            throw_file_error(path, "{}{}", where, problem);
     }
     for (const SunLight& sun : scene.environment.suns) {
         const float most = std::max({sun.irradiance.r, sun.irradiance.g, sun.irradiance.b});
