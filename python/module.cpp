@@ -96,7 +96,9 @@ void bind_files(py::module_& m) {
     m.def("read_image", [](const std::string& path) { return image_to_numpy(api::read_image(path)); },
           py::arg("path"), "An .exr as an (H, W, 4) float32 array (row 0 at the top)");
     m.def("write_image", [](const std::string& path, const FloatArray& image, float exposure) {
-              api::write_image(path, image_from_numpy(image, "image"), exposure);
+              api::Image converted = image_from_numpy(image, "image");
+              check_finite(image, path, "image", true);
+              api::write_image(path, std::move(converted), exposure);
           },
           py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
           "Writes an (H, W, 4) image as .exr and a tone-mapped .png beside it (exposure in stops, 0: automatic)");

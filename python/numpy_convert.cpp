@@ -1,5 +1,7 @@
 #include "python/numpy_convert.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -19,6 +21,21 @@ std::vector<float> read_rows(const FloatArray& array, const std::string& what, p
         throw Error(fmt::format("{}: expected an array of shape ({}{}), got {}", what, rows >= 0 ? std::to_string(rows) : "N",
                                 flat ? "" : fmt::format(", {}", columns), shape_text(array)));
     return std::vector<float>(array.data(), array.data() + array.size());
+}
+
+void check_finite(const FloatArray& array, const std::string& where, const std::string& what, bool writing) {
+    const float* values = array.data();
+    for (py::ssize_t k = 0; k < array.size(); ++k) {
+        if (std::isfinite(values[k])) continue;
+        std::vector<py::ssize_t> index(size_t(array.ndim()));
+        for (py::ssize_t rest = k, d = array.ndim() - 1; d >= 0; --d) {
+            index[size_t(d)] = rest % array.shape(d);
+            rest /= array.shape(d);
+        }
+        throw py::value_error(fmt::format("{}: {}[{}] is {} (rsl refuses non-finite values){}", where, what,
+                                          fmt::join(index, ", "), std::isnan(values[k]) ? "NaN" : "infinite",
+                                          writing ? "; nothing written" : ""));
+    }
 }
 
 std::vector<api::Float3> read_float3s(const FloatArray& array, const std::string& what) {

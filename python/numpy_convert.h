@@ -30,6 +30,11 @@ std::vector<float> read_rows(const FloatArray& array, const std::string& what, p
 std::vector<api::Float3> read_float3s(const FloatArray& array, const std::string& what);
 api::Float3 to_float3(const std::vector<float>& values, const std::string& what);
 
+// Raises ValueError ("WHERE: WHAT[i, j] is NaN …") at the first NaN or
+// infinite value of `array`, before anything is formed or (`writing`: WHERE
+// is the file) written: rsl's readers refuse files holding one.
+void check_finite(const FloatArray& array, const std::string& where, const std::string& what, bool writing);
+
 // (N, 3) colours out; and in, with the renderer's part layout (or one part).
 py::array_t<float> colors_to_numpy(api::VertexColors&& colors);
 api::VertexColors colors_from_numpy(const FloatArray& array, const std::string& what,

@@ -1,6 +1,9 @@
 // rsl.Renderer: a frame of a scene to numpy arrays, its ground truth, and the
 // per-frame changes. The GIL is released while it shades, forms images,
-// traces the truth and while it is made (fit and field bakes).
+// traces the truth and while it is made (fit and field bakes); a mutex per
+// renderer makes calls from several Python threads take turns.
+#include <mutex>
+
 #include <pybind11/stl.h>
 
 #include <fmt/format.h>
@@ -11,10 +14,9 @@
 namespace rsl::python {
 namespace {
 
-int part_index(const api::Renderer& r, const py::object& part) {
+int part_index(const std::vector<std::string>& names, const py::object& part) {
     if (py::isinstance<py::int_>(part)) return part.cast<int>();
     const std::string name = part.cast<std::string>();
-    const std::vector<std::string> names = r.part_names();
     for (size_t p = 0; p < names.size(); ++p)
         if (names[p] == name) return int(p);
     throw Error(fmt::format("no part '{}' (parts: {})", name, fmt::join(names, ", ")));
@@ -26,16 +28,38 @@ std::vector<size_t> part_offsets(const api::Scene& scene) {
     return offsets;
 }
 
-// The Renderer with what Python needs besides: the vertex layout of its scene.
+// The Renderer with what Python needs besides: the vertex layout of its
+// scene (fixed when it is made, so read without the lock).
 struct PyRenderer {
-    api::Renderer renderer;
-    std::string scene_name;
-    std::vector<std::string> part_names;
-    std::vector<size_t> part_offsets;
+    PyRenderer(api::Renderer r, std::string name, std::vector<std::string> names, std::vector<size_t> offsets)
+        : renderer(std::move(r)), scene_name(std::move(name)), part_names(std::move(names)),
+          part_offsets(std::move(offsets)) {}
 
     api::VertexColors colors(const FloatArray& array, const std::string& what) const {
         return colors_from_numpy(array, what, part_names, part_offsets);
     }
+
+    // Runs f(renderer) with the GIL released and the renderer's lock held:
+    // the GIL first, since a call holding the lock may need the GIL for a
+    // progress callback while another thread waits for the lock.
+    template <typename F>
+    auto locked(F&& f) {
+        py::gil_scoped_release release;
+        std::lock_guard<std::mutex> lock(mutex);
+        return f(renderer);
+    }
+    template <typename F>
+    auto locked(F&& f) const {
+        py::gil_scoped_release release;
+        std::lock_guard<std::mutex> lock(mutex);
+        return f(static_cast<const api::Renderer&>(renderer));
+    }
+
+    api::Renderer renderer;
+    const std::string scene_name;
+    const std::vector<std::string> part_names;
+    const std::vector<size_t> part_offsets;
+    mutable std::mutex mutex;
 };
 
 std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, const std::string& backend,
@@ -56,8 +80,7 @@ std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, c
     settings.progress = progress_callback(progress);
     py::gil_scoped_release release;
     api::Renderer renderer(scene, settings);
-    return std::make_unique<PyRenderer>(
-        PyRenderer{std::move(renderer), scene.name(), scene.part_names(), part_offsets(scene)});
+    return std::make_unique<PyRenderer>(std::move(renderer), scene.name(), scene.part_names(), part_offsets(scene));
 }
 
 py::dict lights_dict(const std::vector<api::SquareLight>& lights) {
@@ -101,23 +124,25 @@ void bind_renderer(py::module_& m) {
              "pixel_shadows: which parts' render_image() takes the other parts' shadows per pixel (planes, "
              "all, off), as `rsl render --pixel-shadows`; pixel_highlights: glossy parts take the BRDF per "
              "pixel there.")
-        .def_property_readonly("backend", [](const PyRenderer& r) { return r.renderer.backend(); })
-        .def_property_readonly("device", [](const PyRenderer& r) { return r.renderer.device(); })
+        .def_property_readonly("backend",
+                               [](const PyRenderer& r) { return r.locked([](const auto& x) { return x.backend(); }); })
+        .def_property_readonly("device",
+                               [](const PyRenderer& r) { return r.locked([](const auto& x) { return x.device(); }); })
         .def_property_readonly("part_names", [](const PyRenderer& r) { return r.part_names; })
         .def_property_readonly("part_offsets", [](const PyRenderer& r) { return r.part_offsets; },
                                "Part p is rows part_offsets[p]:part_offsets[p + 1] of the colour arrays")
         .def_property_readonly("setup",
                                [](const PyRenderer& r) {
-                                   const api::SetupReport s = r.renderer.setup();
+                                   const api::SetupReport s = r.locked([](const auto& x) { return x.setup(); });
                                    py::dict d;
                                    d["lights"] = s.lights, d["fields_loaded"] = s.fields_loaded;
                                    d["fields_baked"] = s.fields_baked, d["fit_seconds"] = s.fit_seconds;
                                    d["bake_seconds"] = s.bake_seconds;
                                    return d;
                                })
-        .def_property("time", [](const PyRenderer& r) { return r.renderer.time(); },
-                      [](PyRenderer& r, float t) { r.renderer.set_time(t); })
-        .def("set_time", [](PyRenderer& r, float t) { r.renderer.set_time(t); }, py::arg("t"))
+        .def_property("time", [](const PyRenderer& r) { return r.locked([](const auto& x) { return x.time(); }); },
+                      [](PyRenderer& r, float t) { r.locked([t](auto& x) { x.set_time(t); }); })
+        .def("set_time", [](PyRenderer& r, float t) { r.locked([t](auto& x) { x.set_time(t); }); }, py::arg("t"))
         .def("set_part_pose",
              [](PyRenderer& r, const py::object& part, const std::vector<float>& translation,
                 const std::vector<float>& rotation, const std::vector<float>& scale, const py::object& matrix) {
@@ -129,7 +154,8 @@ void bind_renderer(py::module_& m) {
                          for (int row = 0; row < 4; ++row) column_major[4 * c + row] = rows[4 * row + c];
                      pose = api::Pose::from_matrix(column_major);
                  }
-                 r.renderer.set_part_pose(part_index(r.renderer, part), pose);
+                 const int index = part_index(r.part_names, part);
+                 r.locked([&](auto& x) { x.set_part_pose(index, pose); });
              },
              py::arg("part"), py::arg("translation") = std::vector<float>{0, 0, 0},
              py::arg("rotation") = std::vector<float>{1, 0, 0, 0}, py::arg("scale") = std::vector<float>{1, 1, 1},
@@ -138,7 +164,8 @@ void bind_renderer(py::module_& m) {
              "or a 4×4 matrix (numpy row-major, M @ [x, y, z, 1])")
         .def("part_transform",
              [](const PyRenderer& r, const py::object& part) {
-                 const std::array<float, 16> c = r.renderer.part_transform(part_index(r.renderer, part));
+                 const int index = part_index(r.part_names, part);
+                 const std::array<float, 16> c = r.locked([&](const auto& x) { return x.part_transform(index); });
                  std::vector<float> rows(16);
                  for (int col = 0; col < 4; ++col)
                      for (int row = 0; row < 4; ++row) rows[4 * row + col] = c[4 * col + row];
@@ -147,14 +174,17 @@ void bind_renderer(py::module_& m) {
              py::arg("part"), "The part's world matrix at the current frame (4×4, row-major)")
         .def("set_environment_rotation",
              [](PyRenderer& r, const std::vector<float>& axis, float degrees) {
-                 r.renderer.set_environment_rotation(to_float3(axis, "axis"), degrees);
+                 const api::Float3 a = to_float3(axis, "axis");
+                 r.locked([&](auto& x) { x.set_environment_rotation(a, degrees); });
              },
              py::arg("axis"), py::arg("degrees"))
         .def("set_camera",
              [](PyRenderer& r, const std::vector<float>& position, const std::vector<float>& target,
                 const std::vector<float>& up, float fov, int width, int height) {
-                 r.renderer.set_camera({to_float3(position, "camera position"), to_float3(target, "camera target"),
-                                        to_float3(up, "camera up"), fov, width, height});
+                 const api::Camera camera{to_float3(position, "camera position"),
+                                                  to_float3(target, "camera target"), to_float3(up, "camera up"), fov,
+                                                  width, height};
+                 r.locked([&](auto& x) { x.set_camera(camera); });
              },
              py::arg("position"), py::arg("target"), py::arg("up") = std::vector<float>{0, 1, 0},
              py::arg("fov_y_degrees") = 40.0f, py::arg("width") = 640, py::arg("height") = 480)
@@ -165,20 +195,23 @@ void bind_renderer(py::module_& m) {
                  const std::vector<float> w = read_rows(powers, "powers", 3, py::ssize_t(p.size()));
                  std::vector<api::SphereLight> lights(p.size());
                  for (size_t i = 0; i < p.size(); ++i) lights[i] = {p[i], a[i], {w[3 * i], w[3 * i + 1], w[3 * i + 2]}};
-                 r.renderer.set_sphere_lights(lights);
+                 r.locked([&](auto& x) { x.set_sphere_lights(lights); });
              },
              py::arg("positions"), py::arg("radii"), py::arg("powers"))
         .def_property_readonly("environment_lights",
-                               [](const PyRenderer& r) { return lights_dict(r.renderer.environment_lights()); })
+                               [](const PyRenderer& r) {
+                                   return lights_dict(r.locked([](const auto& x) { return x.environment_lights(); }));
+                               })
         .def("set_environment_lights",
              [](PyRenderer& r, const FloatArray& centers, const FloatArray& half_diagonals, const FloatArray& radiance) {
-                 r.renderer.set_environment_lights(lights_from(centers, half_diagonals, radiance));
+                 const std::vector<api::SquareLight> lights = lights_from(centers, half_diagonals, radiance);
+                 r.locked([&](auto& x) { x.set_environment_lights(lights); });
              },
              py::arg("centers"), py::arg("half_diagonals"), py::arg("radiance"),
              "The environment's square lights, e.g. fit_environment(...)'s arrays")
         .def("set_part_material",
              [](PyRenderer& r, const std::string& part, const std::string& material) {
-                 r.renderer.set_part_material(part, material);
+                 r.locked([&](auto& x) { x.set_part_material(part, material); });
              },
              py::arg("part"), py::arg("material"))
         .def("set_material_parameter",
@@ -186,50 +219,33 @@ void bind_renderer(py::module_& m) {
                  const std::vector<float> values = py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)
                                                        ? std::vector<float>{value.cast<float>()}
                                                        : value.cast<std::vector<float>>();
-                 r.renderer.set_material_parameter(material, key, values);
+                 r.locked([&](auto& x) { x.set_material_parameter(material, key, values); });
              },
              py::arg("material"), py::arg("key"), py::arg("value"))
         .def("shade",
              [](PyRenderer& r) {
-                 api::VertexColors colors;
-                 {
-                     py::gil_scoped_release release;
-                     colors = r.renderer.shade();
-                 }
-                 return colors_to_numpy(std::move(colors));
+                 return colors_to_numpy(r.locked([](auto& x) { return x.shade(); }));
              },
              "Per-vertex colours of the current frame, (N, 3) float32, parts in order (part_offsets)")
         .def("form_image",
              [](const PyRenderer& r, const FloatArray& colors, int width, int height, int samples) {
                  const api::VertexColors c = r.colors(colors, "colors");
-                 api::Image image;
-                 {
-                     py::gil_scoped_release release;
-                     image = r.renderer.form_image(c, image_settings(width, height, samples));
-                 }
-                 return image_to_numpy(std::move(image));
+                 check_finite(colors, "form_image", "colors", false);
+                 return image_to_numpy(
+                     r.locked([&](const auto& x) { return x.form_image(c, image_settings(width, height, samples)); }));
              },
              py::arg("colors"), py::arg("width") = 0, py::arg("height") = 0, py::arg("samples") = 1,
              "The (H, W, 4) image of (N, 3) vertex colours, as rsl render forms it (0: the camera's size)")
         .def("render_image",
              [](PyRenderer& r, int width, int height, int samples) {
-                 api::Image image;
-                 {
-                     py::gil_scoped_release release;
-                     image = r.renderer.render_image(image_settings(width, height, samples));
-                 }
-                 return image_to_numpy(std::move(image));
+                 return image_to_numpy(
+                     r.locked([&](auto& x) { return x.render_image(image_settings(width, height, samples)); }));
              },
              py::arg("width") = 0, py::arg("height") = 0, py::arg("samples") = 1, "shade() then form_image()")
         .def("truth",
              [](const PyRenderer& r, int subdivision, bool local_lights, const py::object& progress) {
                  api::TruthSettings settings{subdivision, local_lights, progress_callback(progress)};
-                 api::VertexColors colors;
-                 {
-                     py::gil_scoped_release release;
-                     colors = r.renderer.truth(settings);
-                 }
-                 return colors_to_numpy(std::move(colors));
+                 return colors_to_numpy(r.locked([&](const auto& x) { return x.truth(settings); }));
              },
              py::arg("subdivision") = 1, py::arg("local_lights") = true, py::arg("progress") = py::none(),
              "The Embree ground truth of the current frame (rsl truth), (N, 3)")
@@ -245,10 +261,13 @@ void bind_renderer(py::module_& m) {
         .def("write_vertex_colors",
              [](const PyRenderer& r, const std::string& path, const FloatArray& colors, const std::string& producer) {
                  api::VertexColors c = r.colors(colors, "colors");
+                 check_finite(colors, path, "colors", true);
                  c.producer = producer;
                  c.scene_name = r.scene_name;
-                 c.time = r.renderer.time();
-                 api::write_vertex_colors(path, c);
+                 r.locked([&](const auto& x) {
+                     c.time = x.time();
+                     api::write_vertex_colors(path, c);
+                 });
              },
              py::arg("path"), py::arg("colors"), py::arg("producer") = "python",
              "Writes (N, 3) colours of this scene as an .rslv file (for rsl compare)");

@@ -127,6 +127,13 @@ inline std::string gltf_triangle(const std::string& count = "3",
 // the range check passed and std::vector refused the size (status 2).
 inline std::string gltf_count_overflow() { return gltf_triangle("1537228672809129302"); }
 
+// A glTF whose `extras` nest `depth` arrays deep: tinygltf's recursive
+// parse overflowed the stack at 200,000 (a segfault, issue 56).
+inline std::string gltf_deeply_nested(int depth = 200000) {
+    return R"({"asset": {"version": "2.0"}, "extras": )" + std::string(size_t(depth), '[') +
+           std::string(size_t(depth), ']') + "}";
+}
+
 // A buffer naming a directory: tinygltf took its size for 2^63 − 1 bytes
 // and std::bad_alloc ended `rsl` with status 2.
 inline std::string gltf_directory_buffer() { return gltf_triangle("3", "."); }

@@ -2,7 +2,7 @@
 // Fault tests of the `rsl` commands that write files (bake, truth, render):
 // the command is killed (SIGKILL) at several moments; whatever stands under
 // a final name must then be whole, and a rerun must complete and leave no
-// temporary (".NAME.tmp-HOST-PID-RANDOM.EXT", src/core/atomic_file.h) behind.
+// temporary (".NAME.rsl-tmp-HOST-PID-RANDOM.EXT", src/core/atomic_file.h) behind.
 #include <algorithm>
 #include <chrono>
 #include <functional>
@@ -22,13 +22,13 @@
 
 namespace rsl::test {
 
-// The temporaries write_atomically leaves in `dir` (names ".STEM.tmp-...").
+// The temporaries write_atomically leaves in `dir` (names ".STEM.rsl-tmp-...").
 inline std::vector<std::filesystem::path> temporaries_in(const std::filesystem::path& dir) {
     std::vector<std::filesystem::path> found;
     if (!std::filesystem::exists(dir)) return found;
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
         const std::string name = entry.path().filename().string();
-        if (name[0] == '.' && name.find(".tmp-") != std::string::npos) found.push_back(entry.path());
+        if (name[0] == '.' && name.find(".rsl-tmp-") != std::string::npos) found.push_back(entry.path());
     }
     return found;
 }

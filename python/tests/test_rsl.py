@@ -276,6 +276,66 @@ class ModuleTest(unittest.TestCase):
         self.assertEqual(status, 0)
         self.assertTrue(text.startswith(f"rsl {info['version']}\ncommit: {info['commit']}\n"), text)
 
+    def test_calls_from_several_threads_take_turns(self):
+        # Issue 56: with the GIL released, a set_time in one thread landed in the middle of another's shade.
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        frames = []
+        for t in (0.25, 0.5):
+            r.set_time(t)
+            frames.append(r.shade())
+        self.assertFalse(np.array_equal(frames[0], frames[1]))  # the scene moves between the two
+        seen, errors = [], []
+
+        def work(t):
+            try:
+                for _ in range(6):
+                    r.set_time(t)
+                    seen.append(r.shade())
+                    r.render_image(width=24, height=18)
+            except Exception as e:  # reported below, not lost in the thread
+                errors.append(e)
+
+        threads = [threading.Thread(target=work, args=(t,)) for t in (0.25, 0.5, 0.25, 0.5)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        self.assertEqual(errors, [])
+        self.assertEqual(len(seen), 24)
+        for colors in seen:  # each shade saw one pose whole: one of the two frames, never a mixture
+            self.assertTrue(any(np.array_equal(colors, frame) for frame in frames))
+
+    def test_sizes_and_lights_follow_the_programs_limits(self):
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        with self.assertRaisesRegex(rsl.Error, re.escape("image size 100000×100000: expected 1 to 16384 pixels a side")):
+            r.render_image(width=100000, height=100000)  # was a MemoryError after minutes
+        with self.assertRaisesRegex(rsl.Error, re.escape("samples 1000: expected 1 to 16")):
+            r.form_image(r.shade(), width=8, height=8, samples=1000)
+        with self.assertRaisesRegex(rsl.Error, re.escape("camera size 1000000×1000000: expected 1 to 16384")):
+            r.set_camera([0, 1, 4], [0, 0, 0], width=10**6, height=10**6)
+        one = np.zeros((1, 3), dtype=np.float32)
+        with self.assertRaisesRegex(rsl.Error, re.escape("local light 0.power: 3e+38 W is past the limit")):
+            r.set_sphere_lights(one, np.array([0.05], dtype=np.float32), np.full((1, 3), 3e38, dtype=np.float32))
+        with self.assertRaisesRegex(rsl.Error, re.escape("local light 0: radiance power / (4π² radius²)")):
+            r.set_sphere_lights(one, np.array([1e-9], dtype=np.float32), np.full((1, 3), 100, dtype=np.float32))
+
+    def test_non_finite_values_are_refused_before_anything_is_formed_or_written(self):
+        colors = self.renderer.shade().copy()
+        colors[3, 1] = np.nan
+        with self.assertRaisesRegex(ValueError, re.escape("form_image: colors[3, 1] is NaN")):
+            self.renderer.form_image(colors)
+        rslv = os.path.join(self.folder, "nan.rslv")
+        with self.assertRaisesRegex(ValueError, re.escape(rslv + ": colors[3, 1] is NaN") + ".*nothing written"):
+            self.renderer.write_vertex_colors(rslv, colors)
+        self.assertFalse(os.path.exists(rslv))
+        image = np.ones((2, 3, 4), dtype=np.float32)
+        image[1, 2, 0] = -np.inf
+        exr = os.path.join(self.folder, "inf.exr")
+        with self.assertRaisesRegex(ValueError, re.escape(exr + ": image[1, 2, 0] is infinite")):
+            rsl.write_image(exr, image)
+        self.assertFalse(os.path.exists(exr))
+        self.assertFalse(os.path.exists(os.path.join(self.folder, "inf.png")))
+
 
 class HostileInputTest(unittest.TestCase):
     """Issue 43: nothing hangs, nothing lies: special files and out-of-range values raise rsl.Error at once."""

@@ -35,8 +35,8 @@ SetupReport bake_fields(const Scene& scene, const std::string& field_cache, cons
 
 EnvironmentFit fit_environment(const std::string& file, int lights, int resolution, bool cross_face) {
     // The checks and defaults of `rsl fit`.
-    if (resolution < 1 || resolution > 512)
-        throw_error("resolution {}: expected 1..512 texels per cube-face edge", resolution);
+    if (resolution < 1 || resolution > kMaxCubeResolution)
+        throw_error("resolution {}: expected 1..{} texels per cube-face edge", resolution, kMaxCubeResolution);
     if (lights < 1) throw_error("lights {}: expected at least 1", lights);
     if (!cross_face && lights < 6)
         throw_error("lights {} without cross_face: regions never cross a cube face, so at least 6", lights);

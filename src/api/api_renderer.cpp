@@ -6,6 +6,7 @@
 
 #include "src/api/api_convert.h"
 #include "src/api/renderer_state.h"
+#include "src/core/scene_limits.h"
 #include "src/frame/image_formation.h"
 #include "src/trace/ground_truth.h"
 
@@ -113,6 +114,8 @@ void Renderer::set_environment_rotation(const Float3& axis, float degrees) {
 }
 
 void Renderer::set_camera(const Camera& camera) {
+    if (camera.width < 1 || camera.height < 1 || camera.width > kMaxImageSide || camera.height > kMaxImageSide)
+        throw_error("camera size {}×{}: expected 1 to {} pixels a side", camera.width, camera.height, kMaxImageSide);
     state_->scene().camera = to_camera(camera);
     state_->frame_stale = true;
 }
@@ -188,9 +191,13 @@ VertexColors Renderer::shade() {
 }
 
 std::pair<int, int> Renderer::State::image_size(const ImageSettings& settings) const {
-    if (settings.samples < 1) throw_error("samples {}: expected at least 1", settings.samples);
-    if (settings.width < 0 || settings.height < 0)
-        throw_error("image size {}×{}: expected positive (or 0: the camera's)", settings.width, settings.height);
+    // The limits of `rsl render`: a 100000² image was a std::bad_alloc after minutes.
+    if (settings.samples < 1 || settings.samples > kMaxPixelSamplesPerSide)
+        throw_error("samples {}: expected 1 to {} (S×S primary rays per pixel)", settings.samples,
+                    kMaxPixelSamplesPerSide);
+    if (settings.width < 0 || settings.height < 0 || settings.width > kMaxImageSide || settings.height > kMaxImageSide)
+        throw_error("image size {}×{}: expected 1 to {} pixels a side (or 0: the camera's)", settings.width,
+                    settings.height, kMaxImageSide);
     return {settings.width > 0 ? settings.width : scene().camera.width,
             settings.height > 0 ? settings.height : scene().camera.height};
 }

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "src/api/api_convert.h"
+#include "src/core/envmap.h"
 #include "src/core/mesh.h"
 #include "src/core/precompute_limits.h"
 
@@ -98,8 +99,9 @@ int Scene::add_part(const std::string& name, const Mesh& mesh, const std::string
 }
 
 void Scene::set_environment(const std::string& file, int resolution) {
-    if (resolution < 1 || resolution > 512)
-        throw_error("environment resolution {}: expected 1..512 texels per cube-face edge", resolution);
+    if (resolution < 1 || resolution > kMaxCubeResolution)
+        throw_error("environment resolution {}: expected 1..{} texels per cube-face edge", resolution,
+                    kMaxCubeResolution);
     scene_->environment.file = file;
     scene_->environment.resolution = resolution;
 }

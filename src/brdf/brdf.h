@@ -28,6 +28,11 @@ public:
     virtual Color constant_part() const { return Color(0); }
 };
 
+// The smallest roughness (Cook–Torrance) or alpha (Ward) a model gets:
+// make_brdf raises a smaller one in (0, kMinRoughness) to it, with a warning
+// (rsl::warn), since narrower lobes overflow to NaN (docs/design/BRDF.md).
+inline constexpr float kMinRoughness = 1e-3f;
+
 // Builds a model from a scene material; throws rsl::Error naming the material
 // and the bad parameter (unknown model, missing/out-of-range value).
 std::shared_ptr<const Brdf> make_brdf(const MaterialDesc& material);

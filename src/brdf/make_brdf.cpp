@@ -79,9 +79,19 @@ private:
 
 constexpr float kMaxExponent = 1e5f;  // beyond this the lobe is narrower than any table texel by far
 constexpr float kMaxRoughness = 1.0f;
-// gltf_pbr: glTF allows roughness 0 (a mirror); α = roughness² stops here, a
-// lobe already far narrower than a table texel (docs/design/BRDF.md).
-constexpr float kMinGltfAlpha = 1e-3f;
+// The narrowest lobe any model gets: already far narrower than a table texel
+// (docs/design/BRDF.md), and below about 1e-19 the models' 1/α² overflows to
+// Inf and their pixels to NaN. glTF allows roughness 0 (a mirror), so
+// gltf_pbr's α = roughness² stops here silently; the other models warn.
+constexpr float kMinGltfAlpha = kMinRoughness;
+
+// A roughness below kMinRoughness, raised to it with a warning.
+float at_least_min_roughness(const MaterialDesc& m, const char* key, float value) {
+    if (value >= kMinRoughness) return value;
+    warn("material '{}' ({}): parameter '{}' {:g} is below {:g}, the narrowest lobe the BRDF tables resolve; "
+         "using {:g}", m.name, m.model, key, value, kMinRoughness, kMinRoughness);
+    return kMinRoughness;
+}
 
 std::shared_ptr<const Brdf> build(const MaterialDesc& m, ParamReader& p, BrdfLobe lobe) {
     const std::string& model = m.model;
@@ -107,7 +117,8 @@ std::shared_ptr<const Brdf> build(const MaterialDesc& m, ParamReader& p, BrdfLob
     }
     if (model == "cook_torrance_beckmann" || model == "cook_torrance_ggx") {
         const Color kd = p.rgb("kd", Color(0), 0, 1), f0 = p.rgb("f0", std::nullopt, 0, 1);
-        const float roughness = p.scalar("roughness", std::nullopt, 0, kMaxRoughness, true);
+        const float roughness =
+            at_least_min_roughness(m, "roughness", p.scalar("roughness", std::nullopt, 0, kMaxRoughness, true));
         const auto d = model == "cook_torrance_ggx" ? MicrofacetDistribution::GGX : MicrofacetDistribution::Beckmann;
         return std::make_shared<CookTorranceBrdf>(d, kd, f0, roughness);
     }
@@ -115,11 +126,13 @@ std::shared_ptr<const Brdf> build(const MaterialDesc& m, ParamReader& p, BrdfLob
         const Color kd = p.rgb("kd", Color(0), 0, 1), ks = p.rgb("ks", std::nullopt, 0, 1);
         p.check_energy(kd, ks);
         if (model == "ward") {
-            const float a = p.scalar("alpha", std::nullopt, 0, kMaxRoughness, true);
+            const float a = at_least_min_roughness(m, "alpha", p.scalar("alpha", std::nullopt, 0, kMaxRoughness, true));
             return std::make_shared<WardBrdf>(kd, ks, a, a, true);
         }
-        const float ax = p.scalar("alpha_x", std::nullopt, 0, kMaxRoughness, true);
-        const float ay = p.scalar("alpha_y", std::nullopt, 0, kMaxRoughness, true);
+        const float ax =
+            at_least_min_roughness(m, "alpha_x", p.scalar("alpha_x", std::nullopt, 0, kMaxRoughness, true));
+        const float ay =
+            at_least_min_roughness(m, "alpha_y", p.scalar("alpha_y", std::nullopt, 0, kMaxRoughness, true));
         return std::make_shared<WardBrdf>(kd, ks, ax, ay, false);
     }
     if (model == "merl") {

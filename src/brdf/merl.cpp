@@ -80,8 +80,9 @@ std::shared_ptr<const MerlBrdf> MerlBrdf::load(const std::filesystem::path& path
     in.read(reinterpret_cast<char*>(dims), sizeof dims);
     if (in.gcount() != static_cast<std::streamsize>(sizeof dims))
         throw_file_error(path, "truncated MERL BRDF: the 12-byte header (three int32 dimensions) is incomplete");
+    // The header's bytes are not echoed: the file may be any file at all (a key, a password list).
     if (dims[0] != kThetaH || dims[1] != kThetaD || dims[2] != kPhiD)
-        throw_file_error(path, "not a MERL BRDF: dimensions {}×{}×{}, expected {}×{}×{}", dims[0], dims[1], dims[2],
+        throw_file_error(path, "not a MERL file (bad header: a MERL BRDF starts with the dimensions {}×{}×{})",
                          kThetaH, kThetaD, kPhiD);
     std::vector<double> raw(3 * static_cast<size_t>(kSamples));
     const auto expected = static_cast<std::streamsize>(raw.size() * sizeof(double));

@@ -6,12 +6,14 @@
 #include <csignal>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <random>
 #include <sstream>
 #include <system_error>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/random.h>
 #include <sys/types.h>
 #include <unistd.h>
@@ -52,7 +54,7 @@ std::string host_tag() {
 }
 
 struct TemporaryName {
-    std::string host;  // empty: an earlier version's name, which has no host
+    std::string host;
     long pid = 0;
 };
 
@@ -60,13 +62,14 @@ bool all_of(std::string_view text, const char* alphabet) {
     return !text.empty() && text.find_first_not_of(alphabet) == std::string_view::npos;
 }
 
-// The writer of a temporary named ".STEM.tmp-HOST-PID-RANDOM[.EXT]" (or an
-// earlier version's ".STEM.tmp-PID-N[.EXT]"), of any target; nullopt for
-// any other name.
+// The writer of a temporary named ".STEM.rsl-tmp-HOST-PID-RANDOM[.EXT]" (of
+// any target); nullopt for any other name. The whole signature must match:
+// a user's ".notes.tmp-2024-06.txt" is never taken for a temporary.
 std::optional<TemporaryName> parse_temporary(std::string_view name) {
-    if (name.empty() || name[0] != '.') return std::nullopt;
-    for (size_t at = name.find(".tmp-", 1); at != std::string_view::npos; at = name.find(".tmp-", at + 1)) {
-        std::string_view rest = name.substr(at + 5);
+    if (name.size() < 2 || name[0] != '.') return std::nullopt;
+    const std::string_view marker = kTemporaryMarker;
+    for (size_t at = name.find(marker, 1); at != std::string_view::npos; at = name.find(marker, at + 1)) {
+        std::string_view rest = name.substr(at + marker.size());
         rest = rest.substr(0, rest.find('.'));  // the extension follows the first dot
         std::vector<std::string_view> fields;
         for (size_t start = 0;;) {
@@ -80,9 +83,15 @@ std::optional<TemporaryName> parse_temporary(std::string_view name) {
         if (fields.size() == 3 && fields[0].size() == 16 && all_of(fields[0], hex) && all_of(fields[1], digits) &&
             fields[1].size() <= 9 && fields[2].size() == 16 && all_of(fields[2], hex))
             return TemporaryName{std::string(fields[0]), std::stol(std::string(fields[1]))};
-        if (fields.size() == 2 && all_of(fields[0], digits) && all_of(fields[1], digits)) return TemporaryName{};
     }
     return std::nullopt;
+}
+
+// `text` cut to at most `bytes` bytes, never inside a UTF-8 sequence.
+std::string utf8_prefix(const std::string& text, size_t bytes) {
+    if (text.size() <= bytes) return text;
+    while (bytes > 0 && (static_cast<unsigned char>(text[bytes]) & 0xC0) == 0x80) --bytes;
+    return text.substr(0, bytes);
 }
 
 // ---------------------------------------------------------------- signals
@@ -214,9 +223,14 @@ void prepare_folder(const fs::path& path) {
 
 fs::path temporary_path(const fs::path& path, long pid) {
     const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    const std::string signature = fmt::format("{}{}-{}-{:016x}", kTemporaryMarker, host_tag(), pid, random_bits());
     // Keep the target's extension last: some writers pick the format from it.
-    return parent / fmt::format(".{}.tmp-{}-{}-{:016x}{}", path.stem().string(), host_tag(), pid, random_bits(),
-                                path.extension().string());
+    // A name the file system takes (NAME_MAX) must give a temporary it takes
+    // too, so the stem is cut to what the signature leaves.
+    std::string extension = path.extension().string();
+    if (1 + signature.size() + extension.size() > size_t(NAME_MAX)) extension.clear();  // no format is that long
+    const std::string stem = utf8_prefix(path.stem().string(), size_t(NAME_MAX) - 1 - signature.size() - extension.size());
+    return parent / ("." + stem + signature + extension);
 }
 
 void remove_stale_temporaries(const fs::path& path) {
@@ -253,6 +267,63 @@ void write_file_atomically(const fs::path& path, std::string_view contents) {
     tmp.write(contents);
     tmp.close();
     tmp.install();
+}
+
+namespace {
+
+// A file's device and inode where it exists (links and hard links are one
+// file), and its absolute spelling with links and "x/.." resolved, which is
+// what a write to a path that does not exist yet creates ("new/../in.exr"
+// has no inode until its folder is made, then replaces in.exr).
+struct FileIdentity {
+    std::optional<std::pair<uint64_t, uint64_t>> inode;
+    std::string name;
+};
+FileIdentity file_identity(const fs::path& path) {
+    FileIdentity identity;
+    struct stat status = {};
+    if (::stat(path.c_str(), &status) == 0) identity.inode = {uint64_t(status.st_dev), uint64_t(status.st_ino)};
+    std::error_code ec;
+    identity.name = fs::weakly_canonical(fs::absolute(path, ec), ec).lexically_normal().string();
+    return identity;
+}
+
+// Files by inode and by name: `rsl render --frames` checks up to 100,000 numbered outputs.
+class FileIndex {
+public:
+    const fs::path* find(const FileIdentity& identity) const {
+        if (identity.inode)
+            if (const auto hit = inodes_.find(*identity.inode); hit != inodes_.end()) return &hit->second;
+        const auto hit = names_.find(identity.name);
+        return hit == names_.end() ? nullptr : &hit->second;
+    }
+    void add(const FileIdentity& identity, const fs::path& path) {
+        if (identity.inode) inodes_.emplace(*identity.inode, path);
+        names_.emplace(identity.name, path);
+    }
+
+private:
+    std::map<std::pair<uint64_t, uint64_t>, fs::path> inodes_;
+    std::map<std::string, fs::path> names_;
+};
+
+}  // namespace
+
+void check_outputs_apart(const std::vector<fs::path>& outputs, const std::vector<fs::path>& inputs) {
+    FileIndex read, written;
+    for (const fs::path& input : inputs)
+        if (!input.empty()) read.add(file_identity(input), input);
+    for (const fs::path& output : outputs) {
+        if (output.empty()) continue;
+        const FileIdentity identity = file_identity(output);
+        if (const fs::path* input = read.find(identity))
+            throw_file_error(output, "this output is the input {}: writing it would destroy what is read; "
+                                     "choose another output path", input->string());
+        if (const fs::path* other = written.find(identity))
+            throw_file_error(output, "two outputs are this one file ({}): one would overwrite the other; "
+                                     "give them different paths", other->string());
+        written.add(identity, output);
+    }
 }
 
 std::string read_file(const fs::path& path) {

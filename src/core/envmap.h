@@ -93,6 +93,11 @@ double cube_face_solid_angle(double s0, double t0, double s1, double t1);
 CubeMap cube_from_latlong(const Image& latlong, int n);
 // A cube map stored as an image in OpenEXR's vertical-strip layout (width w, height 6w).
 CubeMap cube_from_strip(const Image& strip, int n);
+// The largest cube map N (6×N×N texels) rsl fits or integrates: the light
+// fit holds about 700 bytes a texel (1 GB at 512), and 4096 would need 70 GB.
+// Scene files, `rsl fit`, `rsl truth`, `rsl baselines` and the API share it.
+inline constexpr int kMaxCubeResolution = 512;
+
 // Any supported environment file (.exr or .hdr; lat-long 2:1 or cube strip 1:6) → cube map.
 CubeMap load_environment(const std::filesystem::path& path, int n);
 

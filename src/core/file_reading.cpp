@@ -124,4 +124,26 @@ std::string read_file_prefix(const std::filesystem::path& path, size_t count) {
     return bytes;
 }
 
+std::string echo_value(std::string_view value) {
+    if (value.substr(0, 5) == "data:") return fmt::format("a data: URI of {} bytes", value.size());
+    if (value.size() <= kMaxEchoedBytes) return std::string(value);
+    size_t cut = kMaxEchoedBytes - 1;
+    while (cut > 0 && (static_cast<unsigned char>(value[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+    return fmt::format("{}… ({} bytes)", value.substr(0, cut), value.size());
+}
+
+std::string echo_message(std::string_view message) {
+    std::string out;
+    for (size_t at = 0; at < message.size();) {
+        const size_t end = std::min(message.find_first_of(" \t\n'\"", at), message.size());
+        if (end == at) {
+            out += message[at++];
+            continue;
+        }
+        out += echo_value(message.substr(at, end - at));
+        at = end;
+    }
+    return out;
+}
+
 }  // namespace rsl

@@ -53,6 +53,17 @@ std::string read_bounded_file(const std::filesystem::path& path, uint64_t max_by
                               std::string_view magic = {}, std::string_view not_magic = {},
                               const PieceCheck& check_piece = {});
 
+// The longest value from a user's file that a message quotes.
+inline constexpr size_t kMaxEchoedBytes = 80;
+
+// A value from a user's file (a name, a URI) as a message may quote it: a
+// data: URI as "a data: URI of N bytes" (its payload is the user's data, not
+// a name), anything longer than kMaxEchoedBytes cut short with its length.
+std::string echo_value(std::string_view value);
+// A message from a library (tinygltf) with each value in it passed through
+// echo_value: every data: URI, and every run of non-space bytes past kMaxEchoedBytes.
+std::string echo_message(std::string_view message);
+
 // The first `count` bytes of a regular file (fewer when it is shorter).
 std::string read_file_prefix(const std::filesystem::path& path, size_t count);
 

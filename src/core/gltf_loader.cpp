@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <limits>
 
 #include <glm/gtx/matrix_decompose.hpp>
 
@@ -32,10 +34,12 @@ using gltf::AccessorReader;
 // tinygltf reads files (the glTF itself, external buffers) with an ifstream
 // and takes tellg() for their size: a directory reports 2^63 − 1 bytes and
 // the allocation fails (std::bad_alloc, which `rsl` reported as an internal
-// error), and a FIFO blocks. This reader reads regular files only, bounded.
-bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+// error), and a FIFO blocks. This reader reads regular files only, bounded,
+// and records each in `files_read` (a std::vector<std::filesystem::path>).
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* files_read) {
     try {
         const std::string bytes = read_bounded_file(path, kMaxGltfFileBytes, "a glTF file or buffer");
+        static_cast<std::vector<std::filesystem::path>*>(files_read)->push_back(path);
         out->assign(bytes.begin(), bytes.end());
     } catch (const Error& e) {
         if (err) *err += std::string(e.what()) + "\n";
@@ -45,9 +49,51 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
     return !out->empty();
 }
 
+// tinygltf parses and converts JSON recursively: a file nested a few
+// hundred thousand levels deep overflowed the stack (a segfault). Real glTF
+// files nest about ten levels; their extras, a few more.
+constexpr int kMaxGltfJsonDepth = 256;
+
+void check_json_depth(const std::filesystem::path& path, std::string_view json) {
+    int depth = 0;
+    bool in_string = false, escaped = false;
+    for (const char c : json) {
+        if (in_string) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxGltfJsonDepth)
+                throw_file_error(path, "JSON nested deeper than {} levels: not a glTF file rsl reads", kMaxGltfJsonDepth);
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+// The JSON chunk of a .glb (header, then chunk length and type), or what
+// there is of it; tinygltf checks the layout itself.
+std::string_view glb_json_chunk(std::string_view bytes) {
+    if (bytes.size() < 20) return {};
+    uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, sizeof(length));
+    return bytes.substr(20, length);
+}
+
+// tinygltf's own FileExists opens the file (fopen), which blocks forever on a
+// FIFO; a stat never blocks, and read_regular_file then refuses what is not
+// a regular file, naming it.
+bool path_exists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::exists(path, ec);
+}
+
 struct LoadedGltf {
     tinygltf::Model model;
     GltfImageErrors image_errors;  // images stb could not decode: an error only if a material uses one
+    std::vector<std::filesystem::path> files_read;  // the file, its buffers and its images
 };
 
 LoadedGltf read_model(const std::filesystem::path& path) {
@@ -58,20 +104,30 @@ LoadedGltf read_model(const std::filesystem::path& path) {
         throw_file_error(path, "mislabeled: the content is {} glTF but the name says {}",
                          binary_content ? "binary" : "text (JSON)", binary_name ? "binary (.glb)" : "text (.gltf)");
 
+    std::vector<std::filesystem::path> files_read;
     tinygltf::TinyGLTF loader;
-    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_regular_file,
-                           &tinygltf::WriteWholeFile, nullptr});
+    loader.SetFsCallbacks({&path_exists, &tinygltf::ExpandFilePath, &read_regular_file,
+                           &tinygltf::WriteWholeFile, &files_read});
     tinygltf::Model model;
     GltfImageErrors image_errors;
     loader.SetImageLoader(&decode_gltf_image, &image_errors);
+    const std::string bytes = read_bounded_file(path, kMaxGltfFileBytes, "a glTF file");
+    if (bytes.size() > std::numeric_limits<unsigned int>::max())  // tinygltf takes the length as unsigned int
+        throw_file_error(path, "{} bytes: tinygltf reads at most 4 GiB", bytes.size());
+    check_json_depth(path, binary_name ? glb_json_chunk(bytes) : std::string_view(bytes));
     std::string error, warning;
-    const bool ok = binary_name ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
-                                : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
+    const std::string base_dir = path.parent_path().string();
+    const bool ok =
+        binary_name ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                                  reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                  static_cast<unsigned int>(bytes.size()), base_dir)
+                    : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(),
+                                                 static_cast<unsigned int>(bytes.size()), base_dir);
     if (!ok) {
         while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
-        throw_file_error(path, "not a valid glTF 2.0 file: {}", error.empty() ? "unknown error" : error);
+        throw_file_error(path, "not a valid glTF 2.0 file: {}", error.empty() ? "unknown error" : echo_message(error));
     }
-    return LoadedGltf{std::move(model), std::move(image_errors)};
+    return LoadedGltf{std::move(model), std::move(image_errors), std::move(files_read)};
 }
 
 Transform rest_transform(const tinygltf::Node& node, const std::filesystem::path& path) {
@@ -429,6 +485,8 @@ private:
 void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material) {
     const LoadedGltf loaded = read_model(path);
     GltfImporter(loaded, path).import_into(scene, default_material);
+    scene.input_files.push_back(path);
+    scene.input_files.insert(scene.input_files.end(), loaded.files_read.begin(), loaded.files_read.end());
 }
 
 }  // namespace rsl

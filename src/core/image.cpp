@@ -92,6 +92,19 @@ void check_radiance(const fs::path& path, const Image& image) {
     }
 }
 
+void check_writable_radiance(const fs::path& path, const Image& image) {
+    for (size_t k = 0; k < image.pixels.size(); ++k) {
+        const float v = image.pixels[k];
+        if (std::abs(v) <= kMaxRadiance) continue;  // false for NaN
+        const size_t pixel = k / image.channels;
+        throw_file_error(path, "cannot write {} value {} at pixel (x={}, y={}) channel {}: rsl's readers refuse it "
+                         "(finite, at most {:g}); nothing written",
+                         std::isnan(v) ? "a NaN" : std::isinf(v) ? "an infinite" : "a too large", v,
+                         pixel % size_t(image.width), pixel / size_t(image.width), "RGBA"[k % image.channels],
+                         kMaxRadiance);
+    }
+}
+
 Image read_exr(const fs::path& path) {
     const ExrWindowSize checked = check_exr_header(path);  // before OpenEXR allocates what the header claims
     Image image;
@@ -152,6 +165,7 @@ void write_exr(const fs::path& path, const Image& image, const ExrWriteOptions& 
     if (image.pixels.size() != size_t(image.width) * image.height * image.channels)
         throw_file_error(path, "pixel buffer holds {} values, expected {}×{}×{}", image.pixels.size(),
                          image.width, image.height, image.channels);
+    check_writable_radiance(path, image);
     MemoryOStream stream;
     {
         try {

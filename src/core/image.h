@@ -62,6 +62,11 @@ inline constexpr float kMaxRadiance = 1e15f;
 // writers may too.
 void check_radiance(const std::filesystem::path& path, const Image& image);
 
+// Throws rsl::Error naming `path` and the first pixel whose value is NaN,
+// infinite or beyond ±kMaxRadiance: write_exr calls it, so that rsl never
+// writes an image its own readers refuse.
+void check_writable_radiance(const std::filesystem::path& path, const Image& image);
+
 struct ToneMap {
     float exposure = 0.0f;  // stops: pixel × 2^exposure
     bool auto_exposure = false;  // scale so the 99th luminance percentile maps to ~0.9

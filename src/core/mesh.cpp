@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "src/core/error.h"
 
@@ -39,21 +40,22 @@ Vec3 doubled_area_vector(const TriangleMesh& mesh, size_t triangle) {
     return glm::cross(b - a, c - a);
 }
 
-// Area threshold below which a triangle counts as degenerate: relative to the
-// mesh's size so that the test does not depend on its units.
-float degenerate_area_threshold(const TriangleMesh& mesh, float area_epsilon) {
-    const Bounds b = mesh.bounds();
-    if (b.empty()) return 0;
-    const Vec3 diagonal = b.hi - b.lo;
-    return area_epsilon * glm::dot(diagonal, diagonal);
-}
-
-bool is_degenerate(const TriangleMesh& mesh, size_t triangle, float threshold) {
+// Whether a triangle has no usable area, judged by its own edges, not the
+// mesh's size: a 1 m box beside a 1e6 m ground in one file keeps its faces.
+// Its doubled area vector must also have a normal float squared length, or
+// its normal could not be normalised.
+bool is_degenerate(const TriangleMesh& mesh, size_t triangle, float area_epsilon) {
     const uint32_t i0 = mesh.indices[3 * triangle], i1 = mesh.indices[3 * triangle + 1],
                    i2 = mesh.indices[3 * triangle + 2];
     if (i0 == i1 || i1 == i2 || i0 == i2) return true;
-    const float area = 0.5f * glm::length(doubled_area_vector(mesh, triangle));
-    return !(area > threshold);  // also catches NaN
+    const Vec3& a = mesh.positions[i0];
+    const Vec3& b = mesh.positions[i1];
+    const Vec3& c = mesh.positions[i2];
+    const float longest2 = std::max({glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)});
+    const Vec3 doubled = doubled_area_vector(mesh, triangle);
+    const float doubled2 = glm::dot(doubled, doubled);
+    if (!(doubled2 >= std::numeric_limits<float>::min())) return true;  // also catches NaN
+    return !(0.5f * std::sqrt(doubled2) > area_epsilon * longest2);
 }
 
 // Area-weighted face normals summed per vertex (not normalized).
@@ -120,9 +122,8 @@ BoundingSphere TriangleMesh::bounding_sphere() const {
 }
 
 size_t TriangleMesh::count_degenerate_triangles(float area_epsilon) const {
-    const float threshold = degenerate_area_threshold(*this, area_epsilon);
     size_t count = 0;
-    for (size_t t = 0; t < triangle_count(); ++t) count += is_degenerate(*this, t, threshold);
+    for (size_t t = 0; t < triangle_count(); ++t) count += is_degenerate(*this, t, area_epsilon);
     return count;
 }
 
@@ -162,10 +163,9 @@ size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& so
 
     // Drop degenerate triangles: they have no normal and cast no shadow, and
     // they would make area-weighted normals and Embree unhappy.
-    const float threshold = degenerate_area_threshold(mesh, 1e-12f);
     size_t kept = 0;
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-        if (is_degenerate(mesh, t, threshold)) continue;
+        if (is_degenerate(mesh, t, 1e-12f)) continue;
         for (int k = 0; k < 3; ++k) mesh.indices[3 * kept + k] = mesh.indices[3 * t + k];
         ++kept;
     }

@@ -35,7 +35,9 @@ struct TriangleMesh {
 
     Bounds bounds() const;
     BoundingSphere bounding_sphere() const;  // centered on the bounds' center
-    // Triangles whose area is below area_epsilon × (bounds diagonal)².
+    // Triangles with a repeated corner, or whose area is below area_epsilon ×
+    // (their own longest edge)² or too small for a normal to be computed:
+    // judged per triangle, so a mesh's large triangles never condemn its small ones.
     size_t count_degenerate_triangles(float area_epsilon = 1e-12f) const;
 };
 

@@ -176,6 +176,10 @@ struct PrecomputeSettings {
 struct Scene {
     std::string name;
     std::filesystem::path source;  // the file it was loaded from
+    // Every file read to build it: the scene file, meshes, glTF files with
+    // their buffers and images, environment maps, measured BRDFs. No output
+    // may overwrite one (check_outputs_apart, src/core/atomic_file.h).
+    std::vector<std::filesystem::path> input_files;
     std::vector<SceneNode> nodes;
     std::vector<Part> parts;
     std::vector<MaterialDesc> materials;

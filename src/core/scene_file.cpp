@@ -11,12 +11,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/core/file_reading.h"
 #include "src/core/gltf_camera.h"
 #include "src/core/json_file.h"
 #include "src/core/precompute_limits.h"
 #include "src/core/scene.h"
+#include "src/core/scene_limits.h"
 
 namespace rsl {
 
@@ -149,9 +151,10 @@ public:
     }
 
 private:
+    // A key holds the file's own names (materials, parts), so it is quoted as echo_value allows.
     [[noreturn]] void fail(const std::string& key, const std::string& message) const {
         if (key.empty()) throw_file_error(path_, "{}", message);
-        throw_file_error(path_, "{}: {}", key, message);
+        throw_file_error(path_, "{}: {}", echo_value(key), message);
     }
 
     // Runs a loader of a file the scene names; its error (which names that
@@ -243,10 +246,12 @@ private:
         return vec3(object.at(name), join(where, name));
     }
 
-    std::filesystem::path existing_file(const Json& j, const std::string& key) const {
+    // Every file a scene file names comes through here, and is recorded as an input.
+    std::filesystem::path existing_file(const Json& j, const std::string& key) {
         if (!j.is_string()) fail(key, fmt::format("expected a file name, got {}", j.type_name()));
         const std::filesystem::path file = dir_ / j.get<std::string>();
-        if (const std::string why = why_not_regular_file(file); !why.empty()) fail(key, fmt::format("file {} {}", file.string(), why));
+        if (const std::string why = why_not_regular_file(file); !why.empty()) fail(key, fmt::format("file {} {}", echo_value(file.string()), why));
+        scene_.input_files.push_back(file);
         return file;
     }
 
@@ -274,7 +279,7 @@ private:
 
     int material_named(const std::string& name, const std::string& key) const {
         auto it = material_index_.find(name);
-        if (it == material_index_.end()) fail(key, fmt::format("no material named '{}' in `materials`", name));
+        if (it == material_index_.end()) fail(key, fmt::format("no material named '{}' in `materials`", echo_value(name)));
         return it->second;
     }
 
@@ -379,7 +384,7 @@ private:
         EnvironmentDesc& env = scene_.environment;
         if (!j.contains("file")) fail(where, "`file` is required");
         env.file = existing_file(j["file"], "environment.file");
-        if (j.contains("resolution")) env.resolution = int_at(j, "resolution", where, 1, 4096);
+        if (j.contains("resolution")) env.resolution = int_at(j, "resolution", where, 1, kMaxCubeResolution);
         if (j.contains("rotation")) {
             const Json& r = expect_object(j["rotation"], "environment.rotation");
             check_keys(r, "environment.rotation", {"axis", "degrees", "degrees_per_second"});
@@ -472,8 +477,8 @@ private:
             c.fov_y_degrees = positive_number_at(j, "fov_degrees", where);
             if (c.fov_y_degrees >= 180) fail("camera.fov_degrees", "must be below 180");
         }
-        if (j.contains("width")) c.width = int_at(j, "width", where, 1, 16384);
-        if (j.contains("height")) c.height = int_at(j, "height", where, 1, 16384);
+        if (j.contains("width")) c.width = int_at(j, "width", where, 1, kMaxImageSide);
+        if (j.contains("height")) c.height = int_at(j, "height", where, 1, kMaxImageSide);
         if (j.contains("path")) {
             const Json& path = expect_object(j["path"], "camera.path");
             check_keys(path, "camera.path", {"times", "positions", "targets"});
@@ -587,10 +592,15 @@ Scene scene_from_mesh_file(const std::filesystem::path& path, bool gltf) {
 Scene load_scene(const std::filesystem::path& path) {
     check_regular_file(path);
     const std::string ext = lowercase_extension(path);
-    if (ext == ".json") return SceneFileReader(path).read();
-    if (ext == ".gltf" || ext == ".glb") return scene_from_mesh_file(path, true);
-    if (ext == ".obj") return scene_from_mesh_file(path, false);
-    throw_file_error(path, "unknown scene type '{}' (expected .json, .gltf, .glb or .obj)", ext);
+    Scene scene;
+    if (ext == ".json") scene = SceneFileReader(path).read();
+    else if (ext == ".gltf" || ext == ".glb") scene = scene_from_mesh_file(path, true);
+    else if (ext == ".obj") scene = scene_from_mesh_file(path, false);
+    else throw_file_error(path, "unknown scene type '{}' (expected .json, .gltf, .glb or .obj)", ext);
+    scene.input_files.insert(scene.input_files.begin(), path);
+    check_light_limits(scene, path);
+    check_part_transforms(scene, path);
+    return scene;
 }
 
 }  // namespace rsl

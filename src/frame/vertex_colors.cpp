@@ -50,6 +50,17 @@ void write_vertex_colors(const std::filesystem::path& path, const VertexColors& 
         if (colors.layered(p)) RSL_CHECK_EQ(colors.specular[p].size(), colors.parts[p].size());
         any_layered = any_layered || colors.layered(p);
     }
+    // The reader refuses non-finite values: such a file would be written only to be refused.
+    const auto check_finite = [&](const std::vector<Color>& values, size_t p, const char* what) {
+        for (size_t v = 0; v < values.size(); ++v)
+            if (!std::isfinite(values[v].r) || !std::isfinite(values[v].g) || !std::isfinite(values[v].b))
+                throw_file_error(path, "cannot write the non-finite {} ({}, {}, {}) of part '{}' vertex {}; nothing "
+                                 "written", what, values[v].r, values[v].g, values[v].b, colors.part_names[p], v);
+    };
+    for (size_t p = 0; p < colors.parts.size(); ++p) {
+        check_finite(colors.parts[p], p, "colour");
+        if (colors.layered(p)) check_finite(colors.specular[p], p, "specular colour");
+    }
     BinaryWriter w;
     w.put_bytes(kMagic, sizeof(kMagic));
     w.put(any_layered ? kVertexColorsVersion : uint32_t(1));

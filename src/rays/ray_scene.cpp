@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "src/core/error.h"
+#include "src/core/scene_limits.h"
 
 namespace rsl {
 
@@ -236,7 +237,7 @@ void RayScene::set_transform(int instance_id, const Mat4& part_to_world) {
     Impl& m = *impl_;
     RSL_CHECK(instance_id >= 0 && instance_id < int(m.instances.size()));
     const float det = glm::determinant(Mat3(part_to_world));
-    if (!std::isfinite(det) || std::abs(det) < 1e-20f)
+    if (!std::isfinite(det) || std::abs(det) < kMinTransformDeterminant)
         throw_error("RayScene: instance {} has a singular transform (det {})", instance_id, det);
     RTCGeometry instance = m.instances[instance_id];
     rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(part_to_world));

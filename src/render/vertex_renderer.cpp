@@ -1,6 +1,7 @@
 #include "src/render/vertex_renderer.h"
 
 #include "src/core/error.h"
+#include "src/core/scene_limits.h"
 
 namespace rsl {
 
@@ -69,8 +70,8 @@ namespace {
 
 void check_local_lights(const Scene& scene, const std::vector<LocalLight>& lights) {
     for (size_t i = 0; i < lights.size(); ++i)
-        if (!(lights[i].radius > 0.0f))
-            throw_file_error(scene.source, "local light {} with radius {} (expected > 0)", i, lights[i].radius);
+        if (const std::string problem = light_limit_problem(lights[i]); !problem.empty())
+            throw_file_error(scene.source, "local light {}{}", i, problem);
 }
 
 // The fields checked against the scene's parts (an SVDF must have the

@@ -109,7 +109,13 @@ TEST_CASE("MERL: wrong dimensions, truncated or oversized files are refused, nam
         return s;
     };
     write_file_atomically(dir / "dims.binary", header(90, 90, 360) + std::string(1000, '\0'));
-    expect_error(dir / "dims.binary", "dimensions 90×90×360");
+    expect_error(dir / "dims.binary", "not a MERL file (bad header");
+    // A file that is not a MERL table at all: its bytes are never echoed, as text or as numbers.
+    write_file_atomically(dir / "secret.binary", "password=hunter2 and more secret text here");
+    expect_error(dir / "secret.binary", "not a MERL file (bad header: a MERL BRDF starts with the dimensions 90×90×180)");
+    const std::string secret_error = error_of([&] { MerlBrdf::load(dir / "secret.binary"); });
+    CHECK(secret_error.find("hunter2") == std::string::npos);
+    CHECK(secret_error.find("1936941424") == std::string::npos);  // "pass" read as an int32
     write_file_atomically(dir / "short_header.binary", std::string(7, '\0'));
     expect_error(dir / "short_header.binary", "header");
     write_file_atomically(dir / "truncated.binary", header(90, 90, 180) + std::string(8 * 1000, '\0'));
@@ -118,5 +124,5 @@ TEST_CASE("MERL: wrong dimensions, truncated or oversized files are refused, nam
                           header(90, 90, 180) + std::string(3 * size_t(MerlBrdf::kSamples) * 8 + 5, '\0'));
     expect_error(dir / "long.binary", "trailing bytes");
     expect_error(dir / "missing.binary", "does not exist");
-    for (auto name : {"dims", "short_header", "truncated", "long"}) fs::remove(dir / (std::string(name) + ".binary"));
+    for (auto name : {"dims", "secret", "short_header", "truncated", "long"}) fs::remove(dir / (std::string(name) + ".binary"));
 }

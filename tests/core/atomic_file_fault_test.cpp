@@ -145,8 +145,30 @@ TEST_CASE("temporary names differ between writes and carry this host and process
     CHECK(one != two);
     CHECK(one.parent_path() == "cache");
     CHECK(one.extension() == ".rslf");
-    CHECK(one.filename().string().rfind(".svdf-0.tmp-", 0) == 0);
+    CHECK(one.filename().string().rfind(".svdf-0.rsl-tmp-", 0) == 0);
     CHECK(contains(one.filename().string(), "-1-"));
+}
+
+TEST_CASE("a file name the file system takes gets a temporary it takes too, the extension kept", "[atomic-file]") {
+    const fs::path dir = scratch_dir("atomic_long_name");
+    for (const size_t length : {size_t(200), size_t(240), size_t(255)}) {
+        const fs::path target = dir / (std::string(length - 4, 'n') + ".exr");
+        INFO(length << " bytes");
+        CHECK(temporary_path(target, 4194304).filename().string().size() <= 255);
+        CHECK(temporary_path(target, 1).extension() == ".exr");
+        write_file_atomically(target, "whole");
+        CHECK(read_bytes(target) == "whole");
+    }
+    // A multi-byte character is never cut in half.
+    std::string accented;
+    for (int i = 0; i < 120; ++i) accented += "\xc3\xa9";  // é, 240 bytes
+    const std::string cut = temporary_path(dir / (accented + ".exr"), 1).filename().string();
+    CHECK(cut.size() <= 255);
+    const size_t stem_end = cut.find(".rsl-tmp-");
+    REQUIRE(stem_end != std::string::npos);
+    CHECK((stem_end - 1) % 2 == 0);  // whole two-byte characters after the leading dot
+    write_file_atomically(dir / (accented + ".exr"), "whole");
+    CHECK(read_bytes(dir / (accented + ".exr")) == "whole");
 }
 
 TEST_CASE("a write sweeps the folder's orphaned temporaries: dead local writers', and old ones of other hosts",
@@ -161,17 +183,33 @@ TEST_CASE("a write sweeps the folder's orphaned temporaries: dead local writers'
     const fs::path dead = plant_stale_temporary(dir / "other.rslf");
     const fs::path live = temporary_path(dir / "other.rslf", 1).filename();  // PID 1 runs
     plant(live, std::chrono::hours(0));
-    const fs::path foreign_new = plant(".other.tmp-0123456789abcdef-4242-fedcba9876543210.rslf", std::chrono::hours(1));
-    const fs::path foreign_old = plant(".other.tmp-0123456789abcdef-4343-fedcba9876543210.rslf", std::chrono::hours(25));
-    const fs::path older_version = plant(".other.tmp-4444-0.rslf", std::chrono::hours(25));
-    const fs::path not_ours = plant(".other.tmp-notes.txt", std::chrono::hours(1000));
+    const fs::path foreign_new = plant(".other.rsl-tmp-0123456789abcdef-4242-fedcba9876543210.rslf", std::chrono::hours(1));
+    const fs::path foreign_old = plant(".other.rsl-tmp-0123456789abcdef-4343-fedcba9876543210.rslf", std::chrono::hours(25));
     write_file_atomically(dir / "svdf-0.rslf", "field");
     CHECK(!fs::exists(dead));
     CHECK(fs::exists(dir / live));
     CHECK(fs::exists(foreign_new));
     CHECK(!fs::exists(foreign_old));
-    CHECK(!fs::exists(older_version));
-    CHECK(fs::exists(not_ours));
+}
+
+TEST_CASE("the sweep leaves a user's files alone, however old and however like a temporary they look",
+          "[atomic-file][sweep]") {
+    const fs::path dir = scratch_dir("atomic_sweep_users_files");
+    const auto plant = [&](const fs::path& name) {
+        write_text(dir / name, "the user's");
+        fs::last_write_time(dir / name, fs::file_time_type::clock::now() - std::chrono::hours(1000));
+        return dir / name;
+    };
+    const std::vector<fs::path> users = {
+        plant(".notes.tmp-2024-06.txt"), plant(".other.tmp-4444-0.rslf"), plant(".other.tmp-notes.txt"),
+        plant(".x.rsl-tmp-notes.txt"), plant(".x.rsl-tmp-0123456789abcdef-42.txt"),
+        plant(".x.rsl-tmp-0123456789ABCDEF-42-fedcba9876543210.txt"),
+        plant(".x.rsl-tmp-0123456789abcdef-42-fedcba9876543210-1.txt"), plant("x.rsl-tmp-0123456789abcdef-42-fedcba9876543210")};
+    const fs::path orphan = plant(".notes.rsl-tmp-0123456789abcdef-4343-fedcba9876543210.txt");
+    write_file_atomically(dir / "notes.txt", "new");
+    for (const fs::path& user : users) CHECK(fs::exists(user));
+    CHECK(!fs::exists(orphan));  // rsl's own, a day old: swept
+    CHECK(read_bytes(dir / "notes.txt") == "new");
 }
 
 TEST_CASE("SIGINT or SIGTERM in the middle of a write leaves no temporary", "[atomic-file][signal]") {

@@ -39,11 +39,11 @@ TEST_CASE("a writer killed mid-write leaves no final file, and the next write sw
     const auto temporaries = [&] {
         std::vector<fs::path> found;
         for (const auto& entry : fs::directory_iterator(dir))
-            if (entry.path().filename().string().rfind(".field.tmp-", 0) == 0) found.push_back(entry.path());
+            if (entry.path().filename().string().rfind(".field.rsl-tmp-", 0) == 0) found.push_back(entry.path());
         return found;
     };
     // A live process's temporary (pid 1 always runs) must survive the sweep.
-    const fs::path live = dir / ".field.tmp-1-0.rslf";
+    const fs::path live = temporary_path(target, 1);
     write_file_atomically(dir / "unrelated.txt", "x");
     { std::ofstream(live) << "in progress"; }
     for (int trial = 0; trial < 3; ++trial) {
@@ -73,5 +73,22 @@ TEST_CASE("a writer killed mid-write leaves no final file, and the next write sw
     const auto left = temporaries();
     REQUIRE(left.size() == 1);
     CHECK(left[0] == live);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("check_outputs_apart names an output that is an input by any path, link or hard link", "[atomic][issue-56]") {
+    const fs::path dir = test::scratch_dir("outputs_apart");
+    write_file_atomically(dir / "in.exr", "input");
+    fs::create_hard_link(dir / "in.exr", dir / "hard.exr");
+    fs::create_symlink(dir / "in.exr", dir / "soft.exr");
+    const std::vector<fs::path> inputs = {dir / "in.exr"};
+    for (const fs::path& output : {dir / "in.exr", dir / "hard.exr", dir / "soft.exr", dir / "." / "in.exr",
+                                   dir / "absent" / ".." / "in.exr"})
+        CHECK_THROWS_WITH(check_outputs_apart({output}, inputs),
+                          Catch::StartsWith(output.string() + ": this output is the input " + (dir / "in.exr").string()));
+    CHECK_NOTHROW(check_outputs_apart({dir / "out.exr", dir / "new" / "out.exr", {}}, inputs));
+    CHECK_THROWS_WITH(check_outputs_apart({dir / "out.exr", dir / "new" / ".." / "out.exr"}, inputs),
+                      Catch::Contains("two outputs are this one file"));
+    CHECK(read_file(dir / "in.exr") == "input");
     fs::remove_all(dir);
 }

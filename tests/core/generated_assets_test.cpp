@@ -462,7 +462,7 @@ TEST_CASE("rsl assets: writes every file, then a stamp, and does nothing while t
     CHECK(t.first_report.regenerated);
     for (const std::string& name : generated_file_names()) CHECK(fs::file_size(t.generated / name) > 0);
     for (const auto& entry : fs::directory_iterator(t.generated))  // no temporary files left behind
-        CHECK(entry.path().filename().string().find(".tmp-") == std::string::npos);
+        CHECK(entry.path().filename().string().find(".rsl-tmp-") == std::string::npos);
     CHECK(read_file(t.generated / kStampName) == std::string(kAssetsVersion) + "\n");
 
     const fs::path dir = t.base / "again";

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "src/lightfit/decompose.h"
@@ -203,6 +204,21 @@ TEST_CASE("glTF accessors and buffers that made the loader allocate without boun
     test::write_text(dir / "directory.gltf", gltf_directory_buffer());
     CHECK_THROWS_WITH(load_scene(dir / "directory.gltf"),
                       Catch::Contains("directory.gltf: not a valid glTF 2.0 file") && Catch::Contains("not a regular file"));
+    // Nesting past 256 levels is refused before tinygltf's recursive parse; a string holding brackets is not nesting.
+    test::write_text(dir / "deep.gltf", gltf_deeply_nested());
+    CHECK_THROWS_WITH(load_scene(dir / "deep.gltf"),
+                      Catch::Contains("deep.gltf: JSON nested deeper than 256 levels"));
+    std::string glb_json = gltf_deeply_nested();
+    std::string glb = "glTF" + std::string("\x02\0\0\0", 4) + std::string(4, '\0') + std::string(4, '\0') + "JSON" + glb_json;
+    const uint32_t chunk = uint32_t(glb_json.size()), total = uint32_t(glb.size());
+    std::memcpy(glb.data() + 8, &total, 4);
+    std::memcpy(glb.data() + 12, &chunk, 4);
+    test::write_text(dir / "deep.glb", glb);
+    CHECK_THROWS_WITH(load_scene(dir / "deep.glb"), Catch::Contains("deep.glb: JSON nested deeper than 256 levels"));
+    std::string quoted = gltf_triangle();
+    quoted.insert(quoted.size() - 1, R"(, "extras": {"brackets": ")" + std::string(1000, '[') + R"(\" ["}, "x": [[[1]]])");
+    test::write_text(dir / "quoted.gltf", quoted);
+    CHECK(load_scene(dir / "quoted.gltf").parts.at(0).mesh.vertex_count() == 3);
     // The glTF itself a directory (named .gltf): the same reader refuses it.
     fs::create_directories(dir / "folder.gltf");
     CHECK_THROWS_WITH(load_scene(dir / "folder.gltf"), Catch::Contains("folder.gltf") && Catch::Contains("not a regular file"));

@@ -28,6 +28,7 @@
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "tests/radiance_encoder.h"
+#include "tests/raw_exr.h"
 #include "tests/test_support.h"
 
 using namespace rsl;
@@ -232,10 +233,36 @@ TEST_CASE("NaN, infinite and negative radiance are refused with the pixel positi
         Image image = random_image(8, 6, 3, 2);
         image.at(5, 4)[1] = c.value;
         const fs::path path = dir / fmt::format("bad_{}.exr", c.word);
-        write_exr(path, image);  // writing is allowed: the reader is the gate
+        test::write_unchecked_exr(path, image);  // as another program may write it
         CHECK_THROWS_WITH(read_hdr_image(path), Catch::Contains(path.filename().string()) && Catch::Contains(c.word) &&
                                                     Catch::Contains("x=5, y=4") && Catch::Contains("channel G"));
     }
+    fs::remove_all(dir);
+}
+
+TEST_CASE("write_exr refuses what rsl's readers refuse: NaN, Inf, values past 1e15; nothing is written",
+          "[image][bad]") {
+    const fs::path dir = test::scratch_dir("image_write_nan");
+    struct Case {
+        float value;
+        const char* word;
+    };
+    for (const Case& c : {Case{std::nanf(""), "NaN"}, Case{INFINITY, "infinite"}, Case{-INFINITY, "infinite"},
+                          Case{2e15f, "too large"}}) {
+        Image image = random_image(8, 6, 4, 2);
+        image.at(5, 4)[1] = c.value;
+        const fs::path path = dir / "bad.exr";
+        INFO(c.value);
+        CHECK_THROWS_WITH(write_exr(path, image), Catch::Contains("bad.exr") && Catch::Contains(c.word) &&
+                                                      Catch::Contains("x=5, y=4") && Catch::Contains("channel G") &&
+                                                      Catch::Contains("nothing written"));
+        CHECK_THROWS_WITH(write_exr_and_png(path, image), Catch::Contains(c.word));
+        CHECK(fs::is_empty(dir));  // neither the EXR nor its PNG
+    }
+    Image largest = random_image(8, 6, 3, 2);
+    largest.at(1, 1)[0] = kMaxRadiance;
+    write_exr(dir / "largest.exr", largest);
+    CHECK(read_exr(dir / "largest.exr").at(1, 1)[0] == kMaxRadiance);  // the writer's limit is the reader's
     fs::remove_all(dir);
 }
 

@@ -112,6 +112,28 @@ TEST_CASE("OBJ errors name the file, the line and the problem", "[mesh][obj]") {
     CHECK_THROWS_WITH(load_obj(temp_dir() / "does_not_exist.obj"), Catch::Contains("does_not_exist.obj: does not exist"));
 }
 
+TEST_CASE("A triangle is degenerate by its own edges, not the mesh's size: a 1 m box beside a 1e6 m triangle keeps "
+          "its faces", "[mesh][obj]") {
+    // Issue 56: the threshold was relative to the mesh's bounds, so the box's 12 triangles were dropped.
+    const auto path = write_file("box_and_huge_triangle.obj",
+                                 std::string(test::kUnitBoxObj) + "v -1e6 0 -1e6\nv 1e6 0 -1e6\nv 0 0 1e6\nf -3 -2 -1\n");
+    test::WarningCapture warnings;
+    const TriangleMesh m = load_obj(path);
+    CHECK(m.triangle_count() == 13);
+    CHECK(m.degenerate_dropped == 0);
+    CHECK(warnings.messages().empty());
+    // Tiny triangles far from the origin are as good as large ones; slivers at float noise level are not.
+    TriangleMesh small;
+    small.positions = {{1e-6f, 0, 0}, {2e-6f, 0, 0}, {1e-6f, 1e-6f, 0}, {0, 0, 0}, {1, 0, 0}, {2, 1e-14f, 0}};
+    small.indices = {0, 1, 2, 3, 4, 5};
+    CHECK(small.count_degenerate_triangles() == 1);
+    // An area too small for a normal (its squared doubled area underflows) is degenerate.
+    TriangleMesh underflow;
+    underflow.positions = {{0, 0, 0}, {1e-20f, 0, 0}, {0, 1e-20f, 0}};
+    underflow.indices = {0, 1, 2};
+    CHECK(underflow.count_degenerate_triangles() == 1);
+}
+
 TEST_CASE("Loading a mesh with degenerate triangles warns once, naming the file and the count", "[mesh][obj]") {
     // A unit quad plus three degenerate triangles (collinear, repeated index, a point).
     const auto path = write_file("some_degenerate.obj",

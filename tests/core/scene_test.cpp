@@ -186,7 +186,10 @@ TEST_CASE("Scene files: OBJ parts, transforms, defaults and every kind of error"
     require_error("{" + part + R"(, "precompute": { "ovdf": { "shells": 18446744073709551615 } }})",
                   "precompute.ovdf.shells: must be an integer from 2 to 256, got 18446744073709551615");
     require_error("{" + part + R"(, "environment": { "file": "tet.obj", "resolution": 8192 }})",
-                  "environment.resolution: must be an integer from 1 to 4096");
+                  "environment.resolution: must be an integer from 1 to 512");
+    // The light fit holds about 700 bytes a texel: 4096 (6 × 4096² texels) needed about 70 GB.
+    require_error("{" + part + R"(, "environment": { "file": "tet.obj", "resolution": 4096 }})",
+                  "environment.resolution: must be an integer from 1 to 512, got 4096");
     // Settings that `rsl bake` took to an internal error (a check in the fields' code).
     require_error("{" + part + R"(, "precompute": { "ovdf": { "shells": 1 } }})",
                   "precompute.ovdf.shells: must be an integer from 2 to 256, got 1");

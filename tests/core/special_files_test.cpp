@@ -13,6 +13,7 @@
 #include "src/core/mesh.h"
 #include "src/core/scene.h"
 #include "src/core/scene_environment.h"
+#include "tests/hostile_inputs.h"
 #include "tests/special_files.h"
 #include "tests/test_support.h"
 
@@ -43,6 +44,20 @@ TEST_CASE("Every reader refuses a FIFO at once, naming it and what it is", "[bad
         CHECK(error == fifo.string() + ": is a FIFO (named pipe), not a regular file");
         CHECK(seconds_since(start) < 2);  // not released by FifoRelease after 5 s
     }
+}
+
+TEST_CASE("A glTF buffer or image whose uri names a FIFO is refused at once, naming it", "[bad-input][special-files]") {
+    // Issue 56: tinygltf's own FileExists opened the FIFO and waited for a writer forever.
+    const fs::path dir = scratch_dir("special_fifo_gltf");
+    const fs::path fifo = make_fifo(dir / "buffer.bin");
+    const FifoRelease release(fifo);
+    write_text(dir / "model.gltf", hostile::gltf_triangle("3", "buffer.bin"));
+    const auto start = std::chrono::steady_clock::now();
+    const std::string error = error_of([&] { load_scene(dir / "model.gltf"); });
+    INFO(error);
+    CHECK(error.find((dir / "model.gltf").string() + ": ") == 0);
+    CHECK(error.find("buffer.bin: is a FIFO (named pipe), not a regular file") != std::string::npos);
+    CHECK(seconds_since(start) < 2);
 }
 
 TEST_CASE("Readers refuse a directory, a character device and a link to /dev/zero", "[bad-input][special-files]") {

@@ -234,6 +234,6 @@ TEST_CASE("frame sequences: numbered PNGs, a contact sheet, and an MP4 exactly w
         REQUIRE(args.find((folder / "frame_%04d.png").string()) != std::string::npos);
         REQUIRE(args.find("yuv420p") != std::string::npos);
         for (const auto& entry : fs::directory_iterator(folder))  // written atomically: no temporary left
-            REQUIRE(entry.path().filename().string().find(".tmp-") == std::string::npos);
+            REQUIRE(entry.path().filename().string().find(".rsl-tmp-") == std::string::npos);
     }
 }

@@ -75,7 +75,7 @@ TEST_CASE("a cache folder that cannot be written: rsl render warns and renders, 
     CHECK(contains(render_text, "warning"));
     CHECK(contains(render_text, (dir / ".rsl-cache" / "svdf-").string()));  // the target, not a temporary
     CHECK(contains(render_text, "Not a directory"));
-    CHECK(!contains(render_text, ".tmp-"));
+    CHECK(!contains(render_text, ".rsl-tmp-"));
 
     const auto [bake_status, bake_text] = run_rsl(fmt::format("bake -q {}", (dir / "scene.json").string()));
     INFO(bake_text);
@@ -83,7 +83,7 @@ TEST_CASE("a cache folder that cannot be written: rsl render warns and renders, 
     CHECK(contains(bake_text, (dir / ".rsl-cache" / "").string()));
     CHECK(contains(bake_text, ".rslf"));
     CHECK(contains(bake_text, "Not a directory"));
-    CHECK(!contains(bake_text, ".tmp-"));
+    CHECK(!contains(bake_text, ".rsl-tmp-"));
     CHECK(!contains(bake_text, "does not exist"));
 }
 

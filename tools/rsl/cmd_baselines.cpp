@@ -11,6 +11,7 @@
 #include "tools/bench/baselines_experiment.h"
 #include "tools/bench/many_light_experiment.h"
 #include "tools/rsl/command.h"
+#include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/render/exact_visibility.h"
 #include "src/render/render_options.h"
@@ -132,6 +133,9 @@ RegisterCommand baselines_command({"baselines",
             ->delimiter(',');
         app.callback([&app, args, many, many_light, sh, haar, eigen, triple, lookup, rsl, rays, maps, gl_lights, gl_rays,
                       env_rays] {
+            if (args->resolution != 0 && (args->resolution < 1 || args->resolution > kMaxCubeResolution))
+                throw_error("--resolution {}: expected 1 to {} texels per cube-face edge", args->resolution,
+                            kMaxCubeResolution);
             if (*many_light) {
                 if (args->no_ground)  // the many-light rows keep the ground and measure the objects apart
                     throw_error("--no-ground is for the PRT baselines, not --many-light (see --receivers)");

@@ -124,9 +124,11 @@ RegisterCommand bench_command({"bench",
             if (!args->from_json.empty()) {
                 if (args->markdown.empty()) throw_error("--from-json {}: give the page to write with --markdown", args->from_json);
                 if (!args->names.empty()) throw_error("--from-json writes a saved run's page: name no benchmarks to run");
+                check_outputs_apart({args->markdown, args->json_out}, {args->from_json});
                 write_markdown(args->markdown, read_saved_results(args->from_json));
                 return;
             }
+            check_outputs_apart({args->markdown, args->json_out}, {});
             for (auto& name : args->names)
                 if (std::none_of(registry.begin(), registry.end(), [&](auto& b) { return b.name == name; }))
                     throw_error("unknown benchmark '{}' (see rsl bench --list)", name);

@@ -4,6 +4,9 @@
 #include <fmt/format.h>
 
 #include "tools/rsl/command.h"
+#include <optional>
+
+#include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
@@ -33,8 +36,8 @@ Kind kind_of(const std::filesystem::path& path) {
 }
 
 // The per-vertex error |a − b| in false colour, formed into an image of `scene`.
-void write_vertex_error_image(const CompareArgs& args, const VertexColors& a, const VertexColors& b, float scale) {
-    const Scene scene = load_scene(args.scene);
+void write_vertex_error_image(const CompareArgs& args, const Scene& scene, const VertexColors& a,
+                              const VertexColors& b, float scale) {
     VertexColors error = b;
     for (size_t p = 0; p < error.parts.size(); ++p)
         for (size_t v = 0; v < error.parts[p].size(); ++v)
@@ -45,7 +48,7 @@ void write_vertex_error_image(const CompareArgs& args, const VertexColors& a, co
     write_png(args.error_image, form_image(posed, camera, error));
 }
 
-void compare_vertices(const CompareArgs& args) {
+void compare_vertices(const CompareArgs& args, const Scene* scene) {
     const VertexColors a = read_vertex_colors(args.a), b = read_vertex_colors(args.b);
     check_same_vertices(a, args.a, b, args.b);
     const VertexErrorReport report = compare_vertex_colors(a, b);
@@ -63,10 +66,10 @@ void compare_vertices(const CompareArgs& args) {
         fmt::print("part {}: relative L2 {:.6g}, max error {:.6g}, {} vertices\n", report.part_names[p],
                    report.parts[p].relative_l2(), report.parts[p].max_error, report.parts[p].count);
     if (!args.error_image.empty()) {
-        if (args.scene.empty())
+        if (!scene)
             throw_error("--error-image with vertex files needs --scene SCENE (the geometry to draw the error on)");
         const float scale = args.error_scale > 0 ? args.error_scale : float(std::max(report.total.max_error, 1e-30));
-        write_vertex_error_image(args, a, b, scale);
+        write_vertex_error_image(args, *scene, a, b, scale);
         fmt::print("error image: {} (false colour, full scale = {:.6g})\n", args.error_image, scale);
     }
 }
@@ -107,7 +110,13 @@ RegisterCommand compare_command({"compare",
         app.callback([args] {
             const Kind ka = kind_of(args->a), kb = kind_of(args->b);
             if (ka != kb) throw_error("{} and {} are of different kinds: compare .rslv with .rslv, .exr with .exr", args->a, args->b);
-            if (ka == Kind::Vertices) compare_vertices(*args);
+            // The scene is read only to draw a vertex error image on.
+            std::optional<Scene> scene;
+            if (ka == Kind::Vertices && !args->error_image.empty() && !args->scene.empty()) scene = load_scene(args->scene);
+            std::vector<std::filesystem::path> inputs = {args->a, args->b};
+            if (scene) inputs.insert(inputs.end(), scene->input_files.begin(), scene->input_files.end());
+            check_outputs_apart({args->error_image}, inputs);
+            if (ka == Kind::Vertices) compare_vertices(*args, scene ? &*scene : nullptr);
             else compare_image_files(*args);
         });
     }});

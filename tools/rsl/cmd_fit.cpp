@@ -7,6 +7,7 @@
 #include "src/lightfit/decompose.h"
 #include "src/lightfit/reconstruct.h"
 #include "tools/rsl/command.h"
+#include "src/core/atomic_file.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 
@@ -26,8 +27,8 @@ struct FitArgs {
 };
 
 void run_fit(const FitArgs& args) {
-    if (args.resolution < 1 || args.resolution > 512)
-        throw_error("--resolution {}: expected 1..512 texels per cube-face edge", args.resolution);
+    if (args.resolution < 1 || args.resolution > kMaxCubeResolution)
+        throw_error("--resolution {}: expected 1..{} texels per cube-face edge", args.resolution, kMaxCubeResolution);
     if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
     if (args.max_error < 0) throw_error("--max-error {}: expected ≥ 0", args.max_error);
 
@@ -40,6 +41,7 @@ void run_fit(const FitArgs& args) {
     if (!options.cross_face && options.lights < 6)
         throw_error("--lights {} with --same-face: regions never cross a cube face, so at least 6", options.lights);
 
+    check_outputs_apart({args.output, args.preview}, {args.environment});
     const CubeMap map = load_environment(args.environment, args.resolution);
     const auto start = std::chrono::steady_clock::now();
     const RslSet set = lightfit::decompose(map, options);

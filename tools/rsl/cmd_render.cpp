@@ -14,6 +14,7 @@
 #include "tools/rsl/command.h"
 #include "tools/rsl/image_args.h"
 #include "tools/rsl/progress_display.h"
+#include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/frame/image_formation.h"
 #include "src/render/render_setup.h"
@@ -148,16 +149,32 @@ void render_frames(const RenderArgs& args, RenderSession& session, const std::fi
     }
 }
 
+// Every file a run writes: each frame's EXR, its PNG preview and its vertex colours.
+std::vector<std::filesystem::path> render_outputs(const RenderArgs& args, const std::filesystem::path& output) {
+    const size_t frames = args.frames.empty() ? 1 : parse_frames(args.frames).size();
+    std::vector<std::filesystem::path> outputs;
+    for (size_t f = 0; f < frames; ++f) {
+        const std::filesystem::path exr = frames > 1 ? numbered(output, int(f)) : output;
+        outputs.push_back(exr);
+        outputs.push_back(std::filesystem::path(exr).replace_extension(".png"));
+        if (!args.vertex_output.empty())
+            outputs.push_back(frames > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output));
+    }
+    return outputs;
+}
+
 void run_render(const RenderArgs& args) {
     const Backend backend = parse_backend(args.backend);
     const std::filesystem::path output = check_render_args(args);
     const RenderOptions options = render_options(args, backend);
+    auto scene = std::make_shared<Scene>(load_scene(args.scene));
+    check_outputs_apart(render_outputs(args, output), scene->input_files);  // before the fit and the bake
 
     ProgressDisplay display(!args.quiet);
     SetupOptions how;
     how.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
     // Every backend shades the same per-vertex sum and forms the same image.
-    RenderSession session(args.scene, options, backend, how);
+    RenderSession session(scene, options, backend, how);
     const RenderSetup& setup = session.setup();
     if (!args.quiet && setup.environment.resolution() > 0) display.note(describe_fit(setup));
     display.note(fmt::format("fields: {} loaded from the cache, {} baked ({:.1f} s)", setup.fields_loaded,

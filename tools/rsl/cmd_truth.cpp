@@ -7,11 +7,14 @@
 #include <optional>
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include "tools/rsl/command.h"
 #include "tools/rsl/image_args.h"
+#include "src/core/atomic_file.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
+#include "src/core/image.h"
 #include "tools/rsl/progress_display.h"
 #include "src/core/scene.h"
 #include "src/core/scene_environment.h"
@@ -57,12 +60,25 @@ void run_truth(const TruthArgs& args) {
     check_image_size(args.width, args.height, args.samples);
     check_time("--time", args.time);
     check_exposure(args.exposure);
+    if (args.resolution != 0 && (args.resolution < 1 || args.resolution > kMaxCubeResolution))
+        throw_error("--resolution {}: expected 1 to {} texels per cube-face edge (leave it out for the scene's)",
+                    args.resolution, kMaxCubeResolution);
     if (args.subdivision < 1 || args.subdivision > 16)
         throw_error("--subdivision {}: expected 1 to 16", args.subdivision);
     if (!args.background.empty() && args.background.size() != 3)
         throw_error("--background: expected three values R G B, got {}", args.background.size());
+    for (const float value : args.background)  // a NaN background is a NaN in every uncovered pixel
+        if (!(value >= 0 && value <= kMaxRadiance))
+            throw_error("--background {}: expected radiances from 0 to {:g} (finite)", fmt::join(args.background, " "),
+                        kMaxRadiance);
 
     const Scene scene = load_scene(args.scene);
+    const bool want_vertices = !args.per_pixel || !args.vertex_output.empty();
+    std::filesystem::path vertex_path = args.vertex_output;
+    if (vertex_path.empty()) vertex_path = std::filesystem::path(output).replace_extension(".rslv");
+    check_outputs_apart({output, std::filesystem::path(output).replace_extension(".png"),
+                         want_vertices ? vertex_path : std::filesystem::path()},
+                        scene.input_files);
     const int resolution = args.resolution > 0 ? args.resolution : scene.environment.resolution;
     const CubeMap environment = load_scene_environment(scene, resolution, args.time);
     GroundTruthOptions options;
@@ -93,7 +109,6 @@ void run_truth(const TruthArgs& args) {
         formation.background = Color(args.background[0], args.background[1], args.background[2]);
     }
 
-    const bool want_vertices = !args.per_pixel || !args.vertex_output.empty();
     const auto shade_start = Clock::now();
     VertexColors vertices;
     ProgressDisplay display(!args.quiet);
@@ -118,8 +133,6 @@ void run_truth(const TruthArgs& args) {
     const double shade_seconds = seconds_since(shade_start);
 
     write_exr_and_png(output, image, ToneMap{args.exposure, args.exposure == 0.0f});
-    std::filesystem::path vertex_path = args.vertex_output;
-    if (vertex_path.empty()) vertex_path = std::filesystem::path(output).replace_extension(".rslv");
     if (want_vertices) write_vertex_colors(vertex_path, vertices);
 
     if (args.quiet) return;

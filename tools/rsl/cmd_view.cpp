@@ -4,7 +4,9 @@
 
 #include "tools/rsl/progress_display.h"
 #include "tools/rsl/command.h"
+#include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/core/scene.h"
 #include "src/gl/viewer.h"
 #include "src/render/render_setup.h"
 
@@ -46,6 +48,7 @@ RegisterCommand view_command({"view",
         app.callback([args, exposure] {
             if (args->lights < 1) throw_error("--lights {}: expected at least 1", args->lights);
             if (!args->screenshot.empty() && args->frames < 1) throw_error("--screenshot needs --frames N (N ≥ 1)");
+            if (!args->screenshot.empty()) check_outputs_apart({args->screenshot}, load_scene(args->scene).input_files);
             gl::ViewerOptions options;
             options.scene = args->scene;
             options.render.environment_lights = args->lights;

@@ -6,12 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "src/core/scene_limits.h"
+
 namespace rsl::cli {
 
-// As the scene file's camera.width and camera.height (docs/SCENE_FORMAT.md).
-inline constexpr int kMaxImageSide = 16384;
-// S×S primary rays per pixel: 16 gives 256, far past where the image stops changing.
-inline constexpr int kMaxSamplesPerSide = 16;
+// As the scene file's camera and the API (src/core/scene_limits.h).
+inline constexpr int kMaxImageSide = ::rsl::kMaxImageSide;
+inline constexpr int kMaxSamplesPerSide = ::rsl::kMaxPixelSamplesPerSide;
 // Times in seconds: about 11 days of animation; float time keeps millisecond steps below it.
 inline constexpr float kMaxTimeSeconds = 1e6f;
 // PNG exposure in stops: 2^±64 maps any finite radiance into or out of range.
