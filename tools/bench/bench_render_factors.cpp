@@ -44,6 +44,12 @@ std::vector<BudgetCase> budget_cases(bool quick) {
             {"kitchen", "kitchen.json", "sunsky", 1.0f}};
 }
 
+// A probe by name: the project's generated map (sunsky, studio) or a shared probe (grace, uffizi).
+fs::path named_probe(const BenchOptions& options, const std::string& name) {
+    const fs::path generated = options.generated_assets / (name + ".exr");
+    return fs::exists(generated) ? generated : options.shared_assets / "probes" / (name + ".hdr");
+}
+
 // The renderer's vertex colours at t with the RSLs `rsls` and the options `edit` sets.
 VertexColors render(const Scene& scene, const RslSet& rsls, const PartFields& fields, float t,
                     const std::function<void(RenderOptions&)>& edit) {
@@ -136,8 +142,7 @@ void bench_factors(const BenchOptions& options) {
             c.environment == "scene" ? scene->environment.file.stem().string() : c.environment;
         const CubeMap map = c.environment == "scene"
                                 ? scene_environment_map(*scene, scene->environment.resolution)
-                                : load_environment(options.shared_assets / "probes" / (c.environment + ".hdr"),
-                                                   scene->environment.resolution);
+                                : load_environment(named_probe(options, c.environment), scene->environment.resolution);
         RenderOptions bake;
         bake.environment = false;  // the fields only; every row fits its own RSLs
         const RenderSetup setup = prepare_render(scene, bake);
