@@ -1,6 +1,7 @@
 // Seed corpora of the fuzzers: see seeds.h.
 #include "fuzz/seeds/seeds.h"
 
+#include <cstring>
 #include <sstream>
 
 #include "src/core/gltf_model.h"  // tinygltf, configured as the loader compiles it
@@ -99,6 +100,37 @@ void write_gltf_from_glb(const fs::path& glb, const fs::path& gltf, const std::s
     std::ostringstream stream;
     if (!io.WriteGltfSceneToStream(&model, stream, true, false)) throw_file_error(gltf, "tinygltf could not write it");
     write_file_atomically(gltf, stream.str());
+}
+
+// `depth` arrays nested around one small object (`depth` 0: the object alone), with a
+// string of brackets inside, which the depth check must not count as nesting.
+json nested_arrays(int depth) {
+    json value = {{"brackets", "[[{{\"x\": ]]"}};
+    for (int level = 0; level < depth; ++level) value = json::array({value});
+    return value;
+}
+
+// The glTF seed `gltf` with `extras` on the asset nested to the depth limit
+// of the glTF reader (kMaxGltfJsonDepth, 256: the root object, the asset and
+// 253 arrays around the innermost object).
+json at_depth_limit(json gltf) {
+    gltf["asset"]["extras"] = nested_arrays(253);
+    return gltf;
+}
+
+// A .glb whose JSON chunk is replaced by `chunk` (padded with spaces to 4
+// bytes, as the format requires), its binary chunk kept.
+std::string glb_with_json(const std::string& glb, std::string chunk) {
+    chunk.resize((chunk.size() + 3) / 4 * 4, ' ');
+    uint32_t old_length = 0;
+    std::memcpy(&old_length, glb.data() + 12, 4);
+    const std::string binary = glb.substr(20 + old_length);
+    std::string out = glb.substr(0, 12);
+    const uint32_t length = uint32_t(chunk.size());
+    out.append(reinterpret_cast<const char*>(&length), 4).append("JSON").append(chunk).append(binary);
+    const uint32_t total = uint32_t(out.size());
+    std::memcpy(out.data() + 8, &total, 4);
+    return out;
 }
 
 // An EXR with a chosen compression (write_exr always uses ZIP), so that the
@@ -206,6 +238,28 @@ constexpr const char* kEveryKeyScene = R"({
 }
 )";
 
+// Values at the edges of their ranges (docs/SCENE_FORMAT.md, BRDF.md): light
+// powers at and just under 10¹² W with the smallest radius the radiance limit
+// allows them, roughness and alphas at 10⁻³, the largest cube map and image.
+constexpr const char* kEdgesScene = R"({
+  "name": "edges",
+  "parts": [ { "name": "tet", "obj": "part.obj", "material": "glossy" },
+             { "name": "copy", "gltf": "part.gltf", "transform": { "scale": 1e-3 }, "material": "mirror" },
+             { "name": "ball", "obj": "part.obj", "transform": { "translation": [2, 0, 0] }, "material": "sharp" },
+             { "name": "plain", "obj": "part.obj", "transform": { "translation": [-2, 0, 0] } } ],
+  "materials": {
+    "default": { "model": "ward_anisotropic", "kd": 0, "ks": 1, "alpha_x": 1e-3, "alpha_y": 1 },
+    "glossy": { "model": "cook_torrance_beckmann", "f0": [1, 1, 1], "roughness": 1e-3 },
+    "mirror": { "model": "cook_torrance_ggx", "f0": 0.04, "roughness": 0.001, "kd": 1 },
+    "sharp": { "model": "ward", "kd": 0, "ks": 1, "alpha": 1e-3 }
+  },
+  "environment": { "file": "env.exr", "resolution": 512 },
+  "lights": [ { "radius": 0.0504, "power": [1e12, 1e12, 1e12], "position": [1, 2, 1] },
+              { "radius": 1, "power": [999999930368, 0, 1e-30], "position": [-1e6, 1e6, 0] } ],
+  "camera": { "position": [0, 1.5, 5], "target": [0, 1, 0], "width": 16384, "height": 1 }
+}
+)";
+
 class CorpusWriter {
 public:
     explicit CorpusWriter(const fs::path& dir) : dir_(dir) {}
@@ -274,6 +328,12 @@ std::vector<fs::path> write_seed_corpora(const fs::path& dir, const fs::path& so
     write_gltf_from_glb(dir / "glb" / "animated.glb", out.path("gltf", "animated"));
     write_gltf_from_glb(dir / "glb" / "animated.glb", out.path("gltf", "animated_step"), "STEP");
     write_gltf_from_glb(dir / "glb" / "single.glb", out.path("gltf", "single"));
+    out.text("gltf", "depth_limit", at_depth_limit(read_json_file(dir / "gltf" / "single.gltf")).dump() + "\n");
+    const std::string single_glb = read_file(dir / "glb" / "single.glb");
+    uint32_t json_length = 0;
+    std::memcpy(&json_length, single_glb.data() + 12, 4);
+    out.text("glb", "depth_limit",
+             glb_with_json(single_glb, at_depth_limit(json::parse(single_glb.substr(20, json_length))).dump()));
 
     // Scene files: the project's, pointed at the stand-ins, and one with every key.
     for (const char* name : {"default", "robot", "kitchen", "bunny"}) {
@@ -281,6 +341,7 @@ std::vector<fs::path> write_seed_corpora(const fs::path& dir, const fs::path& so
         out.text("scene", name, scene_with_stand_ins(read_json_file(source)).dump(1) + "\n");
     }
     out.text("scene", "every_key", kEveryKeyScene);
+    out.text("scene", "edges", kEdgesScene);
 
     // Field files baked on a small sphere: SVDF with half and float tables, an OVDF.
     const TriangleMesh ball = small_solid(6, 5, 0.5f);

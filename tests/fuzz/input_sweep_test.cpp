@@ -74,7 +74,55 @@ std::vector<Input> hostile_inputs(const fs::path& dir) {
     return inputs;
 }
 
+// The edge seeds (fuzz/corpus/scene/edges.json, gltf and glb depth_limit) one
+// step past their limits: each must be refused (status 1), naming the problem.
+struct PastLimit {
+    std::string name, contents, problem;
+};
+
+std::vector<PastLimit> past_limits() {
+    const std::string edges = read_bytes(kFuzzDir / "corpus" / "scene" / "edges.json");
+    const auto edited = [&](const std::string& from, const std::string& to) {
+        std::string text = edges;
+        const size_t at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        return text.replace(at, from.size(), to);
+    };
+    std::string gltf = read_bytes(kFuzzDir / "corpus" / "gltf" / "depth_limit.gltf");
+    gltf.insert(gltf.find(R"(,"generator")"), "]");
+    gltf.insert(gltf.find(R"("extras":)") + 9, "[");
+    return {
+        {"power.json", edited("[1e12, 1e12, 1e12]", "[1.0001e12, 1e12, 1e12]"), "past the limit"},
+        {"radiance.json", edited("0.0504", "0.0502"), "past the limit"},
+        {"power_nan.json", edited("[1e12, 1e12, 1e12]", R"(["nan", 1, 1])"), "lights[0].power"},
+        {"power_inf.json", edited("[1e12, 1e12, 1e12]", "[1e309, 1, 1]"), "lights[0].power"},
+        {"roughness_inf.json", edited(R"("roughness": 1e-3)", R"("roughness": "inf")"), "roughness"},
+        {"resolution.json", edited(R"("resolution": 512)", R"("resolution": 513)"), "resolution"},
+        {"width.json", edited(R"("width": 16384)", R"("width": 16385)"), "width"},
+        {"deep.gltf", gltf, "JSON nested deeper than 256 levels"},
+    };
+}
+
 }  // namespace
+
+TEST_CASE("The fuzzers' edge seeds are read, and one step past each limit is refused", "[fuzz][bad-input][cli]") {
+    const fs::path dir = scratch_dir("input_sweep_edges");
+    fuzz::write_scene_support_files(dir);
+    for (const char* seed : {"scene/edges.json", "gltf/depth_limit.gltf", "glb/depth_limit.glb"}) {
+        const auto [status, text] = run_rsl("info " + staged(kFuzzDir / "corpus" / seed, dir).string());
+        INFO(seed << ": " << text);
+        CHECK(status == 0);
+    }
+    for (const PastLimit& input : past_limits()) {
+        write_file_atomically(dir / input.name, input.contents);
+        const auto [status, text] = run_rsl("info " + (dir / input.name).string());
+        INFO(input.name << ": " << text);
+        CHECK(status == 1);
+        CHECK(text.find(input.name) != std::string::npos);
+        CHECK(text.find(input.problem) != std::string::npos);
+    }
+    fs::remove_all(dir);
+}
 
 TEST_CASE("No kept or hostile input makes rsl end in an internal error or a crash", "[fuzz][bad-input][cli]") {
     const fs::path dir = scratch_dir("input_sweep");
