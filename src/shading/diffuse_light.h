@@ -57,10 +57,9 @@ RSL_SHARED float square_average_cosine_across(vec2 c, float h) {
 // The average of cos θ over the square of centre c and half-edge h in the
 // hemisphere plane (dω = 2 dp), the cosine clamped at the horizon as the
 // BRDF tables clamp it: 1 − |c|² − 2h²/3 for a square inside the unit disk.
-RSL_SHARED bool square_inside_disk(vec2 c, float h) { return length(c) + kSqrt2 * h <= 1.0f; }
 RSL_SHARED float square_average_cosine(vec2 c, float h) {
     if (!(h > 0.0f)) return cosine_floor(1.0f - dot(c, c));
-    if (square_inside_disk(c, h)) return cosine_floor(1.0f - dot(c, c) - 0.6666667f * h * h);
+    if (length(c) + kSqrt2 * h <= 1.0f) return cosine_floor(1.0f - dot(c, c) - 0.6666667f * h * h);
     return square_average_cosine_across(c, h);
 }
 
