@@ -8,6 +8,7 @@
 #include "rsl/rsl.h"
 #include "src/core/scene.h"
 #include "tests/api/api_test_scene.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -94,7 +95,7 @@ TEST_CASE("poses from matrices: translation · rotation · scale round-trips, sh
     for (int i = 0; i < 200; ++i) {
         Transform t;
         t.translation = Vec3(5 * u(rng), 5 * u(rng), 5 * u(rng));
-        t.rotation = glm::normalize(Quat(u(rng), u(rng), u(rng), u(rng)));
+        t.rotation = glm::normalize(test::random_quat(u, rng));
         t.scale = Vec3(positive(rng), positive(rng), positive(rng));
         const Mat4 m = t.matrix();
         std::array<float, 16> column_major;

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "tools/baselines/sh.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -92,7 +93,7 @@ TEST_CASE("SH texel basis: cube-map projection is the exact integral of the piec
     CubeMap map(n);
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(0, 2);
-    for (auto& L : map.radiances()) L = Color(u(rng), u(rng), u(rng));
+    for (auto& L : map.radiances()) L = Color(test::random_vec3(u, rng));
     const sh::TexelBasis basis(n, order);
     const sh::ShColor c = sh::project_cube(map, basis);
     // Reference: the midpoint rule on S×S sub-cells of every texel with exact

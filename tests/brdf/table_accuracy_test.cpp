@@ -20,6 +20,7 @@
 #include "src/brdf/merl.h"
 #include "tests/brdf/brdf_test_util.h"
 #include "tests/brdf/table_test_util.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 using namespace rsl::test;
@@ -145,7 +146,7 @@ TEST_CASE("The default tables resolve a glossy lobe under a sun-sized square", "
     while (squares < 400) {
         const Vec3 wo = random_upper_direction(rng, 1.0f);
         const Vec3 mirror(-wo.x, -wo.y, wo.z);
-        const Vec3 c = glm::normalize(mirror + 0.15f * Vec3(u(rng), u(rng), u(rng)));
+        const Vec3 c = glm::normalize(mirror + 0.15f * test::random_vec3(u, rng));
         if (c.z < 0.2f) continue;
         const Vec2 p = hemisphere_to_plane(to_view_aligned(c, wo));
         const Vec3 wo_table = to_view_aligned(wo, wo);

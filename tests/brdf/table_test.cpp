@@ -8,6 +8,7 @@
 #include "tests/brdf/brdf_test_util.h"
 #include "tests/brdf/table_test_util.h"
 #include "src/shading/brdf_sat.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 using namespace rsl::test;
@@ -93,7 +94,7 @@ TEST_CASE("square averages are continuous in center, size and view", "[brdf][tab
         for (int k = 0; k < 3000; ++k) {
             // Put a square edge exactly on a texel boundary half of the time:
             // crossing it must not jump.
-            Vec2 c(u(rng) * 0.8f, u(rng) * 0.8f);
+            Vec2 c = test::random_vec2(u, rng) * 0.8f;
             float h = 0.02f + 0.2f * std::abs(u(rng));
             if (k % 2) c.x = -1.0f + std::round((c.x - h + 1.0f) / texel) * texel + h;
             const Vec3 view = random_upper_direction(rng, 1.45f);

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/hemisphere.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -45,7 +46,7 @@ TEST_CASE("hemisphere map is equal-area: dω = 2 dp", "[hemisphere]") {
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(-0.6f, 0.6f);
     for (int k = 0; k < 200; ++k) {
-        Vec2 p(u(rng), u(rng));
+        Vec2 p = test::random_vec2(u, rng);
         const float h = 1e-3f;
         Vec3 a = plane_to_hemisphere(p), bx = plane_to_hemisphere(p + Vec2(h, 0)),
              by = plane_to_hemisphere(p + Vec2(0, h));

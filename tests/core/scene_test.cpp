@@ -12,6 +12,7 @@
 #include "src/core/error.h"
 #include "src/core/scene.h"
 #include "tests/test_support.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -74,8 +75,8 @@ TEST_CASE("Quaternion tracks: slerp at constant speed along the short arc", "[sc
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(-1, 1);
     for (int i = 0; i < 200; ++i) {
-        const Quat a = glm::normalize(Quat(u(rng), u(rng), u(rng), u(rng)));
-        const Quat b = glm::normalize(Quat(u(rng), u(rng), u(rng), u(rng)));
+        const Quat a = glm::normalize(test::random_quat(u, rng));
+        const Quat b = glm::normalize(test::random_quat(u, rng));
         track.values = {a, b};
         const float t = 0.5f * (u(rng) + 1), total = angle_between(a, b);
         const Quat q = track.sample(t);

@@ -14,6 +14,7 @@
 #include "tools/assets/primitives.h"
 #include "src/fields/ovdf.h"
 #include "src/shading/ovdf_tables.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -40,7 +41,7 @@ struct NearBatch {
 Vec3 random_direction(std::mt19937& rng) {
     std::normal_distribution<float> normal;
     std::uniform_int_distribution<int> pick(0, 3);
-    Vec3 d(normal(rng), normal(rng), normal(rng));
+    Vec3 d = test::random_vec3(normal, rng);
     if (pick(rng) == 0) d = Vec3(1.0f, 1.0f + 1e-4f * normal(rng), 0.3f * normal(rng)) * (normal(rng) < 0 ? -1.0f : 1.0f);
     if (pick(rng) == 0) d = Vec3(1.0f + 1e-4f * normal(rng), -1.0f, 1.0f + 1e-4f * normal(rng));
     return glm::normalize(d);

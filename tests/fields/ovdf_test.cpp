@@ -14,6 +14,7 @@
 #include "src/rays/ray_scene.h"
 #include "src/shading/ovdf_tables.h"
 #include "src/shading/ovdf_small_occluder.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -605,7 +606,7 @@ TEST_CASE("OVDF shells reach receivers near the centre of an open part", "[ovdf]
     int count = 0, away = 0;
     while (count < 400) {
         // Points within 0.3 R of the centre, above the floor and off the counter.
-        const Vec3 point = open.center + 0.3f * open.radius * Vec3(u(rng), u(rng), u(rng));
+        const Vec3 point = open.center + 0.3f * open.radius * test::random_vec3(u, rng);
         if (!(point.y > 0.02f) || (point.z < -1.0f && point.y < 0.95f)) continue;
         Vec3 light = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
         const float truth = scene.occluded(point, light, 0.0f, 1e30f) ? 0.0f : 1.0f;

@@ -9,6 +9,7 @@
 #include "src/fields/ovdf.h"
 #include "src/fields/solid_pieces.h"
 #include "src/shading/shading_core.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 using rsl::assets::append_mesh;
@@ -50,7 +51,7 @@ void check_against(const SolidPieces& pieces, const std::function<float(const Ve
     std::uniform_real_distribution<float> u(lo, hi);
     int inside = 0, outside = 0;
     while (inside + outside < 3000) {
-        const Vec3 p(u(rng), u(rng), u(rng));
+        const Vec3 p = test::random_vec3(u, rng);
         const float d = distance(p);
         if (std::abs(d) < margin) continue;
         INFO("point (" << p.x << ", " << p.y << ", " << p.z << "), signed distance " << d);
@@ -147,7 +148,7 @@ TEST_CASE("Solid pieces: a solid with small holes is still solid inside", "[soli
     std::uniform_real_distribution<float> u(-0.8f, 0.8f);
     int inside = 0, escaped_probes = 0;
     for (int k = 0; k < 3000; ++k) {
-        const Vec3 p(u(rng), u(rng), u(rng));
+        const Vec3 p = test::random_vec3(u, rng);
         const float d = glm::length(p) - 0.5f;
         if (std::abs(d) < 0.01f) continue;
         // Right below a hole it fills the sky of several probes: not asked.
@@ -193,7 +194,7 @@ TEST_CASE("Solid pieces: open surfaces and glued pieces", "[solid_pieces]") {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-1.5f, 1.5f);
     for (int k = 0; k < 2000; ++k) {
-        const Vec3 p(u(rng), u(rng) + 0.5f, u(rng));
+        const Vec3 p = test::random_vec3(u, rng) + Vec3(0, 0.5f, 0);
         if (box_distance(p - Vec3(0.0f, 1.0f, 0.0f), Vec3(0.5f)) < 0.01f) continue;
         INFO("point (" << p.x << ", " << p.y << ", " << p.z << ")");
         REQUIRE_FALSE(pieces.inside(p));
@@ -246,7 +247,7 @@ InsideErrors inside_errors(const Ovdf& ovdf, const std::function<float(const Vec
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     InsideErrors e;
     while (e.points < 4000) {
-        const Vec3 p = ovdf.center + ovdf.radius * Vec3(u(rng), u(rng), u(rng));
+        const Vec3 p = ovdf.center + ovdf.radius * test::random_vec3(u, rng);
         const float d = glm::length(p - ovdf.center);
         const float exact = distance(p);
         if (!(d < ovdf.radius) || std::abs(exact) < margin * ovdf.radius) continue;
@@ -307,7 +308,7 @@ TEST_CASE("Radial spans: a room encloses nothing, a lidless box's cavity is left
     lidless.indices.erase(lidless.indices.begin() + 18, lidless.indices.begin() + 24);  // the +y face
     const Ovdf cup = small_ovdf(lidless);
     for (int k = 0; k < 500; ++k) {
-        const Vec3 p = 0.45f * Vec3(u(rng), u(rng), u(rng));
+        const Vec3 p = 0.45f * test::random_vec3(u, rng);
         INFO("point (" << p.x << ", " << p.y << ", " << p.z << ")");
         REQUIRE(span_decision(cup, p) != 1);
     }

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/fields/vdt.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -40,7 +41,7 @@ std::vector<float> random_shapes_fine(int fine, std::mt19937& rng) {
     std::uniform_real_distribution<float> u(-1, 1), r(0.1f, 0.6f), angle(0, 6.2831853f);
     struct Disk { Vec2 c; float r; };
     std::vector<Disk> disks(1 + rng() % 3);
-    for (auto& d : disks) d = {Vec2(u(rng), u(rng)), r(rng)};
+    for (auto& d : disks) d = {test::random_vec2(u, rng), r(rng)};
     const float a = angle(rng), offset = u(rng) * 0.8f - 0.6f;
     const Vec2 normal(std::cos(a), std::sin(a));
     std::vector<float> map(fine * fine);
@@ -159,7 +160,7 @@ TEST_CASE("VDT fraction vs the exact fraction of random binary maps", "[vdt]") {
         const auto map = box_downsample(n, 1, random_shapes_fine(n, rng));
         const auto vdt = compute_vdt(n, map, VdtMode::Binary);
         for (int k = 0; k < 200; ++k) {
-            const Vec2 c(u(rng), u(rng));
+            const Vec2 c = test::random_vec2(u, rng);
             const float h = std::min(size(rng), 1.0f - std::max(std::abs(c.x), std::abs(c.y)));
             const double exact = exact_square_fraction(n, map.data(), c, h);
             if (exact == 0.0 || exact == 1.0) continue;  // only squares the boundary crosses
@@ -186,7 +187,7 @@ TEST_CASE("coverage-aware VDT beats the binary map against the fine truth", "[vd
         const auto vdt_binary = compute_vdt(n, coverage, VdtMode::Binary);
         const auto vdt_coverage = compute_vdt(n, coverage, VdtMode::CoverageAware);
         for (int k = 0; k < 200; ++k) {
-            const Vec2 c(u(rng), u(rng));
+            const Vec2 c = test::random_vec2(u, rng);
             const float h = std::min(size(rng), 1.0f - std::max(std::abs(c.x), std::abs(c.y)));
             const double exact = exact_square_fraction(fine, truth.data(), c, h);
             if (exact == 0.0 || exact == 1.0) continue;

@@ -16,6 +16,7 @@
 #include "src/gl/gl_renderer.h"
 #include "src/render/cpu_renderer.h"
 #include "tests/gl/gl_test_support.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -29,7 +30,9 @@ Scene random_crowd(std::mt19937& rng, int balls, const TriangleMesh& ball) {
     for (int i = 0; i < balls; ++i) {
         Transform pose;
         pose.translation = Vec3(1.8f * u(rng), 0.15f + 0.3f * (u(rng) + 1.0f), 1.8f * u(rng));
-        pose.rotation = glm::angleAxis(3.0f * u(rng), glm::normalize(Vec3(u(rng), 1.0f, u(rng))));
+        const float angle = 3.0f * u(rng);
+        const Vec2 axis_xz = test::random_vec2(u, rng);
+        pose.rotation = glm::angleAxis(angle, glm::normalize(Vec3(axis_xz.x, 1.0f, axis_xz.y)));
         pose.scale = Vec3(0.7f + 0.3f * (u(rng) + 1.0f));
         test::add_part(scene, ball, pose);
     }

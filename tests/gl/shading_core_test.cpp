@@ -16,6 +16,7 @@
 #include "src/gl/shader_sources.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/gl/shading_core_cases.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -73,9 +74,18 @@ gl::Texture float_texture(const std::vector<Vec4>* data) {
 // minus its integer part; Gram–Schmidt of a nearly parallel tangent), so
 // 2·10⁻⁵ of max(1, |value|). A formula that differs misses it by far more,
 // in most of the 4096 cases.
-bool close(float gpu, float cpu) {
+bool close(float gpu, float cpu, float condition = 1.0f) {
     if (std::isnan(cpu) || std::isnan(gpu)) return std::isnan(cpu) && std::isnan(gpu);
-    return std::abs(gpu - cpu) <= 2e-5f * std::max(1.0f, std::abs(cpu));
+    return std::abs(gpu - cpu) <= 2e-5f * condition * std::max(1.0f, std::abs(cpu));
+}
+
+// The equal-area map's 1/√(1 + z) amplifies the rounding of z by 1/(1 + z)
+// toward the antipode, in GLSL and C++ alike: mode 0's outputs p and q allow
+// for it (w as shading_core_case makes it).
+float condition_of(int mode, int output, const Vec4& a) {
+    if (mode != 0 || output > 3) return 1.0f;
+    const Vec3 w = glm::normalize(Vec3(a) + Vec3(0.0f, 0.0f, 1e-3f));
+    return std::max(1.0f, 0.01f / std::max(1.0f + w.z, 1e-4f));
 }
 
 }  // namespace
@@ -126,8 +136,8 @@ TEST_CASE("every shading-core function gives the same results in GLSL as in C++"
     for (int mode = 0; mode < shading::kShadingCoreModes; ++mode) {
         std::vector<Vec4> a(kSide * kSide), b(kSide * kSide);
         for (size_t i = 0; i < a.size(); ++i) {
-            a[i] = Vec4(uniform(rng), uniform(rng), uniform(rng), uniform(rng));
-            b[i] = Vec4(uniform(rng), uniform(rng), uniform(rng), uniform(rng));
+            a[i] = test::random_vec4(uniform, rng);
+            b[i] = test::random_vec4(uniform, rng);
         }
         gl::Texture ta = float_texture(&a), tb = float_texture(&b);
         glActiveTexture(GL_TEXTURE0);
@@ -150,7 +160,7 @@ TEST_CASE("every shading-core function gives the same results in GLSL as in C++"
                 const float g = c < 4 ? gpu_first[i][c] : gpu_second[i][c - 4];
                 const float e = c < 4 ? cpu.first[c] : cpu.second[c - 4];
                 ++compared;
-                if (close(g, e)) continue;
+                if (close(g, e, condition_of(mode, c, a[i]))) continue;
                 if (++mismatches <= 10)
                     UNSCOPED_INFO("mode " << mode << " case " << i << " output " << c << ": glsl " << g << ", c++ " << e
                                           << " (a = " << a[i].x << ' ' << a[i].y << ' ' << a[i].z << ' ' << a[i].w

@@ -6,6 +6,7 @@
 #include "src/lightfit/decompose.h"
 #include "src/lightfit/reconstruct.h"
 #include "src/lightfit/square_fit.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 using namespace rsl::lightfit;
@@ -53,7 +54,7 @@ TEST_CASE("relative L2 error is zero for the map itself and one for black", "[li
     CubeMap map(8);
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(0.0f, 5.0f);
-    for (int k = 0; k < map.texel_count(); ++k) map.radiance(k) = Color(u(rng), u(rng), u(rng));
+    for (int k = 0; k < map.texel_count(); ++k) map.radiance(k) = Color(test::random_vec3(u, rng));
     CHECK(relative_l2_error(map, map) == 0.0);
     CHECK(relative_l2_error(map, CubeMap(8)) == Approx(1.0));
     CubeMap doubled = map;

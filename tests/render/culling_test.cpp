@@ -8,6 +8,7 @@
 #include "src/render/cpu_renderer.h"
 #include "src/render/square_lights.h"
 #include "tests/render/render_test_scenes.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -24,13 +25,13 @@ bool ray_hits_sphere(const Vec3& origin, const Vec3& dir, const BoundingSphere& 
 
 Vec3 random_unit(std::mt19937& rng) {
     std::normal_distribution<float> normal;
-    return glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+    return glm::normalize(test::random_vec3(normal, rng));
 }
 
 Vec3 random_in_ball(std::mt19937& rng, float radius) {
     std::uniform_real_distribution<float> u(-1, 1);
     for (;;) {
-        const Vec3 p(u(rng), u(rng), u(rng));
+        const Vec3 p = test::random_vec3(u, rng);
         if (glm::dot(p, p) <= 1) return radius * p;
     }
 }
@@ -89,7 +90,7 @@ TEST_CASE("the square's cone contains every direction of its square", "[render][
         const Vec3 c = plane_to_hemisphere(center);
         const float cone = square_cone_half_angle(h);
         for (int s = 0; s < 16; ++s) {
-            const Vec2 q = center + h * Vec2(u(rng), u(rng));
+            const Vec2 q = center + h * test::random_vec2(u, rng);
             if (glm::dot(q, q) > 1.0f) continue;  // below the horizon: ρ·cos is 0 there
             const float angle = std::acos(std::clamp(glm::dot(c, plane_to_hemisphere(q)), -1.0f, 1.0f));
             REQUIRE(angle <= cone + 1e-4f);
@@ -118,11 +119,11 @@ TEST_CASE("the slab rule clears only squares whose every direction misses the bo
     int cleared = 0, blocked_somewhere = 0;
     for (int trial = 0; trial < 3000; ++trial) {
         Bounds box;
-        box.extend(Vec3(u(rng), u(rng), u(rng)));
-        box.extend(Vec3(u(rng), 0.05f * u(rng), u(rng)));  // often thin, like a ground plane
+        box.extend(test::random_vec3(u, rng));
+        box.extend(test::random_vec3(u, rng) * Vec3(1, 0.05f, 1));  // often thin, like a ground plane
         const Vec3 p(2.5f * u(rng), 2.5f * u(rng), 2.5f * u(rng));
         // The square in a random receiver frame, its center within reach of the hemisphere.
-        const Frame frame = Frame::from_normal(glm::normalize(Vec3(u(rng), u(rng), u(rng))));
+        const Frame frame = Frame::from_normal(glm::normalize(test::random_vec3(u, rng)));
         const float h = 0.01f + 0.3f * std::abs(u(rng));
         const Vec2 center(1.1f * u(rng), 1.1f * u(rng));
         const Vec3 light = frame.to_world(plane_to_hemisphere(center));
@@ -175,7 +176,7 @@ TEST_CASE("culling does not change the colours", "[render][culling]") {
     std::uniform_real_distribution<float> u(0, 1);
     for (int i = 0; i < 16; ++i) {
         RotatableSquareLight l;
-        l.center = glm::normalize(Vec3(u(rng) - 0.5f, 0.2f + u(rng), u(rng) - 0.5f));
+        l.center = glm::normalize(test::random_vec3(u, rng) + Vec3(-0.5f, 0.2f, -0.5f));
         l.half_diagonal = 0.05f + 0.3f * u(rng);
         l.radiance = Color(1.0f + u(rng));
         lights.lights.push_back(l);

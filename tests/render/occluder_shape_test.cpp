@@ -16,6 +16,7 @@
 #include "src/shading/frames.h"
 #include "src/shading/shadow_maps.h"
 #include "src/shading/shapes.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -184,7 +185,7 @@ TEST_CASE("A flat rectangle's visible share of a square matches rays cast at it"
         const float height = on_plane ? 0.0f : uniform(rng);
         ShapeCase x;
         x.p = r->center + 1.5f * uniform(rng) * r->s + 1.5f * uniform(rng) * r->t + height * r->normal;
-        x.normal = glm::normalize(Vec3(uniform(rng), uniform(rng), uniform(rng)) + Vec3(1e-3f));
+        x.normal = glm::normalize(test::random_vec3(uniform, rng) + Vec3(1e-3f));
         if (on_plane) {
             x.normal = glm::normalize(x.normal - r->normal * glm::dot(x.normal, r->normal));
             x.p += 2e-4f * r->normal;  // the rays' origin above the plane, as the shape counts it
@@ -201,13 +202,13 @@ TEST_CASE("A box's visible share of a square matches rays cast at it", "[render]
     check_against_rays(mesh, box, [&](std::mt19937& rng) {
         std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
         ShapeCase x;
-        x.normal = glm::normalize(Vec3(uniform(rng), uniform(rng), uniform(rng)) + Vec3(1e-3f));
+        x.normal = glm::normalize(test::random_vec3(uniform, rng) + Vec3(1e-3f));
         if (index++ % 4 == 0) {  // on the top face, looking out of it or along it (a part resting on the box)
             x.p = Vec3(0.8f * uniform(rng), 0.4f, 0.8f * uniform(rng));
             if (x.normal.y < 0.0f) x.normal.y = -x.normal.y;
             return x;
         }
-        do x.p = 1.5f * Vec3(uniform(rng), uniform(rng), uniform(rng));  // around it, outside
+        do x.p = 1.5f * test::random_vec3(uniform, rng);  // around it, outside
         while (std::abs(x.p.x) <= 0.6f && std::abs(x.p.y) <= 0.4f && std::abs(x.p.z) <= 0.5f);
         return x;
     });
@@ -232,10 +233,10 @@ WholeSquareCount check_whole_square(uint32_t seed, Vec3 lo, Vec3 hi, Whole whole
     std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
     WholeSquareCount count;
     for (int n = 0; n < 20000; ++n) {
-        Vec3 point = 1.1f * Vec3(uniform(rng), uniform(rng), uniform(rng)) * glm::max(glm::abs(lo), glm::abs(hi)) +
+        Vec3 point = 1.1f * test::random_vec3(uniform, rng) * glm::max(glm::abs(lo), glm::abs(hi)) +
                      Vec3(0.0f, 0.0f, 1.5f * uniform(rng));
         if (n % 7 == 0) point.z = hi.z;  // on the top face (a part resting on the shape)
-        const Frame frame = Frame::from_normal_tangent(glm::normalize(Vec3(uniform(rng), uniform(rng), uniform(rng)) + Vec3(1e-3f)), Vec3(0));
+        const Frame frame = Frame::from_normal_tangent(glm::normalize(test::random_vec3(uniform, rng) + Vec3(1e-3f)), Vec3(0));
         shading::LocalFrame f;
         f.x = frame.x, f.y = frame.y, f.z = frame.z;
         const Vec2 c(1.2f * uniform(rng), 1.2f * uniform(rng));

@@ -14,6 +14,7 @@
 #include "src/render/ovdf_lookup.h"
 #include "tests/render/render_test_scenes.h"
 #include "src/shading/ovdf_small_occluder.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -35,7 +36,7 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
     int fast = 0, seam = 0, outside = 0, shadowed = 0, unshadowed = 0, bounded = 0, small = 0, completed = 0;
     int near_small = 0, relocated = 0;
     for (int trial = 0; trial < 4000; ++trial) {
-        const Vec3 dir = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+        const Vec3 dir = glm::normalize(test::random_vec3(normal, rng));
         const float distance = field.radius * params.outer_radius * 1.2f * uniform(rng);
         const Vec3 point = field.center + distance * dir;
         OvdfPoint q;
@@ -73,7 +74,7 @@ TEST_CASE("split OVDF lookup equals the field's own lookup", "[render][ovdf]") {
         }
         for (int l = 0; l < 4; ++l) {
             // Lights biased towards the occluder so that many lookups see it.
-            const Vec3 light = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)) - 1.5f * dir);
+            const Vec3 light = glm::normalize(test::random_vec3(normal, rng) - 1.5f * dir);
             const float expected = field.distance(point, light, OvdfBlend::AlignedCoefficients);
             const float got = lookup.distance(q, point, light);
             REQUIRE(got == Approx(expected).margin(2e-5f).epsilon(1e-5f));

@@ -13,6 +13,7 @@
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "tests/random_cases.h"
 
 namespace rsl::test {
 
@@ -54,9 +55,9 @@ inline RslSet random_rsls(int count, uint32_t seed, float min_half_diagonal = 0.
     RslSet set;
     for (int i = 0; i < count; ++i) {
         RotatableSquareLight light;
-        light.center = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+        light.center = glm::normalize(test::random_vec3(normal, rng));
         light.half_diagonal = uniform(rng);
-        light.radiance = Color(uniform(rng), uniform(rng), uniform(rng)) * 4.0f;
+        light.radiance = Color(test::random_vec3(uniform, rng)) * 4.0f;
         set.lights.push_back(light);
     }
     return set;

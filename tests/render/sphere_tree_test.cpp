@@ -9,6 +9,7 @@
 #include "src/render/cpu_renderer.h"
 #include "src/render/sphere_tree.h"
 #include "tests/render/render_test_scenes.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -21,12 +22,12 @@ TEST_CASE("the sphere tree finds exactly the overlapping spheres", "[render][cul
     for (const int count : {0, 1, 3, 4, 5, 17, 200, 1000}) {
         std::vector<BoundingSphere> spheres(static_cast<size_t>(count));
         for (BoundingSphere& s : spheres) {
-            s.center = 20.0f * Vec3(u(rng), u(rng), 0.2f * u(rng));
+            s.center = 20.0f * (test::random_vec3(u, rng) * Vec3(1, 1, 0.2f));
             s.radius = 0.05f + 3.0f * u(rng) * u(rng) * u(rng);  // a few large reaches among small ones
         }
         tree.build(spheres);
         for (int q = 0; q < 100; ++q) {
-            const BoundingSphere query{20.0f * Vec3(u(rng), u(rng), u(rng) * 0.2f), 0.01f + 2.0f * u(rng)};
+            const BoundingSphere query{20.0f * (test::random_vec3(u, rng) * Vec3(1, 1, 0.2f)), 0.01f + 2.0f * u(rng)};
             std::vector<int> found{-7};  // appended after what is there
             tree.overlapping(query, found);
             REQUIRE(found.front() == -7);

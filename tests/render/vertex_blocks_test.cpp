@@ -8,6 +8,7 @@
 #include "src/core/mesh.h"
 #include "src/render/block_scratch.h"
 #include "src/render/vertex_blocks.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -31,7 +32,7 @@ TEST_CASE("the block order is a deterministic permutation", "[render][culling]")
     for (const int count : {0, 1, 255, 256, 257, 1000, 5000}) {
         for (const int block : {1, 7, 256}) {
             std::vector<Vec3> points(static_cast<size_t>(count));
-            for (Vec3& p : points) p = Vec3(u(rng), u(rng), 0.1f * u(rng));
+            for (Vec3& p : points) p = test::random_vec3(u, rng) * Vec3(1, 1, 0.1f);
             if (count > 10) points[3] = points[5] = points[9];  // ties
             const std::vector<int> order = spatial_block_order(points, block);
             std::vector<int> sorted = order;
