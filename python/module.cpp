@@ -40,6 +40,19 @@ py::dict fit_dict(api::EnvironmentFit&& fit) {
 }
 
 void bind_files(py::module_& m) {
+    m.def("memory_limit", &api::memory_limit,
+          "The memory limit (bytes; 0: none) that loading and rendering a scene check their estimate against");
+    m.def(
+        "set_memory_limit",
+        [](const py::object& limit) {
+            if (py::isinstance<py::str>(limit))
+                api::set_memory_limit(limit.cast<std::string>());
+            else
+                api::set_memory_limit(limit.cast<uint64_t>());
+        },
+        py::arg("limit"),
+        "Set the memory limit: bytes (0: none) or a size such as '8G' or 'none'; shared with the rsl program's "
+        "--memory-limit and RSL_MEMORY_LIMIT");
     m.def("build_info", &build_info_dict, "What this module is: version, commit, build type, Embree, OpenEXR, backends");
     m.def(
         "fit_environment",

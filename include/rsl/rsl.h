@@ -337,6 +337,15 @@ Image read_image(const std::string& exr_path);
 void write_vertex_colors(const std::string& rslv_path, const VertexColors& colors);
 VertexColors read_vertex_colors(const std::string& rslv_path);
 
+// The memory limit that loading and rendering a scene check their estimate
+// against before allocating (bytes; 0: none), shared with the program's
+// --memory-limit: 80% of the machine's memory unless the environment variable
+// RSL_MEMORY_LIMIT or set_memory_limit says otherwise (docs/SCENE_FORMAT.md,
+// "Memory"). A scene over it is refused with rsl::Error.
+uint64_t memory_limit();
+void set_memory_limit(uint64_t bytes);
+void set_memory_limit(const std::string& size);  // "8G", "512M", "none"
+
 // What this library is (`rsl --version`).
 struct BuildInfo {
     std::string version, commit, build_type, embree, openexr;

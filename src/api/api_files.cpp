@@ -13,6 +13,7 @@
 #include "src/frame/error_metrics.h"
 #include "src/render/part_fields.h"
 #include "src/render/cpu_renderer.h"
+#include "src/core/memory_limit.h"
 #include "src/version/build_info.h"
 
 namespace rsl::api {
@@ -107,6 +108,12 @@ void write_vertex_colors(const std::string& rslv_path, const VertexColors& color
 }
 
 VertexColors read_vertex_colors(const std::string& rslv_path) { return to_api(::rsl::read_vertex_colors(rslv_path)); }
+
+uint64_t memory_limit() { return ::rsl::memory_limit(); }
+void set_memory_limit(uint64_t bytes) { ::rsl::set_memory_limit(bytes); }
+void set_memory_limit(const std::string& size) {
+    ::rsl::set_memory_limit(::rsl::parse_memory_size(size, "set_memory_limit"));
+}
 
 BuildInfo build_info() {
     const ::rsl::BuildInfo info = ::rsl::build_info();

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "src/core/binary_io.h"
 #include "src/core/error.h"
+#include "src/core/memory_limit.h"
 #include "src/core/scene.h"
 
 namespace rsl {
@@ -151,10 +153,52 @@ size_t subdivide_for_shading(TriangleMesh& mesh, const SubdivisionSettings& sett
     return subdivide_long_edges(mesh, target, source);
 }
 
+namespace {
+
+uint64_t geometry_hash(const TriangleMesh& m) {
+    uint64_t h = fnv1a64(m.positions.data(), m.positions.size() * sizeof(Vec3));
+    h = fnv1a64(m.normals.data(), m.normals.size() * sizeof(Vec3), h);
+    h = fnv1a64(m.tangents.data(), m.tangents.size() * sizeof(Vec4), h);
+    h = fnv1a64(m.texcoords.data(), m.texcoords.size() * sizeof(Vec2), h);
+    return fnv1a64(m.indices.data(), m.indices.size() * sizeof(uint32_t), h);
+}
+
+bool same_geometry(const TriangleMesh& a, const TriangleMesh& b) {
+    return a.positions == b.positions && a.normals == b.normals && a.tangents == b.tangents &&
+           a.texcoords == b.texcoords && a.indices == b.indices;
+}
+
+}  // namespace
+
 void subdivide_scene_parts(Scene& scene) {
-    for (Part& part : scene.parts) {
+    // Parts that instance one mesh are subdivided once, and the scene's total
+    // is checked against the memory limit before the copies are made.
+    std::unordered_map<uint64_t, std::vector<size_t>> firsts_by_hash;  // geometry hash → its first parts
+    std::vector<size_t> source_of(scene.parts.size());                 // the first part of the same geometry
+    size_t total_vertices = 0;
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        Part& part = scene.parts[p];
         part.loaded_vertices = part.mesh.vertex_count();
-        subdivide_for_shading(part.mesh, scene.subdivision, scene.source);
+        std::vector<size_t>& firsts = firsts_by_hash[geometry_hash(part.mesh)];
+        const auto same = std::find_if(firsts.begin(), firsts.end(), [&](size_t q) {
+            return scene.parts[q].loaded_vertices == part.loaded_vertices &&
+                   same_geometry(scene.parts[q].mesh, part.mesh);
+        });
+        source_of[p] = same != firsts.end() ? *same : p;
+        if (same == firsts.end()) firsts.push_back(p);
+    }
+    for (size_t p = 0; p < scene.parts.size(); ++p)
+        if (source_of[p] == p) subdivide_for_shading(scene.parts[p].mesh, scene.subdivision, scene.source);
+    for (size_t p = 0; p < scene.parts.size(); ++p) total_vertices += scene.parts[source_of[p]].mesh.vertex_count();
+    check_memory_estimate(kMeshBytesPerVertex * total_vertices + kMeshBytesPerPart * scene.parts.size(),
+                          scene.source,
+                          fmt::format("{} vertices after subdivision in {} parts", total_vertices, scene.parts.size()));
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        if (source_of[p] == p) continue;
+        TriangleMesh& mesh = scene.parts[p].mesh;
+        const TriangleMesh& from = scene.parts[source_of[p]].mesh;
+        mesh.positions = from.positions, mesh.normals = from.normals, mesh.tangents = from.tangents;
+        mesh.texcoords = from.texcoords, mesh.indices = from.indices;
     }
 }
 

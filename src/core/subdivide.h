@@ -42,6 +42,12 @@ inline constexpr size_t kMaxSubdividedTriangles = size_t(1) << 24;
 // would exceed kMaxSubdividedTriangles.
 size_t subdivide_long_edges(TriangleMesh& mesh, float target_edge, const std::filesystem::path& source);
 
+// A loaded part's memory, for the estimate made before the parts' meshes are
+// built (src/core/memory_limit.h): positions, normals, tangents, texture
+// coordinates and about two triangles a vertex, with the vectors' slack.
+inline constexpr size_t kMeshBytesPerVertex = 96;
+inline constexpr size_t kMeshBytesPerPart = 1024;
+
 // Applies `settings` to a loaded mesh (nothing when off or when no edge is
 // longer than the target); returns the vertices added.
 size_t subdivide_for_shading(TriangleMesh& mesh, const SubdivisionSettings& settings,

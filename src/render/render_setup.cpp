@@ -1,5 +1,7 @@
 #include "src/render/render_setup.h"
+
 #include "src/lightfit/scene_lights.h"
+#include "src/render/memory_estimate.h"
 
 #include <chrono>
 
@@ -40,6 +42,7 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
     RenderSetup setup;
     setup.scene = std::move(scene);
     const Scene& s = *setup.scene;
+    check_render_memory(s, options.self_visibility, options.occluders);
     if (s.environment.present() && options.environment) {
         auto start = std::chrono::steady_clock::now();
         setup.environment = scene_environment_map(s, s.environment.resolution);

@@ -12,8 +12,10 @@
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/core/image.h"
+#include "src/core/memory_limit.h"
 #include "src/core/scene.h"
 #include "src/core/scene_environment.h"
+#include "src/render/memory_estimate.h"
 
 namespace rsl::cli {
 
@@ -114,6 +116,9 @@ void print_parts(const Scene& scene) {
                : sub.absolute_edge > 0 ? fmt::format("edges up to {}", sub.absolute_edge)
                                        : fmt::format("edges up to {} x each part's bounding radius", sub.relative_edge),
                loaded, scene.vertex_count());
+    const MemoryEstimate memory = estimate_render_memory(scene, true, true);
+    fmt::print("  memory:            about {} to render (limit {})\n", memory_size_text(memory.bytes),
+               memory_limit() ? memory_size_text(memory_limit()) : "none");
     for (size_t i = 0; i < scene.parts.size(); ++i) {
         const Part& part = scene.parts[i];
         const MaterialDesc& m = scene.materials.at(part.material);

@@ -5,6 +5,7 @@
 
 #include "tools/rsl/command.h"
 #include "src/core/error.h"
+#include "src/core/memory_limit.h"
 
 namespace rsl::cli {
 std::vector<Command>& command_registry() {
@@ -27,12 +28,21 @@ int main(int argc, char** argv) {
         if (!text.empty() && text.back() == '\n') text.pop_back();
         return text;
     }, "Print the version, commit, build type and library versions, and exit");
+    // One memory limit for every subcommand (src/core/memory_limit.h), given
+    // before or after the subcommand's own arguments.
+    app.add_option_function<std::string>(
+           "--memory-limit", [](const std::string& text) { rsl::set_memory_limit(rsl::parse_memory_size(text, "--memory-limit")); },
+           "Refuse work whose estimated memory passes SIZE (such as 8G; none: no limit). Default: RSL_MEMORY_LIMIT, "
+           "or 80% of this machine's memory")
+        ->type_name("SIZE")
+        ->trigger_on_parse();
     auto& commands = command_registry();
     std::stable_sort(commands.begin(), commands.end(),
                      [](const Command& a, const Command& b) { return a.order < b.order; });
     for (auto& command : commands) {
         CLI::App* sub = app.add_subcommand(command.name, command.description);
         command.setup(*sub);
+        sub->fallthrough();
     }
     try {
         app.parse(argc, argv);
