@@ -39,8 +39,21 @@ struct ViewerOptions {
     // `screenshot` (PNG) and exit. frames = 0: interactive.
     std::filesystem::path screenshot;
     int frames = 0;
+    // Screenshot mode on a software renderer (is_software_renderer: seconds
+    // a frame): render at most kSoftwareWidth pixels wide and without the
+    // per-pixel passes (RenderOptions::pixel_shadows, pixel_highlights), so
+    // that a few dozen frames take a minute, not ten (docs/GPU.md).
+    bool software_fallback = false;
+    static constexpr int kSoftwareWidth = 320;
     // Hears the fit's and the field bakes' progress (SetupOptions::progress).
     std::function<void(const std::string& what, double fraction)> progress;
+    // Hears the context's description (context_description) once it is made.
+    std::function<void(const std::string& line)> notice;
+    // Hears that the software fallback applies, with the size it renders at.
+    std::function<void(int width, int height)> software_fallback_applied;
+    // In screenshot mode, hears each frame's end: its number (1..frames) and
+    // the seconds it took.
+    std::function<void(int frame, int frames, double seconds)> frame_done;
 };
 
 // Runs the viewer until the window closes (or the screenshot is written).
