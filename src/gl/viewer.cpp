@@ -307,13 +307,14 @@ void draw_frame(GlRenderer& renderer, Skybox* skybox, const Scene& scene, const 
 
 // Set-up phase: the options the viewer runs with. In screenshot mode on a
 // software renderer with the fallback asked for, the window shrinks to
-// kSoftwareWidth pixels wide (the same aspect) and the per-pixel passes are
-// off: llvmpipe takes seconds a frame for them (docs/GPU.md).
+// kSoftwareWidth pixels wide (the same aspect), the panel is hidden and the
+// per-pixel passes are off: llvmpipe takes seconds a frame for them (docs/GPU.md).
 ViewerOptions with_software_fallback(const ViewerOptions& options, GLFWwindow* window) {
     ViewerOptions view = options;
     if (options.frames < 1 || !options.software_fallback || !is_software_renderer()) return view;
     view.render.pixel_shadows = PixelShadows::Off;
     view.render.pixel_highlights = false;
+    view.panel = false;
     if (options.width > ViewerOptions::kSoftwareWidth) {
         view.width = ViewerOptions::kSoftwareWidth;
         view.height = std::max(1, int(std::lround(double(options.height) * view.width / options.width)));

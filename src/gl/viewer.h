@@ -40,11 +40,13 @@ struct ViewerOptions {
     std::filesystem::path screenshot;
     int frames = 0;
     // Screenshot mode on a software renderer (is_software_renderer: seconds
-    // a frame): render at most kSoftwareWidth pixels wide and without the
-    // per-pixel passes (RenderOptions::pixel_shadows, pixel_highlights), so
-    // that a few dozen frames take a minute, not ten (docs/GPU.md).
+    // a frame): render at most kSoftwareWidth pixels wide, without the panel
+    // (it would cover the small image) and without the per-pixel passes
+    // (RenderOptions::pixel_shadows, pixel_highlights: two thirds of
+    // llvmpipe's frame), so that a dozen frames take seconds, not minutes
+    // (docs/GPU.md).
     bool software_fallback = false;
-    static constexpr int kSoftwareWidth = 320;
+    static constexpr int kSoftwareWidth = 480;
     // Hears the fit's and the field bakes' progress (SetupOptions::progress).
     std::function<void(const std::string& what, double fraction)> progress;
     // Hears the context's description (context_description) once it is made.

@@ -30,7 +30,7 @@ RegisterCommand view_command({"view",
         app.add_option("--time,-t", args->time, "Start time in seconds")->capture_default_str();
         auto* exposure = app.add_option("--exposure", args->exposure, "Exposure in stops (default: automatic)");
         auto* width = app.add_option("--width", args->width,
-                                     "Window width (a screenshot on software OpenGL: 320 unless --width or --height is given)")
+                                     "Window width (a screenshot on software OpenGL: 480 unless --width or --height is given)")
                           ->capture_default_str();
         auto* height = app.add_option("--height", args->height, "Window height")->capture_default_str();
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
@@ -47,7 +47,7 @@ RegisterCommand view_command({"view",
             ->capture_default_str();
         app.add_option("--screenshot", args->screenshot,
                        "Write the last frame to this PNG and exit (with --frames). On software OpenGL (llvmpipe) "
-                       "without --width/--height: 320 pixels wide, no per-pixel passes");
+                       "without --width/--height: 480 pixels wide, no panel, no per-pixel passes");
         app.add_option("--frames", args->frames, "Render N frames (playing the animation), print each one's time, then exit");
         app.callback([args, exposure, width, height] {
             if (args->lights < 1) throw_error("--lights {}: expected at least 1", args->lights);
@@ -74,8 +74,8 @@ RegisterCommand view_command({"view",
             options.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
             options.notice = [&display](const std::string& line) { display.note(line); };
             options.software_fallback_applied = [&display](int w, int h) {
-                display.note(fmt::format("software OpenGL: frames at {}×{} without the per-pixel passes, to take "
-                                         "seconds, not minutes (--width/--height: the full setting)", w, h));
+                display.note(fmt::format("software OpenGL: frames at {}×{} without the panel and the per-pixel "
+                                         "passes, seconds each, not tens (--width/--height: the full setting)", w, h));
             };
             options.frame_done = [&display](int frame, int frames, double seconds) {
                 display.note(fmt::format("frame {}/{}: {:.2f} s", frame, frames, seconds));
