@@ -134,7 +134,7 @@ def check_python_numbers(source, outputs):
                 if not agree(a, b):
                     failures.append(f"docs/PYTHON.md: {environment} K = {k}, column {column + 2}: "
                                     f"the doc says {a}, error_vs_k.py printed {b}")
-    m = re.search(r"([\d,]+) vertices", doc)
+    m = re.search(r"on a floor, ([\d,]+) vertices", doc)
     v = re.search(r"([\d,]+) vertices", printed)
     if not m or not v or m.group(1).replace(",", "") != v.group(1).replace(",", ""):
         failures.append(f"docs/PYTHON.md: the doc says {m and m.group(1)} vertices, error_vs_k.py printed {v and v.group(1)}")
