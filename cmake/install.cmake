@@ -43,9 +43,10 @@ install(FILES ${PROJECT_BINARY_DIR}/rslConfig.cmake ${PROJECT_BINARY_DIR}/rslCon
 #   librsl-dev_VERSION_amd64.deb   headers, static libraries, CMake package
 # Run-time dependencies come from dpkg-shlibdeps (Debian 12 package names of
 # the shared libraries the binaries load); the -dev package depends on the
-# -dev packages rslConfig.cmake finds. Built with RSL_NATIVE=ON (the default)
-# the binaries use the build machine's CPU extensions: configure with
-# -DRSL_NATIVE=OFF for a package meant for other machines.
+# -dev packages rslConfig.cmake finds. The default build's binaries run on
+# any x86-64-v2 CPU (RSL_MARCH); a build configured with -DRSL_NATIVE=ON (as
+# scripts/quickstart.sh's is) uses the build machine's CPU extensions, and its
+# packages may stop with an illegal instruction on other machines.
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME rsl)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})

@@ -241,7 +241,10 @@ void bind_renderer(py::module_& m) {
                  return image_to_numpy(
                      r.locked([&](auto& x) { return x.render_image(image_settings(width, height, samples)); }));
              },
-             py::arg("width") = 0, py::arg("height") = 0, py::arg("samples") = 1, "shade() then form_image()")
+             py::arg("width") = 0, py::arg("height") = 0, py::arg("samples") = 1,
+             "The image as `rsl render -o` makes it, (H, W, 4): shade(), then the image with the per-pixel "
+             "passes (the renderer's pixel_shadows and pixel_highlights); form_image(shade()) draws the "
+             "vertex colours alone")
         .def("truth",
              [](const PyRenderer& r, int subdivision, bool local_lights, const py::object& progress) {
                  api::TruthSettings settings{subdivision, local_lights, progress_callback(progress)};

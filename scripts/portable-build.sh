@@ -38,8 +38,7 @@ echo "== configure + build ($build: Release, -march=$march, the rsl program only
 # (--disable-new-dtags), not a DT_RUNPATH: an executable's RUNPATH serves only
 # its own direct dependencies, so libOpenEXR would look for libImath, and
 # libglfw for libX11, in the server's folders; an RPATH serves them all.
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRSL_NATIVE=OFF \
-  -DCMAKE_C_FLAGS="-march=$march" -DCMAKE_CXX_FLAGS="-march=$march" \
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRSL_NATIVE=OFF -DRSL_MARCH="$march" \
   -DRSL_BUILD_TESTS=OFF -DRSL_BUILD_PYTHON=OFF -DRSL_BUILD_GL=ON \
   -DCMAKE_BUILD_WITH_INSTALL_RPATH=ON -DCMAKE_INSTALL_RPATH='$ORIGIN/../lib' \
   -DCMAKE_EXE_LINKER_FLAGS=-Wl,--disable-new-dtags >/dev/null

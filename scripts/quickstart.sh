@@ -31,8 +31,11 @@ fi
 # clone reuses what the session built): paths under the tree are hashed
 # relative to it, and the build folder's own path is left out.
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
-echo "== configure + build ($build, Release)"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+echo "== configure + build ($build, Release, for this machine's CPU)"
+# The program runs where it is built, so it may use this CPU's extensions
+# (RSL_NATIVE=ON, as docs/RESULTS.md measured); packages for other machines
+# come from a build with the default, portable flags (docs/API.md, "Packages").
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRSL_NATIVE=ON >/dev/null
 if [ "$mode" = render ]; then
   # Rendering needs only the program and the generated assets, not the tests.
   cmake --build "$build" --parallel "$(nproc)" --target rsl generated_assets

@@ -20,8 +20,9 @@ start=$(date +%s)
 # relative to it, and the build folder's own path is left out.
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 echo "== configure + build ($build: clang-14, ASan + UBSan, no GL)"
+# RSL_NATIVE=ON: the same CPU extensions as the plain build of scripts/quickstart.sh.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang-14 \
-  -DCMAKE_CXX_COMPILER=clang++-14 -DRSL_FUZZ=ON -DRSL_BUILD_GL=OFF -DRSL_BUILD_PYTHON=OFF >/dev/null
+  -DCMAKE_CXX_COMPILER=clang++-14 -DRSL_NATIVE=ON -DRSL_FUZZ=ON -DRSL_BUILD_GL=OFF -DRSL_BUILD_PYTHON=OFF >/dev/null
 cmake --build "$build" --parallel "$(nproc)"
 built=$(date +%s)
 

@@ -39,6 +39,23 @@ Quat random_quat(Distribution& distribution, Rng& rng) {
     return Quat(v.x, v.y, v.z, v.w);
 }
 
+// The same in double precision.
+template <typename Distribution, typename Rng>
+DVec3 random_dvec3(Distribution& distribution, Rng& rng) {
+    const double x = distribution(rng);
+    const double y = distribution(rng);
+    const double z = distribution(rng);
+    return DVec3(x, y, z);
+}
+
+// glm::dquat(w, x, y, z), drawn in that order; not normalized.
+template <typename Distribution, typename Rng>
+glm::dquat random_dquat(Distribution& distribution, Rng& rng) {
+    const DVec3 wxy = random_dvec3(distribution, rng);
+    const double z = distribution(rng);
+    return glm::dquat(wxy.x, wxy.y, wxy.z, z);
+}
+
 // A direction uniform on the unit sphere (normalized Gaussian).
 template <typename Rng>
 Vec3 random_unit_vector(Rng& rng) {

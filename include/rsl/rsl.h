@@ -170,7 +170,7 @@ struct RenderSettings {
     // (highlights between vertices), as `rsl render --pixel-highlights`.
     bool pixel_highlights = true;
     // "cpu"; "gl": the GPU renderer in an offscreen context of its own;
-    // "gl-current": the GPU renderer in the OpenGL ≥ 3.3 core context current
+    // "gl-current": the GPU renderer in the OpenGL ≥ 4.3 core context current
     // on the calling thread (the engine's), see gl_color_buffer(); that
     // context must be current whenever the Renderer is used or destroyed.
     std::string backend = "cpu";

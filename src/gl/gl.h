@@ -19,6 +19,9 @@ void check_gl(const char* what);
 
 // "OpenGL 4.5 (Core Profile) Mesa 22.3.6 on llvmpipe (...)" of the current context.
 std::string context_description();
+// Whether the current context renders in software on the CPU (Mesa's
+// llvmpipe, softpipe or swrast, from GL_RENDERER): frames cost seconds.
+bool is_software_renderer();
 // Whether a context (EGL or GLX) is current on this thread: libglvnd's
 // dispatch answers glGetString with null when none is.
 bool has_current_context();

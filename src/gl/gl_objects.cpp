@@ -21,6 +21,15 @@ std::string context_description() {
     return "OpenGL " + text(GL_VERSION) + " on " + text(GL_RENDERER);
 }
 
+bool is_software_renderer() {
+    const GLubyte* name = glGetString(GL_RENDERER);
+    if (!name) return false;
+    const std::string renderer(reinterpret_cast<const char*>(name));
+    for (const char* software : {"llvmpipe", "softpipe", "swrast"})
+        if (renderer.find(software) != std::string::npos) return true;
+    return false;
+}
+
 bool has_current_context() { return glGetString(GL_VERSION) != nullptr; }
 
 void delete_texture(GLuint id) { glDeleteTextures(1, &id); }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -304,6 +305,25 @@ void draw_frame(GlRenderer& renderer, Skybox* skybox, const Scene& scene, const 
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
+// Set-up phase: the options the viewer runs with. In screenshot mode on a
+// software renderer with the fallback asked for, the window shrinks to
+// kSoftwareWidth pixels wide (the same aspect), the panel is hidden and the
+// per-pixel passes are off: llvmpipe takes seconds a frame for them (docs/GPU.md).
+ViewerOptions with_software_fallback(const ViewerOptions& options, GLFWwindow* window) {
+    ViewerOptions view = options;
+    if (options.frames < 1 || !options.software_fallback || !is_software_renderer()) return view;
+    view.render.pixel_shadows = PixelShadows::Off;
+    view.render.pixel_highlights = false;
+    view.panel = false;
+    if (options.width > ViewerOptions::kSoftwareWidth) {
+        view.width = ViewerOptions::kSoftwareWidth;
+        view.height = std::max(1, int(std::lround(double(options.height) * view.width / options.width)));
+        glfwSetWindowSize(window, view.width, view.height);
+    }
+    if (options.software_fallback_applied) options.software_fallback_applied(view.width, view.height);
+    return view;
+}
+
 }  // namespace
 
 ViewMode parse_view_mode(const std::string& name) {
@@ -321,18 +341,25 @@ void run_viewer(const ViewerOptions& options) {
 
     Window window(options.width, options.height, "rsl view: " + scene->name);
     ImGuiSession imgui(window.window);
-    GlRenderer renderer(*scene, setup.environment_lights, setup.fields, options.render);
-    std::fprintf(stderr, "%s\n", context_description().c_str());
+    if (options.notice) options.notice(context_description());
+    const ViewerOptions view = with_software_fallback(options, window.window);
+    GlRenderer renderer(*scene, setup.environment_lights, setup.fields, view.render);
     const std::unique_ptr<Skybox> skybox = make_skybox(setup);
 
     ViewerState state;
-    init_state(state, options, *scene, setup, renderer);
+    init_state(state, view, *scene, setup, renderer);
 
     Input input;
     glfwGetCursorPos(window.window, &input.last_x, &input.last_y);
     const float duration = std::max(scene->animation.end - scene->animation.start, 1e-3f);
     auto last = std::chrono::steady_clock::now();
     for (int frame = 0; !glfwWindowShouldClose(window.window); ++frame) {
+        const auto frame_start = std::chrono::steady_clock::now();
+        const auto report_frame = [&] {
+            if (options.frames > 0 && options.frame_done)
+                options.frame_done(frame + 1, options.frames,
+                                   std::chrono::duration<double>(std::chrono::steady_clock::now() - frame_start).count());
+        };
         glfwPollEvents();
         const float dt = advance_frame_clock(options, *scene, state, last);
         update_from_user(window.window, input, state, *scene, dt, duration, frame);
@@ -345,9 +372,11 @@ void run_viewer(const ViewerOptions& options) {
 
         if (options.frames > 0 && frame + 1 >= options.frames) {
             if (!options.screenshot.empty()) write_screenshot(options.screenshot, width, height);
+            report_frame();
             break;
         }
         glfwSwapBuffers(window.window);
+        report_frame();
     }
     if (state.refit.valid()) state.refit.wait();
     state.reference.reset();  // while the window's context is current

@@ -39,8 +39,23 @@ struct ViewerOptions {
     // `screenshot` (PNG) and exit. frames = 0: interactive.
     std::filesystem::path screenshot;
     int frames = 0;
+    // Screenshot mode on a software renderer (is_software_renderer: seconds
+    // a frame): render at most kSoftwareWidth pixels wide, without the panel
+    // (it would cover the small image) and without the per-pixel passes
+    // (RenderOptions::pixel_shadows, pixel_highlights: two thirds of
+    // llvmpipe's frame), so that a dozen frames take seconds, not minutes
+    // (docs/GPU.md).
+    bool software_fallback = false;
+    static constexpr int kSoftwareWidth = 480;
     // Hears the fit's and the field bakes' progress (SetupOptions::progress).
     std::function<void(const std::string& what, double fraction)> progress;
+    // Hears the context's description (context_description) once it is made.
+    std::function<void(const std::string& line)> notice;
+    // Hears that the software fallback applies, with the size it renders at.
+    std::function<void(int width, int height)> software_fallback_applied;
+    // In screenshot mode, hears each frame's end: its number (1..frames) and
+    // the seconds it took.
+    std::function<void(int frame, int frames, double seconds)> frame_done;
 };
 
 // Runs the viewer until the window closes (or the screenshot is written).

@@ -94,9 +94,9 @@ TEST_CASE("poses from matrices: translation · rotation · scale round-trips, sh
     std::uniform_real_distribution<float> u(-1, 1), positive(0.2f, 3.0f);
     for (int i = 0; i < 200; ++i) {
         Transform t;
-        t.translation = Vec3(5 * u(rng), 5 * u(rng), 5 * u(rng));
+        t.translation = 5.0f * test::random_vec3(u, rng);
         t.rotation = glm::normalize(test::random_quat(u, rng));
-        t.scale = Vec3(positive(rng), positive(rng), positive(rng));
+        t.scale = test::random_vec3(positive, rng);
         const Mat4 m = t.matrix();
         std::array<float, 16> column_major;
         for (int c = 0; c < 4; ++c)

@@ -14,12 +14,12 @@ namespace {
 
 DVec3 random_direction(std::mt19937& rng) {
     std::normal_distribution<double> g;
-    return glm::normalize(DVec3(g(rng), g(rng), g(rng)));
+    return glm::normalize(test::random_dvec3(g, rng));
 }
 
 glm::dmat3 random_rotation(std::mt19937& rng) {
     std::normal_distribution<double> g;
-    const glm::dquat q = glm::normalize(glm::dquat(g(rng), g(rng), g(rng), g(rng)));
+    const glm::dquat q = glm::normalize(test::random_dquat(g, rng));
     return glm::mat3_cast(q);
 }
 

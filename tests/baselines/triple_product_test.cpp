@@ -16,6 +16,7 @@
 #include "tools/baselines/prt.h"
 #include "tools/baselines/triple.h"
 #include "tools/baselines/triple_product.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 using namespace rsl::test;
@@ -387,7 +388,7 @@ TEST_CASE("BRDF slice lookup: the weights sum to 1 and reproduce the direction i
     const BrdfSlices lambert(*make_brdf(material("lambert", {{"albedo", {0.5f, 0.5f, 0.5f}}})), directions, n, options);
     std::mt19937 rng(44);
     std::normal_distribution<float> gauss;
-    const auto random_direction = [&] { return glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng))); };
+    const auto random_direction = [&] { return glm::normalize(test::random_vec3(gauss, rng)); };
     int interior_views = 0;
     SliceWeights weights;
     for (int c = 0; c < 20000; ++c) {

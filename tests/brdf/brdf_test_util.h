@@ -8,6 +8,7 @@
 
 #include "src/brdf/brdf.h"
 #include "src/core/hemisphere.h"
+#include "tests/random_cases.h"
 
 namespace rsl::test {
 
@@ -77,7 +78,8 @@ Estimate stratified_hemisphere_integral(F&& f, int m, std::mt19937& rng) {
         for (int i = 0; i < m; i += 2) {
             double pair[2];
             for (int k = 0; k < 2; ++k) {
-                const Vec2 p(-1.0f + (i + k + u(rng)) * float(cell), -1.0f + (j + u(rng)) * float(cell));
+                const Vec2 jitter = test::random_vec2(u, rng);
+                const Vec2 p(-1.0f + (i + k + jitter.x) * float(cell), -1.0f + (j + jitter.y) * float(cell));
                 pair[k] = glm::dot(p, p) < 1.0f ? weight * f(plane_to_hemisphere(p)) : 0.0;
                 sum += pair[k];
             }

@@ -10,6 +10,7 @@
 #include "src/brdf/brdf_table.h"
 #include "tests/brdf/brdf_test_util.h"
 #include "src/shading/brdf_sat.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 using namespace rsl::test;
@@ -113,9 +114,10 @@ Batch random_batch(size_t count, unsigned seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0, 1);
     for (size_t k = 0; k < count; ++k) {
-        Vec2 c(2.6f * u(rng) - 1.3f, 2.6f * u(rng) - 1.3f);
-        float h = 0.002f + 0.3f * u(rng) * u(rng);
-        if (k % 7 == 3) c = Vec2(1.0f - 0.5f * h * u(rng), 1.0f - 0.5f * h * u(rng));  // last row and column
+        Vec2 c = 2.6f * test::random_vec2(u, rng) - 1.3f;
+        const float h_draw = u(rng);
+        float h = 0.002f + 0.3f * h_draw * u(rng);
+        if (k % 7 == 3) c = 1.0f - 0.5f * h * test::random_vec2(u, rng);  // last row and column
         Vec3 view = random_upper_direction(rng);
         if (k % 11 == 5) view = Vec3(view.x, view.y, -0.2f * u(rng));   // below the horizon
         if (k % 13 == 6) view = Vec3(0.0f, 0.0f, 1.0f);                  // normal view

@@ -253,7 +253,7 @@ TEST_CASE("a square narrower than a texel reads as one texel wide, and is never 
                 const int i = std::uniform_int_distribution<int>(1, n - 2)(rng);
                 const int j = std::uniform_int_distribution<int>(1, n - 2)(rng);
                 const Vec2 lower(-1.0f + texel * float(i), -1.0f + texel * float(j));
-                const Vec2 c = lower + texel * Vec2(unit(rng), unit(rng));
+                const Vec2 c = lower + texel * test::random_vec2(unit, rng);
                 const float h = texel * 0.5f * unit(rng);  // narrower than a texel, down to a point
                 const Vec3 view = random_upper_direction(rng, 1.4f);
                 const Color small = table->square_average(c, h, view);

@@ -16,6 +16,7 @@
 #include "src/core/image.h"
 #include "tests/raw_exr.h"
 #include "tests/test_support.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
@@ -123,7 +124,7 @@ TEST_CASE("Cube faces follow OpenGL's order and orientation", "[envmap][conventi
     std::mt19937 rng(2);
     std::normal_distribution<float> gauss;
     for (int k = 0; k < 2000; ++k) {
-        const Vec3 d = glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng)));
+        const Vec3 d = glm::normalize(test::random_vec3(gauss, rng));
         const int texel = map.index_of(d);
         REQUIRE(angle_between(map.texel_direction(texel), d) <= texel_radius(16));
     }
@@ -320,11 +321,11 @@ TEST_CASE("Rotation moves content to R d and preserves energy", "[envmap][rotate
     std::normal_distribution<float> gauss;
     const int n = 32;
     for (int trial = 0; trial < 8; ++trial) {
-        const Quat q = glm::normalize(Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)));
+        const Quat q = glm::normalize(test::random_quat(gauss, rng));
         const Mat3 r = glm::mat3_cast(q);
         CubeMap map(n);
         for (int k = 0; k < map.texel_count(); ++k) map.radiance(k) = Color(0.05f);
-        const Vec3 bright = glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng)));
+        const Vec3 bright = glm::normalize(test::random_vec3(gauss, rng));
         map.radiance(map.index_of(bright)) = Color(1e4f);
         const CubeMap rotated = rotate(map, r);
         INFO("trial " << trial);

@@ -9,6 +9,7 @@
 #include "src/core/subdivide.h"
 #include "tests/test_support.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -86,7 +87,7 @@ TEST_CASE("subdivision: random closed meshes and targets (property test)", "[cor
     for (int trial = 0; trial < 40; ++trial) {
         // A lumpy icosahedron (smooth: shared vertices) with random tangents' handedness.
         TriangleMesh mesh = test::make_icosphere(1.0f, trial % 2);
-        for (Vec3& p : mesh.positions) p *= Vec3(jitter(rng), jitter(rng), jitter(rng));
+        for (Vec3& p : mesh.positions) p *= test::random_vec3(jitter, rng);
         for (Vec4& t : mesh.tangents) t.w = jitter(rng) < 1 ? -1.0f : 1.0f;
         const TriangleMesh original = mesh;
         const float target = targets(rng);

@@ -42,8 +42,14 @@ Vec3 random_direction(std::mt19937& rng) {
     std::normal_distribution<float> normal;
     std::uniform_int_distribution<int> pick(0, 3);
     Vec3 d = test::random_vec3(normal, rng);
-    if (pick(rng) == 0) d = Vec3(1.0f, 1.0f + 1e-4f * normal(rng), 0.3f * normal(rng)) * (normal(rng) < 0 ? -1.0f : 1.0f);
-    if (pick(rng) == 0) d = Vec3(1.0f + 1e-4f * normal(rng), -1.0f, 1.0f + 1e-4f * normal(rng));
+    if (pick(rng) == 0) {
+        const Vec3 n = test::random_vec3(normal, rng);
+        d = Vec3(1.0f, 1.0f + 1e-4f * n.x, 0.3f * n.y) * (n.z < 0 ? -1.0f : 1.0f);
+    }
+    if (pick(rng) == 0) {
+        const Vec2 n = test::random_vec2(normal, rng);
+        d = Vec3(1.0f + 1e-4f * n.x, -1.0f, 1.0f + 1e-4f * n.y);
+    }
     return glm::normalize(d);
 }
 

@@ -67,10 +67,10 @@ struct CapView {
 CapView random_cap_view(std::mt19937& rng, std::normal_distribution<float>& g,
                         std::uniform_real_distribution<float>& u, float d_min, float d_span) {
     CapView v;
-    const Vec3 dir = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+    const Vec3 dir = glm::normalize(test::random_vec3(g, rng));
     v.d = d_min + d_span * u(rng);
     v.point = v.d * dir;
-    v.frame = Frame::from_normal_tangent(-dir, Vec3(g(rng), g(rng), g(rng)));
+    v.frame = Frame::from_normal_tangent(-dir, test::random_vec3(g, rng));
     v.rho = std::sqrt(2.0f) * std::sin(0.5f * std::asin(1.0f / v.d));
     return v;
 }
@@ -274,10 +274,10 @@ TEST_CASE("OVDF of a thin bar matches ray-traced visibility at every distance", 
         double error = 0, blocked_error = 0;
         int blocked = 0, count = 0;
         while (count < 400) {
-            const Vec3 dir = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+            const Vec3 dir = glm::normalize(test::random_vec3(g, rng));
             const Vec3 point = d * ovdf.radius * dir;
             // Aim at a point near the bar (within 3 widths): about half the rays hit.
-            const Vec3 target(0.95f * u(rng), 0.3f * u(rng), 0.3f * u(rng));
+            const Vec3 target = Vec3(0.95f, 0.3f, 0.3f) * test::random_vec3(u, rng);
             const Vec3 light = glm::normalize(target - point);
             const float truth = scene.occluded(point, light, 0.0f, 1e30f) ? 0.0f : 1.0f;
             const float got = ovdf.visible_fraction(point, light, 0.002f);
@@ -363,10 +363,10 @@ TEST_CASE("OVDF small occluders: a far bar under wide squares against rays", "[o
     std::vector<double> small_rule, edge_rule;
     int partial = 0;
     for (int k = 0; k < 300; ++k) {
-        const Vec3 dir = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+        const Vec3 dir = glm::normalize(test::random_vec3(g, rng));
         const float d = (2.5f + 3.0f * u(rng)) * ovdf.radius;
         const Vec3 point = d * dir;
-        const Frame frame = Frame::from_normal_tangent(-dir, Vec3(g(rng), g(rng), g(rng)));
+        const Frame frame = Frame::from_normal_tangent(-dir, test::random_vec3(g, rng));
         const float cone = ovdf_zoom(d, ovdf.radius).cone;
         const float h = std::min(0.6f, (1.05f + 2.0f * u(rng)) * cone);
         const float angle = 2 * kPi * u(rng), r = (cone + h) * u(rng);
@@ -424,7 +424,7 @@ TEST_CASE("OVDF lights receivers just outside a part and darkens those inside it
         const Vec3 surface = y_face ? Vec3(x, 0.3f, t) : Vec3(x, t, 0.3f);
         const bool in = trial % 3 == 0;
         const Vec3 point = surface + (in ? -1.0f : 1.0f) * (0.01f + 0.05f * u(rng)) * normal;
-        const Vec3 light = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+        const Vec3 light = glm::normalize(test::random_vec3(g, rng));
         const float got = ovdf.visible_fraction(point, light, 0.002f);
         if (in) {
             ++inside;
@@ -461,7 +461,7 @@ TEST_CASE("OVDF counts a receiver on the part's surface as outside it", "[ovdf]"
     int lit = 0, dark = 0;
     const int trials = 400;
     for (int trial = 0; trial < trials; ++trial) {
-        const Vec3 point(-0.9f + 1.8f * u(rng), 0.3f - 1e-4f * u(rng), -0.25f + 0.5f * u(rng));
+        const Vec3 point = Vec3(-0.9f, 0.3f, -0.25f) + Vec3(1.8f, -1e-4f, 0.5f) * test::random_vec3(u, rng);
         const float up = 0.8f + 0.2f * u(rng), phi = 2.0f * kPi * u(rng);
         const Vec3 light(std::sqrt(1 - up * up) * std::cos(phi), up, std::sqrt(1 - up * up) * std::sin(phi));
         lit += ovdf.visible_fraction(point, light, 0.05f) > 0.5f;
@@ -490,7 +490,8 @@ TEST_CASE("OVDF darkens a receiver sunk 0.0008 R into the part along its radial 
     int dark = 0, lit = 0;
     const int trials = 400;
     for (int trial = 0; trial < trials; ++trial) {
-        const Vec3 on_face(-0.9f + 1.8f * u(rng), 0.3f, -0.25f + 0.5f * u(rng));
+        const Vec2 on_face_uv = test::random_vec2(u, rng);
+        const Vec3 on_face(-0.9f + 1.8f * on_face_uv.x, 0.3f, -0.25f + 0.5f * on_face_uv.y);
         const Vec3 line = glm::normalize(on_face - ovdf.center);
         const float enter = glm::length(on_face - ovdf.center);
         const float up = 0.8f + 0.2f * u(rng), phi = 2.0f * kPi * u(rng);
@@ -557,9 +558,9 @@ TEST_CASE("OVDF tells inside from outside in a part made of overlapping closed p
     double error = 0;
     int count = 0;
     while (count < 400) {
-        const Vec3 point(-1.1f + 2.2f * u(rng), 0.31f + 0.05f * u(rng), -1.1f + 2.2f * u(rng));  // above the top faces
+        const Vec3 point = Vec3(-1.1f, 0.31f, -1.1f) + Vec3(2.2f, 0.05f, 2.2f) * test::random_vec3(u, rng);  // above the top faces
         if (!(union_distance(point) > 0.01f && union_distance(point) < 0.06f)) continue;
-        const Vec3 light = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+        const Vec3 light = glm::normalize(test::random_vec3(g, rng));
         const float truth = scene.occluded(point, light, 0.0f, 1e30f) ? 0.0f : 1.0f;
         error += std::abs(ovdf.visible_fraction(point, light, 0.002f) - truth);
         ++count;
@@ -608,7 +609,7 @@ TEST_CASE("OVDF shells reach receivers near the centre of an open part", "[ovdf]
         // Points within 0.3 R of the centre, above the floor and off the counter.
         const Vec3 point = open.center + 0.3f * open.radius * test::random_vec3(u, rng);
         if (!(point.y > 0.02f) || (point.z < -1.0f && point.y < 0.95f)) continue;
-        Vec3 light = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+        Vec3 light = glm::normalize(test::random_vec3(g, rng));
         const float truth = scene.occluded(point, light, 0.0f, 1e30f) ? 0.0f : 1.0f;
         fixed_error += std::abs(fixed.visible_fraction(point, light, 0.002f) - truth);
         const float error = std::abs(open.visible_fraction(point, light, 0.002f) - truth);

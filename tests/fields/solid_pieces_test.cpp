@@ -297,7 +297,7 @@ TEST_CASE("Radial spans: a room encloses nothing, a lidless box's cavity is left
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(-0.95f, 0.95f);
     for (int k = 0; k < 500; ++k) {
-        const Vec3 p(2.0f * u(rng), u(rng), 2.0f * u(rng));
+        const Vec3 p = Vec3(2.0f, 1.0f, 2.0f) * test::random_vec3(u, rng);
         INFO("point (" << p.x << ", " << p.y << ", " << p.z << ")");
         REQUIRE(span_decision(room, p) == 0);
     }

@@ -7,6 +7,7 @@
 
 #include "src/fields/svdf.h"
 #include "src/rays/ray_scene.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -73,7 +74,7 @@ TEST_CASE("SVDF of a plane with a box matches ray-traced visible fractions", "[s
         // Squares around the box's image, so that most straddle its outline.
         const Vec2 towards_box = hemisphere_to_plane(frame.to_local(glm::normalize(Vec3(0, 0.5f, 0) - origin)));
         Vec2 c;
-        do c = towards_box + 0.35f * Vec2(2 * u(rng) - 1, 2 * u(rng) - 1);
+        do c = towards_box + 0.35f * (2.0f * test::random_vec2(u, rng) - 1.0f);
         while (glm::length(c) > reach);
         // Reference: 32×32 rays spread over the square.
         const int m = 32;

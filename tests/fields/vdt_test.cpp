@@ -95,7 +95,7 @@ TEST_CASE("VDT of a half-plane gives the exact fraction of squares parallel to i
             const auto vdt_t = compute_vdt(n, transpose(n, map), mode);  // boundary along x instead
             for (int k = 0; k < 2000; ++k) {
                 // Keep centers between the outermost texel centers, where bilinear D is linear.
-                const Vec2 c(-1 + texel * (0.5f + (n - 1) * u(rng)), -1 + texel * (0.5f + (n - 1) * u(rng)));
+                const Vec2 c = -1.0f + texel * (0.5f + float(n - 1) * test::random_vec2(u, rng));
                 const float h = texel * (0.25f + 6 * u(rng));
                 const float want = half_plane_fraction(e, c, h);
                 CHECK(vdt_visible_fraction(n, vdt.data(), c, h) == Approx(want).margin(2e-5));

@@ -8,6 +8,7 @@
 
 #include "src/core/error.h"
 #include "src/frame/error_metrics.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -18,7 +19,7 @@ TEST_CASE("Relative L2, max and per-part errors over vertices", "[trace][error]"
     b.add_part("p0", 50);
     b.add_part("p1", 70);
     for (auto& part : b.parts)
-        for (Color& c : part) c = Color(uni(rng), uni(rng), uni(rng));
+        for (Color& c : part) c = test::random_vec3(uni, rng);
     // A = B scaled by (1 + e) on part 0 only: part 0's error is exactly e.
     VertexColors a = b;
     const float e = 0.03f;
@@ -42,8 +43,8 @@ TEST_CASE("One relative L2 for lists of colours, a zero reference included", "[t
         std::vector<Color> a(size_t(1 + trial * 7)), b(a.size());
         double diff = 0, norm = 0;
         for (size_t i = 0; i < a.size(); ++i) {
-            a[i] = Color(uni(rng), uni(rng), uni(rng));
-            b[i] = Color(uni(rng), uni(rng), uni(rng));
+            a[i] = test::random_vec3(uni, rng);
+            b[i] = test::random_vec3(uni, rng);
             const DVec3 d = DVec3(a[i]) - DVec3(b[i]);
             diff += glm::dot(d, d);
             norm += glm::dot(DVec3(b[i]), DVec3(b[i]));
@@ -146,7 +147,7 @@ TEST_CASE("The objects' error leaves out the receivers, and names the worst obje
         b.add_part("ground", 400);
         for (int o = 0; o < objects; ++o) b.add_part(fmt::format("object{}", o), 10 + 7 * o);
         for (auto& part : b.parts)
-            for (Color& c : part) c = Color(uni(rng), uni(rng), uni(rng));
+            for (Color& c : part) c = test::random_vec3(uni, rng);
         a = b;
         std::vector<float> factor(b.parts.size(), 1.001f);
         for (size_t p = 1; p < factor.size(); ++p) factor[p] = scale(rng);

@@ -9,6 +9,7 @@
 #include "src/core/error.h"
 #include "src/frame/image_formation.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -127,7 +128,7 @@ TEST_CASE("Tiles of ray packets give the image of one ray at a time: same hits, 
     std::uniform_real_distribution<float> uni(0, 1);
     for (const Part& part : scene.parts) {
         colors.add_part(part.name, part.mesh.vertex_count());
-        for (Color& c : colors.parts.back()) c = Color(uni(rng), uni(rng), uni(rng));
+        for (Color& c : colors.parts.back()) c = test::random_vec3(uni, rng);
     }
     // The hit's identity as a colour: any other hit (or a miss) shows; sums of
     // small integers are exact, so the images must be equal bit for bit.

@@ -12,6 +12,7 @@
 #include "src/core/error.h"
 #include "src/frame/vertex_colors.h"
 #include "tests/test_support.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 namespace fs = std::filesystem;
@@ -32,7 +33,7 @@ VertexColors random_colors(uint32_t seed) {
     c.add_part("arm.left", 0);  // empty parts are allowed
     c.add_part("head", 101);
     for (auto& part : c.parts)
-        for (Color& v : part) v = Color(uni(rng), uni(rng), uni(rng));
+        for (Color& v : part) v = test::random_vec3(uni, rng);
     return c;
 }
 

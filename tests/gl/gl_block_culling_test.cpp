@@ -29,7 +29,8 @@ Scene random_crowd(std::mt19937& rng, int balls, const TriangleMesh& ball) {
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     for (int i = 0; i < balls; ++i) {
         Transform pose;
-        pose.translation = Vec3(1.8f * u(rng), 0.15f + 0.3f * (u(rng) + 1.0f), 1.8f * u(rng));
+        const Vec3 draw = test::random_vec3(u, rng);
+        pose.translation = Vec3(1.8f * draw.x, 0.15f + 0.3f * (draw.y + 1.0f), 1.8f * draw.z);
         const float angle = 3.0f * u(rng);
         const Vec2 axis_xz = test::random_vec2(u, rng);
         pose.rotation = glm::angleAxis(angle, glm::normalize(Vec3(axis_xz.x, 1.0f, axis_xz.y)));

@@ -10,6 +10,7 @@
 #include "src/rays/posed_scene.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -31,7 +32,7 @@ Rays sample_rays(const Scene& scene, const PosedScene& posed, int stride, int pe
             const SurfacePoint x = posed.vertex(int(p), int(v));
             box.extend(x.position);
             for (int k = 0; k < per_vertex; ++k) {
-                Vec3 d(unit(rng), unit(rng), unit(rng));
+                Vec3 d = test::random_vec3(unit, rng);
                 if (glm::dot(d, x.offset_normal) < 0.0f) d = -d;
                 if (glm::length(d) < 1e-3f) continue;
                 rays.origins.push_back(x.ray_origin());
@@ -40,8 +41,8 @@ Rays sample_rays(const Scene& scene, const PosedScene& posed, int stride, int pe
         }
     std::uniform_real_distribution<float> u01(0.0f, 1.0f);
     for (int k = 0; k < 20000; ++k) {
-        const Vec3 a = box.lo + (box.hi - box.lo) * Vec3(u01(rng), u01(rng), u01(rng));
-        const Vec3 b = box.lo + (box.hi - box.lo) * Vec3(u01(rng), u01(rng), u01(rng));
+        const Vec3 a = box.lo + (box.hi - box.lo) * test::random_vec3(u01, rng);
+        const Vec3 b = box.lo + (box.hi - box.lo) * test::random_vec3(u01, rng);
         rays.origins.push_back(a), rays.directions.push_back(glm::normalize(b - a));
     }
     return rays;

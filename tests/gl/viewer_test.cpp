@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
+#include <vector>
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -91,6 +92,50 @@ TEST_CASE("rsl view writes a screenshot that shows the scene and its shadows", "
     CHECK(open_ground > 12.75f + 50.0f);
     CHECK(ball > 12.75f + 50.0f);
     CHECK(shadowed_ground < 0.7f * open_ground);
+    if (!getenv("RSL_KEEP_TEST_FILES")) fs::remove_all(dir);
+}
+
+// Screenshot mode reports every frame, and on a software renderer (xvfb's
+// llvmpipe) the fallback shrinks a 640×480 window to 480×360 and says so;
+// on a GPU nothing changes.
+TEST_CASE("rsl view's screenshot mode reports each frame and shrinks on software OpenGL", "[gl-viewer]") {
+    const fs::path overcast = fs::path(RSL_SOURCE_DIR) / "assets/generated/overcast.exr";
+    if (!fs::exists(overcast)) {
+        WARN("SKIPPED: assets/generated/overcast.exr is missing (build the generated_assets target)");
+        return;
+    }
+    const fs::path dir = fs::temp_directory_path() / fmt::format("rsl_viewer_fallback_test_{}", ::getpid());
+    gl::ViewerOptions options = screenshot_options(write_ball_scene(dir, overcast), dir / "small.png");
+    options.width = 640, options.height = 480;
+    options.frames = 3;
+    options.software_fallback = true;
+    std::vector<int> frames;
+    std::string context;
+    int fallback_width = 0, fallback_height = 0;
+    options.notice = [&](const std::string& line) { context = line; };
+    options.software_fallback_applied = [&](int w, int h) { fallback_width = w, fallback_height = h; };
+    options.frame_done = [&](int frame, int total, double seconds) {
+        CHECK(total == 3);
+        CHECK(seconds > 0.0);
+        frames.push_back(frame);
+    };
+    gl::run_viewer(options);
+
+    CHECK(frames == std::vector<int>{1, 2, 3});
+    const test::Png shot = test::read_png(options.screenshot);
+    const bool software = context.find("llvmpipe") != std::string::npos || context.find("softpipe") != std::string::npos;
+    INFO(context);
+    if (software) {
+        CHECK(fallback_width == 480);
+        CHECK(fallback_height == 360);
+        CHECK(shot.width == 480);
+        CHECK(shot.height == 360);
+    } else {
+        CHECK(fallback_width == 0);
+        CHECK(shot.width == 640);
+    }
+    // Still the scene: the ball lit above the clear colour.
+    CHECK(luma_at(shot, Vec3(0, 0.85f, 0.0f)) > 12.75f + 50.0f);
     if (!getenv("RSL_KEEP_TEST_FILES")) fs::remove_all(dir);
 }
 

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/lightfit/decompose.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 using namespace rsl::lightfit;
@@ -20,7 +21,7 @@ CubeMap random_map(int n, unsigned seed) {
     CubeMap map(n);
     std::mt19937 rng(seed);
     std::lognormal_distribution<float> lognormal(0.0f, 1.5f);
-    for (int k = 0; k < map.texel_count(); ++k) map.radiance(k) = Color(lognormal(rng), lognormal(rng), lognormal(rng));
+    for (int k = 0; k < map.texel_count(); ++k) map.radiance(k) = test::random_vec3(lognormal, rng);
     return map;
 }
 

@@ -109,7 +109,7 @@ TEST_CASE("square_average_cosine is the clamped cosine's mean over the square, a
     std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
     int crossing = 0;
     for (int trial = 0; trial < 300; ++trial) {
-        const Vec2 c(1.1f * uniform(rng), 1.1f * uniform(rng));
+        const Vec2 c = 1.1f * test::random_vec2(uniform, rng);
         const float h = trial % 3 == 0 ? 0.002f + 0.01f * std::abs(uniform(rng)) : 0.02f + 0.4f * std::abs(uniform(rng));
         double sum = 0;
         const int steps = 400;

@@ -17,7 +17,7 @@ TEST_CASE("a rasterized RSL covers its solid angle 2r² and keeps its energy", "
     std::uniform_real_distribution<float> radius(0.08f, 0.6f);
     for (int trial = 0; trial < 12; ++trial) {
         RslSet set;
-        set.lights.push_back({glm::normalize(Vec3(g(rng), g(rng), g(rng))), radius(rng), Color(1.0f, 2.0f, 3.0f)});
+        set.lights.push_back({glm::normalize(test::random_vec3(g, rng)), radius(rng), Color(1.0f, 2.0f, 3.0f)});
         for (SquareTurns turns : {SquareTurns::kAligned, SquareTurns::kAveraged}) {
             const CubeMap map = reconstruct(set, 32, turns, 6);
             INFO("trial " << trial << ", r " << set.lights[0].half_diagonal << ", turns " << int(turns));

@@ -24,7 +24,7 @@ RslSet random_set(unsigned seed, int count, int resolution) {
     RslSet set;
     set.resolution = resolution;
     for (int i = 0; i < count; ++i)
-        set.lights.push_back({glm::normalize(Vec3(g(rng), g(rng), g(rng))), u(rng),
+        set.lights.push_back({glm::normalize(test::random_vec3(g, rng)), u(rng),
                               Color(test::random_vec3(u, rng) * Vec3(10, 1, 3)), int(u(rng) * 100), u(rng) * 1e-3f});
     std::uniform_int_distribution<int> label(0, count - 1);
     for (int t = 0; t < 6 * resolution * resolution; ++t) set.region_of_texel.push_back(label(rng));

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/lightfit/square_fit.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 using namespace rsl::lightfit;
@@ -73,8 +74,8 @@ TEST_CASE("the fit chart is the √2-scaled equal-area projection and inverts", 
     std::mt19937 rng(7);
     std::normal_distribution<float> g;
     for (int trial = 0; trial < 200; ++trial) {
-        const Frame frame = Frame::from_normal(glm::normalize(Vec3(g(rng), g(rng), g(rng))));
-        Vec3 d = glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+        const Frame frame = Frame::from_normal(glm::normalize(test::random_vec3(g, rng)));
+        Vec3 d = glm::normalize(test::random_vec3(g, rng));
         if (glm::dot(d, frame.z) < -0.9f) d = -d;  // stay away from the antipode
         const Vec2 q = fit_chart(frame, d);
         // Chart radius is the chord 2 sin(α/2) to the center.
@@ -99,7 +100,7 @@ TEST_CASE("the fit objective matches a brute-force integral", "[lightfit][fit]")
     CubeMap map(16);
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> uni(0.2f, 2.0f);
-    for (int k = 0; k < map.texel_count(); ++k) map.radiance(k) = Color(uni(rng), uni(rng), uni(rng));
+    for (int k = 0; k < map.texel_count(); ++k) map.radiance(k) = test::random_vec3(uni, rng);
     const auto texels = make_fit_texels(map);
     const auto region = face_block(map, 5, 11, 6, 10);  // 6×4 texels
     const RegionStats stats = stats_of(texels, region);

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# ctest `package-install-embed`: cmake --install into a temporary prefix, then
+# ctest `package-install-embed`: scripts/install.sh (cmake --install that
+# writes nothing into the build folder) into a temporary prefix, then
 # examples/embed configured and built as a separate project against that
 # prefix only (find_package(rsl)), run, and its image checked with the
 # installed `rsl compare`; the installed Python module imports.
@@ -14,7 +15,19 @@ number_after() { sed -n "s/^$1 \([0-9.eE+-]*\).*/\1/p" | head -1; }
 less_than() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a < b) }'; }
 
 start=$(date +%s.%N)
-cmake --install "$build" --prefix "$prefix" >"$work/install.log"
+# scripts/install.sh from the build folder mounted read-only (in a mount
+# namespace of this test's own), as from a build tree the installer cannot write.
+if unshare -m true 2>/dev/null; then
+  unshare -m bash -c 'set -e
+    mount --bind "$1" "$1" && mount -o remount,bind,ro "$1"
+    if touch "$1/.rsl-write-probe" 2>/dev/null; then rm -f "$1/.rsl-write-probe"; echo "the build folder is still writable"; exit 1; fi
+    "$2/scripts/install.sh" "$1" "$3"' install "$build" "$source" "$prefix" >"$work/install.log" 2>&1 \
+    || { cat "$work/install.log"; fail "scripts/install.sh from the read-only build folder"; }
+  echo "installed from the build folder mounted read-only"
+else
+  echo "WARN: unshare -m refused (no CAP_SYS_ADMIN): installing from the build folder as it is, not read-only"
+  "$source/scripts/install.sh" "$build" "$prefix" >"$work/install.log"
+fi
 echo "== installed tree"
 (cd "$prefix" && find . -type f | sort)
 for f in bin/rsl include/rsl/rsl.h include/rsl/error.h include/rsl/version.h lib/cmake/rsl/rslConfig.cmake \

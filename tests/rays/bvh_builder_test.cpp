@@ -6,6 +6,7 @@
 
 #include "src/rays/bvh_builder.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "tests/random_cases.h"
 
 namespace rsl {
 namespace {
@@ -64,8 +65,9 @@ TEST_CASE("BVH: random boxes, coincident boxes, the depth limit, one box and non
     std::vector<Bounds> boxes;
     for (int i = 0; i < 3000; ++i) {
         Bounds b;
-        const Vec3 c(unit(rng), unit(rng), unit(rng));
-        b.extend(c), b.extend(c + 0.05f * Vec3(std::abs(unit(rng)), std::abs(unit(rng)), std::abs(unit(rng))));
+        const Vec3 c = test::random_vec3(unit, rng);
+        const Vec3 size = glm::abs(test::random_vec3(unit, rng));
+        b.extend(c), b.extend(c + 0.05f * size);
         boxes.push_back(b);
     }
     check_tree(build_bvh(boxes), boxes, BvhBuildOptions{}.max_depth);

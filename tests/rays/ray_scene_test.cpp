@@ -6,6 +6,7 @@
 #include "src/core/error.h"
 #include "src/rays/ray_scene.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -46,9 +47,9 @@ BruteHit brute_force(const std::vector<TriangleMesh>& meshes, const std::vector<
 
 Mat4 random_pose(std::mt19937& rng) {
     std::uniform_real_distribution<float> uni(-1, 1);
-    const Vec3 axis = glm::normalize(Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(0, 0, 1e-3f));
+    const Vec3 axis = glm::normalize(test::random_vec3(uni, rng) + Vec3(0, 0, 1e-3f));
     Transform tr;
-    tr.translation = 1.5f * Vec3(uni(rng), uni(rng), uni(rng));
+    tr.translation = 1.5f * test::random_vec3(uni, rng);
     tr.rotation = glm::angleAxis(3.0f * uni(rng), axis);
     tr.scale = Vec3(0.6f + 0.3f * uni(rng));
     return tr.matrix();
@@ -73,8 +74,8 @@ TEST_CASE("RayScene hits agree with a brute-force intersector over random instan
 
     int hits = 0;
     for (int trial = 0; trial < 1500; ++trial) {
-        const Vec3 o = 4.0f * Vec3(uni(rng), uni(rng), uni(rng));
-        const Vec3 target = 1.2f * Vec3(uni(rng), uni(rng), uni(rng));
+        const Vec3 o = 4.0f * test::random_vec3(uni, rng);
+        const Vec3 target = 1.2f * test::random_vec3(uni, rng);
         const Vec3 d = glm::normalize(target - o);
         const RayHit hit = scene.intersect(o, d);
         const BruteHit ref = brute_force(meshes, poses, DVec3(o), DVec3(d));
@@ -106,12 +107,12 @@ TEST_CASE("occluded_batch equals single-ray queries, for shared and per-ray t_fa
     scene.add_instance(scene.add_mesh(test::make_plane(3.0f, 4)), glm::translate(Mat4(1.0f), Vec3(0, -0.6f, 0)));
     scene.commit();
     for (int trial = 0; trial < 20; ++trial) {
-        const Vec3 origin = 2.0f * Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(0, 1.5f, 0);
+        const Vec3 origin = 2.0f * test::random_vec3(uni, rng) + Vec3(0, 1.5f, 0);
         const int count = 1 + trial * 7;  // partial packets too
         std::vector<Vec3> dirs(count);
         std::vector<float> t_fars(count);
         for (int k = 0; k < count; ++k) {
-            dirs[k] = glm::normalize(Vec3(uni(rng), uni(rng), uni(rng)) - 0.3f * origin);
+            dirs[k] = glm::normalize(test::random_vec3(uni, rng) - 0.3f * origin);
             t_fars[k] = 0.5f + 3.0f * (uni(rng) + 1.0f);
         }
         std::vector<uint8_t> shared(count), each(count);
@@ -135,16 +136,16 @@ TEST_CASE("intersect_packet gives intersect()'s hit for every ray, coherent or n
     constexpr int kPacket = RayScene::kPrimaryPacket;
     int hits = 0, misses = 0;
     for (int trial = 0; trial < 400; ++trial) {
-        const Vec3 origin = 3.0f * Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(0, 1.0f, 0);
+        const Vec3 origin = 3.0f * test::random_vec3(uni, rng) + Vec3(0, 1.0f, 0);
         const int count = 1 + trial % kPacket;
         // Half the packets are narrow cones (a camera's neighbouring pixels),
         // half point anywhere (every octant, many misses).
         const bool coherent = trial % 2 == 0;
-        const Vec3 axis = glm::normalize(0.5f * Vec3(uni(rng), uni(rng), uni(rng)) - origin);
+        const Vec3 axis = glm::normalize(0.5f * test::random_vec3(uni, rng) - origin);
         float dx[kPacket], dy[kPacket], dz[kPacket];
         for (int k = 0; k < count; ++k) {
-            const Vec3 d = coherent ? glm::normalize(axis + 0.05f * Vec3(uni(rng), uni(rng), uni(rng)))
-                                    : glm::normalize(Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(0, 0, 1e-3f));
+            const Vec3 d = coherent ? glm::normalize(axis + 0.05f * test::random_vec3(uni, rng))
+                                    : glm::normalize(test::random_vec3(uni, rng) + Vec3(0, 0, 1e-3f));
             dx[k] = d.x, dy[k] = d.y, dz[k] = d.z;
         }
         RayHit packet[kPacket], bare[kPacket];
@@ -206,9 +207,11 @@ TEST_CASE("Offset origins leave their own surface, also far from the origin", "[
         int leaked = 0;
         for (int k = 0; k < 2000; ++k) {
             // Points on the plane (vertices and interiors), rays up to 0.01° above the horizon.
-            const Vec3 local(2.0f * uni(rng) - 1.0f, 0.0f, 2.0f * uni(rng) - 1.0f);
+            const Vec2 local_xz = 2.0f * test::random_vec2(uni, rng) - 1.0f;
+            const Vec3 local(local_xz.x, 0.0f, local_xz.y);
             const Vec3 p = Vec3(pose * Vec4(k % 2 ? glm::round(local * 4.0f) / 4.0f : local, 1.0f));
-            const float elevation = glm::radians(0.01f + 89.0f * uni(rng) * uni(rng));
+            const float elevation_draw = uni(rng);
+            const float elevation = glm::radians(0.01f + 89.0f * elevation_draw * uni(rng));
             const float phi = 6.2831853f * uni(rng);
             const Vec3 d(std::cos(elevation) * std::cos(phi), std::sin(elevation), std::cos(elevation) * std::sin(phi));
             if (scene.occluded(offset.origin(p, Vec3(0, 1, 0)), d, 0.0f, 1e30f)) ++leaked;
@@ -269,9 +272,10 @@ TEST_CASE("Origins on another part's surface count as outside it: a ray that lea
     int leaving = 0, entering = 0, wrong_with = 0, blocked_without = 0;
     for (int pose_index = 0; pose_index < 20; ++pose_index) {
         Transform tr;
-        tr.translation = Vec3(uni(rng), uni(rng), uni(rng));
-        tr.rotation = glm::angleAxis(3.0f * uni(rng), glm::normalize(Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(1e-3f)));
-        tr.scale = Vec3(1.0f + 0.5f * uni(rng), 1.0f + 0.5f * uni(rng), 1.0f + 0.5f * uni(rng));
+        tr.translation = test::random_vec3(uni, rng);
+        const float angle = 3.0f * uni(rng);
+        tr.rotation = glm::angleAxis(angle, glm::normalize(test::random_vec3(uni, rng) + Vec3(1e-3f)));
+        tr.scale = 1.0f + 0.5f * test::random_vec3(uni, rng);
         const Mat4 pose = tr.matrix();
         RayScene with(/*origins_outside_surfaces=*/true), without;
         for (RayScene* scene : {&with, &without}) {
@@ -285,7 +289,7 @@ TEST_CASE("Origins on another part's surface count as outside it: a ray that lea
             // where a ray can enter one face and leave by the next.
             const int axis = int(3.0f * (0.5f + 0.5f * uni(rng))) % 3;
             const Vec3 half(0.5f, 0.3f, 0.4f);
-            Vec3 local = 0.98f * half * Vec3(uni(rng), uni(rng), uni(rng));
+            Vec3 local = 0.98f * half * test::random_vec3(uni, rng);
             if (k % 3 == 0)
                 for (int c = 0; c < 3; ++c) local[c] = (uni(rng) < 0.0f ? -1.0f : 1.0f) * half[c] / 3.0f;
             const float side = uni(rng) < 0.0f ? -1.0f : 1.0f;
@@ -294,7 +298,7 @@ TEST_CASE("Origins on another part's surface count as outside it: a ray that lea
             outward_local[axis] = side;
             const Vec3 origin = Vec3(pose * Vec4(local, 1.0f));
             const Vec3 outward = glm::normalize(normal_matrix * outward_local);
-            const Vec3 dir = glm::normalize(Vec3(uni(rng), uni(rng), uni(rng)) + Vec3(1e-4f));
+            const Vec3 dir = glm::normalize(test::random_vec3(uni, rng) + Vec3(1e-4f));
             const float cos_out = glm::dot(dir, outward);
             if (std::abs(cos_out) < 0.05f) continue;  // grazing: either answer is fair at an edge
             const bool blocked = with.occluded(origin, dir, 0.0f, 1e30f);

@@ -53,7 +53,8 @@ TEST_CASE("culling tests never cull an occluder that a ray can reach", "[render]
         const BoundingSphere receiver{random_in_ball(rng, 2.0f), 0.1f + u(rng)};
         const BoundingSphere occluder{random_in_ball(rng, 3.0f), 0.1f + u(rng)};
         const Vec3 axis = random_unit(rng);
-        const float half_angle = 0.02f + 1.4f * u(rng) * u(rng);
+        const Vec2 draws = test::random_vec2(u, rng);
+        const float half_angle = 0.02f + 1.4f * draws.x * draws.y;
         const bool kept_directional = may_shadow_direction(receiver, occluder, axis, half_angle);
         const Vec3 light_center = random_in_ball(rng, 4.0f);
         const float light_radius = 0.05f + 0.3f * u(rng);
@@ -86,7 +87,7 @@ TEST_CASE("the square's cone contains every direction of its square", "[render][
     std::uniform_real_distribution<float> u(-1, 1);
     for (int trial = 0; trial < 2000; ++trial) {
         const float h = 0.01f + 0.3f * std::abs(u(rng));
-        const Vec2 center(1.2f * u(rng), 1.2f * u(rng));
+        const Vec2 center = 1.2f * test::random_vec2(u, rng);
         const Vec3 c = plane_to_hemisphere(center);
         const float cone = square_cone_half_angle(h);
         for (int s = 0; s < 16; ++s) {
@@ -121,11 +122,11 @@ TEST_CASE("the slab rule clears only squares whose every direction misses the bo
         Bounds box;
         box.extend(test::random_vec3(u, rng));
         box.extend(test::random_vec3(u, rng) * Vec3(1, 0.05f, 1));  // often thin, like a ground plane
-        const Vec3 p(2.5f * u(rng), 2.5f * u(rng), 2.5f * u(rng));
+        const Vec3 p = 2.5f * test::random_vec3(u, rng);
         // The square in a random receiver frame, its center within reach of the hemisphere.
         const Frame frame = Frame::from_normal(glm::normalize(test::random_vec3(u, rng)));
         const float h = 0.01f + 0.3f * std::abs(u(rng));
-        const Vec2 center(1.1f * u(rng), 1.1f * u(rng));
+        const Vec2 center = 1.1f * test::random_vec2(u, rng);
         const Vec3 light = frame.to_world(plane_to_hemisphere(center));
         if (!clears_box_face(box_sides(box, p), light, square_cone_sine(h))) continue;
         ++cleared;

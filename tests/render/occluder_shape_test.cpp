@@ -141,7 +141,7 @@ void check_against_rays(const TriangleMesh& mesh, const OccluderShape& shape, co
     while (cases < 400) {
         const ShapeCase x = make(rng);
         const Frame frame = Frame::from_normal_tangent(x.normal, Vec3(0));
-        const Vec2 c(0.8f * uniform(rng), 0.8f * uniform(rng));
+        const Vec2 c = 0.8f * test::random_vec2(uniform, rng);
         const float h = 0.05f + 0.3f * std::abs(uniform(rng));
         int reference_taps = 0, reference_lit = 0;
         for (int j = 0; j < kSide; ++j)
@@ -184,7 +184,8 @@ TEST_CASE("A flat rectangle's visible share of a square matches rays cast at it"
         const bool on_plane = index++ % 5 == 0;
         const float height = on_plane ? 0.0f : uniform(rng);
         ShapeCase x;
-        x.p = r->center + 1.5f * uniform(rng) * r->s + 1.5f * uniform(rng) * r->t + height * r->normal;
+        const Vec2 st = 1.5f * test::random_vec2(uniform, rng);
+        x.p = r->center + st.x * r->s + st.y * r->t + height * r->normal;
         x.normal = glm::normalize(test::random_vec3(uniform, rng) + Vec3(1e-3f));
         if (on_plane) {
             x.normal = glm::normalize(x.normal - r->normal * glm::dot(x.normal, r->normal));
@@ -204,7 +205,8 @@ TEST_CASE("A box's visible share of a square matches rays cast at it", "[render]
         ShapeCase x;
         x.normal = glm::normalize(test::random_vec3(uniform, rng) + Vec3(1e-3f));
         if (index++ % 4 == 0) {  // on the top face, looking out of it or along it (a part resting on the box)
-            x.p = Vec3(0.8f * uniform(rng), 0.4f, 0.8f * uniform(rng));
+            const Vec2 xz = 0.8f * test::random_vec2(uniform, rng);
+            x.p = Vec3(xz.x, 0.4f, xz.y);
             if (x.normal.y < 0.0f) x.normal.y = -x.normal.y;
             return x;
         }
@@ -239,7 +241,7 @@ WholeSquareCount check_whole_square(uint32_t seed, Vec3 lo, Vec3 hi, Whole whole
         const Frame frame = Frame::from_normal_tangent(glm::normalize(test::random_vec3(uniform, rng) + Vec3(1e-3f)), Vec3(0));
         shading::LocalFrame f;
         f.x = frame.x, f.y = frame.y, f.z = frame.z;
-        const Vec2 c(1.2f * uniform(rng), 1.2f * uniform(rng));
+        const Vec2 c = 1.2f * test::random_vec2(uniform, rng);
         const float h = 0.01f + 0.4f * std::abs(uniform(rng));
         int above = 0, lit = 0;
         float reach2 = 0.0f;  // the farthest counted tap's plane radius²
@@ -316,7 +318,8 @@ TEST_CASE("An upward-facing receiver's squares across its horizon are decided wh
     std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
     int decided = 0, cases = 0;
     for (int n = 0; n < 2000; ++n) {
-        const Frame frame = Frame::from_normal_tangent(Vec3(0, 0, 1), Vec3(std::cos(6.3f * uniform(rng)), std::sin(6.3f * uniform(rng)), 0));
+        const Vec2 tangent_angles = test::random_vec2(uniform, rng);
+        const Frame frame = Frame::from_normal_tangent(Vec3(0, 0, 1), Vec3(std::cos(6.3f * tangent_angles.x), std::sin(6.3f * tangent_angles.y), 0));
         shading::LocalFrame f;
         f.x = frame.x, f.y = frame.y, f.z = frame.z;
         const float angle = 6.2832f * uniform(rng);

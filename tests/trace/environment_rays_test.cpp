@@ -15,6 +15,7 @@
 #include "src/trace/ground_truth.h"
 #include "src/trace/sample_sequence.h"
 #include "tests/trace/trace_test_scenes.h"
+#include "tests/random_cases.h"
 
 using namespace rsl;
 
@@ -84,7 +85,8 @@ CubeMap random_map(int n, uint32_t seed) {
     CubeMap map(n);
     for (Color& c : map.radiances()) {
         if (unit(rng) < 0.3f) continue;
-        c = Color(unit(rng), unit(rng), unit(rng)) * (unit(rng) < 0.02f ? 300.0f : 1.0f);
+        c = test::random_vec3(unit, rng);
+        if (unit(rng) < 0.02f) c *= 300.0f;
     }
     return map;
 }

@@ -29,8 +29,10 @@ RegisterCommand view_command({"view",
         app.add_option("--lights,-k", args->lights, "Number of environment RSLs at start")->capture_default_str();
         app.add_option("--time,-t", args->time, "Start time in seconds")->capture_default_str();
         auto* exposure = app.add_option("--exposure", args->exposure, "Exposure in stops (default: automatic)");
-        app.add_option("--width", args->width, "Window width")->capture_default_str();
-        app.add_option("--height", args->height, "Window height")->capture_default_str();
+        auto* width = app.add_option("--width", args->width,
+                                     "Window width (a screenshot on software OpenGL: 480 unless --width or --height is given)")
+                          ->capture_default_str();
+        auto* height = app.add_option("--height", args->height, "Window height")->capture_default_str();
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
         app.add_flag("--quick-fields", args->quick,
                      "Bake small visibility fields (seconds instead of minutes; coarser shadows)");
@@ -43,9 +45,11 @@ RegisterCommand view_command({"view",
         app.add_option("--reference-rays", args->reference_rays, "S of the ray-traced reference, 1..16")
             ->check(CLI::Range(1, GpuRayOptions::kMaxSamplesPerSide))
             ->capture_default_str();
-        app.add_option("--screenshot", args->screenshot, "Write the last frame to this PNG and exit (with --frames)");
-        app.add_option("--frames", args->frames, "Render N frames (playing the animation), then exit");
-        app.callback([args, exposure] {
+        app.add_option("--screenshot", args->screenshot,
+                       "Write the last frame to this PNG and exit (with --frames). On software OpenGL (llvmpipe) "
+                       "without --width/--height: 480 pixels wide, no panel, no per-pixel passes");
+        app.add_option("--frames", args->frames, "Render N frames (playing the animation), print each one's time, then exit");
+        app.callback([args, exposure, width, height] {
             if (args->lights < 1) throw_error("--lights {}: expected at least 1", args->lights);
             if (!args->screenshot.empty() && args->frames < 1) throw_error("--screenshot needs --frames N (N ≥ 1)");
             if (!args->screenshot.empty()) check_outputs_apart({args->screenshot}, load_scene(args->scene).input_files);
@@ -64,8 +68,18 @@ RegisterCommand view_command({"view",
             options.reference_rays = args->reference_rays;
             options.screenshot = args->screenshot;
             options.frames = args->frames;
+            // A GPU's default window, shrunk on a software renderer unless a size was asked for.
+            options.software_fallback = width->count() == 0 && height->count() == 0;
             ProgressDisplay display;
             options.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
+            options.notice = [&display](const std::string& line) { display.note(line); };
+            options.software_fallback_applied = [&display](int w, int h) {
+                display.note(fmt::format("software OpenGL: frames at {}×{} without the panel and the per-pixel "
+                                         "passes, seconds each, not tens (--width/--height: the full setting)", w, h));
+            };
+            options.frame_done = [&display](int frame, int frames, double seconds) {
+                display.note(fmt::format("frame {}/{}: {:.2f} s", frame, frames, seconds));
+            };
             gl::run_viewer(options);
         });
     }});
