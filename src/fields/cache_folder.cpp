@@ -22,7 +22,7 @@ bool is_hex16(std::string_view text) {
 
 bool is_cache_entry_name(const std::string& name, std::string* kind, bool* current) {
     constexpr std::string_view suffix = ".rslf";
-    if (name.size() < 5 + 1 + 16 + suffix.size() || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    if (name.size() < 4 + 1 + 16 + suffix.size() || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
         return false;
     if (name.front() == '.') return false;  // a temporary, or a hidden file of the user's
     const std::string_view stem(name.data(), name.size() - suffix.size());

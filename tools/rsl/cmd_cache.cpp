@@ -82,10 +82,10 @@ std::vector<fs::path> scenes_beside(const fs::path& folder) {
 }
 
 // Per cache file, the scenes (as given) that use it. A scene that cannot be
-// read is an error when `strict` (prune: what it uses must not go), else a
-// warning on stderr.
+// read is an error when `strict` (prune: what it uses must not go), else it
+// is added to `unread`.
 std::map<fs::path, std::vector<std::string>> users(const std::vector<fs::path>& scenes, const fs::path& folder,
-                                                   bool strict) {
+                                                   bool strict, std::vector<std::string>* unread = nullptr) {
     std::map<fs::path, std::vector<std::string>> used;
     for (const fs::path& scene_file : scenes) {
         try {
@@ -94,7 +94,7 @@ std::map<fs::path, std::vector<std::string>> users(const std::vector<fs::path>& 
                 used[file.lexically_normal()].push_back(scene_file.string());
         } catch (const Error& e) {
             if (strict) throw_error("--scene {}: {} (nothing was removed)", scene_file.string(), e.what());
-            fmt::print(stderr, "rsl: warning: {} not read, its use of the cache not shown: {}\n", scene_file.string(), e.what());
+            if (unread) unread->push_back(scene_file.filename().string());
         }
     }
     return used;
@@ -104,7 +104,9 @@ void list_cache(const CacheArgs& args, const fs::path& folder) {
     const std::vector<CacheEntry> entries = list_cache_entries(folder);
     std::vector<fs::path> scenes(args.scenes.begin(), args.scenes.end());
     if (scenes.empty()) scenes = scenes_beside(folder);
-    const auto used = users(scenes, folder, false);
+    const bool given = !args.scenes.empty();
+    std::vector<std::string> unread;
+    const auto used = users(scenes, folder, false, &unread);
     uintmax_t total = 0;
     for (const CacheEntry& entry : entries) total += entry.bytes;
     fmt::print("{}: {} field files, {}\n", folder.string(), entries.size(), megabytes(total));
@@ -116,11 +118,17 @@ void list_cache(const CacheArgs& args, const fs::path& folder) {
         fmt::print("  {}  {:>10}  {}  {}\n", entry.file.filename().string(), megabytes(entry.bytes),
                    date_text(entry.modified), use);
     }
-    if (!scenes.empty()) {
+    if (scenes.size() > unread.size()) {
         std::vector<std::string> names;
-        for (const fs::path& scene : scenes) names.push_back(scene.filename().string());
+        for (const fs::path& scene : scenes)
+            if (std::find(unread.begin(), unread.end(), scene.filename().string()) == unread.end())
+                names.push_back(scene.filename().string());
         fmt::print("scenes read: {}\n", fmt::join(names, ", "));
     }
+    // A scene given by name that fails is worth its reason; a .json beside the cache may be no scene at all.
+    if (!unread.empty())
+        fmt::print("{}: {} (rsl info FILE says why)\n", given ? "not read" : "not scenes, or not readable",
+                   fmt::join(unread, ", "));
 }
 
 void prune_cache(const CacheArgs& args, const fs::path& folder, bool clear) {

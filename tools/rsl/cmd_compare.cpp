@@ -151,6 +151,14 @@ std::vector<std::filesystem::path> sequence_frames(const std::string& path) {
 
 std::string csv_number(double value) { return std::isnan(value) ? "" : fmt::format("{:.6g}", value); }
 
+// A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+    if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
 // The table as JSON (an array of objects) or CSV (a header row), by the file's extension.
 std::string table_text(const std::filesystem::path& file, const std::vector<FrameRow>& rows) {
     if (file.extension() == ".json") {
@@ -167,7 +175,7 @@ std::string table_text(const std::filesystem::path& file, const std::vector<Fram
     }
     std::string csv = "frame,a,b,relative_l2,max_error,relative_max,objects_relative_l2,relative_h1\n";
     for (size_t f = 0; f < rows.size(); ++f)
-        csv += fmt::format("{},{},{},{},{},{},{},{}\n", f, rows[f].a.string(), rows[f].b.string(),
+        csv += fmt::format("{},{},{},{},{},{},{},{}\n", f, csv_field(rows[f].a.string()), csv_field(rows[f].b.string()),
                            csv_number(rows[f].relative_l2), csv_number(rows[f].max_error),
                            csv_number(rows[f].relative_max), csv_number(rows[f].objects), csv_number(rows[f].h1));
     return csv;
