@@ -86,7 +86,7 @@ FrameOutput::FrameOutput(fs::path output, size_t frames, double frame_seconds, f
     if (animation_.empty()) return;
     const std::string extension = animation_.extension().string();
     if (extension != ".png" && extension != ".mp4")
-        throw_error("--animation {}: expected an .png (an animated PNG rsl writes itself) or an .mp4 (through ffmpeg)",
+        throw_error("--animation {}: expected a .png (an animated PNG rsl writes itself) or an .mp4 (through ffmpeg)",
                     animation_.string());
     if (frames_ < 2) throw_error("--animation {}: needs a sequence (--frames START:END:STEP)", animation_.string());
     if (extension == ".mp4" && demos::find_on_path("ffmpeg").empty())
