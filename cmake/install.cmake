@@ -23,6 +23,15 @@ endforeach()
 set_target_properties(rsl_api PROPERTIES EXPORT_NAME rsl)
 
 install(TARGETS rsl RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT program)
+# What `rsl demo` and `rsl bench` read beside an installed rsl (share/rsl,
+# tools/rsl/data_folder.h): the demos' scene files, the generated assets they
+# and the project's scenes use, and those scenes; never a field cache.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/demos/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rsl/demos COMPONENT program
+  FILES_MATCHING PATTERN "*.json" PATTERN ".rsl-cache" EXCLUDE)
+install(DIRECTORY ${RSL_GENERATED_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rsl/assets/generated COMPONENT program
+  PATTERN ".rsl-cache" EXCLUDE PATTERN ".*rsl-tmp-*" EXCLUDE PATTERN "yard-*" EXCLUDE)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/assets/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rsl/assets/scenes
+  COMPONENT program PATTERN ".rsl-cache" EXCLUDE PATTERN ".*rsl-tmp-*" EXCLUDE)
 install(TARGETS ${RSL_EXPORTED_LIBRARIES} EXPORT rslTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development)
 install(FILES ${PROJECT_SOURCE_DIR}/include/rsl/rsl.h ${PROJECT_SOURCE_DIR}/include/rsl/error.h

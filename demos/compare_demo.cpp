@@ -38,7 +38,7 @@ DemoResult run_compare_demo(const DemoOptions& options) {
     std::shared_ptr<Scene> scene = load_demo_scene(options, "compare/scene.json");
     RenderOptions render;
     render.environment_lights = kLightCounts[0];
-    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
+    const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = options.field_cache});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
     const float t = scene->animation.start;
     const int width = options.width > 0 ? options.width : 240;

@@ -17,6 +17,7 @@ namespace rsl::demos {
 struct DemoOptions {
     std::filesystem::path out_dir;        // empty: out/demos/<name>
     std::filesystem::path demos_dir;      // where the scene files live; empty: the source tree's demos/
+    std::filesystem::path field_cache;    // field cache folder; empty: beside each demo's scene file
     int frames = 0;                       // 0: the demo's default
     int width = 0, height = 0;            // 0: the demo's default
     // Small precompute and few lights: for tests and a first look (docs/DEMOS.md).

@@ -123,7 +123,7 @@ void FrameSequence::finish(DemoResult& result, float fps) {
     const fs::path ffmpeg = find_on_path("ffmpeg");
     if (!ffmpeg.empty() && written_.size() > 1) {
         result.mp4 = folder_ / (result.name + ".mp4");
-        encode_mp4(ffmpeg, folder_, fps, result.mp4);
+        encode_mp4(ffmpeg, folder_ / "frame_%04d.png", fps, result.mp4);
     } else if (ffmpeg.empty()) {
         result.notes.push_back("ffmpeg not found on PATH: no MP4 written");
     }
@@ -154,13 +154,13 @@ std::string shell_quote(const std::string& text) {
 }
 }  // namespace
 
-void encode_mp4(const fs::path& ffmpeg, const fs::path& folder, float fps, const fs::path& mp4) {
+void encode_mp4(const fs::path& ffmpeg, const fs::path& pattern, float fps, const fs::path& mp4) {
     write_atomically(mp4, [&](const fs::path& tmp) {
         // Even dimensions (yuv420p needs them) by padding one pixel if needed.
         const std::string command = fmt::format(
-            "{} -y -loglevel error -framerate {} -i {} -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 "
+            "{} -y -loglevel error -framerate {} -start_number 0 -i {} -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 "
             "-pix_fmt yuv420p -f mp4 {}",
-            shell_quote(ffmpeg.string()), fps, shell_quote((folder / "frame_%04d.png").string()),
+            shell_quote(ffmpeg.string()), fps, shell_quote(pattern.string()),
             shell_quote(tmp.string()));
         if (std::system(command.c_str()) != 0) throw_file_error(mp4, "ffmpeg failed: {}", command);
     });

@@ -69,8 +69,9 @@ private:
 
 // Full path of an executable found on PATH, or empty.
 std::filesystem::path find_on_path(const std::string& program);
-// Encodes folder/frame_%04d.png into an H.264 MP4 with ffmpeg; throws on failure.
-void encode_mp4(const std::filesystem::path& ffmpeg, const std::filesystem::path& folder, float fps,
+// Encodes the PNG frames named by `pattern` (printf style, e.g. folder/frame_%04d.png,
+// numbered from 0) into an H.264 MP4 with ffmpeg, atomically; throws on failure.
+void encode_mp4(const std::filesystem::path& ffmpeg, const std::filesystem::path& pattern, float fps,
                 const std::filesystem::path& mp4);
 
 double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b);

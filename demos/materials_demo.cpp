@@ -55,7 +55,7 @@ DemoResult run_materials_demo(const DemoOptions& options) {
     RenderOptions render;
     if (options.quick) render.environment_lights = kQuickLights;
     RenderSession session(scene, render, Backend::Cpu,
-                          {.progress = cli::drawn_progress(options.progress), .field_cache = {}});
+                          {.progress = cli::drawn_progress(options.progress), .field_cache = options.field_cache});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
 
     const int frames = options.frames > 0 ? options.frames : 12;

@@ -421,10 +421,10 @@ float auto_exposure_scale(const Image& image) {
 }
 }  // namespace
 
-void write_png(const fs::path& path, const Image& image, const ToneMap& tone) {
-    if (image.channels != 3 && image.channels != 4)
-        throw_file_error(path, "cannot write an image with {} channels as PNG", image.channels);
-    check_image_dimensions(path, image.width, image.height);
+float auto_exposure_stops(const Image& image) { return std::log2(auto_exposure_scale(image)); }
+
+std::vector<unsigned char> tone_mapped_pixels(const Image& image, const ToneMap& tone) {
+    RSL_CHECK(image.channels == 3 || image.channels == 4);
     float scale = std::exp2(tone.exposure);
     if (tone.auto_exposure) scale *= auto_exposure_scale(image);
     const int c = image.channels;
@@ -437,7 +437,15 @@ void write_png(const fs::path& path, const Image& image, const ToneMap& tone) {
         for (int k = 0; k < 3; ++k) bytes[p * c + k] = linear_to_srgb8(px[k] * scale * (c == 4 ? unpremultiply : 1.0f));
         if (c == 4) bytes[p * c + 3] = (unsigned char)std::lround(alpha * 255.0f);
     }
-    write_file_atomically(path, encode_png(bytes.data(), image.width, image.height, c));
+    return bytes;
+}
+
+void write_png(const fs::path& path, const Image& image, const ToneMap& tone) {
+    if (image.channels != 3 && image.channels != 4)
+        throw_file_error(path, "cannot write an image with {} channels as PNG", image.channels);
+    check_image_dimensions(path, image.width, image.height);
+    const std::vector<unsigned char> bytes = tone_mapped_pixels(image, tone);
+    write_file_atomically(path, encode_png(bytes.data(), image.width, image.height, image.channels));
 }
 
 std::string encode_png(const unsigned char* pixels, int width, int height, int channels) {

@@ -71,6 +71,12 @@ struct ToneMap {
     float exposure = 0.0f;  // stops: pixel × 2^exposure
     bool auto_exposure = false;  // scale so the 99th luminance percentile maps to ~0.9
 };
+// The tone-mapped 8-bit sRGB pixels write_png stores (RGB, or straight RGBA
+// when the image has alpha), rows top to bottom.
+std::vector<unsigned char> tone_mapped_pixels(const Image& image, const ToneMap& tone);
+// The exposure in stops that ToneMap::auto_exposure picks for `image`: a
+// sequence tone-mapped with its first frame's keeps one brightness.
+float auto_exposure_stops(const Image& image);
 // Tone-mapped 8-bit sRGB PNG (RGB, or RGBA when the image has alpha).
 void write_png(const std::filesystem::path& path, const Image& image, const ToneMap& tone = {});
 // The PNG file of 8-bit pixels (rows top to bottom, `channels` interleaved),

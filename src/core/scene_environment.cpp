@@ -19,6 +19,12 @@ std::string describe_environment(const EnvironmentDesc& env) {
     return what.empty() ? "none" : fmt::format("{}", fmt::join(what, " + "));
 }
 
+CubeMap scene_environment_at(const Scene& scene, int resolution, float t) {
+    const CubeMap first = scene_environment_map(scene, resolution);  // black without one: lights only
+    if (scene.environment.second_file.empty()) return first;
+    return blend_environments(first, scene_environment_map(scene, resolution, true), scene.environment.blend_weight_at(t));
+}
+
 Vec3 sun_direction_in_map(const Scene& scene, const SunLight& sun) {
     const float start = scene.animation.start;
     return glm::transpose(scene.environment.rotation_at(start)) * sun.direction_at(scene, start);

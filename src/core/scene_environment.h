@@ -17,6 +17,10 @@ namespace rsl {
 // wider than the sun, so each is a light of its own (fit_scene_lights,
 // src/render/cpu_renderer.h) and a direction of the ground truth.
 CubeMap scene_environment_map(const Scene& scene, int resolution, bool second = false);
+// The environment at time t: with environment.second_file, the blend
+// (1 − w)·first + w·second (EnvironmentDesc::blend_weight_at), which the RSL
+// renderer applies to its two RSL sets; else the first map.
+CubeMap scene_environment_at(const Scene& scene, int resolution, float t);
 
 // A sun's direction in the environment map's frame: where it stands at the
 // scene's start, turned back by environment.rotation there (content at map

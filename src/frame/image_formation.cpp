@@ -323,4 +323,24 @@ void fill_background(Image& image, const Color& background) {
     }
 }
 
+void fill_environment_background(Image& image, const PinholeCamera& camera, int samples_per_side,
+                                 const CubeMap& environment, const Mat3& to_map) {
+    RSL_CHECK_EQ(image.channels, 4);
+    RSL_CHECK(image.width == camera.width && image.height == camera.height);
+    const int s = samples_per_side;
+    tbb::parallel_for(0, image.height, [&](int y) {
+        for (int x = 0; x < image.width; ++x) {
+            Color sum(0);
+            for (int b = 0; b < s; ++b)
+                for (int a = 0; a < s; ++a)
+                    sum += environment.lookup(to_map * camera.direction(float(x) + (float(a) + 0.5f) / float(s),
+                                                                        float(y) + (float(b) + 0.5f) / float(s)));
+            float* pixel = image.at(x, y);
+            const float uncovered = 1.0f - pixel[3];
+            for (int k = 0; k < 3; ++k) pixel[k] += uncovered * sum[k] / float(s * s);
+            pixel[3] = 1.0f;
+        }
+    });
+}
+
 }  // namespace rsl

@@ -9,6 +9,7 @@
 #include <functional>
 #include <vector>
 
+#include "src/core/envmap.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
 #include "src/rays/posed_scene.h"
@@ -93,5 +94,12 @@ Image resolve_samples(const Image& fine, int samples_per_side);
 // Uncovered shares of an RGBA image (premultiplied) filled with `background`,
 // as form_image's opaque_background: alpha becomes 1.
 void fill_background(Image& image, const Color& background);
+// Uncovered shares of an RGBA image (premultiplied) filled with the
+// environment the camera sees there: per pixel, the mean of `environment`
+// (nearest texel) over the pixel's S×S sample directions (form_image's), each
+// turned into the map's frame by `to_map` (the transpose of the environment's
+// rotation). Alpha becomes 1.
+void fill_environment_background(Image& image, const PinholeCamera& camera, int samples_per_side,
+                                 const CubeMap& environment, const Mat3& to_map);
 
 }  // namespace rsl

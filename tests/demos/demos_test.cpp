@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 
 #include <unistd.h>
 
@@ -19,6 +20,7 @@
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "tests/png_test_support.h"
+#include "tests/test_support.h"
 
 using namespace rsl;
 using namespace rsl::demos;
@@ -72,6 +74,7 @@ constexpr int kWidth = 48, kHeight = 36, kFrames = 3;
 DemoResult run_quick(const std::string& name) {
     DemoOptions options;
     options.out_dir = scratch_dir() / name;
+    options.field_cache = scratch_dir() / ".rsl-cache";  // nothing written into the source tree
     options.frames = kFrames;
     options.width = kWidth;
     options.height = kHeight;
@@ -236,4 +239,28 @@ TEST_CASE("frame sequences: numbered PNGs, a contact sheet, and an MP4 exactly w
         for (const auto& entry : fs::directory_iterator(folder))  // written atomically: no temporary left
             REQUIRE(entry.path().filename().string().find(".rsl-tmp-") == std::string::npos);
     }
+}
+
+TEST_CASE("rsl demo writes its frames and field cache into --out, nothing beside the demo's scene",
+          "[demos][cli]") {
+    // The source tree's cache of the demo, as it stands (absent, or left by an earlier run of another kind).
+    const fs::path source_cache = fs::path(RSL_SOURCE_DIR) / "demos" / "materials" / ".rsl-cache";
+    const auto listing = [](const fs::path& folder) {
+        std::map<std::string, fs::file_time_type> files;
+        std::error_code error;
+        for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+            files[it->path().filename().string()] = it->last_write_time();
+        return files;
+    };
+    const auto before = listing(source_cache);
+    const fs::path out = scratch_dir() / "cli_demo";
+    const auto [status, text] = test::run_rsl("demo materials --quick --frames 1 --width 24 --height 18 -q --out " +
+                                              out.string());
+    INFO(text);
+    REQUIRE(status == 0);
+    CHECK(fs::exists(out / "frame_0000.png"));
+    size_t fields = 0;
+    for (const auto& [name, time] : listing(out / ".rsl-cache")) fields += name.size() > 5 && name.substr(name.size() - 5) == ".rslf";
+    CHECK(fields > 0);
+    CHECK(listing(source_cache) == before);
 }

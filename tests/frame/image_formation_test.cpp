@@ -189,3 +189,46 @@ TEST_CASE("Tiles of ray packets give the image of one ray at a time: same hits, 
     REQUIRE(trace_image(posed, camera, opaque, identity).pixels ==
             trace_image_one_ray_at_a_time(posed, camera, opaque, identity).pixels);
 }
+
+TEST_CASE("the environment fills the uncovered share of each pixel, seen through the camera and turned to the map",
+          "[frame][image][background]") {
+    // Each cube face a colour of its own, by the dominant axis of its texels' directions.
+    const auto face_color = [](const Vec3& d) {
+        const Vec3 a = glm::abs(d);
+        if (a.x >= a.y && a.x >= a.z) return d.x > 0 ? Color(1, 0, 0) : Color(0, 1, 0);
+        if (a.y >= a.z) return d.y > 0 ? Color(0, 0, 1) : Color(2, 2, 0);
+        return d.z > 0 ? Color(0, 3, 3) : Color(4, 0, 4);
+    };
+    CubeMap map(4);
+    for (int i = 0; i < 6 * 4 * 4; ++i) map.radiance(i) = face_color(map.texel_direction(i));
+
+    Camera up;  // looking straight up, 20° field of view: every ray lies within the +y face
+    up.position = Vec3(0);
+    up.target = Vec3(0, 1, 0);
+    up.up = Vec3(0, 0, -1);
+    up.fov_y_degrees = 20;
+    const PinholeCamera camera = PinholeCamera::at_time(up, 0.0f, 6, 4);
+    Image image(6, 4, 4);
+    float* partly = image.at(2, 1);  // a pixel a part covers by a quarter (premultiplied colour)
+    partly[0] = 0.1f;
+    partly[1] = 0.2f;
+    partly[2] = 0.3f;
+    partly[3] = 0.25f;
+    for (const bool turned : {false, true}) {
+        INFO("turned " << turned);
+        Image filled = image;
+        // Turned by 180° about x, the camera's +y sees the map's −y face.
+        const Mat3 to_map = turned ? Mat3(1, 0, 0, 0, -1, 0, 0, 0, -1) : Mat3(1.0f);
+        fill_environment_background(filled, camera, 3, map, to_map);
+        const Color sky = turned ? Color(2, 2, 0) : Color(0, 0, 1);
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 6; ++x) {
+                const Color expected = x == 2 && y == 1 ? Color(0.1f, 0.2f, 0.3f) + 0.75f * sky : sky;
+                INFO(x << ", " << y);
+                CHECK(filled.rgb(x, y).r == Approx(expected.r));
+                CHECK(filled.rgb(x, y).g == Approx(expected.g));
+                CHECK(filled.rgb(x, y).b == Approx(expected.b));
+                CHECK(filled.at(x, y)[3] == 1.0f);
+            }
+    }
+}

@@ -15,7 +15,7 @@ cpack -G DEB --config "$build/CPackConfig.cmake" -B "$work" >"$work/cpack.log" |
 version=$(sed -n 's/^set(CPACK_PACKAGE_VERSION "\(.*\)")$/\1/p' "$build/CPackConfig.cmake")
 arch=$(dpkg --print-architecture)
 declare -A expect=(
-  [rsl]="./usr/bin/rsl"
+  [rsl]="./usr/bin/rsl ./usr/share/rsl/demos/materials/scene.json ./usr/share/rsl/assets/generated/orb.obj"
   [python3-rsl]="./usr/lib/python3/dist-packages/rsl.cpython-"
   [librsl-dev]="./usr/include/rsl/rsl.h ./usr/lib/cmake/rsl/rslConfig.cmake ./usr/lib/librsl_api.a"
 )
@@ -47,6 +47,11 @@ grep -q "libembree3-3" "$work/rsl.info" || fail "rsl does not depend on Embree's
 echo "== run from the unpacked packages"
 "$work/root/usr/bin/rsl" --version
 "$work/root/usr/bin/rsl" --help >/dev/null
+# A demo from the package: its scene files from share/rsl, its frames and field cache in --out alone.
+"$work/root/usr/bin/rsl" demo materials --quick --frames 1 --width 24 --height 18 -q --out "$work/demo" >/dev/null ||
+  fail "rsl demo from the unpacked package"
+ls "$work/demo/.rsl-cache/"*.rslf >/dev/null 2>&1 || fail "rsl demo wrote no field cache into --out"
+[ -z "$(find "$work/root/usr/share/rsl" -name .rsl-cache)" ] || fail "rsl demo wrote a cache into share/rsl"
 [ -z "$python" ] || PYTHONPATH="$work/root/usr/lib/python3/dist-packages" "$python" -c "import rsl; print('import rsl', rsl.__version__, rsl.build_info()['commit'])"
 end=$(date +%s.%N)
 awk -v a="$start" -v b="$end" 'BEGIN { printf "cpack + inspection: %.1f s\n", b - a }'

@@ -26,6 +26,10 @@ struct BenchOptions {
     std::filesystem::path output = "bench-out";  // plots and generated scenes (`--out`)
     std::vector<int> scale_parts;          // `bench scale` instance counts (empty: its defaults)
     std::vector<float> scale_reaches;      // `bench scale` OVDF outer radii (empty: the scene's)
+    // Field cache of the scenes read from `scenes` (`--cache`; empty: beside
+    // each scene file), so that a bench of an installed or read-only tree
+    // writes nothing there.
+    std::filesystem::path field_cache;
 };
 
 // Emit one result line (also collected for --json-out).

@@ -98,7 +98,7 @@ void bench_scene(std::shared_ptr<Scene> scene, const std::string& name, const Be
     if (options.quick) gl::use_quick_fields(scene->precompute);
     RenderOptions render;
     render.environment_lights = 30;
-    const RenderSetup setup = prepare_render(scene, render);
+    const RenderSetup setup = prepare_render(scene, render, {.progress = {}, .field_cache = options.field_cache});
     gl::GlRenderer renderer(*scene, setup.environment_lights, setup.fields, render);
     CpuRenderer cpu(*scene, setup.environment_lights, setup.fields, render);
     const int frames = options.quick ? 4 : 12;

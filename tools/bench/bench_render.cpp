@@ -138,7 +138,7 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     }
     RenderOptions render_options;
     render_options.environment_lights = c.lights;
-    RenderSession session(scene, render_options);
+    RenderSession session(scene, render_options, Backend::Cpu, {.progress = {}, .field_cache = options.field_cache});
     const RenderSetup& setup = session.setup();
     VertexRenderer& renderer = session.renderer();
     VertexColors colors = session.shade(c.time, false);  // warm-up: thread-local scratch, caches

@@ -145,7 +145,7 @@ void bench_factors(const BenchOptions& options) {
                                 : load_environment(named_probe(options, c.environment), scene->environment.resolution);
         RenderOptions bake;
         bake.environment = false;  // the fields only; every row fits its own RSLs
-        const RenderSetup setup = prepare_render(scene, bake);
+        const RenderSetup setup = prepare_render(scene, bake, {.progress = {}, .field_cache = options.field_cache});
         const float t = c.time;
         GroundTruthOptions no_lights;
         no_lights.local_lights = false;  // the budget of the environment's light

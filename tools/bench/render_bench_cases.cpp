@@ -96,7 +96,8 @@ std::vector<AccuracyRow> accuracy_rows(const std::vector<SceneCase>& scenes, con
             // Fields depend on geometry only: bake once per scene and material set.
             RenderOptions bake_options;
             bake_options.environment = false;
-            const RenderSetup setup = prepare_render(scene, bake_options, {.progress = cli::drawn_progress(progress), .field_cache = {}});
+            const RenderSetup setup = prepare_render(scene, bake_options,
+                                                     {.progress = cli::drawn_progress(progress), .field_cache = assets.field_cache});
             for (const NamedEnvironment& env : table_environments(assets, scene->environment.resolution, quick)) {
                 if (!sc.only_environment.empty() && env.name != sc.only_environment) continue;
                 for (float t : sc.times) {

@@ -11,6 +11,7 @@
 #include "tools/bench/bench.h"
 #include "tools/bench/results_page.h"
 #include "tools/rsl/command.h"
+#include "tools/rsl/data_folder.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/file_reading.h"
@@ -33,9 +34,10 @@ struct BenchArgs {
     std::string markdown;
     std::string from_json;
     std::string shared = std::string(RSL_SOURCE_DIR) + "/../shared/assets";
-    std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
-    std::string scenes = std::string(RSL_SOURCE_DIR) + "/assets/scenes";
+    std::string generated = (data_folder() / "assets" / "generated").string();
+    std::string scenes = (data_folder() / "assets" / "scenes").string();
     std::string output = "bench-out";
+    std::string cache;  // empty: OUT/.rsl-cache
     std::vector<int> parts;
     std::vector<float> reaches;
 };
@@ -104,7 +106,8 @@ RegisterCommand bench_command({"bench",
         app.add_option("--shared-assets", args->shared, "Folder of real probes/meshes (optional)")->capture_default_str();
         app.add_option("--generated-assets", args->generated, "The project's generated assets")->capture_default_str();
         app.add_option("--scenes", args->scenes, "The project's scene files")->capture_default_str();
-        app.add_option("--out", args->output, "Folder for plots and generated scenes")->capture_default_str();
+        app.add_option("--out", args->output, "Folder for plots, generated scenes and the field cache")->capture_default_str();
+        app.add_option("--cache", args->cache, "Field cache folder for the scenes of --scenes (default: OUT/.rsl-cache)");
         app.add_option("--parts", args->parts, "scale: yard instance counts (default 8,32,64,128,256,1024)")
             ->delimiter(',')
             ->check(CLI::Range(1, 4096));
@@ -133,7 +136,9 @@ RegisterCommand bench_command({"bench",
                 if (std::none_of(registry.begin(), registry.end(), [&](auto& b) { return b.name == name; }))
                     throw_error("unknown benchmark '{}' (see rsl bench --list)", name);
             BenchOptions options{args->quick, args->shared, args->generated, args->scenes, args->output, args->parts,
-                                 args->reaches};
+                                 args->reaches,
+                                 args->cache.empty() ? std::filesystem::path(args->output) / ".rsl-cache"
+                                                     : std::filesystem::path(args->cache)};
             bench_emit(bench::machine_line(args->quick, args->names, args->parts, args->reaches));
             for (auto& b : registry) {
                 if (!args->names.empty() &&

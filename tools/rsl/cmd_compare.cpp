@@ -1,10 +1,19 @@
 // `rsl compare A B`: the error of a result A against a reference B, both
 // per-vertex (.rslv) or both images (.exr). Prints `relative L2: …` first.
+// With --sequence, A and B are two runs' -o paths and every numbered frame
+// (A.NNNN.exr against B.NNNN.exr, as --frames names them) is compared: a
+// table per frame and the worst frame.
 #include <fmt/core.h>
 #include <fmt/format.h>
 
-#include "tools/rsl/command.h"
+#include <cmath>
+#include <filesystem>
 #include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "tools/rsl/command.h"
+#include "tools/rsl/frame_output.h"
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
@@ -24,6 +33,8 @@ struct CompareArgs {
     std::string scene;
     int width = 0, height = 0;
     std::vector<std::string> receivers = kDefaultReceivers;
+    bool sequence = false;
+    std::string table;
 };
 
 enum class Kind { Vertices, Image };
@@ -93,12 +104,126 @@ void compare_image_files(const CompareArgs& args) {
     }
 }
 
+// One frame of a sequence: its two files and their errors. `objects` is the
+// objects' relative L2 for vertex files (NaN without objects), `h1` the
+// relative H1 for images (NaN for vertex files).
+struct FrameRow {
+    std::filesystem::path a, b;
+    double relative_l2 = 0, max_error = 0, relative_max = 0;
+    double objects = std::nan(""), h1 = std::nan("");
+};
+
+FrameRow compare_frame(const std::filesystem::path& a_path, const std::filesystem::path& b_path, Kind kind,
+                       const std::vector<std::string>& receivers) {
+    FrameRow row{a_path, b_path};
+    if (kind == Kind::Vertices) {
+        const VertexColors a = read_vertex_colors(a_path), b = read_vertex_colors(b_path);
+        check_same_vertices(a, a_path.string(), b, b_path.string());
+        const VertexErrorReport report = compare_vertex_colors(a, b);
+        row.relative_l2 = report.total.relative_l2();
+        row.max_error = report.total.max_error;
+        row.relative_max = report.total.relative_max();
+        const ObjectErrorReport objects = object_errors(report, receivers);
+        if (objects.object_parts > 0) row.objects = objects.objects.relative_l2();
+    } else {
+        const Image a = read_exr(a_path), b = read_exr(b_path);
+        if (a.width != b.width || a.height != b.height)
+            throw_error("{} and {} are not comparable: {}×{} vs {}×{} pixels", a_path.string(), b_path.string(),
+                        a.width, a.height, b.width, b.height);
+        const ImageErrorReport report = compare_images(a, b);
+        row.relative_l2 = report.pixels.relative_l2();
+        row.max_error = report.pixels.max_error;
+        row.relative_max = report.pixels.relative_max();
+        row.h1 = report.relative_h1();
+    }
+    return row;
+}
+
+// The numbered frames of a run's -o path: PATH.0000.ext, PATH.0001.ext, … while they exist.
+std::vector<std::filesystem::path> sequence_frames(const std::string& path) {
+    std::vector<std::filesystem::path> frames;
+    for (int f = 0; std::filesystem::is_regular_file(numbered(path, f)); ++f) frames.push_back(numbered(path, f));
+    if (frames.empty())
+        throw_error("--sequence: no frame {} (give the -o path of an rsl render or rsl truth --frames run)",
+                    numbered(path, 0).string());
+    return frames;
+}
+
+std::string csv_number(double value) { return std::isnan(value) ? "" : fmt::format("{:.6g}", value); }
+
+// A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+    if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
+// The table as JSON (an array of objects) or CSV (a header row), by the file's extension.
+std::string table_text(const std::filesystem::path& file, const std::vector<FrameRow>& rows) {
+    if (file.extension() == ".json") {
+        nlohmann::json table = nlohmann::json::array();
+        for (size_t f = 0; f < rows.size(); ++f) {
+            nlohmann::json row = {{"frame", f}, {"a", rows[f].a.string()}, {"b", rows[f].b.string()},
+                                  {"relative_l2", rows[f].relative_l2}, {"max_error", rows[f].max_error},
+                                  {"relative_max", rows[f].relative_max}};
+            if (!std::isnan(rows[f].objects)) row["objects_relative_l2"] = rows[f].objects;
+            if (!std::isnan(rows[f].h1)) row["relative_h1"] = rows[f].h1;
+            table.push_back(row);
+        }
+        return table.dump(2) + "\n";
+    }
+    std::string csv = "frame,a,b,relative_l2,max_error,relative_max,objects_relative_l2,relative_h1\n";
+    for (size_t f = 0; f < rows.size(); ++f)
+        csv += fmt::format("{},{},{},{},{},{},{},{}\n", f, csv_field(rows[f].a.string()), csv_field(rows[f].b.string()),
+                           csv_number(rows[f].relative_l2), csv_number(rows[f].max_error),
+                           csv_number(rows[f].relative_max), csv_number(rows[f].objects), csv_number(rows[f].h1));
+    return csv;
+}
+
+void compare_sequences(const CompareArgs& args, Kind kind) {
+    const std::vector<std::filesystem::path> a = sequence_frames(args.a), b = sequence_frames(args.b);
+    if (a.size() != b.size())
+        throw_error("{} has {} frames and {} has {}: compare runs of the same --frames", args.a, a.size(), args.b,
+                    b.size());
+    if (!args.table.empty()) {
+        const std::string extension = std::filesystem::path(args.table).extension().string();
+        if (extension != ".json" && extension != ".csv")
+            throw_error("--table {}: expected a .json or .csv file", args.table);
+        std::vector<std::filesystem::path> inputs = a;
+        inputs.insert(inputs.end(), b.begin(), b.end());
+        check_outputs_apart({args.table}, inputs);
+    }
+    std::vector<FrameRow> rows;
+    const bool images = kind == Kind::Image;
+    fmt::print("{:>5}  {:>12}  {:>12}  {:>12}  {:>12}  {}\n", "frame", "relative L2", "max error", "relative max",
+               images ? "relative H1" : "objects L2", "A");
+    size_t worst = 0;
+    for (size_t f = 0; f < a.size(); ++f) {
+        rows.push_back(compare_frame(a[f], b[f], kind, args.receivers));
+        const FrameRow& row = rows.back();
+        fmt::print("{:>5}  {:>12.6g}  {:>12.6g}  {:>12.6g}  {:>12}  {}\n", f, row.relative_l2, row.max_error,
+                   row.relative_max, csv_number(images ? row.h1 : row.objects), row.a.filename().string());
+        if (row.relative_l2 > rows[worst].relative_l2) worst = f;
+    }
+    fmt::print("worst frame: {} ({} against {}), relative L2 {:.6g}, max error {:.6g}\n", worst, a[worst].string(),
+               b[worst].string(), rows[worst].relative_l2, rows[worst].max_error);
+    if (!args.table.empty()) {
+        write_file_atomically(args.table, table_text(args.table, rows));
+        fmt::print("table: {} ({} frames)\n", args.table, rows.size());
+    }
+}
+
 RegisterCommand compare_command({"compare",
     "Error of A against the reference B (both .rslv or both .exr): relative L2, max, the objects and the worst part, per part, H1 for images",
     50, [](CLI::App& app) {
         auto args = std::make_shared<CompareArgs>();
-        app.add_option("a", args->a, "Result to measure (.rslv or .exr)")->required()->check(CLI::ExistingFile);
-        app.add_option("b", args->b, "Reference, e.g. from rsl truth (same kind as A)")->required()->check(CLI::ExistingFile);
+        app.add_option("a", args->a, "Result to measure (.rslv or .exr); with --sequence, a run's -o or --vertex-out path")->required();
+        app.add_option("b", args->b, "Reference, e.g. from rsl truth (same kind as A); with --sequence, the reference run's")->required();
+        app.add_flag("--sequence", args->sequence,
+                     "Compare two --frames runs frame by frame: A.0000.exr against B.0000.exr, and so on (or "
+                     ".rslv); prints a row per frame and the worst frame");
+        app.add_option("--table", args->table, "With --sequence: also write the table to this .json or .csv file");
         app.add_option("--error-image", args->error_image, "Write |A − B| in false colour to this PNG");
         app.add_option("--error-scale", args->error_scale, "Error shown at full scale (default: the largest error)");
         app.add_option("--scene", args->scene, "Scene to draw a per-vertex error image on (vertex files)");
@@ -110,6 +235,19 @@ RegisterCommand compare_command({"compare",
         app.callback([args] {
             const Kind ka = kind_of(args->a), kb = kind_of(args->b);
             if (ka != kb) throw_error("{} and {} are of different kinds: compare .rslv with .rslv, .exr with .exr", args->a, args->b);
+            if (args->sequence) {
+                if (!args->error_image.empty()) throw_error("--error-image compares one pair: leave out --sequence");
+                compare_sequences(*args, ka);
+                return;
+            }
+            if (!args->table.empty()) throw_error("--table {}: the table is of a --sequence", args->table);
+            for (const std::string& path : {args->a, args->b})
+                if (!std::filesystem::is_regular_file(path))
+                    throw_error("{}: no such file{}", path,
+                                std::filesystem::is_regular_file(numbered(path, 0))
+                                    ? fmt::format(" ({} exists: add --sequence to compare a --frames run)",
+                                                  numbered(path, 0).string())
+                                    : "");
             // The scene is read only to draw a vertex error image on.
             std::optional<Scene> scene;
             if (ka == Kind::Vertices && !args->error_image.empty() && !args->scene.empty()) scene = load_scene(args->scene);

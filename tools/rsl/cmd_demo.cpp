@@ -5,6 +5,7 @@
 
 #include "demos/demo.h"
 #include "tools/rsl/command.h"
+#include "tools/rsl/data_folder.h"
 #include "src/core/error.h"
 
 namespace rsl::cli {
@@ -13,6 +14,7 @@ namespace {
 struct DemoArgs {
     std::string name;
     std::string out;
+    std::string cache;
     int frames = 0, width = 0, height = 0;
     bool quick = false, quiet = false;
 };
@@ -26,7 +28,11 @@ void run_demo_command(const DemoArgs& args) {
     if (args.frames < 0 || args.width < 0 || args.height < 0)
         throw_error("--frames, --width and --height must be positive");
     demos::DemoOptions options;
-    options.out_dir = args.out;
+    options.out_dir = args.out.empty() ? std::filesystem::path("out") / "demos" / args.name : std::filesystem::path(args.out);
+    options.demos_dir = data_folder() / "demos";
+    // The fields go beside the frames, not beside the demo's scene file (the
+    // source tree, or an installed package's read-only share/rsl).
+    options.field_cache = args.cache.empty() ? options.out_dir / ".rsl-cache" : std::filesystem::path(args.cache);
     options.frames = args.frames;
     options.width = args.width;
     options.height = args.height;
@@ -45,7 +51,9 @@ RegisterCommand demo_command({"demo",
     [](CLI::App& app) {
         auto args = std::make_shared<DemoArgs>();
         app.add_option("name", args->name, "robot, kitchen, materials, compare; `list` lists them")->required();
-        app.add_option("--out,-o", args->out, "Output folder (default out/demos/NAME)");
+        app.add_option("--out,-o", args->out, "Output folder (default out/demos/NAME, under the current folder)");
+        app.add_option("--cache", args->cache,
+                       "Field cache folder (default: OUT/.rsl-cache); a second run with the same cache bakes nothing");
         app.add_option("--frames", args->frames, "Number of frames (default: the demo's)");
         app.add_option("--width", args->width, "Frame width in pixels");
         app.add_option("--height", args->height, "Frame height in pixels");

@@ -2,7 +2,8 @@
 // (docs/design/RENDERER.md), or with --backend gl the GPU one (docs/GPU.md).
 // Per-vertex colours from the RSL sum and the image the renderer forms of
 // them (VertexRenderer::form_image: the same picture on either backend),
-// written as EXR + PNG, and optionally as per-vertex .rslv for `rsl compare`.
+// written as EXR + PNG or PNG (tools/rsl/frame_output.h), and optionally as
+// per-vertex .rslv for `rsl compare`.
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -12,6 +13,7 @@
 
 #include "src/backend/render_session.h"
 #include "tools/rsl/command.h"
+#include "tools/rsl/frame_output.h"
 #include "tools/rsl/image_args.h"
 #include "tools/rsl/progress_display.h"
 #include "src/core/atomic_file.h"
@@ -36,6 +38,8 @@ struct RenderArgs {
     std::vector<std::string> materials;
     std::string output;
     std::string vertex_output;
+    std::string background;
+    std::string animation;
     std::optional<int> width, height;  // absent: the scene camera's
     int samples = 1;
     float exposure = 0;
@@ -45,24 +49,17 @@ struct RenderArgs {
     int gpu_rays = 0;  // 0: off; else S (GL only)
 };
 
-// out.exr, frame 7 → out.0007.exr
-std::filesystem::path numbered(const std::filesystem::path& path, int frame) {
-    std::filesystem::path result = path;
-    result.replace_filename(fmt::format("{}.{:04d}{}", path.stem().string(), frame, path.extension().string()));
-    return result;
-}
-
 // Checking phase: the light count, image size, samples, time, exposure and
-// the output's extension, before the scene loads; returns the output path.
+// the output's extension and the background, before the scene loads; returns the output path.
 std::filesystem::path check_render_args(const RenderArgs& args) {
     if (args.lights < 1) throw_error("--lights {}: expected at least 1", args.lights);
     check_image_size(args.width, args.height, args.samples);
     check_time("--time", args.time);
     check_exposure(args.exposure);
     if (!args.frames.empty()) parse_frames(args.frames);
-    const std::filesystem::path output(args.output);
-    if (output.extension() != ".exr") throw_error("-o {}: expected an .exr path (a .png preview is written beside it)", args.output);
-    return output;
+    check_image_output(args.output);
+    parse_background(args.background);
+    return args.output;
 }
 
 // Options phase: the renderer's options from the arguments, shadow maps checked before the fit and the bake.
@@ -111,26 +108,29 @@ void report_renderer(const RenderArgs& args, Backend backend, const RenderSetup&
                    scene.environment.blend_period_seconds);
 }
 
-// Frame phase: shades and forms every frame, writes its EXR + PNG (and vertex
+// Frame phase: shades and forms every frame, writes its image (and vertex
 // colours), and prints one line of timings per frame.
-void render_frames(const RenderArgs& args, RenderSession& session, const std::filesystem::path& output) {
+void render_frames(const RenderArgs& args, RenderSession& session, FrameOutput& output) {
     const Scene& scene = session.scene();
     const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
     ImageFormationOptions formation;
     formation.samples_per_side = args.samples;
-    // The same rule as `rsl truth`: --exposure 0 (the default) means automatic,
-    // so that the two PNGs of one frame come out alike. For a strict visual
-    // comparison give both the same non-zero --exposure.
-    const ToneMap tone{args.exposure, args.exposure == 0.0f};
+    const Background background = parse_background(args.background);
+    formation.opaque_background = background.kind == Background::Kind::Color;
+    formation.background = background.color;
+    std::optional<EnvironmentBackdrop> backdrop;
+    if (background.kind == Background::Kind::Environment) backdrop.emplace(scene);
     for (size_t f = 0; f < times.size(); ++f) {
         const float t = times[f];
         const auto start = std::chrono::steady_clock::now();
         const VertexColors& colors = session.shade(t);
         const auto shaded = std::chrono::steady_clock::now();
-        const Image image = session.image(session.camera(args.width.value_or(0), args.height.value_or(0)), formation);
+        const PinholeCamera camera = session.camera(args.width.value_or(0), args.height.value_or(0));
+        Image image = session.image(camera, formation);
+        if (backdrop) backdrop->fill(image, camera, args.samples, t);
         const auto formed = std::chrono::steady_clock::now();
-        const std::filesystem::path exr = times.size() > 1 ? numbered(output, int(f)) : output;
-        write_exr_and_png(exr, image, tone);
+        const std::filesystem::path exr = output.image_path(f);
+        output.write(f, image);
         if (!args.vertex_output.empty())
             write_vertex_colors(times.size() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output), colors);
         const double shading_ms = 1e3 * std::chrono::duration<double>(shaded - start).count();
@@ -146,27 +146,33 @@ void render_frames(const RenderArgs& args, RenderSession& session, const std::fi
                    t, colors.vertex_count(), stats.lights, blend, renderer.backend(), shading_ms, image_ms,
                    stats.occluder_pairs, stats.occluder_pairs_culled, exr.string());
         if (const std::string passes = renderer.pass_times(); !passes.empty()) fmt::print("  GPU passes: {}\n", passes);
+        if (f == 0 && output.sequence_exposure())
+            fmt::print("exposure: {:+.3f} stops for every frame{}\n", *output.sequence_exposure(),
+                       args.exposure == 0.0f ? " (the first frame's; --exposure sets another)" : "");
     }
+    if (const std::filesystem::path animation = output.finish(); !animation.empty() && !args.quiet)
+        fmt::print("animation: {} ({} frames)\n", animation.string(), times.size());
 }
 
-// Every file a run writes: each frame's EXR, its PNG preview and its vertex colours.
-std::vector<std::filesystem::path> render_outputs(const RenderArgs& args, const std::filesystem::path& output) {
-    const size_t frames = args.frames.empty() ? 1 : parse_frames(args.frames).size();
-    std::vector<std::filesystem::path> outputs;
-    for (size_t f = 0; f < frames; ++f) {
-        const std::filesystem::path exr = frames > 1 ? numbered(output, int(f)) : output;
-        outputs.push_back(exr);
-        outputs.push_back(std::filesystem::path(exr).replace_extension(".png"));
-        if (!args.vertex_output.empty())
-            outputs.push_back(frames > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output));
-    }
+// The frames' spacing in scene time (the animation's delay per frame).
+double frame_seconds(const std::vector<float>& times) {
+    return times.size() > 1 ? double(times[1]) - double(times[0]) : 1.0;
+}
+
+// Every file a run writes: each frame's image, its vertex colours and the animation.
+std::vector<std::filesystem::path> render_outputs(const RenderArgs& args, const FrameOutput& output) {
+    std::vector<std::filesystem::path> outputs = output.files();
+    for (size_t f = 0; f < output.frames() && !args.vertex_output.empty(); ++f)
+        outputs.push_back(output.frames() > 1 ? numbered(args.vertex_output, int(f)) : std::filesystem::path(args.vertex_output));
     return outputs;
 }
 
 void run_render(const RenderArgs& args) {
     const Backend backend = parse_backend(args.backend);
-    const std::filesystem::path output = check_render_args(args);
+    const std::filesystem::path output_path = check_render_args(args);
     const RenderOptions options = render_options(args, backend);
+    const std::vector<float> times = args.frames.empty() ? std::vector<float>{args.time} : parse_frames(args.frames);
+    FrameOutput output(output_path, times.size(), frame_seconds(times), args.exposure, args.animation);
     auto scene = std::make_shared<Scene>(load_scene(args.scene));
     check_outputs_apart(render_outputs(args, output), scene->input_files);  // before the fit and the bake
 
@@ -189,7 +195,9 @@ RegisterCommand render_command({"render",
         auto args = std::make_shared<RenderArgs>();
         app.add_option("scene", args->scene, "Scene file (.json, .gltf/.glb, .obj)")->required()->check(CLI::ExistingFile);
         auto* time = app.add_option("--time,-t", args->time, "Time in seconds (within ±1e6)")->capture_default_str();
-        auto* frames = app.add_option("--frames", args->frames, "START:END:STEP: numbered frames OUT.NNNN.exr (at most 100000)");
+        auto* frames = app.add_option("--frames", args->frames,
+            "START:END:STEP: numbered frames OUT.NNNN.exr (or .png; at most 100000), all with the first "
+            "frame's exposure unless --exposure is given");
         time->excludes(frames);
         app.add_option("--lights,-k", args->lights, "Number of environment RSLs fitted to the map (each glTF sun adds one of its own)")->capture_default_str();
         app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer)")
@@ -216,12 +224,21 @@ RegisterCommand render_command({"render",
                      "image, so that highlights between vertices show (default on; per-vertex colours unchanged; "
                      "either backend)");
         app.add_option("--material", args->materials, "PART=MATERIAL: shade a part with another scene material");
-        app.add_option("-o,--output", args->output, "Image to write (.exr; a .png preview beside it)")->required();
+        app.add_option("-o,--output", args->output,
+                       "Image to write: .exr (a tone-mapped .png preview is written beside it) or .png (the "
+                       "tone-mapped image alone)")->required();
+        app.add_option("--background", args->background,
+                       "What shows where no part covers a pixel: environment (the scene's environment map), or a "
+                       "colour R,G,B (default: black, alpha 0)");
+        app.add_option("--animation", args->animation,
+                       "With --frames: also join the frames into FILE.png (an animated PNG, playing at the frames' "
+                       "spacing in scene time) or FILE.mp4 (needs ffmpeg)")->needs(frames);
         app.add_option("--vertex-out", args->vertex_output, "Per-vertex colours (.rslv) for `rsl compare`");
         app.add_option("--width", args->width, "Image width, 1..16384 (default: the scene camera's)");
         app.add_option("--height", args->height, "Image height, 1..16384 (default: the scene camera's)");
         app.add_option("--samples", args->samples, "S: SxS primary rays per pixel, 1..16")->capture_default_str();
-        app.add_option("--exposure", args->exposure, "PNG exposure in stops, -64..64 (default 0: automatic, as rsl truth)")->capture_default_str();
+        app.add_option("--exposure", args->exposure, "PNG exposure in stops, -64..64 (default 0: automatic, as rsl truth; a sequence takes its first "
+                       "frame's for every frame)")->capture_default_str();
         auto* shadow_maps = app.add_option("--shadow-maps", args->shadow_maps,
             "RES: the shadow-mapped baseline (gl backend): environment lights' visibility from one RESxRES "
             "depth map each (16..8192) instead of the SVDF/OVDF fields (docs/GPU.md)");
