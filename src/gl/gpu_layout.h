@@ -105,11 +105,7 @@ inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
 inline constexpr int kSamplesPerTexel = 2;    // OVDF samples' (surface distance, occluded area), RG and BA
 
 // The integer constants the shading pass reads, by their GLSL names.
-struct ShaderIntConstant {
-    const char* name;
-    int value;
-};
-inline constexpr ShaderIntConstant kShaderIntConstants[] = {
+inline constexpr GlslConstant kShaderIntConstants[] = {
     {"kArrayWidth", kArrayTextureWidth},
     {"kArrayShift", kArrayTextureShift},
     {"kPartStride", kPartStride},
