@@ -3,12 +3,12 @@
 // workgroup visits the top nodes level by level, deepest first, so that a
 // node's children are final before it reads them. A leaf child's box is its
 // parts' mesh boxes posed (eight corners, as the host's RayScene boxes).
-// The host prepends the BVH_* macros.
+// The host prepends the bindings (src/gl/gpu_interface.h) and the BVH_* sizes.
 layout(local_size_x = 256) in;
 
 layout(std430, binding = BVH_NODES_BINDING) buffer BvhNodes { vec4 bvh_nodes[]; };
 layout(std430, binding = BVH_INSTANCES_BINDING) readonly buffer BvhInstances { vec4 bvh_instances[]; };
-layout(std430, binding = 0) readonly buffer Levels { int levels[]; };  // top nodes, deepest level first
+layout(std430, binding = BVH_LEVELS_BINDING) readonly buffer Levels { int levels[]; };  // top nodes, deepest level first
 
 uniform int u_level_count;
 uniform int u_level_ends[BVH_STACK];  // per level, its end in levels[] (GpuBvh: at most kBvhStack levels)

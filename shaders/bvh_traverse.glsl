@@ -1,6 +1,7 @@
 // Any-hit shadow rays through the two-level BVH of src/gl/gpu_bvh.h
 // (docs/design/GPU_DESIGN.md "Ray-traced visibility"). The host defines the
-// BVH_* macros (GpuBvh::shader_defines) and prepends the shading core.
+// BVH_* sizes (GpuBvh::shader_defines) and prepends the shading core, with
+// the bindings (src/gl/gpu_interface.h).
 
 layout(std430, binding = BVH_NODES_BINDING) readonly buffer BvhNodes { vec4 bvh_nodes[]; };
 layout(std430, binding = BVH_TRIANGLES_BINDING) readonly buffer BvhTriangles { vec4 bvh_triangles[]; };
@@ -22,6 +23,16 @@ bool bvh_box_hit(vec3 lo, vec3 hi, vec3 origin, vec3 inverse_direction, float t_
     return enter <= leave;
 }
 
+// Child c of node `node` as the ray sees it: (first index, count) of the
+// child the ray enters (count 0: an inner node, to push; else a leaf's first
+// entry and entries), count -1 when it misses or the child is empty (10³⁰),
+// so that a loop over a leaf's entries runs for leaves alone.
+ivec2 bvh_child(int node, int c, vec3 origin, vec3 inverse_direction, float t_far) {
+    vec4 lo = bvh_nodes[node * BVH_NODE_VEC4S + 2 * c], hi = bvh_nodes[node * BVH_NODE_VEC4S + 2 * c + 1];
+    if (lo.x >= 1e30 || !bvh_box_hit(lo.xyz, hi.xyz, origin, inverse_direction, t_far)) return ivec2(0, -1);
+    return ivec2(floatBitsToInt(lo.w), floatBitsToInt(hi.w));
+}
+
 // Blocked by part `part`'s triangles (ray in the part's frame)? A hit within
 // `exit_t` that the ray leaves through the triangle's front is ignored
 // (RayScene's origins_outside_surfaces filter).
@@ -32,14 +43,9 @@ bool bvh_part_occluded(int part, vec3 origin, vec3 direction, float t_far, float
     int node = floatBitsToInt(bvh_instances[part * BVH_INSTANCE_VEC4S + 8].w);
     while (true) {
         for (int c = 0; c < 2; ++c) {
-            vec4 lo = bvh_nodes[node * BVH_NODE_VEC4S + 2 * c], hi = bvh_nodes[node * BVH_NODE_VEC4S + 2 * c + 1];
-            if (lo.x >= 1e30 || !bvh_box_hit(lo.xyz, hi.xyz, origin, inverse_direction, t_far)) continue;  // empty: 10³⁰
-            int index = floatBitsToInt(lo.w), count = floatBitsToInt(hi.w);
-            if (count == 0) {
-                stack[top++] = index;
-                continue;
-            }
-            for (int t = index; t < index + count; ++t) {  // Möller–Trumbore
+            ivec2 child = bvh_child(node, c, origin, inverse_direction, t_far);
+            if (child.y == 0) stack[top++] = child.x;
+            for (int t = child.x; t < child.x + child.y; ++t) {  // a leaf's triangles (none: a miss or an inner node); Möller–Trumbore
                 vec3 v0 = bvh_triangles[t * BVH_TRIANGLE_VEC4S].xyz;
                 vec3 e1 = bvh_triangles[t * BVH_TRIANGLE_VEC4S + 1].xyz;
                 vec3 e2 = bvh_triangles[t * BVH_TRIANGLE_VEC4S + 2].xyz;
@@ -76,14 +82,9 @@ bool bvh_occluded(vec3 origin, vec3 direction, float t_far) {
     int node = u_bvh_top_root;
     while (true) {
         for (int c = 0; c < 2; ++c) {
-            vec4 lo = bvh_nodes[node * BVH_NODE_VEC4S + 2 * c], hi = bvh_nodes[node * BVH_NODE_VEC4S + 2 * c + 1];
-            if (lo.x >= 1e30 || !bvh_box_hit(lo.xyz, hi.xyz, origin, inverse_direction, t_far)) continue;  // empty: 10³⁰
-            int index = floatBitsToInt(lo.w), count = floatBitsToInt(hi.w);
-            if (count == 0) {
-                stack[top++] = index;
-                continue;
-            }
-            for (int i = index; i < index + count; ++i) {
+            ivec2 child = bvh_child(node, c, origin, inverse_direction, t_far);
+            if (child.y == 0) stack[top++] = child.x;
+            for (int i = child.x; i < child.x + child.y; ++i) {  // a leaf's parts
                 int part = int(bvh_instances[u_bvh_parts * BVH_INSTANCE_VEC4S + i / 4][i % 4]);
                 int record = part * BVH_INSTANCE_VEC4S;
                 mat4 inverse = mat4(bvh_instances[record], bvh_instances[record + 1], bvh_instances[record + 2],

@@ -43,17 +43,13 @@ PointLight light_at(int l, vec3 p) {
 #if LOCAL_LIGHTS
     if (l >= u_environment_lights) {
         // A sphere light: center a.xyz, radius a.w, radiance b.rgb; spot axis c.xyz, cone (b.w, c.w).
-        vec3 to_center = a.xyz - p;
-        float distance = length(to_center);
-        light.h = 0.0;
+        SphereSquare square = sphere_square(p, a.xyz, a.w);
+        light.direction = square.direction;
+        light.h = square.half_edge;
         light.integral = vec3(0.0);
-        light.direction = vec3(0.0, 0.0, 1.0);
-        if (!(distance > a.w)) return light;
-        light.direction = to_center / distance;
-        float solid_angle = sphere_cap_solid_angle(a.w, distance);
-        light.h = half_edge_for_solid_angle(solid_angle);
+        if (!square.lit) return light;
         vec4 c = fetch(u_lights, kLightTexels * l + 2);
-        light.integral = b.rgb * (solid_angle * spot_cone_factor(c.xyz, -light.direction, b.w, c.w));
+        light.integral = b.rgb * (square.solid_angle * spot_cone_factor(c.xyz, -light.direction, b.w, c.w));
     }
 #endif
     return light;
@@ -120,9 +116,9 @@ float self_visibility(vec4 svdf, vec3 direction, vec2 lp, float h) {
 
 // The frame's candidates (gpu_layout.h pack_block_candidates): parts + 1
 // offsets, then per candidate kCandidateHeader + LIGHT_WORDS words.
-layout(std430, binding = 2) readonly buffer Candidates { uint candidates[]; };
+layout(std430, binding = CANDIDATES_BINDING) readonly buffer Candidates { uint candidates[]; };
 // Per part, kCullingStride vec4 (gpu_layout.h pack_part_culling).
-layout(std430, binding = 3) readonly buffer PartCulling { vec4 part_culling[]; };
+layout(std430, binding = PART_CULLING_BINDING) readonly buffer PartCulling { vec4 part_culling[]; };
 uniform int u_part_count;
 uniform bool u_culling;  // RenderOptions::occluder_culling
 

@@ -6,7 +6,7 @@
 // the same seeds, grid points and ray origins (src/shading/ray_samples.h).
 
 // Per vertex (vertex rectangle order): the part-space direction into its
-// own triangles where it lies on its surface's border, else 0 (binding: kRayInwardBinding).
+// own triangles where it lies on its surface's border, else 0 (binding: kBindingRayInward, src/gl/gpu_interface.h).
 layout(std430, binding = RAY_INWARD_BINDING) readonly buffer RayInward { vec4 ray_inward[]; };
 
 uniform int u_ray_samples;  // S

@@ -28,19 +28,19 @@ layout(local_size_x = SHADE_BLOCK) in;  // kShadeBlock: a layout takes a literal
 // or not: what a pass cannot need is left out at compile time (the defines).
 
 // Per block: (part, first entry of block_vertices, vertex count, 0).
-layout(std430, binding = 0) readonly buffer Blocks { ivec4 blocks[]; };
+layout(std430, binding = BLOCKS_BINDING) readonly buffer Blocks { ivec4 blocks[]; };
 // Per block entry: the vertex's index in the vertex rectangle.
-layout(std430, binding = 1) readonly buffer BlockVertices { int block_vertices[]; };
+layout(std430, binding = BLOCK_VERTICES_BINDING) readonly buffer BlockVertices { int block_vertices[]; };
 // kCounter* (atomic sums over the frame).
-layout(std430, binding = 4) buffer Counters { uint counters[]; };
+layout(std430, binding = COUNTERS_BINDING) buffer Counters { uint counters[]; };
 // Per vertex its colour; with LAYERED the specular layer from u_layer_offset.
-layout(std430, binding = 5) writeonly buffer Colors { vec4 colors[]; };
+layout(std430, binding = COLORS_BINDING) writeonly buffer Colors { vec4 colors[]; };
 
 #if RECORD_BLOCK_LIGHTS
 // GlRenderer::block_candidate_lights: per block, from its offset, each
 // candidate's light words after the block-level tests.
-layout(std430, binding = 6) writeonly buffer Recorded { uint recorded[]; };
-layout(std430, binding = 7) readonly buffer RecordOffsets { uint record_offsets[]; };
+layout(std430, binding = RECORDED_BINDING) writeonly buffer Recorded { uint recorded[]; };
+layout(std430, binding = RECORD_OFFSETS_BINDING) readonly buffer RecordOffsets { uint record_offsets[]; };
 #endif
 
 uniform int u_block_count;
@@ -52,20 +52,14 @@ shared int s_occluder[kShadeBlock];
 shared uint s_lights[kShadeBlock * LIGHT_WORDS];
 shared int s_kept;  // the chunk's candidates with a light left after the block-level tests
 
-// Step 1: the block sphere (box center, farthest vertex), as shade_block.
+// Step 1: the block sphere (the shading core's point_box, as shade_block).
 void block_sphere(int n) {
-    vec3 lo = s_point[0], hi = lo;
-    for (int k = 1; k < n; ++k) {
-        lo = min(lo, s_point[k]);
-        hi = max(hi, s_point[k]);
-    }
-    vec3 center = 0.5 * (lo + hi);
+    PointBox box = point_box(s_point[0]);
+    for (int k = 1; k < n; ++k) box = point_box_add(box, s_point[k]);
+    vec3 center = point_box_center(box);
     float r2 = 0.0;
-    for (int k = 0; k < n; ++k) {
-        vec3 d = s_point[k] - center;
-        r2 = max(r2, dot(d, d));
-    }
-    s_sphere = vec4(center, sqrt(r2) * (1.0 + 1e-6) + 1e-6);
+    for (int k = 0; k < n; ++k) r2 = farther_squared(r2, center, s_point[k]);
+    s_sphere = vec4(center, bounding_radius(r2));
 }
 
 // Step 2 for candidate entry `entry` (into candidates[]): its occluder and

@@ -22,12 +22,11 @@ in vec2 v_texcoord;
 uniform int u_part;
 uniform bool u_corners;     // the corners' SVDF blend (glossy parts)
 uniform int u_first_index;  // the part's first entry of u_indices
-uniform usampler2D u_indices;  // every part's triangle indices (part-local vertices)
+// The samplers u_indices and u_base_color: the host's (src/gl/gpu_interface.h kShadingSamplers).
 uniform float u_exposure;
 uniform bool u_linear;    // linear radiance (images read back); else exposure and sRGB (the screen)
 uniform bool u_textured;  // the diffuse sum times the base colour texture, plus the specular sum
 uniform bool u_depth_only;  // the depth pre-pass: each pixel is then shaded once, by its nearest part
-uniform sampler2D u_base_color;
 layout(location = 0) out vec4 o_color;
 
 // The triangle's corners for self_visibility (g_self_corners = 3).

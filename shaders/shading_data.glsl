@@ -1,16 +1,18 @@
 // What the shading sum reads, and how (point_sum.glsl sums it): the
-// host's defines, the samplers and uniforms of the scene's data (layout of
-// every texture: src/gl/gpu_layout.h), the fetches by integer index, and
+// host's defines, the uniforms of the scene's data (layout of every
+// texture: src/gl/gpu_layout.h), the fetches by integer index, and
 // the BRDF tables' square average, with the same arithmetic as the CPU
 // (src/brdf/brdf_table.cpp). The host prepends, in order (gl_objects.cpp
 // shading_prelude, shading_inputs_prelude): MAX_STRIDE (texels of a CPCA
 // row), SVDF_STRIDE and OVDF_STRIDE (below), the layout constants of
 // src/gl/gpu_layout.h (kPartStride, kSlot*, kArrayWidth, kArrayShift,
-// kLightTexels, kSamplesPerTexel, kPi, kSqrt2), the shading core
+// kLightTexels, kSamplesPerTexel, kPi, kSqrt2) and the storage bindings of
+// src/gl/gpu_interface.h (*_BINDING), the shading core
 // src/shading/shading_core.h, whose functions (frames, the equal-area map,
 // square taps, bilinear taps, the VDT rule, the OVDF's shells, faces, zoom
-// and cone bounds, the slab rule) are the CPU's own, then this file,
-// visibility_fields.glsl, shadow_map_filter.glsl and, last, point_sum.glsl.
+// and cone bounds, the slab rule) are the CPU's own, the samplers, then this
+// file, visibility_fields.glsl, shadow_map_filter.glsl and, last,
+// point_sum.glsl (the order of gpu_interface.h ShaderSource).
 // What stays in these files is data access: texelFetch and the loops over it.
 
 // SVDF_STRIDE, OVDF_STRIDE (the host's): the texels of a CPCA row when every
@@ -29,18 +31,9 @@
 #define LOCAL_LIGHTS 1
 #endif
 
-uniform sampler2D u_positions;     // vertex rectangle: part-space position, part
-uniform sampler2D u_normals;       // normal, SVDF cluster
-uniform sampler2D u_tangents;      // tangent
-uniform sampler2D u_parts;         // part records (kPartStride texels each)
-uniform sampler2D u_lights;        // kLightTexels per light
-uniform sampler3D u_brdf;          // per slice: rows of corner sums, then texels (append_texture_rows)
-uniform sampler2D u_brdf_offsets;  // per slice mean offset
-uniform sampler2D u_svdf_tables;
-uniform sampler2D u_svdf_coefficients;
-uniform sampler2D u_ovdf_tables;
-uniform sampler2D u_ovdf_coefficients;
-uniform sampler2D u_ovdf_frames;
+// The samplers (u_positions, u_parts, u_lights, u_brdf, ...) come before
+// this file, declared from src/gl/gpu_interface.h kShadingSamplers, whose
+// rows also give the host their texture units.
 
 uniform int u_environment_lights;  // lights [0, E) are environment squares, [E, L) local sphere lights
 // The exact diffuse light (src/shading/diffuse_light.h): the irradiance maps'
@@ -62,7 +55,6 @@ uniform vec3 u_face_t[kCubeFaces];
 // The shadow-mapped baseline (src/gl/shadow_maps.h): layer l = environment light l.
 uniform bool u_shadow_maps;      // environment lights' visibility from the maps
 uniform bool u_shadow_pcss;      // PCSS (blocker search); else PCF at u_pcf_depth
-uniform sampler2DArray u_shadow_depths;  // the maps (read with texelFetch)
 uniform vec4 u_shadow_sphere;    // the maps' sphere: centre, radius
 uniform int u_shadow_resolution; // texels per side
 uniform float u_shadow_texel;    // 1 / resolution: a texel, across and in depth

@@ -33,6 +33,26 @@ std::vector<std::string> available_backends() {
 #endif
 }
 
+BackendCapabilities backend_capabilities(Backend backend) {
+    BackendCapabilities can;
+    switch (backend) {
+    case Backend::Cpu: can.standalone = true; break;
+    case Backend::Gl:
+    case Backend::GlCurrentContext:
+        can.standalone = backend == Backend::Gl;
+        can.device = can.per_pixel_pass = can.gpu_rays = can.shadow_maps = can.timer_queries = true;
+        break;
+    }
+    return can;
+}
+
+std::vector<std::string> backends_with(bool BackendCapabilities::*capability) {
+    std::vector<std::string> names;
+    for (const std::string& name : available_backends())
+        if (backend_capabilities(parse_backend(name)).*capability) names.push_back(name);
+    return names;
+}
+
 std::unique_ptr<VertexRenderer> make_renderer(Backend backend, const Scene& scene,
                                               EnvironmentLights environment_lights, PartFields fields,
                                               const RenderOptions& options) {

@@ -21,6 +21,22 @@ std::string backend_name(Backend backend);
 // The backends this build has ("cpu", and "gl", "gl-current" with RSL_BUILD_GL).
 std::vector<std::string> available_backends();
 
+// What a backend can do: callers (the `rsl` program, the API, Python) ask
+// this rather than name backends, so that another backend is one more case
+// here and in make_renderer.
+struct BackendCapabilities {
+    bool standalone = false;      // makes what it needs itself (no caller's context): `rsl render --backend`
+    bool device = false;          // runs on a device, which VertexRenderer::device() names
+    bool per_pixel_pass = false;  // shades the image's per-pixel parts on the device
+    bool gpu_rays = false;        // RenderOptions::gpu_rays: the ray-traced visibility baseline
+    bool shadow_maps = false;     // RenderOptions::shadow_maps: the shadow-mapped visibility baseline
+    bool timer_queries = false;   // times its passes on the device (VertexRenderer::pass_times)
+};
+BackendCapabilities backend_capabilities(Backend backend);
+// The names of the backends this build has with `capability` set, in
+// available_backends() order (e.g. &BackendCapabilities::shadow_maps).
+std::vector<std::string> backends_with(bool BackendCapabilities::*capability);
+
 // `scene` must outlive the renderer. Throws rsl::Error when the backend was
 // not built (or, for gl, no OpenGL ≥ 4.3 context can be made; for
 // gl-current, none is current).

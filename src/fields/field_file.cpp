@@ -337,35 +337,21 @@ void write_ovdf(const fs::path& path, const Ovdf& ovdf, uint64_t mesh) {
                 ovdf.params.half_precision_tables);
 }
 
-FieldHeader read_field_header(const fs::path& path) {
+namespace {
+
+// Opens the field file at `path`, checks its header and hands `read` the
+// reader (after the header) and the header.
+template <class Read>
+auto read_field(const fs::path& path, Read read) {
     const std::string bytes = read_field_bytes(path);
     BinaryReader r(path, bytes, payload_end(bytes));
     FieldHeader h = parse_header(path, bytes, r);
-    if (h.kind == FieldKind::Ovdf) {
-        r.get<Vec3>();
-        r.get<float>();
-    }
-    get_model(path, r, h);
-    return h;
+    return read(r, h);
 }
 
-Svdf read_svdf(const fs::path& path, const FieldExpectation& expect) {
-    const std::string bytes = read_field_bytes(path);
-    BinaryReader r(path, bytes, payload_end(bytes));
-    FieldHeader h = parse_header(path, bytes, r);
-    Svdf svdf;
-    svdf.params = expected_params(path, h, FieldKind::Svdf, expect, svdf_params_from);
-    svdf.model = get_model(path, r, h);
-    if (h.dims != svdf.params.resolution * svdf.params.resolution)
-        throw_file_error(path, "table size {} does not match resolution {}", h.dims, svdf.params.resolution);
-    check_fully_read(path, r);
-    return svdf;
-}
-
-Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
-    const std::string bytes = read_field_bytes(path);
-    BinaryReader r(path, bytes, payload_end(bytes));
-    FieldHeader h = parse_header(path, bytes, r);
+// An OVDF's payload after its header: the bounding sphere, the model, the
+// per-sample tables and the radial spans, each checked.
+Ovdf read_ovdf_payload(const fs::path& path, const FieldExpectation& expect, BinaryReader& r, FieldHeader& h) {
     Ovdf ovdf;
     ovdf.params = expected_params(path, h, FieldKind::Ovdf, expect, ovdf_params_from);
     ovdf.center = r.get<Vec3>();
@@ -396,6 +382,35 @@ Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
     check_fully_read(path, r);
     ovdf.prepare();
     return ovdf;
+}
+
+}  // namespace
+
+FieldHeader read_field_header(const fs::path& path) {
+    return read_field(path, [&](BinaryReader& r, FieldHeader& h) {
+        if (h.kind == FieldKind::Ovdf) {
+            r.get<Vec3>();
+            r.get<float>();
+        }
+        get_model(path, r, h);
+        return h;
+    });
+}
+
+Svdf read_svdf(const fs::path& path, const FieldExpectation& expect) {
+    return read_field(path, [&](BinaryReader& r, FieldHeader& h) {
+        Svdf svdf;
+        svdf.params = expected_params(path, h, FieldKind::Svdf, expect, svdf_params_from);
+        svdf.model = get_model(path, r, h);
+        if (h.dims != svdf.params.resolution * svdf.params.resolution)
+            throw_file_error(path, "table size {} does not match resolution {}", h.dims, svdf.params.resolution);
+        check_fully_read(path, r);
+        return svdf;
+    });
+}
+
+Ovdf read_ovdf(const fs::path& path, const FieldExpectation& expect) {
+    return read_field(path, [&](BinaryReader& r, FieldHeader& h) { return read_ovdf_payload(path, expect, r, h); });
 }
 
 }  // namespace rsl

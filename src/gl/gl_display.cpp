@@ -53,7 +53,7 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
     glUniform1i(uniform(display_program_, "u_linear"), linear ? 1 : 0);
     const GLint model = uniform(display_program_, "u_model");
     const GLint textured = uniform(display_program_, "u_textured");
-    glUniform1i(uniform(display_program_, "u_base_color"), 0);
+    glUniform1i(uniform(display_program_, "u_base_color"), kUnitDisplayBaseColor);
     bool any_per_pixel = false;
     for (size_t p = 0; p < parts; ++p) {
         if (per_pixel_part(p)) {
@@ -63,7 +63,7 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
         glUniformMatrix4fv(model, 1, GL_FALSE, &poses[p].transform[0][0]);
         const GLuint texture = layered_texture(p);
         glUniform1i(textured, texture ? 1 : 0);
-        if (texture) bind_texture(0, GL_TEXTURE_2D, texture);
+        if (texture) bind_texture(kUnitDisplayBaseColor, GL_TEXTURE_2D, texture);
         draw_elements(p);
     }
 
@@ -79,8 +79,8 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
         bind_shading_inputs(pixel_program_);
         glUniform1i(uniform(pixel_program_, "u_part_count"), int(scene_.parts.size()));
         glUniform1i(uniform(pixel_program_, "u_culling"), options_.occluder_culling ? 1 : 0);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, candidates_.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, part_culling_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingCandidates, candidates_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingPartCulling, part_culling_.id());
         glUniformMatrix4fv(uniform(pixel_program_, "u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
         glUniform1f(uniform(pixel_program_, "u_exposure"), exposure);
         glUniform1i(uniform(pixel_program_, "u_linear"), linear ? 1 : 0);
@@ -171,7 +171,7 @@ Image GlRenderer::draw_image(const PinholeCamera& camera) {
     glGetIntegerv(GL_VIEWPORT, previous_viewport);
     const Framebuffer framebuffer = make_framebuffer();
     const Texture color = make_texture();
-    glActiveTexture(GL_TEXTURE0);  // not a unit the shading passes bind
+    glActiveTexture(GL_TEXTURE0 + kUnitUpload);
     const Renderbuffer depth = make_renderbuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
     glBindTexture(GL_TEXTURE_2D, color.id());

@@ -40,36 +40,23 @@ void delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
 void delete_program(GLuint id) { glDeleteProgram(id); }
 void delete_query(GLuint id) { glDeleteQueries(1, &id); }
 
-Texture make_texture() {
+namespace {
+
+// A fresh object's name from one of GL's glGen* calls.
+GLuint generated(void (*generate)(GLsizei, GLuint*)) {
     GLuint id = 0;
-    glGenTextures(1, &id);
-    return Texture(id);
+    generate(1, &id);
+    return id;
 }
-Buffer make_buffer() {
-    GLuint id = 0;
-    glGenBuffers(1, &id);
-    return Buffer(id);
-}
-VertexArray make_vertex_array() {
-    GLuint id = 0;
-    glGenVertexArrays(1, &id);
-    return VertexArray(id);
-}
-Framebuffer make_framebuffer() {
-    GLuint id = 0;
-    glGenFramebuffers(1, &id);
-    return Framebuffer(id);
-}
-Renderbuffer make_renderbuffer() {
-    GLuint id = 0;
-    glGenRenderbuffers(1, &id);
-    return Renderbuffer(id);
-}
-Query make_query() {
-    GLuint id = 0;
-    glGenQueries(1, &id);
-    return Query(id);
-}
+
+}  // namespace
+
+Texture make_texture() { return Texture(generated(glGenTextures)); }
+Buffer make_buffer() { return Buffer(generated(glGenBuffers)); }
+VertexArray make_vertex_array() { return VertexArray(generated(glGenVertexArrays)); }
+Framebuffer make_framebuffer() { return Framebuffer(generated(glGenFramebuffers)); }
+Renderbuffer make_renderbuffer() { return Renderbuffer(generated(glGenRenderbuffers)); }
+Query make_query() { return Query(generated(glGenQueries)); }
 
 namespace {
 
@@ -120,20 +107,20 @@ GLuint compile_shader(GLenum type, const std::string& source, const std::string&
 }
 
 std::string shading_prelude() {
-    // Source string 1 for the core, so that an error in it names its line.
-    return shader_layout_constants() + "#define RSL_SHARED\n#define RSL_CONST const\n#line 1 1\n" +
-           shader_text("shading_core.glsl") + "#line 2 0\n";
+    return shader_layout_constants() + "#define RSL_SHARED\n#define RSL_CONST const\n" +
+           included_shader(kSourceShadingCore);
 }
 
-std::string srgb_prelude() { return "#line 1 1\n" + shader_text("srgb.glsl") + "#line 2 0\n"; }
+std::string srgb_prelude() { return included_shader(kSourceSrgb); }
 
 std::string shading_inputs_prelude() {
-    return included_shader("shading_data.glsl", 2) + included_shader("visibility_fields.glsl", 3) +
-           included_shader("shadow_map_filter.glsl", 4);
+    return shader_sampler_declarations() + included_shader(kSourceShadingData) +
+           included_shader(kSourceVisibilityFields) + included_shader(kSourceShadowMapFilter);
 }
 
-std::string included_shader(const std::string& name, int source) {
-    return fmt::format("#line 1 {}\n", source) + shader_text(name) + "#line 2 0\n";
+std::string included_shader(ShaderSource source) {
+    RSL_CHECK(source > kSourcePass && source < kSourceCount);
+    return fmt::format("#line 1 {}\n", int(source)) + shader_text(kShaderSourceFiles[source]) + "#line 2 0\n";
 }
 
 Program build_program(const std::string& vertex, const std::string& fragment, const std::string& defines) {

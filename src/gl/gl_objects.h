@@ -102,15 +102,17 @@ std::string shading_prelude();
 // What the viewer's display passes get before their text: the sRGB curve
 // (shaders/srgb.glsl), then a #line for the shader's own line numbers.
 std::string srgb_prelude();
-// What the shading passes read, after shading_prelude(): shaders/shading_data.glsl
-// (the data and the BRDF average), visibility_fields.glsl (SVDF, OVDF,
-// exact shapes) and shadow_map_filter.glsl (the shadow-map baseline), as
-// source strings 2, 3 and 4. The sum itself (point_sum.glsl, source 7)
-// comes after them (and after the GPU rays' text, with RAY_TRACED).
+// What the shading passes read, after shading_prelude(): the samplers
+// (gpu_interface.h kShadingSamplers), shaders/shading_data.glsl (the data
+// and the BRDF average), visibility_fields.glsl (SVDF, OVDF, exact shapes)
+// and shadow_map_filter.glsl (the shadow-map baseline). The sum itself
+// (point_sum.glsl) comes after them (and after the GPU rays' text, with
+// RAY_TRACED): the order of gpu_interface.h ShaderSource.
 std::string shading_inputs_prelude();
-// shaders/<name> to go before a shader's own text, as source string
-// `source` (#line 1 source), so that the driver's messages name its lines.
-std::string included_shader(const std::string& name, int source);
+// The file of `source` (gpu_interface.h kShaderSourceFiles) to go before a
+// shader's own text, as that source string (#line 1 source), so that the
+// driver's messages name its lines.
+std::string included_shader(ShaderSource source);
 
 // A flat array of vec4 (or half4) stored row-major in a 2D texture of fixed
 // width: element i is texel (i % width, i / width). Shaders read it with

@@ -74,14 +74,8 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
 }
 
 void GlRenderer::set_sampler_units(const Program& program) {
-    const char* samplers[kUnitCount] = {"u_positions",       "u_normals",           "u_tangents",
-                                        "u_parts",           "u_lights",
-                                        "u_brdf",            "u_brdf_offsets",      "u_svdf_tables",
-                                        "u_svdf_coefficients", "u_ovdf_tables",     "u_ovdf_coefficients",
-                                        "u_ovdf_frames",     "u_shadow_depths",     "u_base_color",
-                                        "u_indices"};
     glUseProgram(program.id());
-    for (int unit = 0; unit < kUnitCount; ++unit) glUniform1i(uniform(program, samplers[unit]), unit);
+    for (const Sampler& sampler : kShadingSamplers) glUniform1i(uniform(program, sampler.name), sampler.unit);
     glUniform3fv(uniform(program, "u_face_normal"), 6, &face_normal_[0].x);
     glUniform3fv(uniform(program, "u_face_s"), 6, &face_s_[0].x);
     glUniform3fv(uniform(program, "u_face_t"), 6, &face_t_[0].x);
@@ -100,7 +94,7 @@ Program GlRenderer::make_vertex_pass(const VertexPassVariant& variant, bool reco
                                 fmt::format("#define SHADE_BLOCK {}\n#define SELF_CORNERS 1\n", kShadeBlock) +
                                 shading_prelude() + shading_inputs_prelude() +
                                 (variant.rays ? RayTracedVisibility::shader_text() : "") +
-                                included_shader("point_sum.glsl", 7);
+                                included_shader(kSourcePointSum);
     Program program = build_compute_program("shade_blocks.comp.glsl", defines);
     set_sampler_units(program);
     return program;
@@ -110,7 +104,7 @@ Program GlRenderer::make_pixel_pass(VertexPassVariant variant) {
     variant.rays = false;  // the ray-traced baseline draws no part per pixel (per_pixel_part)
     const std::string common = variant_defines(variant, false) + shading_prelude() + shading_inputs_prelude();
     Program program = build_program("shade_pixels.vert.glsl", "shade_pixels.frag.glsl", common + srgb_prelude(),
-                                    common + included_shader("point_sum.glsl", 7) + srgb_prelude());
+                                    common + included_shader(kSourcePointSum) + srgb_prelude());
     set_sampler_units(program);
     return program;
 }
@@ -330,9 +324,11 @@ void GlRenderer::run_vertex_pass(const Program& program) {
         rays_->bind(program);
         glUniform1i(uniform(program, "u_ray_samples"), options_.gpu_rays.samples_per_side);
     }
-    const Buffer* buffers[] = {&blocks_, &block_vertices_, &candidates_, &part_culling_, &counters_, &colors_};
-    for (GLuint binding = 0; binding < 6; ++binding)
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffers[binding]->id());
+    const std::pair<StorageBinding, const Buffer*> buffers[] = {
+        {kBindingBlocks, &blocks_},           {kBindingBlockVertices, &block_vertices_},
+        {kBindingCandidates, &candidates_},   {kBindingPartCulling, &part_culling_},
+        {kBindingCounters, &counters_},       {kBindingColors, &colors_}};
+    for (const auto& [binding, buffer] : buffers) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer->id());
     // At most 65,535 workgroups along an axis: the blocks as rows of that many.
     const GLuint groups = GLuint(std::max(block_count_, 1));
     const GLuint columns = std::min<GLuint>(groups, 65535);
@@ -358,8 +354,8 @@ std::vector<std::vector<uint32_t>> GlRenderer::block_candidate_lights() {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, record_offsets.id());
     glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<size_t>(offsets.size(), 1) * 4), offsets.data(),
                  GL_STATIC_DRAW);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, recorded.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, record_offsets.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingRecorded, recorded.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingRecordOffsets, record_offsets.id());
     const Program program = make_vertex_pass(frame_vertex_pass_variant(), true);
     run_vertex_pass(program);
     std::vector<uint32_t> flat(std::max<size_t>(total, 1));

@@ -1,19 +1,11 @@
 #pragma once
 // Shared by the GL renderer's translation units (gl_renderer.cpp: the vertex
-// pass; gl_display.cpp: the display and per-pixel passes): texture units,
-// timed passes, and two small GL helpers.
+// pass; gl_display.cpp: the display and per-pixel passes): timed passes,
+// and two small GL helpers. Texture units and bindings: gpu_interface.h.
 #include "src/gl/gl_objects.h"
+#include "src/gl/gpu_interface.h"
 
 namespace rsl::gl {
-
-// Texture units of the shading inputs (the vertex pass and the per-pixel
-// pass bind the same); the per-pixel pass's base colour texture and
-// triangle indices last.
-enum Unit : int {
-    kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitBrdf,
-    kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
-    kUnitOvdfFrames, kUnitShadowMaps, kUnitBaseColor, kUnitIndices, kUnitCount
-};
 
 // Timed passes (PassTimings), the index of their timer queries.
 enum Pass : int { kPassShade, kPassDisplay, kPassShadow, kPassCount };

@@ -54,12 +54,10 @@ void upload(Buffer& buffer, const void* data, size_t bytes, GLenum usage) {
 }  // namespace
 
 std::string GpuBvh::shader_defines() {
-    // A binding in a layout must be a literal in GLSL 4.30: the constants as macros.
-    return fmt::format(
-        "#define BVH_NODES_BINDING {}\n#define BVH_TRIANGLES_BINDING {}\n#define BVH_INSTANCES_BINDING {}\n"
-        "#define BVH_NODE_VEC4S {}\n#define BVH_TRIANGLE_VEC4S {}\n#define BVH_INSTANCE_VEC4S {}\n#define BVH_STACK {}\n",
-        kBvhNodesBinding, kBvhTrianglesBinding, kBvhInstancesBinding, kBvhNodeVec4s, kBvhTriangleVec4s,
-        kBvhInstanceVec4s, kBvhStack);
+    // Array sizes in GLSL 4.30 want literals: the constants as macros.
+    return fmt::format("#define BVH_NODE_VEC4S {}\n#define BVH_TRIANGLE_VEC4S {}\n#define BVH_INSTANCE_VEC4S {}\n"
+                       "#define BVH_STACK {}\n",
+                       kBvhNodeVec4s, kBvhTriangleVec4s, kBvhInstanceVec4s, kBvhStack);
 }
 
 GpuBvh::GpuBvh(const Scene& scene) : parts_(scene.parts.size()) {
@@ -91,7 +89,7 @@ GpuBvh::GpuBvh(const Scene& scene) : parts_(scene.parts.size()) {
     top_first_ = int(stats_.bottom_nodes);
     upload(triangles_buffer_, triangles.data(), triangles.size() * sizeof(Vec4), GL_STATIC_DRAW);
     bytes_ = triangles.size() * sizeof(Vec4);
-    refit_ = build_compute_program("bvh_refit.comp.glsl", shader_defines());
+    refit_ = build_compute_program("bvh_refit.comp.glsl", shader_interface_glsl() + shader_defines());
     check_gl("building the BVH");
 }
 
@@ -155,7 +153,7 @@ void GpuBvh::set_poses(const std::vector<Mat4>& part_to_world) {
     glUniform1iv(uniform(refit_, "u_level_ends"), GLsizei(level_ends_.size()), level_ends_.data());
     glUniform1i(uniform(refit_, "u_parts"), int(parts_));
     bind(refit_);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, levels_buffer_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingBvhLevels, levels_buffer_.id());
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     check_gl("refitting the BVH");
@@ -164,9 +162,9 @@ void GpuBvh::set_poses(const std::vector<Mat4>& part_to_world) {
 void GpuBvh::bind(const Program& program) const {
     glUniform1i(uniform(program, "u_bvh_top_root"), top_first_);
     glUniform1i(uniform(program, "u_bvh_parts"), int(parts_));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBvhNodesBinding, nodes_buffer_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBvhTrianglesBinding, triangles_buffer_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBvhInstancesBinding, instances_buffer_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingBvhNodes, nodes_buffer_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingBvhTriangles, triangles_buffer_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingBvhInstances, instances_buffer_.id());
 }
 
 std::vector<uint8_t> GpuBvh::occluded(const std::vector<Vec3>& origins, const std::vector<Vec3>& directions,
@@ -175,7 +173,7 @@ std::vector<uint8_t> GpuBvh::occluded(const std::vector<Vec3>& origins, const st
     RSL_CHECK(top_built_);
     if (!trace_)
         trace_ = build_compute_program("trace_rays.comp.glsl", shader_defines() + shading_prelude() +
-                                                                   included_shader("bvh_traverse.glsl", 5));
+                                                                   included_shader(kSourceBvhTraverse));
     std::vector<Vec4> rays;
     for (size_t i = 0; i < origins.size(); ++i) rays.push_back(Vec4(origins[i], 0.0f)), rays.push_back(Vec4(directions[i], 0.0f));
     Buffer ray_buffer, hit_buffer;
@@ -185,8 +183,8 @@ std::vector<uint8_t> GpuBvh::occluded(const std::vector<Vec3>& origins, const st
     glUniform1i(uniform(trace_, "u_ray_count"), int(origins.size()));
     glUniform1f(uniform(trace_, "u_t_far"), t_far);
     bind(trace_);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ray_buffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, hit_buffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingRays, ray_buffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingHits, hit_buffer.id());
     const GLuint groups = GLuint((origins.size() + 63) / 64);
     glDispatchCompute(std::max<GLuint>(groups, 1), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -16,13 +16,10 @@
 
 #include "src/core/scene.h"
 #include "src/gl/gl_objects.h"
+#include "src/gl/gpu_interface.h"
 
 namespace rsl::gl {
 
-// Storage-buffer bindings of bvh_traverse.glsl (after the vertex pass's 0..7).
-inline constexpr int kBvhNodesBinding = 8;
-inline constexpr int kBvhTrianglesBinding = 9;
-inline constexpr int kBvhInstancesBinding = 10;
 // vec4 per node (both children: lo + index, hi + count), per triangle (v0,
 // e1, e2) and per part's instance record (inverse, transform, mesh box with
 // root, diagonal and exit distance).
@@ -45,12 +42,13 @@ public:
     // Part → world per part (scene.parts order): the instance records, then
     // the top level's boxes refit on the GPU (its topology is the first pose's).
     void set_poses(const std::vector<Mat4>& part_to_world);
-    // Its three storage buffers at kBvh*Binding, and the uniforms of
+    // Its three storage buffers at kBindingBvh* (gpu_interface.h), and the uniforms of
     // bvh_traverse.glsl into `program` (the current program).
     void bind(const Program& program) const;
     size_t bytes() const { return bytes_; }
     const BvhStats& stats() const { return stats_; }
-    // What a shader that includes bvh_traverse.glsl needs first: its bindings and sizes as macros.
+    // What a shader that includes bvh_traverse.glsl needs first, besides the
+    // bindings (shader_interface_glsl): its sizes as macros.
     static std::string shader_defines();
 
     // Whether each ray (origin, direction) is blocked before t_far (in units

@@ -234,10 +234,10 @@ void pack_part_ovdf(const Scene& scene, size_t p, const OccluderField* field, Pa
 
 std::string shader_layout_constants() {
     std::string text = "// Generated from src/gl/gpu_layout.h (shader_layout_constants).\n";
-    for (const ShaderIntConstant& c : kShaderIntConstants) text += fmt::format("const int {} = {};\n", c.name, c.value);
+    for (const GlslConstant& c : kShaderIntConstants) text += fmt::format("const int {} = {};\n", c.name, c.value);
     // {:.9g} round-trips a float exactly.
     text += fmt::format("const float kPi = {:.9g}f;\nconst float kSqrt2 = {:.9g}f;\n", shading::kPi, shading::kSqrt2);
-    return text;
+    return text + shader_interface_glsl();
 }
 
 void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, Vec4* record) {

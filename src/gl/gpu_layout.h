@@ -37,6 +37,7 @@
 
 #include "src/brdf/brdf_table.h"
 #include "src/core/scene.h"
+#include "src/gl/gpu_interface.h"
 #include "src/render/culling.h"
 #include "src/render/frame_setup.h"
 #include "src/render/part_fields.h"
@@ -100,18 +101,11 @@ enum Counter : int {
     kCounterShadowRays = 3,        // rays traced (RenderOptions::gpu_rays)
     kCounterCount = 4,
 };
-// The ray-traced baseline's per-vertex storage buffer (shaders/ray_visibility.glsl):
-// per vertex, the part-space direction into its own triangles (border_inward_directions) or 0.
-inline constexpr int kRayInwardBinding = 12;
 inline constexpr int kOvdfFrameTexels = 2;    // per OVDF sample frame (x, z)
 inline constexpr int kSamplesPerTexel = 2;    // OVDF samples' (surface distance, occluded area), RG and BA
 
 // The integer constants the shading pass reads, by their GLSL names.
-struct ShaderIntConstant {
-    const char* name;
-    int value;
-};
-inline constexpr ShaderIntConstant kShaderIntConstants[] = {
+inline constexpr GlslConstant kShaderIntConstants[] = {
     {"kArrayWidth", kArrayTextureWidth},
     {"kArrayShift", kArrayTextureShift},
     {"kPartStride", kPartStride},
@@ -153,7 +147,8 @@ inline constexpr ShaderIntConstant kShaderIntConstants[] = {
 
 // GLSL declarations of kShaderIntConstants and of kPi and kSqrt2 (the
 // shading core's, printed so that they read back as the same floats), one
-// `const` per line, for the host to prepend to the shading pass.
+// `const` per line, then the storage bindings (gpu_interface.h
+// shader_interface_glsl), for the host to prepend to the shading pass.
 std::string shader_layout_constants();
 
 // Where a block (one field's tables, coefficients, frames, spans) starts in

@@ -1,7 +1,5 @@
 #include "src/gl/ray_traced_visibility.h"
 
-#include <fmt/core.h>
-
 #include "src/core/error.h"
 #include "src/gl/gpu_layout.h"
 #include "src/rays/posed_scene.h"
@@ -40,16 +38,13 @@ void RayTracedVisibility::set_poses(const std::vector<Mat4>& part_to_world) { bv
 
 void RayTracedVisibility::bind(const Program& program) const {
     bvh_.bind(program);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRayInwardBinding, inward_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingRayInward, inward_.id());
 }
 
 size_t RayTracedVisibility::bytes() const { return bvh_.bytes() + inward_bytes_; }
 
 std::string RayTracedVisibility::shader_text() {
-    // A binding in a layout must be a literal in GLSL 4.30: the layout constant as a macro.
-    return fmt::format("#define RAY_INWARD_BINDING {}\n", kRayInwardBinding) + GpuBvh::shader_defines() +
-           included_shader("bvh_traverse.glsl", 5) +
-           included_shader("ray_visibility.glsl", 6);
+    return GpuBvh::shader_defines() + included_shader(kSourceBvhTraverse) + included_shader(kSourceRayVisibility);
 }
 
 }  // namespace rsl::gl

@@ -33,8 +33,8 @@ Skybox::Skybox(const CubeMap& first, const CubeMap* second)
       second_(upload_cube(second ? *second : first)),
       vao_(make_vertex_array()) {
     glUseProgram(program_.id());
-    glUniform1i(uniform(program_, "u_first"), 0);
-    glUniform1i(uniform(program_, "u_second"), 1);
+    glUniform1i(uniform(program_, "u_first"), kUnitSkyFirst);
+    glUniform1i(uniform(program_, "u_second"), kUnitSkySecond);
     glUseProgram(0);
 }
 
@@ -50,14 +50,14 @@ void Skybox::draw(const Mat4& view_projection, const Vec3& eye, const Mat3& rota
     glUniformMatrix3fv(uniform(program_, "u_rotation_transpose"), 1, GL_FALSE, &rotation_transpose[0][0]);
     glUniform1f(uniform(program_, "u_second_weight"), second_weight);
     glUniform1f(uniform(program_, "u_exposure"), exposure);
-    glActiveTexture(GL_TEXTURE0);
+    glActiveTexture(GL_TEXTURE0 + kUnitSkyFirst);
     glBindTexture(GL_TEXTURE_CUBE_MAP, first_.id());
-    glActiveTexture(GL_TEXTURE1);
+    glActiveTexture(GL_TEXTURE0 + kUnitSkySecond);
     glBindTexture(GL_TEXTURE_CUBE_MAP, second_.id());
     glBindVertexArray(vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
-    glActiveTexture(GL_TEXTURE0);
+    glActiveTexture(GL_TEXTURE0 + kUnitUpload);  // leave no pass's unit active
     glDepthMask(GL_TRUE);
     check_gl("the skybox pass");
 }

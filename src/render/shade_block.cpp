@@ -412,23 +412,17 @@ void CpuRenderer::load_block_points(BlockScratch& s, const Block& block) const {
     }
 }
 
-// The bounding sphere of the block's n points (box center, farthest point)
-// for block-level culling; the GPU's workgroups compute the same
-// (shaders/shade_blocks.comp.glsl).
+// The bounding sphere of the block's n points for block-level culling: the
+// shading core's (src/shading/culling.h point_box), as the GPU's workgroups
+// compute it (shaders/shade_blocks.comp.glsl).
 BoundingSphere CpuRenderer::block_bounding_sphere(const BlockScratch& s, int n) {
-    Vec3 lo(s.px[0], s.py[0], s.pz[0]), hi = lo;
-    for (int k = 1; k < n; ++k) {
-        lo = glm::min(lo, Vec3(s.px[k], s.py[k], s.pz[k]));
-        hi = glm::max(hi, Vec3(s.px[k], s.py[k], s.pz[k]));
-    }
+    shading::PointBox box = shading::point_box(Vec3(s.px[0], s.py[0], s.pz[0]));
+    for (int k = 1; k < n; ++k) box = shading::point_box_add(box, Vec3(s.px[k], s.py[k], s.pz[k]));
     BoundingSphere sphere;
-    sphere.center = 0.5f * (lo + hi);
+    sphere.center = shading::point_box_center(box);
     float r2 = 0;
-    for (int k = 0; k < n; ++k) {
-        const Vec3 d = Vec3(s.px[k], s.py[k], s.pz[k]) - sphere.center;
-        r2 = std::max(r2, glm::dot(d, d));
-    }
-    sphere.radius = std::sqrt(r2) * (1.0f + 1e-6f) + 1e-6f;
+    for (int k = 0; k < n; ++k) r2 = shading::farther_squared(r2, sphere.center, Vec3(s.px[k], s.py[k], s.pz[k]));
+    sphere.radius = shading::bounding_radius(r2);
     return sphere;
 }
 

@@ -38,14 +38,14 @@ using shading::sphere_cap_solid_angle;
 
 // The square light a sphere light (center, radius, radiance) makes at point x.
 // A point inside the sphere is not lit by it (integral 0), as in the truth.
+// The square is the shading core's (shading::sphere_square), shared with the GPU.
 inline SquareLight sphere_light_square(const Vec3& x, const Vec3& center, float radius, const Color& radiance) {
     SquareLight light;
-    const Vec3 to_center = center - x;
-    const float distance = glm::length(to_center);
-    if (!(distance > radius)) return light;
-    light.direction = to_center / distance;
-    light.solid_angle = sphere_cap_solid_angle(radius, distance);
-    light.half_edge = half_edge_for_solid_angle(light.solid_angle);
+    const shading::SphereSquare square = shading::sphere_square(x, center, radius);
+    if (!square.lit) return light;
+    light.direction = square.direction;
+    light.solid_angle = square.solid_angle;
+    light.half_edge = square.half_edge;
     light.integral = radiance * light.solid_angle;
     return light;
 }

@@ -87,6 +87,35 @@ RSL_SHARED bool block_unshadowed(vec3 pole, BlockSpread spread, float cone, vec3
     return dot(light, pole) <= cos_needed * spread.cosine - sin_needed * spread.sine;
 }
 
+// A block's bounding sphere for block-level culling: the center of its
+// points' box, the radius to the farthest point, padded for rounding. Each
+// side loops over the points where it keeps them (the CPU's block scratch,
+// a workgroup's shared memory), in two passes:
+//   box = point_box(p₀), then box = point_box_add(box, p_k);
+//   c = point_box_center(box); r² = farther_squared(r², c, p_k) from r² = 0;
+//   sphere = vec4(c, bounding_radius(r²)).
+struct PointBox {
+    vec3 lo;
+    vec3 hi;
+};
+RSL_SHARED PointBox point_box(vec3 p) {
+    PointBox box;
+    box.lo = p;
+    box.hi = p;
+    return box;
+}
+RSL_SHARED PointBox point_box_add(PointBox box, vec3 p) {
+    box.lo = min(box.lo, p);
+    box.hi = max(box.hi, p);
+    return box;
+}
+RSL_SHARED vec3 point_box_center(PointBox box) { return 0.5f * (box.lo + box.hi); }
+RSL_SHARED float farther_squared(float r2, vec3 center, vec3 p) {
+    vec3 d = p - center;
+    return max(r2, dot(d, d));
+}
+RSL_SHARED float bounding_radius(float farthest_squared) { return sqrt(farthest_squared) * (1.0f + 1e-6f) + 1e-6f; }
+
 // RSL_GLSL_END
 
 }  // namespace rsl::shading

@@ -19,6 +19,32 @@ RSL_SHARED float sphere_cap_solid_angle(float radius, float distance) {
     float sin2 = min(1.0f, (radius / distance) * (radius / distance));
     return 2.0f * kPi * sin2 / (1.0f + sqrt(1.0f - sin2));
 }
+// A sphere light (center, radius) at point x as a square light
+// (docs/design/METHOD.md "Local lights"): its unit direction, the exact
+// cap's solid angle and the square's half-edge. A point inside the sphere
+// is not lit by it (lit false, solid angle and half-edge 0, direction +z),
+// as in the truth. The radiance and a spot's cone are the caller's.
+struct SphereSquare {
+    vec3 direction;
+    float solid_angle;
+    float half_edge;
+    bool lit;
+};
+RSL_SHARED SphereSquare sphere_square(vec3 x, vec3 center, float radius) {
+    SphereSquare s;
+    s.direction = vec3(0.0f, 0.0f, 1.0f);
+    s.solid_angle = 0.0f;
+    s.half_edge = 0.0f;
+    s.lit = false;
+    vec3 to_center = center - x;
+    float distance = length(to_center);
+    if (!(distance > radius)) return s;
+    s.direction = to_center / distance;
+    s.solid_angle = sphere_cap_solid_angle(radius, distance);
+    s.half_edge = half_edge_for_solid_angle(s.solid_angle);
+    s.lit = true;
+    return s;
+}
 // A spot light's cone (glTF KHR_lights_punctual's smooth falloff): what
 // reaches a point in unit direction w from the light (light → point) is
 // scaled by clamp(dot(axis, w)·scale + offset, 0, 1)², with

@@ -3,9 +3,13 @@
 #include <catch2/catch.hpp>
 
 #include <random>
+#include <set>
+
+#include <fmt/format.h>
 
 #include "src/core/error.h"
 #include "src/gl/gpu_layout.h"
+#include "src/gl/shader_sources.h"
 #include "src/render/occluder_shape.h"
 #include "src/render/ovdf_occluder.h"
 #include "tests/trace/trace_test_scenes.h"
@@ -192,4 +196,54 @@ TEST_CASE("Part records carry a flat part's rectangle when exact shapes are on",
 }
 
 }  // namespace
+}  // namespace rsl
+
+namespace rsl {
+namespace {
+
+// How many times `needle` stands in `text`.
+size_t occurrences(const std::string& text, const std::string& needle) {
+    size_t count = 0;
+    for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++count;
+    return count;
+}
+
+}  // namespace
+
+TEST_CASE("the GPU interface's table gives each pass distinct bindings and each sampler its unit", "[gl-layout]") {
+    // The bindings one program binds at once: the vertex pass's (and the
+    // per-pixel pass's), with the GPU rays'; then the two passes of their own.
+    const std::vector<std::vector<int>> programs = {
+        {gl::kBindingBlocks, gl::kBindingBlockVertices, gl::kBindingCandidates, gl::kBindingPartCulling,
+         gl::kBindingCounters, gl::kBindingColors, gl::kBindingRecorded, gl::kBindingRecordOffsets,
+         gl::kBindingBvhNodes, gl::kBindingBvhTriangles, gl::kBindingBvhInstances, gl::kBindingRayInward},
+        {gl::kBindingBvhNodes, gl::kBindingBvhInstances, gl::kBindingBvhLevels},
+        {gl::kBindingRays, gl::kBindingHits, gl::kBindingBvhNodes, gl::kBindingBvhTriangles, gl::kBindingBvhInstances},
+    };
+    for (const std::vector<int>& bindings : programs) {
+        const std::set<int> distinct(bindings.begin(), bindings.end());
+        CHECK(distinct.size() == bindings.size());
+    }
+    // Every binding reaches the shaders once, as `#define NAME value`.
+    const std::string glsl = gl::shader_interface_glsl();
+    for (const gl::GlslConstant& b : gl::kStorageBindings) {
+        INFO(b.name);
+        CHECK(occurrences(glsl, fmt::format("#define {} {}\n", b.name, b.value)) == 1);
+        CHECK(occurrences(glsl, std::string(" ") + b.name + " ") == 1);
+    }
+    // One sampler per unit, in unit order, each declared once.
+    const std::string samplers = gl::shader_sampler_declarations();
+    std::set<std::string> names;
+    for (int unit = 0; unit < gl::kUnitCount; ++unit) {
+        const gl::Sampler& s = gl::kShadingSamplers[unit];
+        CHECK(s.unit == unit);
+        CHECK(names.insert(s.name).second);
+        CHECK(occurrences(samplers, fmt::format("uniform {} {};", s.type, s.name)) == 1);
+    }
+    CHECK(gl::kUnitUpload >= gl::kUnitCount);
+    // Every included file is an embedded shader; the pass itself is source 0.
+    CHECK(gl::kShaderSourceFiles[gl::kSourcePass] == nullptr);
+    for (int source = 1; source < gl::kSourceCount; ++source) CHECK(gl::embedded_shader(gl::kShaderSourceFiles[source]));
+}
+
 }  // namespace rsl

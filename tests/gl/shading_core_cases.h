@@ -11,7 +11,7 @@ namespace rsl::shading {
 
 // RSL_GLSL_BEGIN
 
-RSL_CONST int kShadingCoreModes = 17;
+RSL_CONST int kShadingCoreModes = 19;
 
 struct CaseOutput {
     vec4 first;
@@ -159,6 +159,33 @@ RSL_SHARED CaseOutput shading_core_case(int mode, vec4 a, vec4 b, const vec3 nor
         o.first = vec4(square_average_cosine(c, 0.5f * ha), square_average_cosine(0.3f * c, 0.2f * ha),
                        diffuse_light_gain(abs(b.x), abs(b.y), abs(b.w) - 0.1f), float(taps.first));
         o.second = vec4(float(taps.row), taps.weight.x, taps.weight.y, diffuse_light_gain(abs(b.x), abs(b.y), 0.5f + abs(b.w)));
+    } else if (mode == 17) {  // a sphere light's square at a point: outside the sphere, and inside it a tenth of the time
+        vec3 x = 3.0f * vec3(a.x, a.y, a.z);
+        vec3 center = 3.0f * vec3(b.x, b.y, b.z);
+        float radius = 0.01f + 2.0f * abs(a.w);
+        if (b.w > 0.8f) radius = length(center - x) + 0.01f;
+        SphereSquare square = sphere_square(x, center, radius);
+        o.first = vec4(square.direction.x, square.direction.y, square.direction.z, square.lit ? 1.0f : 0.0f);
+        o.second = vec4(square.solid_angle, square.half_edge, 0.0f, 0.0f);
+    } else if (mode == 18) {  // a block's bounding sphere over five points
+        vec3 p0 = vec3(a.x, a.y, a.z);
+        vec3 p1 = vec3(b.x, b.y, b.z);
+        vec3 p2 = vec3(a.w, b.w, a.x * b.y);
+        vec3 p3 = 0.5f * vec3(b.w, a.z, a.y);
+        vec3 p4 = 10.0f * vec3(a.x * a.y, b.z * b.w, a.w * b.x);
+        PointBox box = point_box(p0);
+        box = point_box_add(box, p1);
+        box = point_box_add(box, p2);
+        box = point_box_add(box, p3);
+        box = point_box_add(box, p4);
+        vec3 center = point_box_center(box);
+        float r2 = farther_squared(0.0f, center, p0);
+        r2 = farther_squared(r2, center, p1);
+        r2 = farther_squared(r2, center, p2);
+        r2 = farther_squared(r2, center, p3);
+        r2 = farther_squared(r2, center, p4);
+        o.first = vec4(center.x, center.y, center.z, bounding_radius(r2));
+        o.second = vec4(box.lo.x, box.hi.y, box.lo.z, r2);
     }
     return o;
 }

@@ -257,18 +257,7 @@ TEST_CASE("shadow maps: options out of range and the CPU renderer are refused", 
         gpu.shade_on_device();  // nothing moved: the maps are reused
         CHECK(gpu.timings().shadow_ms == 0.0);
     }
-
-    // `rsl render`: the range, and the backend, before any work.
-    const std::string render = "render " + std::string(RSL_SOURCE_DIR) + "/assets/scenes/default.json ";
-    const auto [low, low_output] = test::run_rsl(render + "--backend gl --shadow-maps 8 -o x.exr");
-    CHECK(low != 0);
-    CHECK_THAT(low_output, Catch::Contains("--shadow-maps 8: expected a resolution of 16..8192"));
-    const auto [cpu, cpu_output] = test::run_rsl(render + "--shadow-maps 256 -o x.exr");
-    CHECK(cpu != 0);
-    CHECK_THAT(cpu_output, Catch::Contains("add --backend gl"));
-    const auto [filter, filter_output] = test::run_rsl(render + "--shadow-filter pcf -o x.exr");
-    CHECK(filter != 0);
-    CHECK_THAT(filter_output, Catch::Contains("--shadow-maps"));
+    // `rsl render`'s refusals: tests/render/render_cli_limits_test.cpp.
 }
 
 }  // namespace

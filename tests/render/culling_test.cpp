@@ -2,11 +2,15 @@
 // the renderer's colours with culling on and off.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <numbers>
 #include <random>
+#include <vector>
 
 #include "src/render/culling.h"
 #include "src/render/cpu_renderer.h"
 #include "src/render/square_lights.h"
+#include "src/shading/culling.h"
 #include "tests/render/render_test_scenes.h"
 #include "tests/random_cases.h"
 
@@ -141,6 +145,74 @@ TEST_CASE("the slab rule clears only squares whose every direction misses the bo
     }
     CHECK(cleared > 500);
     CHECK(blocked_somewhere > 10);  // measured: 28
+}
+
+TEST_CASE("a block's bounding sphere holds its points and is no larger than its box's half-diagonal",
+          "[render][culling]") {
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> u(-1, 1);
+    for (int trial = 0; trial < 500; ++trial) {
+        const int n = 1 + int(255.0f * std::abs(u(rng)));
+        const float scale = trial % 2 ? 0.01f : 50.0f;
+        const Vec3 offset = 100.0f * test::random_vec3(u, rng);
+        std::vector<Vec3> points;
+        for (int k = 0; k < n; ++k) points.push_back(offset + scale * test::random_vec3(u, rng));
+        shading::PointBox box = shading::point_box(points[0]);
+        for (int k = 1; k < n; ++k) box = shading::point_box_add(box, points[k]);
+        const Vec3 center = shading::point_box_center(box);
+        float r2 = 0;
+        for (const Vec3& p : points) r2 = shading::farther_squared(r2, center, p);
+        const float radius = shading::bounding_radius(r2);
+        // The box and the farthest point in double, independently.
+        glm::dvec3 lo(points[0]), hi(points[0]);
+        for (const Vec3& p : points) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+        const glm::dvec3 mid = 0.5 * (lo + hi);
+        double farthest = 0, farthest_from_mid = 0;  // from the sphere's center, and from the box's exact middle
+        for (const Vec3& p : points) {
+            farthest = std::max(farthest, glm::distance(glm::dvec3(p), glm::dvec3(center)));
+            farthest_from_mid = std::max(farthest_from_mid, glm::distance(glm::dvec3(p), mid));
+        }
+        CHECK(glm::distance(glm::dvec3(center), mid) <= 1e-6 * (glm::length(mid) + 1.0));
+        CHECK(double(radius) >= farthest);  // every point inside
+        CHECK(double(radius) <= farthest * (1 + 1e-5) + 2e-6);  // by the padding, no more
+        CHECK(farthest_from_mid <= 0.5 * glm::distance(lo, hi) + 1e-9);
+    }
+}
+
+TEST_CASE("a sphere light's square has the solid angle of the cap it subtends", "[render][culling]") {
+    std::mt19937 rng(37);
+    std::uniform_real_distribution<float> u(-1, 1);
+    int lit = 0, unlit = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const Vec3 x = 3.0f * test::random_vec3(u, rng);
+        const Vec3 center = 3.0f * test::random_vec3(u, rng);
+        const float radius = 0.001f + 2.0f * std::abs(u(rng));
+        const Color radiance(1.0f, 2.0f, 3.0f);
+        const SquareLight light = sphere_light_square(x, center, radius, radiance);
+        const double distance = glm::distance(glm::dvec3(x), glm::dvec3(center));
+        if (distance <= double(radius) * (1 + 1e-6)) {  // inside: not lit
+            if (distance < double(radius) * (1 - 1e-6)) {
+                ++unlit;
+                CHECK(light.solid_angle == 0.0f);
+                CHECK(light.half_edge == 0.0f);
+                CHECK(light.integral == Color(0.0f));
+            }
+            continue;
+        }
+        ++lit;
+        // 2π(1 − cos α), sin α = a / d, in double.
+        const double sin_alpha = double(radius) / distance;
+        const double cap = 2.0 * std::numbers::pi * (1.0 - std::sqrt(1.0 - sin_alpha * sin_alpha));
+        CHECK(std::abs(light.solid_angle - cap) <= 1e-5 * cap + 1e-12);
+        // The square's plane area (2h)² is half its solid angle.
+        const double area = 4.0 * double(light.half_edge) * double(light.half_edge);
+        CHECK(std::abs(area - 0.5 * cap) <= 2e-5 * cap + 1e-12);
+        const glm::dvec3 direction = (glm::dvec3(center) - glm::dvec3(x)) / distance;
+        CHECK(glm::distance(glm::dvec3(light.direction), direction) <= 1e-6);
+        CHECK(std::abs(light.integral.b - 3.0 * cap) <= 3e-5 * cap + 1e-12);
+    }
+    CHECK(lit > 1000);
+    CHECK(unlit > 50);
 }
 
 // Spheres spread over a plane with fields: some pairs are far apart (beyond

@@ -60,8 +60,12 @@ TEST_CASE("rsl render refuses non-finite and out-of-range numbers before loading
         {"--height -3", "--height -3: expected 1 to 16384 pixels"},
         {"--samples 1000", "--samples 1000: expected 1 to 16"},
         {"--gpu-rays 17", "--gpu-rays 17: expected S of 1..16"},
-        {"--gpu-rays 2", "--gpu-rays: GPU ray-traced visibility is a GL baseline (add --backend gl)"},
+#ifdef RSL_HAVE_GL
+        {"--gpu-rays 2", "--gpu-rays: GPU ray-traced visibility is a GPU baseline (add --backend gl)"},
         {"--gpu-rays 2 --backend gl --shadow-maps 256", "--gpu-rays and --shadow-maps: pick one"},
+#else
+        {"--gpu-rays 2", "--gpu-rays: GPU ray-traced visibility is a GPU baseline (add a backend this rsl was built without)"},
+#endif
     };
     for (const auto& [arguments, message] : cases) {
         const Run run = run_limited("render " + scene + " " + arguments + out);
@@ -96,3 +100,19 @@ TEST_CASE("rsl render refuses a FIFO as the scene file at once, and -q prints no
     const Run loud = run_limited("render " + scene + " -k 2 -o " + (dir / "loud.exr").string());
     CHECK(loud.output.find("t=0.000: ") != std::string::npos);
 }
+
+#ifdef RSL_HAVE_GL
+TEST_CASE("rsl render refuses a shadow-map resolution out of range, and shadow maps on the CPU, before any work",
+          "[render][cli][bad-input]") {
+    const std::string render = "render " + std::string(RSL_SOURCE_DIR) + "/assets/scenes/default.json ";
+    const auto [low, low_output] = run_rsl(render + "--backend gl --shadow-maps 8 -o x.exr");
+    CHECK(low != 0);
+    CHECK_THAT(low_output, Catch::Contains("--shadow-maps 8: expected a resolution of 16..8192"));
+    const auto [cpu, cpu_output] = run_rsl(render + "--shadow-maps 256 -o x.exr");
+    CHECK(cpu != 0);
+    CHECK_THAT(cpu_output, Catch::Contains("add --backend gl"));
+    const auto [filter, filter_output] = run_rsl(render + "--shadow-filter pcf -o x.exr");
+    CHECK(filter != 0);
+    CHECK_THAT(filter_output, Catch::Contains("--shadow-maps"));
+}
+#endif

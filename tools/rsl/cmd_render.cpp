@@ -62,6 +62,16 @@ std::filesystem::path check_render_args(const RenderArgs& args) {
     return args.output;
 }
 
+// The backends `rsl render` offers that have `capability`, as "--backend gl"
+// (or "--backend a or --backend b"), for an error that says what to add.
+std::string backends_offering(bool BackendCapabilities::*capability) {
+    std::string text;
+    for (const std::string& name : backends_with(capability))
+        if (backend_capabilities(parse_backend(name)).standalone)
+            text += (text.empty() ? "--backend " : " or --backend ") + name;
+    return text.empty() ? "a backend this rsl was built without" : text;
+}
+
 // Options phase: the renderer's options from the arguments, shadow maps checked before the fit and the bake.
 RenderOptions render_options(const RenderArgs& args, Backend backend) {
     RenderOptions options;
@@ -79,8 +89,9 @@ RenderOptions render_options(const RenderArgs& args, Backend backend) {
         if (args.shadow_maps < ShadowMapOptions::kMinResolution || args.shadow_maps > ShadowMapOptions::kMaxResolution)
             throw_error("--shadow-maps {}: expected a resolution of {}..{} texels", args.shadow_maps,
                         ShadowMapOptions::kMinResolution, ShadowMapOptions::kMaxResolution);
-        if (backend == Backend::Cpu)
-            throw_error("--shadow-maps: shadow-mapped visibility is a GL baseline (add --backend gl)");
+        if (!backend_capabilities(backend).shadow_maps)
+            throw_error("--shadow-maps: shadow-mapped visibility is a GPU baseline (add {})",
+                        backends_offering(&BackendCapabilities::shadow_maps));
         options.shadow_maps.enabled = true;
         options.shadow_maps.resolution = args.shadow_maps;
         options.shadow_maps.filter = args.shadow_filter == "pcf" ? ShadowFilter::Pcf : ShadowFilter::Pcss;
@@ -89,8 +100,9 @@ RenderOptions render_options(const RenderArgs& args, Backend backend) {
         if (args.gpu_rays < 1 || args.gpu_rays > GpuRayOptions::kMaxSamplesPerSide)
             throw_error("--gpu-rays {}: expected S of 1..{} (SxS rays per vertex and light)", args.gpu_rays,
                         GpuRayOptions::kMaxSamplesPerSide);
-        if (backend == Backend::Cpu)
-            throw_error("--gpu-rays: GPU ray-traced visibility is a GL baseline (add --backend gl)");
+        if (!backend_capabilities(backend).gpu_rays)
+            throw_error("--gpu-rays: GPU ray-traced visibility is a GPU baseline (add {})",
+                        backends_offering(&BackendCapabilities::gpu_rays));
         if (args.shadow_maps != 0) throw_error("--gpu-rays and --shadow-maps: pick one visibility baseline");
         options.gpu_rays.enabled = true;
         options.gpu_rays.samples_per_side = args.gpu_rays;
@@ -98,10 +110,10 @@ RenderOptions render_options(const RenderArgs& args, Backend backend) {
     return options;
 }
 
-// Report phase: the renderer's device (GPU backends) and the environment's blend, unless quiet.
+// Report phase: the renderer's device (backends on one) and the environment's blend, unless quiet.
 void report_renderer(const RenderArgs& args, Backend backend, const RenderSetup& setup, const VertexRenderer& renderer) {
     const Scene& scene = *setup.scene;
-    if (!args.quiet && backend != Backend::Cpu) fmt::print(stderr, "{}\n", renderer.device());
+    if (!args.quiet && backend_capabilities(backend).device) fmt::print(stderr, "{}\n", renderer.device());
     if (!args.quiet && setup.environment_lights.blends())
         fmt::print(stderr, "environment: {} blended with {} over a {} s period (docs/SCENE_FORMAT.md)\n",
                    scene.environment.file.filename().string(), scene.environment.second_file.filename().string(),
@@ -200,8 +212,8 @@ RegisterCommand render_command({"render",
             "frame's exposure unless --exposure is given");
         time->excludes(frames);
         app.add_option("--lights,-k", args->lights, "Number of environment RSLs fitted to the map (each glTF sun adds one of its own)")->capture_default_str();
-        app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer)")
-            ->check(CLI::IsMember({"cpu", "gl"}))->capture_default_str();
+        app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer, where this rsl has it)")
+            ->check(CLI::IsMember(backends_with(&BackendCapabilities::standalone)))->capture_default_str();
         app.add_flag("--same-face", args->same_face, "Fit light regions within one cube face only (the paper's rule)");
         app.add_flag("--no-self", args->no_self, "Switch self-visibility (SVDF) off");
         app.add_flag("--no-occluders", args->no_occluders, "Switch the other parts' shadows (OVDF) off");
