@@ -37,7 +37,7 @@ TriangleMesh room_mesh() {
 
 // Profiles run from the bottom of the axis, out and up the outside, and back
 // to the axis along the top (or down the inside), solid on the left.
-TriangleMesh teapot_mesh() {
+TriangleMesh teapot_mesh_in_kitchen() {
     Profile body(Vec2(0, 0));
     body.rounded_polyline({{0.075f, 0.0f}, {0.118f, 0.035f}, {0.128f, 0.09f}, {0.112f, 0.15f}, {0.08f, 0.172f},
                            // the lid: a step in, a dome, and a knob on a short stem
@@ -95,6 +95,8 @@ float phase(float t) { return 2 * kPi * t / kKitchenLoopSeconds; }
 
 }  // namespace
 
+TriangleMesh make_teapot() { return teapot_mesh_in_kitchen(); }
+
 GeneratedModel make_kitchen() {
     GeneratedModel kitchen;
     kitchen.scene.name = "kitchen";
@@ -103,7 +105,7 @@ GeneratedModel make_kitchen() {
 
     const Vec3 teapot_home(-0.35f, kCounterTop, -0.55f), cup_home(0.45f, kCounterTop, -0.5f);
     const int room = kitchen.add_node("room", -1, Vec3(0), room_mesh());
-    const int teapot = kitchen.add_node("teapot", room, teapot_home, teapot_mesh());
+    const int teapot = kitchen.add_node("teapot", room, teapot_home, teapot_mesh_in_kitchen());
     kitchen.add_node("bowl", room, Vec3(0.05f, kCounterTop, -0.65f), bowl_mesh());
     const int cup = kitchen.add_node("cup", room, cup_home, cup_mesh());
     kitchen.add_node("chair", room, Vec3(0.1f, 0, 0.25f), chair_mesh());
