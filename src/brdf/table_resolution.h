@@ -10,8 +10,8 @@
 namespace rsl {
 
 // The warning threshold on table_peak_error: a highlight under a sun off by
-// more than this is beyond the method's own error on the shipped scenes
-// (docs/RESULTS.md), so the user should hear of it.
+// more than this is beyond the whole error of the shipped scenes' objects
+// (2.9–6.8%, docs/RESULTS.md), so the user should hear of it.
 inline constexpr float kTablePeakErrorLimit = 0.10f;
 
 struct TablePeakError {
