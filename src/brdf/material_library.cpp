@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "src/brdf/table_resolution.h"
 #include "src/core/error.h"
 
 namespace rsl {
@@ -43,6 +44,12 @@ std::shared_ptr<const MaterialLibrary::Shared> MaterialLibrary::obtain(const Mat
     auto table = BrdfTable::build(*lobes.diffuse, options_);
     auto specular = lobes.specular ? BrdfTable::build(*lobes.specular, options_) : nullptr;
     last_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // A highlight the table blurs is an error rsl knows of: say so, once per table.
+    const BrdfTable& glossy_table = specular ? *specular : *table;
+    const Brdf& glossy_brdf = lobes.specular ? *lobes.specular : *lobes.diffuse;
+    if (const std::string w = sharp_material_warning(desc, glossy_table, table_peak_error(glossy_table, glossy_brdf));
+        !w.empty())
+        warn("{}", w);
     auto shared = std::make_shared<const Shared>(Shared{std::move(lobes.diffuse), std::move(table), std::move(specular)});
     by_identity_[key] = shared;
     // Forget entries whose tables no material uses any more.

@@ -179,7 +179,7 @@ public:
     GltfImporter(const LoadedGltf& loaded, const std::filesystem::path& path)
         : model_(loaded.model), image_errors_(loaded.image_errors), path_(path), reader_(loaded.model, path) {}
 
-    void import_into(Scene& scene, int default_material) {
+    void import_into(Scene& scene, int default_material, GltfMaterialUse use) {
         // Before any mesh is read: a compressed mesh's accessors have no data.
         gltf::check_required_extensions(model_, path_);
         const std::vector<int> parents = checked_parents();
@@ -203,7 +203,9 @@ public:
                 part.mesh = piece.mesh;
                 part.mesh.name = part.name;
                 part.node = nodes_.scene_node[n];
-                part.material = materials.scene_material(piece.material, scene, default_material);
+                part.material = use == GltfMaterialUse::Convert
+                                    ? materials.scene_material(piece.material, scene, default_material)
+                                    : default_material;
                 scene.parts.push_back(std::move(part));
             }
         }
@@ -482,9 +484,9 @@ private:
 
 }  // namespace
 
-void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material) {
+void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material, GltfMaterialUse use) {
     const LoadedGltf loaded = read_model(path);
-    GltfImporter(loaded, path).import_into(scene, default_material);
+    GltfImporter(loaded, path).import_into(scene, default_material, use);
     scene.input_files.push_back(path);
     scene.input_files.insert(scene.input_files.end(), loaded.files_read.begin(), loaded.files_read.end());
 }

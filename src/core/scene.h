@@ -205,8 +205,12 @@ Scene load_scene(const std::filesystem::path& path);
 // built in code calls it when it wants the same meshes a file would give.
 void subdivide_scene_parts(Scene& scene);
 // Parts, nodes, animation, lights and camera of a glTF file's default scene,
-// appended to `scene`.
-void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material);
+// appended to `scene`. Its materials become scene materials (Convert), or
+// every part takes default_material (Override: a scene file's
+// `part_materials["*"]`, docs/SCENE_FORMAT.md).
+enum class GltfMaterialUse { Convert, Override };
+void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material,
+                    GltfMaterialUse use = GltfMaterialUse::Convert);
 
 // How rsl treats a glTF extension: "honoured", "ignored: …" (the file still
 // renders, without what the extension adds) or "not supported: …"; a file

@@ -16,6 +16,7 @@
 #include "src/core/file_reading.h"
 #include "src/core/gltf_camera.h"
 #include "src/core/json_file.h"
+#include "src/core/part_animation.h"
 #include "src/core/precompute_limits.h"
 #include "src/core/scene.h"
 #include "src/core/scene_limits.h"
@@ -124,11 +125,13 @@ public:
         const Json part_materials = root.value("part_materials", Json::object());
         if (!part_materials.is_object()) fail("part_materials", "expected an object (part name → material name)");
         default_material_ = choose_default_material(part_materials);
+        // "*" overrides every part's material, a glTF's own included.
+        if (part_materials.contains("*")) gltf_material_use_ = GltfMaterialUse::Override;
 
         if (root.contains("gltf")) {
             const size_t first = scene_.parts.size();
             const std::filesystem::path file = existing_file(root["gltf"], "gltf");
-            nested([&] { load_gltf_into(file, scene_, default_material_); }, "gltf");
+            nested([&] { load_gltf_into(file, scene_, default_material_, gltf_material_use_); }, "gltf");
             assign_materials(first, part_materials);
         }
         if (root.contains("parts")) read_parts(root["parts"], part_materials);
@@ -338,11 +341,18 @@ private:
         for (size_t i = 0; i < parts.size(); ++i) {
             const std::string where = fmt::format("parts[{}]", i);
             const Json& entry = expect_object(parts[i], where);
-            check_keys(entry, where, {"name", "obj", "gltf", "transform", "material"});
+            check_keys(entry, where, {"name", "obj", "gltf", "transform", "animation", "material"});
             if (entry.contains("obj") == entry.contains("gltf")) fail(where, "give exactly one of `obj` and `gltf`");
             // The entry's static transform is a node; the file's nodes hang below it.
             SceneNode holder;
             holder.rest = entry.contains("transform") ? read_transform(entry["transform"], where + ".transform") : Transform{};
+            if (entry.contains("animation")) {
+                try {
+                    read_part_animation(entry["animation"], where + ".animation", holder);
+                } catch (const Error& e) {
+                    fail("", e.what());
+                }
+            }
             const std::string name = entry.contains("name") ? string_at(entry, "name", where + ".name") : "";
             const int holder_index = int(scene_.nodes.size());
             const size_t first_part = scene_.parts.size();
@@ -361,7 +371,7 @@ private:
                 holder.name = name.empty() ? file.stem().string() : name;
                 scene_.nodes.push_back(holder);
                 const size_t first_node = scene_.nodes.size();
-                nested([&] { load_gltf_into(file, scene_, default_material_); }, where + ".gltf");
+                nested([&] { load_gltf_into(file, scene_, default_material_, gltf_material_use_); }, where + ".gltf");
                 for (size_t n = first_node; n < scene_.nodes.size(); ++n)
                     if (scene_.nodes[n].parent < 0) scene_.nodes[n].parent = holder_index;
                 // A named entry names its part; several parts get "name/node".
@@ -557,6 +567,7 @@ private:
     Scene scene_;
     std::map<std::string, int> material_index_;
     int default_material_ = 0;
+    GltfMaterialUse gltf_material_use_ = GltfMaterialUse::Convert;
 };
 
 // A bare mesh file: one part per mesh (node), a Lambert material, a framing

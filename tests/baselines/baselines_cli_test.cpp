@@ -13,7 +13,7 @@
 namespace rsl {
 namespace {
 
-const std::filesystem::path kBunny = std::filesystem::path(RSL_SOURCE_DIR) / "assets/scenes/bunny.json";
+const std::filesystem::path kBunny = std::filesystem::path(RSL_SOURCE_DIR) / "assets/external/bunny.json";
 
 nlohmann::json row(const nlohmann::json& results, const std::string& method, int terms) {
     for (const auto& r : results["methods"])

@@ -250,14 +250,10 @@ TEST_CASE("parse_field_shard: I/N with 0 <= I < N, else an error naming the opti
 }
 
 TEST_CASE("assets/scenes/instanced.json: 17 parts of 3 unique meshes", "[fields][instances]") {
-    if (!fs::exists(RSL_SHARED_ASSETS)) {
-        WARN("SKIPPED: instanced.json needs " << RSL_SHARED_ASSETS);
-        return;
-    }
     const Scene scene = load_scene(fs::path(RSL_SOURCE_DIR) / "assets/scenes/instanced.json");
     REQUIRE(scene.parts.size() == 17);
     const std::vector<MeshInstances> groups = group_instances(scene);
-    REQUIRE(groups.size() == 3);  // the ground, suzanne, the teapot
+    REQUIRE(groups.size() == 3);  // the ground, the orb, the teapot
     CHECK(groups[0].parts.size() == 1);
     CHECK(groups[1].parts.size() == 8);
     CHECK(groups[2].parts.size() == 8);

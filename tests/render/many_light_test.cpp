@@ -23,7 +23,7 @@ double relative_l2(const VertexColors& a, const VertexColors& reference) {
 }
 
 TEST_CASE("ray-traced many-light on the static bunny against the truth under the RSL light", "[render][many-light]") {
-    const std::filesystem::path file = std::filesystem::path(RSL_SOURCE_DIR) / "assets/scenes/bunny.json";
+    const std::filesystem::path file = std::filesystem::path(RSL_SOURCE_DIR) / "assets/external/bunny.json";
     if (!std::filesystem::exists(RSL_SHARED_ASSETS)) {
         WARN("SKIPPED: bunny.json needs " << RSL_SHARED_ASSETS);
         return;
@@ -93,7 +93,7 @@ namespace {
 // `rsl baselines --many-light` refuses bad settings before any work, naming
 // the option and the value.
 TEST_CASE("rsl baselines --many-light refuses out-of-range settings", "[render][many-light][cli]") {
-    const std::string scene = std::string(RSL_SOURCE_DIR) + "/assets/scenes/bunny.json";
+    const std::string scene = std::string(RSL_SOURCE_DIR) + "/assets/external/bunny.json";
     const struct {
         std::string arguments, message;
     } cases[] = {{"--ray-samples 17", "--ray-samples: 17 is above 16"},

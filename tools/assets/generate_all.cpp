@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> generated_file_names() {
     return {"robot.glb",   "ground.obj",  "orb.obj",      "kitchen.glb",  "sunsky.exr",  "sunsky.png",
-            "studio.exr",  "studio.png",  "overcast.exr", "overcast.png", "pbr.glb"};
+            "studio.exr",  "studio.png",  "overcast.exr", "overcast.png", "pbr.glb",     "teapot.obj"};
 }
 
 namespace {
@@ -91,6 +91,10 @@ GenerateReport generate_assets(const fs::path& dir, bool force) {
             const GeneratedModel pbr = make_pbr_showcase();
             write_glb(dir / "pbr.glb", pbr);
             note(fmt::format("pbr.glb: {}; glTF metallic-roughness materials, a 64x64 tile texture", model_summary(pbr)));
+            const TriangleMesh teapot = make_teapot();
+            write_obj(dir / "teapot.obj", teapot);
+            note(fmt::format("teapot.obj: the kitchen's teapot (instanced and animated scenes), {} vertices, {} triangles",
+                             teapot.vertex_count(), teapot.triangle_count()));
         },
         [&] {
             write_environment(dir, "sunsky", make_sunsky(), 0.0f);

@@ -37,23 +37,23 @@ TriangleMesh room_mesh() {
 
 // Profiles run from the bottom of the axis, out and up the outside, and back
 // to the axis along the top (or down the inside), solid on the left.
-TriangleMesh teapot_mesh() {
+TriangleMesh teapot_mesh_in_kitchen(float spacing = kTeapotSpacing) {
     Profile body(Vec2(0, 0));
     body.rounded_polyline({{0.075f, 0.0f}, {0.118f, 0.035f}, {0.128f, 0.09f}, {0.112f, 0.15f}, {0.08f, 0.172f},
                            // the lid: a step in, a dome, and a knob on a short stem
                            {0.074f, 0.176f}, {0.072f, 0.184f}, {0.045f, 0.204f}, {0.014f, 0.212f},
                            {0.012f, 0.222f}, {0.022f, 0.228f}, {0.016f, 0.238f}, {0.0f, 0.238f}},
                           0.5f);  // large: corners round into one another, so the body curves smoothly
-    TriangleMesh m = lathe(body, kTeapotSpacing);
+    TriangleMesh m = lathe(body, spacing);
 
     // Spout: a tapered tube with an open mouth (a bore down to a floor), its
     // base buried in the body, tilted 50° towards +X.
     Profile spout(Vec2(0, 0));
     spout.rounded_polyline({{0.032f, 0.0f}, {0.015f, 0.14f}, {0.009f, 0.14f}, {0.009f, 0.11f}, {0.0f, 0.11f}}, 0.01f);
-    append_mesh(m, placed(lathe(spout, kTeapotSpacing), Vec3(0.085f, 0.05f, 0), kZ, -50.0f * kPi / 180));
+    append_mesh(m, placed(lathe(spout, spacing), Vec3(0.085f, 0.05f, 0), kZ, -50.0f * kPi / 180));
 
     // Handle: a ring in the XY plane whose inner half is hidden inside the body.
-    append_mesh(m, placed(torus(0.058f, 0.012f, kTeapotSpacing), Vec3(-0.125f, 0.1f, 0), kX, kPi / 2));
+    append_mesh(m, placed(torus(0.058f, 0.012f, spacing), Vec3(-0.125f, 0.1f, 0), kX, kPi / 2));
     return m;
 }
 
@@ -95,6 +95,10 @@ float phase(float t) { return 2 * kPi * t / kKitchenLoopSeconds; }
 
 }  // namespace
 
+// 2.5 times the kitchen's vertex spacing: 6,767 vertices, so that
+// scenes of many instances stay light.
+TriangleMesh make_teapot() { return teapot_mesh_in_kitchen(2.5f * kTeapotSpacing); }
+
 GeneratedModel make_kitchen() {
     GeneratedModel kitchen;
     kitchen.scene.name = "kitchen";
@@ -103,7 +107,7 @@ GeneratedModel make_kitchen() {
 
     const Vec3 teapot_home(-0.35f, kCounterTop, -0.55f), cup_home(0.45f, kCounterTop, -0.5f);
     const int room = kitchen.add_node("room", -1, Vec3(0), room_mesh());
-    const int teapot = kitchen.add_node("teapot", room, teapot_home, teapot_mesh());
+    const int teapot = kitchen.add_node("teapot", room, teapot_home, teapot_mesh_in_kitchen());
     kitchen.add_node("bowl", room, Vec3(0.05f, kCounterTop, -0.65f), bowl_mesh());
     const int cup = kitchen.add_node("cup", room, cup_home, cup_mesh());
     kitchen.add_node("chair", room, Vec3(0.1f, 0, 0.25f), chair_mesh());

@@ -13,5 +13,7 @@ inline constexpr float kCounterTop = 0.9f;  // height of the counter's top face 
 // Nodes: room (root; its part is the open floor sheet plus the counter),
 // teapot, bowl, cup (children of room, on the counter top), chair (on the floor).
 GeneratedModel make_kitchen();
+// The kitchen's teapot on its own (teapot.obj: instanced.json, two-objs-animated.json).
+TriangleMesh make_teapot();
 
 }  // namespace rsl::assets

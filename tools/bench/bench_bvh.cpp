@@ -137,7 +137,7 @@ EmbreeBuild embree_build(const std::vector<Bounds>& boxes, const BvhBuildOptions
 }
 
 void bench_builders(const BenchOptions& options) {
-    for (const char* name : {"robot.json", "bunny.json", "kitchen.json"}) {
+    for (const char* name : {"robot.json", "../external/bunny.json", "kitchen.json"}) {
         const std::filesystem::path path = options.scenes / name;
         if (!std::filesystem::exists(path)) continue;
         const Scene scene = load_scene(path);

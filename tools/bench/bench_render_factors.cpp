@@ -40,7 +40,7 @@ struct BudgetCase {
 std::vector<BudgetCase> budget_cases(bool quick) {
     if (quick) return {{"robot", "robot.json", "scene", 0.0f}};
     return {{"robot", "robot.json", "scene", 0.0f},       {"robot", "robot.json", "grace", 0.0f, true},
-            {"bunny", "bunny.json", "scene", 0.0f, true}, {"kitchen", "kitchen.json", "scene", 1.0f},
+            {"bunny", "../external/bunny.json", "scene", 0.0f, true}, {"kitchen", "kitchen.json", "scene", 1.0f},
             {"kitchen", "kitchen.json", "sunsky", 1.0f}};
 }
 

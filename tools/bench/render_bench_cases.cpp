@@ -60,7 +60,7 @@ PrecomputeSettings bench_precompute() {
 
 std::vector<RenderBenchCase> render_speed_cases(bool quick) {
     if (quick) return {{"robot 30 RSLs", "robot.json", false, 30, 0.5f}};
-    return {{"bunny on plane 30 RSLs", "bunny.json", true, 30, 0.0f},
+    return {{"bunny on plane 30 RSLs", "../external/bunny.json", true, 30, 0.0f},
             {"robot 30 RSLs", "robot.json", false, 30, 0.5f},
             {"kitchen 30 RSLs", "kitchen.json", false, 30, 1.0f}};
 }
@@ -160,7 +160,7 @@ std::vector<AccuracyRow> render_accuracy_table(const bench::BenchOptions& assets
     std::vector<SceneCase> scenes(3);
     scenes[0].name = "robot", scenes[0].file = "robot.json", scenes[0].times = {0.0f, 0.5f, 1.0f};
     scenes[1].name = "kitchen", scenes[1].file = "kitchen.json", scenes[1].times = {1.0f};
-    scenes[2].name = "bunny", scenes[2].file = "bunny.json", scenes[2].times = {0.0f}, scenes[2].needs_shared = true;
+    scenes[2].name = "bunny", scenes[2].file = "../external/bunny.json", scenes[2].times = {0.0f}, scenes[2].needs_shared = true;
     std::vector<int> light_counts = {10, 30, 60, 100};
     if (quick) {
         scenes.resize(1);
