@@ -8,8 +8,6 @@
 
 #include "src/core/memory_limit.h"
 #include "src/fields/field_cache.h"
-#include "src/fields/ovdf.h"
-#include "src/render/part_fields.h"
 
 namespace rsl {
 namespace {
