@@ -99,5 +99,27 @@ TEST_CASE("rsl baselines --no-ground refuses a scene without a ground, naming it
     CHECK(!std::filesystem::exists(dir + "/results.json"));
 }
 
+// An input kept in the output folder under a name the run writes (a map
+// called truth.exr) is refused before any work, and stays as it was.
+TEST_CASE("rsl baselines refuses an output folder where it would replace an input", "[baselines][cli][issue-56]") {
+    const std::filesystem::path dir = test::scratch_dir("baselines_cli_inputs");
+    const std::filesystem::path generated = std::filesystem::path(RSL_SOURCE_DIR) / "assets/generated";
+    std::filesystem::copy_file(generated / "sunsky.exr", dir / "truth.exr", std::filesystem::copy_options::overwrite_existing);
+    const auto size = std::filesystem::file_size(dir / "truth.exr");
+    test::write_text(dir / "scene.json", R"({"parts": [{"name": "orb", "obj": ")" + (generated / "orb.obj").string() +
+                                             R"("}], "environment": {"file": "truth.exr"}})");
+    for (const std::string mode : {" --no-rsl", " --many-light"}) {
+        INFO("mode '" << mode << "'");
+        const auto [status, output] =
+            test::run_rsl("baselines " + (dir / "scene.json").string() + mode + " -q -o " + dir.string());
+        INFO(output);
+        CHECK(status != 0);
+        CHECK(output.find("truth.exr") != std::string::npos);
+        CHECK(output.find("this output is the input") != std::string::npos);
+        CHECK(std::filesystem::file_size(dir / "truth.exr") == size);
+        CHECK(!std::filesystem::exists(dir / "results.json"));
+    }
+}
+
 }  // namespace
 }  // namespace rsl

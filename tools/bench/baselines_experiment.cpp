@@ -66,6 +66,14 @@ struct Diagnostics {
     std::string eigen_note;  // the same as a line under the table
 };
 
+// The files every run writes, beside each method's image.
+const std::vector<std::string> kFixedOutputs{"results.json", "table.md", "sheet.png", "error_plot.png"};
+
+// A method's image file name, without its extension.
+std::string image_stem(const MethodResult& r) {
+    return r.method == "truth" ? "truth" : fmt::format("{}_{}", r.method, r.terms);
+}
+
 // Output phase: results.json, table.md and every method's EXR and PNG; returns the table.
 std::string write_results(const BaselinesExperiment& args, const Scene& scene, const std::vector<MethodResult>& results,
                           const PrtPrecompute& prt, double texel_sum_error, const Diagnostics& unshadowed) {
@@ -94,8 +102,7 @@ std::string write_results(const BaselinesExperiment& args, const Scene& scene, c
         table += fmt::format("| {} | {} | {:.4f} | {:.4f} | {} | {:.4f} | {:.4f} | {:.2f} | {:.1f} | {:.1f} |\n", r.method,
                              r.terms, r.vertex_error, r.objects_error, worst, r.image_error, r.image_h1, r.frame_ms,
                              r.precompute_s, double(r.bytes) / 1e6);
-        const std::string stem = r.method == "truth" ? "truth" : fmt::format("{}_{}", r.method, r.terms);
-        write_exr_and_png(dir / (stem + ".exr"), r.image, ToneMap{0.0f, true});
+        write_exr_and_png(dir / (image_stem(r) + ".exr"), r.image, ToneMap{0.0f, true});
     }
     if (!unshadowed.eigen.is_null()) json["eigen"] = unshadowed.eigen;
     table += unshadowed.eigen_note;
@@ -166,6 +173,9 @@ void write_outputs(const BaselinesExperiment& args, const Scene& scene, const st
                    const PrtPrecompute& prt, double texel_sum_error,
                    const Diagnostics& unshadowed) {
     const std::filesystem::path dir(args.output);
+    std::vector<std::string> stems;
+    for (const MethodResult& r : results) stems.push_back(image_stem(r));
+    check_experiment_outputs(scene, dir, stems, kFixedOutputs);
     const std::string table = write_results(args, scene, results, prt, texel_sum_error, unshadowed);
     write_contact_sheet(dir, results);
     write_error_plot(dir, results);
@@ -458,6 +468,7 @@ void run_baselines_experiment(const BaselinesExperiment& args) {
     Scene& scene = *scene_ptr;
     if (args.no_ground) remove_ground_parts(scene);
     adapt_scene(scene, args.environment, args.resolution, args.diffuse);
+    check_experiment_outputs(scene, args.output, {"truth"}, kFixedOutputs);  // before the hours of work
     const float t = args.time;
     const CubeMap environment = load_environment(args, scene);
     require_eigentransport_fits(args, scene, environment);

@@ -161,10 +161,16 @@ void write_pareto_plot(const std::filesystem::path& dir, const Scene& scene, con
                                                     "OBJECTS REL. L2 ERROR", 640, 420, true));
 }
 
+// The files every run writes, beside each row's image and the truth's.
+const std::vector<std::string> kFixedOutputs{"results.json", "table.md", "sheet.png", "pareto.png"};
+
 // Every output file of the experiment, then the table on stdout.
 void write_outputs(const ManyLightExperiment& args, const Scene& scene, size_t vertices, const Image& truth_image,
                    double truth_ms, const std::vector<Row>& rows, const std::string& gl_device) {
     const std::filesystem::path dir(args.output);
+    std::vector<std::string> stems{"truth"};
+    for (const Row& r : rows) stems.push_back(r.label());
+    check_experiment_outputs(scene, dir, stems, kFixedOutputs);
     const std::string table = write_results(args, scene, vertices, truth_image, truth_ms, rows, gl_device);
     write_contact_sheet(dir, truth_image, rows);
     write_pareto_plot(dir, scene, rows);
@@ -374,6 +380,7 @@ std::string measure_gl_rows(RowMeasurer& m) {
 void run_many_light_experiment(const ManyLightExperiment& args) {
     const std::shared_ptr<Scene> scene_ptr = load_experiment_scene(args);
     Scene& scene = *scene_ptr;
+    check_experiment_outputs(scene, args.output, {"truth"}, kFixedOutputs);  // before the hours of work
     RenderOptions options;
     options.local_lights = false;
     options.environment_lights = args.baseline_lights;
