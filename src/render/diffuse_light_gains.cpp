@@ -1,6 +1,9 @@
 // The exact diffuse light's per-point gains (docs/design/RENDERER.md "Exact
 // diffuse light"; the formulas are shading/diffuse_light.h's): one pass over
 // the environment's squares per block, before its lights are looked up.
+#include <algorithm>
+#include <cmath>
+
 #include "src/render/block_scratch.h"
 #include "src/render/cpu_renderer.h"
 #include "src/shading/diffuse_light.h"
@@ -20,28 +23,30 @@ void CpuRenderer::diffuse_light_gains(BlockScratch& s, int part, int n) const {
     for (int k = 0; k < n; ++k) s.gain_r[k] = s.gain_g[k] = s.gain_b[k] = 0.0f;
     for (size_t l = 0; l < lights; ++l) {  // Σ_l I_l c_l, keeping each c_l for brdf_queries
         const SquareLight& sq = environment_squares_[l];
-        const float h = sq.half_edge, rim = 1.0f - kSqrt2 * h, reach = 1.0f + kSqrt2 * h;
-        const float lowest = 1.0f - reach * reach, spread = 0.6666667f * h * h;
+        const Vec3 d = sq.direction;
+        const float h = sq.half_edge, spread = 0.6666667f * h * h;
         float* c = s.cosines.data() + l * kShadeBlock;
-        // Inside the hemisphere's disk (|p|² = 1 − z): the closed form,
-        // branch-free; a square across the horizon: the quadrature below.
+        // Each square against the unit disk, branch-free so that it
+        // vectorizes: inside, the closed form; across the horizon, the
+        // quadrature below; outside, 0.
         for (int k = 0; k < n; ++k) {
-            const float z = sq.direction.x * s.zx[k] + sq.direction.y * s.zy[k] + sq.direction.z * s.zz[k];
-            c[k] = shading::cosine_floor(z - spread);
-            s.crossing[k] = int32_t(z > lowest) & int32_t(1.0f - z > rim * rim || rim < 0.0f);
+            const float x = d.x * s.xx[k] + d.y * s.xy[k] + d.z * s.xz[k];
+            const float y = d.x * s.yx[k] + d.y * s.yy[k] + d.z * s.yz[k];
+            const float z = d.x * s.zx[k] + d.y * s.zy[k] + d.z * s.zz[k];
+            const float inv = 1.0f / std::sqrt(std::max(1.0f + z, 1e-12f));  // shading::hemisphere_to_plane
+            const float px = x * inv, py = y * inv;
+            s.tx[k] = px, s.ty[k] = py;
+            const int where = shading::square_against_disk(Vec2(px, py), h);
+            c[k] = where == 0 ? shading::cosine_floor(z - spread) : 0.0f;
+            s.crossing[k] = int32_t(where == 1);
         }
         int across = 0;  // the squares across the horizon, compacted for a branch-free loop
         for (int k = 0; k < n; ++k) {
-            if (!s.crossing[k]) continue;
-            const Vec3 local(sq.direction.x * s.xx[k] + sq.direction.y * s.xy[k] + sq.direction.z * s.xz[k],
-                             sq.direction.x * s.yx[k] + sq.direction.y * s.yy[k] + sq.direction.z * s.yz[k],
-                             sq.direction.x * s.zx[k] + sq.direction.y * s.zy[k] + sq.direction.z * s.zz[k]);
-            const Vec2 p = hemisphere_to_plane(local);
-            s.tx[across] = p.x, s.ty[across] = p.y, s.index[across] = k;
-            ++across;
+            s.index[across] = k;
+            across += s.crossing[k];
         }
-        for (int i = 0; i < across; ++i)
-            s.qx[i] = shading::square_average_cosine_across(Vec2(s.tx[i], s.ty[i]), h);
+        for (int i = 0; i < across; ++i) s.qx[i] = s.tx[s.index[i]], s.qy[i] = s.ty[s.index[i]];
+        for (int i = 0; i < across; ++i) s.qx[i] = shading::square_average_cosine_across(Vec2(s.qx[i], s.qy[i]), h);
         for (int i = 0; i < across; ++i) c[s.index[i]] = s.qx[i];
         for (int k = 0; k < n; ++k)
             s.gain_r[k] += sq.integral.r * c[k], s.gain_g[k] += sq.integral.g * c[k], s.gain_b[k] += sq.integral.b * c[k];

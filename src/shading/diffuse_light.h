@@ -54,13 +54,23 @@ RSL_SHARED float square_average_cosine_across(vec2 c, float h) {
                 cosine_columns(k2, k3, y0, y1) + cosine_columns(k3, hi, y0, y1);
     return cosine_floor(sum / (4.0f * h * h));
 }
+// Where the square of centre c and half-edge h lies against the unit disk
+// (the horizon): 0 inside it, 1 across its edge, 2 outside. Its corner
+// farthest from the origin is (|c.x| + h, |c.y| + h), its nearest point
+// (max(|c.x| − h, 0), max(|c.y| − h, 0)).
+RSL_SHARED int square_against_disk(vec2 c, float h) {
+    float fx = abs(c.x) + h, fy = abs(c.y) + h;
+    float nx = max(abs(c.x) - h, 0.0f), ny = max(abs(c.y) - h, 0.0f);
+    return fx * fx + fy * fy <= 1.0f ? 0 : (nx * nx + ny * ny < 1.0f ? 1 : 2);
+}
 // The average of cos θ over the square of centre c and half-edge h in the
 // hemisphere plane (dω = 2 dp), the cosine clamped at the horizon as the
 // BRDF tables clamp it: 1 − |c|² − 2h²/3 for a square inside the unit disk.
 RSL_SHARED float square_average_cosine(vec2 c, float h) {
     if (!(h > 0.0f)) return cosine_floor(1.0f - dot(c, c));
-    if (length(c) + kSqrt2 * h <= 1.0f) return cosine_floor(1.0f - dot(c, c) - 0.6666667f * h * h);
-    return square_average_cosine_across(c, h);
+    int where = square_against_disk(c, h);
+    if (where == 0) return cosine_floor(1.0f - dot(c, c) - 0.6666667f * h * h);
+    return where == 1 ? square_average_cosine_across(c, h) : 0.0f;
 }
 
 // The gain g of one channel: a · (E / U − 1), 0 where the squares bring no
