@@ -66,7 +66,7 @@ std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, c
                                           const py::object& field_cache, bool cross_face, bool self_visibility,
                                           bool occluders, const std::map<std::string, std::string>& part_materials,
                                           const py::object& progress, const std::string& pixel_shadows,
-                                          bool pixel_highlights) {
+                                          bool pixel_highlights, bool exact_diffuse_light) {
     api::RenderSettings settings;
     settings.lights = lights;
     settings.backend = backend;
@@ -76,6 +76,7 @@ std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, c
     settings.occluders = occluders;
     settings.pixel_shadows = pixel_shadows;
     settings.pixel_highlights = pixel_highlights;
+    settings.exact_diffuse_light = exact_diffuse_light;
     settings.part_materials = part_materials;
     settings.progress = progress_callback(progress);
     py::gil_scoped_release release;
@@ -119,11 +120,13 @@ void bind_renderer(py::module_& m) {
              py::arg("self_visibility") = true, py::arg("occluders") = true,
              py::arg("part_materials") = std::map<std::string, std::string>{}, py::arg("progress") = py::none(),
              py::arg("pixel_shadows") = "planes", py::arg("pixel_highlights") = true,
+             py::arg("exact_diffuse_light") = true,
              "Fits `lights` square lights to the environment and loads or bakes the fields (field_cache: a "
              "folder; None: beside the scene file). progress(what, fraction) hears the fit and the bakes. "
              "pixel_shadows: which parts' render_image() takes the other parts' shadows per pixel (planes, "
              "all, off), as `rsl render --pixel-shadows`; pixel_highlights: glossy parts take the BRDF per "
-             "pixel there.")
+             "pixel there; exact_diffuse_light: the diffuse term takes the environment's exact irradiance, the "
+             "squares giving its shadows (False: the RSL paper's sum), as `rsl render --exact-diffuse-light`.")
         .def_property_readonly("backend",
                                [](const PyRenderer& r) { return r.locked([](const auto& x) { return x.backend(); }); })
         .def_property_readonly("device",

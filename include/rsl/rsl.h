@@ -169,6 +169,10 @@ struct RenderSettings {
     // Glossy parts' images take the BRDF at each pixel's own normal and view
     // (highlights between vertices), as `rsl render --pixel-highlights`.
     bool pixel_highlights = true;
+    // Each material's diffuse term takes the environment's exact irradiance,
+    // the squares giving only its shadows (Heitz et al. 2018), as `rsl render
+    // --exact-diffuse-light`; false: the RSL paper's sum (docs/design/RENDERER.md).
+    bool exact_diffuse_light = true;
     // "cpu"; "gl": the GPU renderer in an offscreen context of its own;
     // "gl-current": the GPU renderer in the OpenGL ≥ 4.3 core context current
     // on the calling thread (the engine's), see gl_color_buffer(); that

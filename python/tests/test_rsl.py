@@ -109,6 +109,16 @@ class ModuleTest(unittest.TestCase):
         plain = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12, pixel_shadows="off", pixel_highlights=False)
         plain.set_time(0.25)
         np.testing.assert_array_equal(self.renderer.form_image(colors), plain.render_image())
+        # The RSL paper's sum, as rsl render --no-exact-diffuse-light.
+        status, text = run_rsl("render", self.scene_file, "--time", "0.25", "--lights", "12", "-q",
+                               "--no-exact-diffuse-light", "-o", f"{self.folder}/paper.exr",
+                               "--vertex-out", f"{self.folder}/paper.rslv")
+        self.assertEqual(status, 0, text)
+        paper = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12, exact_diffuse_light=False)
+        paper.set_time(0.25)
+        paper_colors = paper.shade()
+        np.testing.assert_array_equal(paper_colors, rsl.read_vertex_colors(f"{self.folder}/paper.rslv")[0])
+        self.assertGreater(rsl.compare(paper_colors, colors)["relative_l2"], 1e-3)
 
     def test_truth_and_errors_are_rsl_truths_and_compares(self):
         colors, truth = self.renderer.shade(), self.renderer.truth()

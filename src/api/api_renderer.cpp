@@ -36,6 +36,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : state_(
     s.options.occluders = settings.occluders;
     s.options.pixel_shadows = parse_pixel_shadows(settings.pixel_shadows);
     s.options.pixel_highlights = settings.pixel_highlights;
+    s.options.exact_diffuse_light = settings.exact_diffuse_light;
     s.options.material_override = settings.part_materials;
     SetupOptions how;
     how.progress = throttled(settings.progress);

@@ -87,6 +87,18 @@ TEST_CASE("the API's frame, image and truth are rsl render's and rsl truth's, bi
                                       scene_file.string(), out))
                 .first == 0);
     CHECK(renderer.form_image(colors).rgba == api::read_image(out + "/blend.exr").rgba);
+    // The paper's sum, as `rsl render --no-exact-diffuse-light`: other colours, the CLI's.
+    REQUIRE(test::run_rsl(fmt::format("render {} --time 0.25 --lights 12 -q --no-exact-diffuse-light -o {}/paper.exr "
+                                      "--vertex-out {}/paper.rslv",
+                                      scene_file.string(), out, out))
+                .first == 0);
+    api::RenderSettings paper_settings = settings;
+    paper_settings.exact_diffuse_light = false;
+    Renderer paper(Scene::load(scene_file.string()), paper_settings);
+    paper.set_time(0.25f);
+    const api::VertexColors paper_colors = paper.shade();
+    require_same_colors(paper_colors, api::read_vertex_colors(out + "/paper.rslv"));
+    CHECK(api::compare(paper_colors, colors).relative_l2 > 1e-3);
 
     const api::VertexColors truth = renderer.truth();
     require_same_colors(truth, api::read_vertex_colors(out + "/truth.rslv"));
