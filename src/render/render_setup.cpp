@@ -1,5 +1,7 @@
 #include "src/render/render_setup.h"
 
+#include "src/lightfit/fit_limits.h"
+
 #include "src/lightfit/scene_lights.h"
 #include "src/render/memory_estimate.h"
 
@@ -54,6 +56,11 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
                 fit_scene_lights(s, setup.second_environment, options.environment_lights, options.cross_face_lights);
         }
         setup.fit_seconds = seconds_since(start);
+        // Too few lights for a bright source: an error the truth will show (docs/design/LIGHTFIT.md).
+        const std::string crowded = crowded_light_warning(
+            describe_environment(s.environment), options.environment_lights,
+            find_crowded_light(setup.environment, setup.environment_lights.first));
+        if (!crowded.empty()) warn("{}", crowded);
         if (how.progress) how.progress("fit", 1.0);
     }
     FieldBakeOptions bake;
@@ -78,9 +85,14 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
 std::string describe_fit(const RenderSetup& setup) {
     const Scene& s = *setup.scene;
     if (setup.environment.resolution() == 0) return "no environment lights";
-    return fmt::format("{}: {} RSLs fitted in {:.2f} s{}", describe_environment(s.environment),
-                       setup.environment_lights.first.lights.size(), setup.fit_seconds,
-                       s.environment.second_file.empty() ? "" : " (and as many for the blend's second map)");
+    const std::string fit =
+        fmt::format("{}: {} RSLs fitted in {:.2f} s{}", describe_environment(s.environment),
+                    setup.environment_lights.first.lights.size(), setup.fit_seconds,
+                    s.environment.second_file.empty() ? "" : " (and as many for the blend's second map)");
+    // A source smaller than a texel is the map's limit, not an error against the truth, which sees the same map.
+    const std::string point_like = point_like_note("note: " + describe_environment(s.environment), setup.environment,
+                                                   find_point_like_source(setup.environment));
+    return point_like.empty() ? fit : fit + "\n" + point_like;
 }
 
 }  // namespace rsl

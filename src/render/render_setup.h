@@ -50,7 +50,8 @@ RenderSetup prepare_render(const std::filesystem::path& scene_path, const Render
                            const SetupOptions& setup = {});
 // The same for a scene already in memory (its environment file is still read).
 RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& options, const SetupOptions& setup = {});
-// "sunsky.exr: 30 RSLs fitted in 0.12 s": the fit, as a tool prints it.
+// "sunsky.exr: 30 RSLs fitted in 0.12 s": the fit, as a tool prints it, and
+// on a second line a note where a source is smaller than a texel (fit_limits.h).
 std::string describe_fit(const RenderSetup& setup);
 
 }  // namespace rsl
