@@ -93,7 +93,8 @@ std::string memory_size_text(uint64_t bytes) {
     const double b = double(bytes);
     if (b >= 1e9) return fmt::format("{:.1f} GB", b / 1e9);
     if (b >= 1e6) return fmt::format("{:.0f} MB", b / 1e6);
-    return fmt::format("{:.0f} kB", b / 1e3);
+    if (b >= 1e3) return fmt::format("{:.0f} kB", b / 1e3);
+    return fmt::format("{} bytes", bytes);
 }
 
 void check_memory_estimate(uint64_t estimate_bytes, const std::filesystem::path& file, const std::string& what) {

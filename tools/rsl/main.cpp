@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     // before or after the subcommand's own arguments.
     app.add_option_function<std::string>(
            "--memory-limit", [](const std::string& text) { rsl::set_memory_limit(rsl::parse_memory_size(text, "--memory-limit")); },
-           "Refuse work whose estimated memory passes SIZE (such as 8G; none: no limit). Default: RSL_MEMORY_LIMIT, "
+           "Refuse work whose estimated memory passes SIZE (such as 8G; none or 0: no limit). Default: RSL_MEMORY_LIMIT, "
            "or 80% of this machine's memory")
         ->type_name("SIZE")
         ->trigger_on_parse();
