@@ -175,11 +175,11 @@ TEST_CASE("weighted vertex-colour sum is the per-vertex linear combination", "[d
 
 TEST_CASE("glossiness sweep sets valid parameters for every swept model, rougher as it goes", "[demos]") {
     const std::vector<MaterialDesc> models{
-        {"steel", "phong", {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.7f, 0.7f, 0.7f}}, {"exponent", {100}}}, {}},
-        {"bronze", "cook_torrance_beckmann", {{"f0", {0.8f, 0.5f, 0.25f}}, {"roughness", {0.2f}}}, {}},
-        {"metal", "ward", {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.6f, 0.6f, 0.6f}}, {"alpha", {0.15f}}}, {}},
+        {"steel", "phong", {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.7f, 0.7f, 0.7f}}, {"exponent", {100}}}, {}, nullptr},
+        {"bronze", "cook_torrance_beckmann", {{"f0", {0.8f, 0.5f, 0.25f}}, {"roughness", {0.2f}}}, {}, nullptr},
+        {"metal", "ward", {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.6f, 0.6f, 0.6f}}, {"alpha", {0.15f}}}, {}, nullptr},
         {"brushed", "ward_anisotropic",
-         {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.6f, 0.6f, 0.6f}}, {"alpha_x", {0.3f}}, {"alpha_y", {0.08f}}}, {}},
+         {{"kd", {0.1f, 0.1f, 0.1f}}, {"ks", {0.6f, 0.6f, 0.6f}}, {"alpha_x", {0.3f}}, {"alpha_y", {0.08f}}}, {}, nullptr},
     };
     const int frames = 5;
     for (const MaterialDesc& model : models) {
