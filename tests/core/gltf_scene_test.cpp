@@ -315,11 +315,11 @@ TEST_CASE("glTF skins move with their joints; morph targets render in the base s
     CHECK(scene.parts[0].name == "skinned/bone");
     REQUIRE(scene.parts[0].skin);
     CHECK(scene.nodes[size_t(scene.parts[0].node)].name == "bone");
-    const Mat4 bone = scene.part_transform_at(0, 0.0f);
+    const Mat4 bone_world = scene.part_transform_at(0, 0.0f);
     for (size_t v = 0; v < 4; ++v) {
         const Vec3 p(kSquare[3 * v], kSquare[3 * v + 1], kSquare[3 * v + 2]);
         check_near(scene.parts[0].mesh.positions[v], p);
-        check_near(Vec3(bone * Vec4(scene.parts[0].mesh.positions[v], 1.0f)),
+        check_near(Vec3(bone_world * Vec4(scene.parts[0].mesh.positions[v], 1.0f)),
                    Vec3(glm::angleAxis(glm::radians(45.0f), Vec3(0, 0, 1)) * p));
     }
     check_near(scene.parts[1].mesh.positions[0], {0, 0, 0});  // not the morph target's z = 1
