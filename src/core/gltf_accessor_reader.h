@@ -20,6 +20,7 @@ inline int component_count(int type) {
         case TINYGLTF_TYPE_VEC2: return 2;
         case TINYGLTF_TYPE_VEC3: return 3;
         case TINYGLTF_TYPE_VEC4: return 4;
+        case TINYGLTF_TYPE_MAT4: return 16;  // a skin's inverse bind matrices
         default: return 0;
     }
 }

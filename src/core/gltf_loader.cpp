@@ -23,6 +23,8 @@
 #include "src/core/file_reading.h"
 #include "src/core/gltf_accessor_reader.h"
 #include "src/core/gltf_materials.h"
+#include "src/core/gltf_skins.h"
+#include "src/core/skin_segments.h"
 #include "src/core/scene.h"
 
 namespace rsl {
@@ -187,12 +189,18 @@ public:
         import_nodes(scene, parents);
         GltfMaterials materials(model_, image_errors_, path_);
         std::vector<std::optional<std::vector<MaterialMesh>>> converted(model_.meshes.size());
+        skinned_.assign(model_.meshes.size(), std::nullopt);
+        skin_of_.assign(model_.skins.size(), -1);
         for (size_t n = 0; n < model_.nodes.size(); ++n) {
             const int mesh_index = model_.nodes[n].mesh;
             if (mesh_index < 0 || nodes_.scene_node[n] < 0) continue;
             if (size_t(mesh_index) >= model_.meshes.size())
                 throw_file_error(path_, "node {}: mesh index {} is out of range ({} meshes)", n, mesh_index,
                                  model_.meshes.size());
+            if (model_.nodes[n].skin >= 0) {
+                import_skinned_node(n, materials, scene, default_material, use);
+                continue;
+            }
             if (!converted[mesh_index]) converted[mesh_index] = material_meshes(mesh_index, materials);
             for (const MaterialMesh& piece : *converted[mesh_index]) {
                 if (piece.mesh.indices.empty()) continue;  // only points/lines: not a surface
@@ -214,11 +222,14 @@ public:
         gltf::import_lights(model_, path_, nodes_, scene);
         gltf::import_camera(model_, path_, nodes_, scene);
         std::vector<bool> used(model_.meshes.size());
-        for (size_t m = 0; m < used.size(); ++m) used[m] = bool(converted[m]);
+        for (size_t m = 0; m < used.size(); ++m) used[m] = bool(converted[m]) || bool(skinned_[m]);
         warn_bind_pose(used);
         // One line per file, counting each glTF mesh once however many nodes use it.
         size_t dropped = 0;
         for (const auto& pieces : converted)
+            if (pieces)
+                for (const MaterialMesh& piece : *pieces) dropped += piece.mesh.degenerate_dropped;
+        for (const auto& pieces : skinned_)
             if (pieces)
                 for (const MaterialMesh& piece : *pieces) dropped += piece.mesh.degenerate_dropped;
         if (dropped) warn_file(path_, "{} degenerate triangle{} dropped", dropped, dropped == 1 ? "" : "s");
@@ -226,6 +237,44 @@ public:
     }
 
 private:
+    // A skinned mesh node: one part per segment (src/core/skin_segments.h)
+    // and material, named "<node>/<joint>" ("<node>/<joint>/<material>"
+    // when the mesh has several materials), placed by its joint's node. The
+    // node's own transform is ignored, as glTF specifies for skinned meshes.
+    void import_skinned_node(size_t n, GltfMaterials& materials, Scene& scene, int default_material,
+                             GltfMaterialUse use) {
+        const tinygltf::Node& node = model_.nodes[n];
+        const int mesh_index = node.mesh;
+        if (node.skin >= int(model_.skins.size()))
+            throw_file_error(path_, "node {}: skin index {} is out of range ({} skins)", n, node.skin,
+                             model_.skins.size());
+        int& skin_index = skin_of_[size_t(node.skin)];
+        if (skin_index < 0) skin_index = gltf::import_skin(model_, path_, reader_, nodes_, node.skin, scene);
+        const Skin& skin = scene.skins[size_t(skin_index)];
+        if (!skinned_[mesh_index]) skinned_[mesh_index] = material_meshes(mesh_index, materials, true);
+        const std::string node_name = scene.nodes[nodes_.scene_node[n]].name;
+        for (MaterialMesh& piece : *skinned_[mesh_index]) {
+            if (piece.mesh.indices.empty()) continue;
+            SkinnedMesh skinned{piece.mesh, piece.joints, piece.weights};
+            normalize_skin_weights(skinned, skin.joints.size(), path_, fmt::format("mesh '{}'", piece.mesh.name));
+            for (SkinSegment& segment : split_skinned_mesh(skinned, skin)) {
+                Part part;
+                part.name = node_name + "/" + scene.nodes[skin.joints[size_t(segment.joint)]].name;
+                if (skinned_[mesh_index]->size() > 1) part.name += "/" + materials.name(piece.material);
+                part.mesh = std::move(segment.mesh);
+                part.mesh.name = part.name;
+                part.node = skin.joints[size_t(segment.joint)];
+                part.material = use == GltfMaterialUse::Convert
+                                    ? materials.scene_material(piece.material, scene, default_material)
+                                    : default_material;
+                segment.skin.skin = skin_index;
+                segment.skin.mesh = piece.mesh.name;
+                part.skin = std::make_shared<const PartSkin>(std::move(segment.skin));
+                scene.parts.push_back(std::move(part));
+            }
+        }
+    }
+
     // Every node's parent (-1: a root), after checking child indices, that
     // no node has two parents and that there is no cycle (node_world_at
     // would loop), over all the file's nodes.
@@ -304,8 +353,8 @@ private:
         }
     }
 
-    // Skins and morph targets are not rigid motion: their meshes render in
-    // the bind pose (base positions). One warning per file names them.
+    // Morph targets are not applied: their meshes render in their base
+    // shape (docs/SCENE_FORMAT.md). One warning per file names them.
     void warn_bind_pose(const std::vector<bool>& used_meshes) const {
         std::vector<std::string> named;
         for (int n : nodes_.order) {
@@ -314,27 +363,27 @@ private:
             if (m < 0 || !used_meshes[m]) continue;
             const bool morphs = std::any_of(model_.meshes[m].primitives.begin(), model_.meshes[m].primitives.end(),
                                             [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
-            if (node.skin < 0 && !morphs) continue;
-            const std::string what = node.skin >= 0 && morphs ? "skinned, with morph targets"
-                                     : node.skin >= 0         ? "skinned"
-                                                              : "morph targets";
+            if (!morphs) continue;
+            const std::string what = node.skin >= 0 ? "skinned, with morph targets" : "morph targets";
             const std::string mesh = model_.meshes[m].name.empty() ? fmt::format("mesh{}", m) : model_.meshes[m].name;
             const std::string entry = fmt::format("mesh '{}' of node '{}' ({})", mesh,
                                                   node.name.empty() ? fmt::format("node{}", n) : node.name, what);
             if (std::find(named.begin(), named.end(), entry) == named.end()) named.push_back(entry);
         }
         if (named.empty()) return;
-        warn_file(path_, "{} render{} in the bind pose: rsl animates rigid nodes only, not skins or morph targets",
-                  fmt::join(named, ", "), named.size() == 1 ? "s" : "");
+        warn_file(path_, "{} render{} without {} morph targets (their base shape): rsl does not apply morph targets",
+                  fmt::join(named, ", "), named.size() == 1 ? "s" : "", named.size() == 1 ? "its" : "their");
     }
 
     struct MaterialMesh {
         int material = -1;  // glTF material index, −1 for none
         TriangleMesh mesh;
+        std::vector<std::array<uint16_t, 4>> joints;  // with_skin: JOINTS_0 per vertex
+        std::vector<Vec4> weights;                    // with_skin: WEIGHTS_0 per vertex
     };
     // A glTF mesh's triangle primitives merged into one validated mesh per
     // material, in the order the materials first appear.
-    std::vector<MaterialMesh> material_meshes(int mesh_index, const GltfMaterials& materials) {
+    std::vector<MaterialMesh> material_meshes(int mesh_index, const GltfMaterials& materials, bool with_skin = false) {
         std::vector<MaterialMesh> pieces;
         std::vector<std::vector<size_t>> primitives;
         const tinygltf::Mesh& source = model_.meshes[mesh_index];
@@ -342,17 +391,20 @@ private:
             const int material = materials.checked_index(source.primitives[p].material);
             size_t k = 0;
             while (k < pieces.size() && pieces[k].material != material) ++k;
-            if (k == pieces.size()) pieces.push_back({material, {}}), primitives.emplace_back();
+            if (k == pieces.size()) pieces.push_back({material, {}, {}, {}}), primitives.emplace_back();
             primitives[k].push_back(p);
         }
         for (size_t k = 0; k < pieces.size(); ++k)
-            pieces[k].mesh = merged_mesh(mesh_index, primitives[k], materials.texcoord_set(pieces[k].material));
+            pieces[k].mesh = merged_mesh(mesh_index, primitives[k], materials.texcoord_set(pieces[k].material),
+                                         with_skin ? &pieces[k] : nullptr);
         return pieces;
     }
 
     // The given triangle primitives of a glTF mesh merged into one validated
     // mesh, with texture coordinates TEXCOORD_<texcoord_set> when it is ≥ 0.
-    TriangleMesh merged_mesh(int mesh_index, const std::vector<size_t>& primitives, int texcoord_set) {
+    // With `skin`, its joints and weights get JOINTS_0 and WEIGHTS_0 (required).
+    TriangleMesh merged_mesh(int mesh_index, const std::vector<size_t>& primitives, int texcoord_set,
+                             MaterialMesh* skin = nullptr) {
         const tinygltf::Mesh& source = model_.meshes[mesh_index];
         TriangleMesh mesh;
         mesh.name = source.name.empty() ? fmt::format("mesh{}", mesh_index) : source.name;
@@ -402,6 +454,8 @@ private:
                 for (size_t v = 0; v < count; ++v) mesh.texcoords.emplace_back(uv[2 * v], uv[2 * v + 1]);
             }
 
+            if (skin) read_skin_attributes(attribute("JOINTS_0"), attribute("WEIGHTS_0"), count, what, *skin);
+
             std::vector<uint32_t> corners;
             if (primitive.indices >= 0) {
                 corners = reader_.indices(primitive.indices, what + " indices");
@@ -418,8 +472,41 @@ private:
         }
         if (!any_normals) mesh.normals.clear();
         if (!any_tangents) mesh.tangents.clear();
-        if (!mesh.indices.empty()) validate_and_complete(mesh, path_);
+        if (mesh.indices.empty()) return mesh;
+        std::vector<uint32_t> kept;
+        validate_and_complete(mesh, path_, &kept);
+        if (skin) {  // the attributes of the vertices validation kept
+            for (size_t v = 0; v < kept.size(); ++v) {
+                skin->joints[v] = skin->joints[kept[v]];
+                skin->weights[v] = skin->weights[kept[v]];
+            }
+            skin->joints.resize(kept.size());
+            skin->weights.resize(kept.size());
+        }
         return mesh;
+    }
+
+    void read_skin_attributes(int joints_accessor, int weights_accessor, size_t count, const std::string& what,
+                              MaterialMesh& skin) const {
+        if (joints_accessor < 0 || weights_accessor < 0)
+            throw_file_error(path_, "{}: its node has a skin but the primitive has no {}", what,
+                             joints_accessor < 0 ? "JOINTS_0" : "WEIGHTS_0");
+        const std::vector<float> joints = reader_.floats(joints_accessor, TINYGLTF_TYPE_VEC4, what + " JOINTS_0");
+        const std::vector<float> weights = reader_.floats(weights_accessor, TINYGLTF_TYPE_VEC4, what + " WEIGHTS_0");
+        if (joints.size() != 4 * count || weights.size() != 4 * count)
+            throw_file_error(path_, "{}: {} JOINTS_0 and {} WEIGHTS_0 values for {} positions", what, joints.size() / 4,
+                             weights.size() / 4, count);
+        for (size_t v = 0; v < count; ++v) {
+            std::array<uint16_t, 4> j{};
+            for (int k = 0; k < 4; ++k) {
+                const float value = joints[4 * v + size_t(k)];
+                if (!(value >= 0 && value <= 65535 && value == std::floor(value)))
+                    throw_file_error(path_, "{}: JOINTS_0 of vertex {} is {}, not a joint index", what, v, value);
+                j[size_t(k)] = uint16_t(value);
+            }
+            skin.joints.push_back(j);
+            skin.weights.emplace_back(weights[4 * v], weights[4 * v + 1], weights[4 * v + 2], weights[4 * v + 3]);
+        }
     }
 
     Interpolation interpolation(const std::string& name, const std::string& what) const {
@@ -480,6 +567,8 @@ private:
     const std::filesystem::path& path_;
     AccessorReader reader_;
     gltf::SceneNodes nodes_;
+    std::vector<std::optional<std::vector<MaterialMesh>>> skinned_;  // per glTF mesh, converted with its skin attributes
+    std::vector<int> skin_of_;  // per glTF skin: its index in scene.skins, or −1
 };
 
 }  // namespace

@@ -79,8 +79,9 @@ Vec3 tangent_for_normal(const Vec3& n) {
 }
 
 // Removes vertices no triangle references (degenerate triangles leave them
-// behind) and renumbers the indices.
-void drop_unreferenced_vertices(TriangleMesh& mesh) {
+// behind) and renumbers the indices; `kept` (optional) gets each kept
+// vertex's former index.
+void drop_unreferenced_vertices(TriangleMesh& mesh, std::vector<uint32_t>* kept) {
     constexpr uint32_t kUnused = ~0u;
     std::vector<uint32_t> new_index(mesh.vertex_count(), kUnused);
     for (uint32_t i : mesh.indices) new_index[i] = 0;
@@ -88,6 +89,7 @@ void drop_unreferenced_vertices(TriangleMesh& mesh) {
     for (size_t v = 0; v < new_index.size(); ++v) {
         if (new_index[v] == kUnused) continue;
         new_index[v] = next;
+        if (kept) kept->push_back(uint32_t(v));
         mesh.positions[next] = mesh.positions[v];
         if (v < mesh.normals.size()) mesh.normals[next] = mesh.normals[v];
         if (v < mesh.tangents.size()) mesh.tangents[next] = mesh.tangents[v];
@@ -139,7 +141,9 @@ void compute_tangents(TriangleMesh& mesh) {
     for (size_t v = 0; v < mesh.vertex_count(); ++v) mesh.tangents[v] = Vec4(tangent_for_normal(mesh.normals[v]), 1.0f);
 }
 
-size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& source) {
+size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& source,
+                             std::vector<uint32_t>* kept_vertices) {
+    if (kept_vertices) kept_vertices->clear();
     if (mesh.positions.empty()) throw_file_error(source, "mesh '{}' has no vertices", mesh.name);
     if (mesh.indices.size() % 3 != 0)
         throw_file_error(source, "mesh '{}' has {} indices, not a multiple of 3", mesh.name, mesh.indices.size());
@@ -175,7 +179,7 @@ size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& so
     if (kept == 0)
         throw_file_error(source, "mesh '{}' has no triangles{}", mesh.name,
                          dropped ? fmt::format(" ({} degenerate triangles dropped)", dropped) : "");
-    drop_unreferenced_vertices(mesh);
+    drop_unreferenced_vertices(mesh, kept_vertices);
 
     // Normals: keep valid given ones (renormalized); fill missing or invalid
     // ones with area-weighted normals.

@@ -52,8 +52,10 @@ void compute_tangents(TriangleMesh& mesh);
 // `source`. Drops degenerate triangles (zero area) and reports how many via the
 // return value (also added to mesh.degenerate_dropped); drops vertices no
 // triangle uses; computes normals/tangents when missing or invalid (per vertex:
-// valid given ones are kept, renormalized).
-size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& source);
+// valid given ones are kept, renormalized). `kept_vertices` (optional) gets,
+// per vertex left, its index before (for attributes the mesh does not hold).
+size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& source,
+                             std::vector<uint32_t>* kept_vertices = nullptr);
 
 // Wavefront OBJ (v, vn, f with any of v, v/t, v//n, v/t/n; negative indices;
 // polygons fan-triangulated). Vertices are split where normals differ.

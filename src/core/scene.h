@@ -2,6 +2,8 @@
 // A dynamic scene: rigid parts (from glTF nodes or OBJ files) with animation,
 // an environment map with its rotation, materials, local lights, a camera.
 // Loaded from a JSON scene file (schema in docs/SCENE_FORMAT.md) or from a single mesh.
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -61,12 +63,32 @@ struct MaterialDesc {
     std::shared_ptr<const Texture> base_color_texture;
 };
 
+// A glTF skin: its joints' scene nodes and inverse bind matrices (mesh
+// bind space → joint frame), src/core/skinning.h.
+struct Skin {
+    std::string name;
+    std::vector<int> joints;
+    std::vector<Mat4> inverse_bind;
+};
+
+// A segment of a skinned mesh (docs/design/SKINNING.md): the part's mesh is
+// its bind-pose geometry in its joint's frame, and each vertex blends up to
+// four of the skin's joints (linear blend skinning, src/core/skinning.h).
+struct PartSkin {
+    int skin = -1;   // index into Scene::skins
+    int joint = -1;  // the segment's joint (index into the skin's joints); the part's node is its node
+    std::string mesh;  // the skinned glTF mesh's name (`rsl info`)
+    std::vector<std::array<uint16_t, 4>> joints;  // per vertex: indices into the skin's joints
+    std::vector<Vec4> weights;                    // per vertex: sum 1
+};
+
 struct Part {
     std::string name;
     TriangleMesh mesh;  // in the part's frame
     int node = -1;      // scene node giving its transform
     int material = 0;   // index into Scene::materials
     size_t loaded_vertices = 0;  // as the file gave them, before subdivide_scene_parts (`rsl info`)
+    std::shared_ptr<const PartSkin> skin;  // a skinned mesh's segment, or null (a rigid part)
 };
 
 struct Scene;
@@ -182,6 +204,7 @@ struct Scene {
     std::vector<std::filesystem::path> input_files;
     std::vector<SceneNode> nodes;
     std::vector<Part> parts;
+    std::vector<Skin> skins;
     std::vector<MaterialDesc> materials;
     std::vector<LocalLight> lights;
     EnvironmentDesc environment;

@@ -188,13 +188,15 @@ void subdivide_scene_parts(Scene& scene) {
         if (same == firsts.end()) firsts.push_back(p);
     }
     for (size_t p = 0; p < scene.parts.size(); ++p)
-        if (source_of[p] == p) subdivide_for_shading(scene.parts[p].mesh, scene.subdivision, scene.source);
+        // A skinned segment's vertices carry joints and weights: it loads as it is (docs/SCENE_FORMAT.md, "Skins").
+        if (source_of[p] == p && !scene.parts[p].skin)
+            subdivide_for_shading(scene.parts[p].mesh, scene.subdivision, scene.source);
     for (size_t p = 0; p < scene.parts.size(); ++p) total_vertices += scene.parts[source_of[p]].mesh.vertex_count();
     check_memory_estimate(kMeshBytesPerVertex * total_vertices + kMeshBytesPerPart * scene.parts.size(),
                           scene.source,
                           fmt::format("{} vertices after subdivision in {} parts", total_vertices, scene.parts.size()));
     for (size_t p = 0; p < scene.parts.size(); ++p) {
-        if (source_of[p] == p) continue;
+        if (source_of[p] == p || scene.parts[p].skin) continue;
         TriangleMesh& mesh = scene.parts[p].mesh;
         const TriangleMesh& from = scene.parts[source_of[p]].mesh;
         mesh.positions = from.positions, mesh.normals = from.normals, mesh.tangents = from.tangents;

@@ -69,6 +69,8 @@ GlRenderer::GlRenderer(const Scene& scene, EnvironmentLights environment_lights,
     check_gpu_ray_options(options_.gpu_rays);
     if (options_.gpu_rays.enabled && options_.shadow_maps.enabled)
         throw_error("GL renderer: shadow maps and GPU rays are two visibility baselines; enable one");
+    if (options_.gpu_rays.enabled && has_skinned_parts(scene_))
+        throw_error("GL renderer: GPU rays trace rigid parts only; the scene has skinned parts (docs/design/SKINNING.md)");
     check_gl("creating the GL renderer");
     start();
 }
@@ -130,12 +132,11 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     part_records_ = g.part_static;
     rect_height_ = std::max(1, (vertex_count_ + kArrayTextureWidth - 1) / kArrayTextureWidth);
 
-    ArrayTexture positions = make_array_texture(g.positions);
-    ArrayTexture normals = make_array_texture(g.normals);
-    ArrayTexture tangents = make_array_texture(g.tangents);
-    positions_ = std::move(positions.texture);
-    normals_ = std::move(normals.texture);
-    tangents_ = std::move(tangents.texture);
+    positions_ = make_array_texture(g.positions);
+    normals_ = make_array_texture(g.normals);
+    tangents_ = make_array_texture(g.tangents);
+    skinned_ = has_skinned_parts(scene_);
+    if (skinned_) packed_positions_ = g.positions, packed_normals_ = g.normals, packed_tangents_ = g.tangents;
     gpu_bytes_ = 3 * size_t(kArrayTextureWidth) * rect_height_ * 16;
     // Tables whose every value is a half (the fields store them so) lose
     // nothing in RGBA16F and halve the memory and bandwidth.
@@ -179,7 +180,9 @@ void GlRenderer::upload_geometry(const PackedGeometry& g) {
     std::vector<Vec2> texcoords;  // 0 for parts without: only textured parts read them
     std::vector<uint32_t> indices;
     first_index_.clear();
+    display_first_vertex_.clear();
     for (const Part& part : scene_.parts) {
+        display_first_vertex_.push_back(positions3.size());
         positions3.insert(positions3.end(), part.mesh.positions.begin(), part.mesh.positions.end());
         if (part.mesh.texcoords.size() == part.mesh.vertex_count())
             texcoords.insert(texcoords.end(), part.mesh.texcoords.begin(), part.mesh.texcoords.end());
@@ -228,6 +231,8 @@ void GlRenderer::set_toggles(const RenderOptions& options) {
     check_shadow_map_options(options.shadow_maps);
     options_.shadow_maps = options.shadow_maps;
     check_gpu_ray_options(options.gpu_rays);
+    if (options.gpu_rays.enabled && has_skinned_parts(scene_))
+        throw_error("GL renderer: GPU rays trace rigid parts only; the scene has skinned parts (docs/design/SKINNING.md)");
     options_.gpu_rays = options.gpu_rays;
     options_.pixel_shadows = options.pixel_shadows;
     options_.pixel_highlights = options.pixel_highlights;
@@ -243,8 +248,34 @@ void GlRenderer::frame_changed() {
     stats_.vertices = size_t(vertex_count_);
 }
 
+// The frame's skinned vertices (FrameSetup::skinned, the CPU renderer's very
+// numbers) into the vertex texels and the display positions: the part's
+// rigid pose then places them as any part's.
+void GlRenderer::upload_skinned_vertices() {
+    if (!skinned_) return;
+    glBindBuffer(GL_ARRAY_BUFFER, display_positions_.id());
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        const PosedVertices* posed = frame_.skinned(p);
+        if (!posed) continue;
+        const size_t first = size_t(first_vertex_[p]);
+        for (size_t v = 0; v < posed->positions.size(); ++v) {
+            packed_positions_[first + v] = Vec4(posed->positions[v], packed_positions_[first + v].w);
+            packed_normals_[first + v] = Vec4(posed->normals[v], packed_normals_[first + v].w);
+            if (!posed->tangents.empty())
+                packed_tangents_[first + v] = Vec4(Vec3(posed->tangents[v]), packed_tangents_[first + v].w);
+        }
+        glBufferSubData(GL_ARRAY_BUFFER, GLintptr(display_first_vertex_[p] * sizeof(Vec3)),
+                        GLsizeiptr(posed->positions.size() * sizeof(Vec3)), posed->positions.data());
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    update_array_texture(positions_, packed_positions_);
+    update_array_texture(normals_, packed_normals_);
+    update_array_texture(tangents_, packed_tangents_);
+}
+
 // Poses into the part records; lights (2 texels each); occluder lists.
 void GlRenderer::upload_frame() {
+    upload_skinned_vertices();
     const auto& poses = frame_.poses();
     for (size_t p = 0; p < poses.size(); ++p)
         write_pose(poses[p].transform, poses[p].normal, poses[p].inverse, &part_records_[p * kPartStride]);
@@ -373,9 +404,9 @@ std::vector<std::vector<uint32_t>> GlRenderer::block_candidate_lights() {
 }
 
 void GlRenderer::bind_shading_inputs(const Program& program) {
-    bind_texture(kUnitPositions, GL_TEXTURE_2D, positions_.id());
-    bind_texture(kUnitNormals, GL_TEXTURE_2D, normals_.id());
-    bind_texture(kUnitTangents, GL_TEXTURE_2D, tangents_.id());
+    bind_texture(kUnitPositions, GL_TEXTURE_2D, positions_.texture.id());
+    bind_texture(kUnitNormals, GL_TEXTURE_2D, normals_.texture.id());
+    bind_texture(kUnitTangents, GL_TEXTURE_2D, tangents_.texture.id());
     bind_texture(kUnitParts, GL_TEXTURE_2D, parts_.texture.id());
     bind_texture(kUnitLights, GL_TEXTURE_2D, lights_.texture.id());
     bind_texture(kUnitBrdf, GL_TEXTURE_3D, brdf_.id());

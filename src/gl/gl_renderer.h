@@ -224,7 +224,14 @@ private:
     std::vector<Vec3> face_normal_, face_s_, face_t_;  // the OVDF cube faces' uniforms
     std::vector<char> rectangle_parts_;  // per part: one flat rectangle (find_rectangle)
     std::vector<Bounds> part_bounds_;  // per part: its mesh's box (part space)
-    Texture positions_, normals_, tangents_;
+    ArrayTexture positions_, normals_, tangents_;
+    // Skinned parts (src/core/skinning.h): the packed vertex texels, whose
+    // skinned parts' rows upload_skinned_vertices rewrites each frame with
+    // the frame's posed vertices, and each part's first display vertex.
+    std::vector<Vec4> packed_positions_, packed_normals_, packed_tangents_;
+    std::vector<size_t> display_first_vertex_;
+    bool skinned_ = false;
+    void upload_skinned_vertices();
     ArrayTexture parts_, lights_, brdf_offsets_;
     ArrayTexture indices_;         // every part's triangle indices (part-local), first_index_ order
     ArrayTexture svdf_tables_, svdf_coefficients_, ovdf_tables_, ovdf_coefficients_, ovdf_frames_;

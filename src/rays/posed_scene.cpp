@@ -33,6 +33,7 @@ PosedScene::PosedScene(const Scene& scene, float t) : scene_(scene), rays_(/*ori
         RSL_CHECK(mesh == int(p) && instance == int(p));
         inward_.push_back(border_inward_directions(scene.parts[p].mesh));
     }
+    skinned_.resize(scene.parts.size());
     transforms_.resize(scene.parts.size());
     linear_.resize(scene.parts.size());
     normal_.resize(scene.parts.size());
@@ -46,6 +47,10 @@ void PosedScene::set_time(float t) {
         linear_[p] = Mat3(m);
         normal_[p] = glm::transpose(glm::inverse(Mat3(m)));
         rays_.set_transform(int(p), m);
+        if (scene_.parts[p].skin) {
+            pose_skinned_part(scene_, int(p), t, skinned_[p]);
+            rays_.set_mesh_positions(int(p), skinned_[p].positions);
+        }
     }
     rays_.commit();
     time_ = t;
@@ -53,10 +58,15 @@ void PosedScene::set_time(float t) {
 
 SurfacePoint PosedScene::vertex(int part, int v) const {
     const TriangleMesh& mesh = scene_.parts[part].mesh;
+    const PosedVertices* posed = skinned(part);
+    const Vec3& position = posed ? posed->positions[size_t(v)] : mesh.positions[size_t(v)];
+    const Vec3& normal = posed ? posed->normals[size_t(v)] : mesh.normals[size_t(v)];
     SurfacePoint x;
-    x.position = Vec3(transforms_[part] * Vec4(mesh.positions[v], 1.0f));
-    const Vec3 n = glm::normalize(normal_[part] * mesh.normals[v]);
-    const Vec3 t = mesh.tangents.empty() ? Vec3(0) : linear_[part] * Vec3(mesh.tangents[v]);
+    x.position = Vec3(transforms_[part] * Vec4(position, 1.0f));
+    const Vec3 n = glm::normalize(normal_[part] * normal);
+    const Vec3 t = mesh.tangents.empty() ? Vec3(0)
+                   : posed               ? linear_[part] * Vec3(posed->tangents[size_t(v)])
+                                         : linear_[part] * Vec3(mesh.tangents[size_t(v)]);
     x.frame = Frame::from_normal_tangent(n, t);
     x.offset_normal = x.frame.z;
     x.offset = offset(part);
@@ -68,15 +78,17 @@ SurfacePoint PosedScene::vertex(int part, int v) const {
 SurfacePoint PosedScene::hit_point(const RayHit& hit, const Vec3& ray_direction) const {
     RSL_CHECK(hit.hit);
     const TriangleMesh& mesh = scene_.parts[hit.instance].mesh;
+    const PosedVertices* posed = skinned(hit.instance);
     const uint32_t* tri = &mesh.indices[3 * size_t(hit.triangle)];
     const float w0 = 1.0f - hit.u - hit.v, w1 = hit.u, w2 = hit.v;
     auto blend = [&](const auto& values) {
         return w0 * Vec3(values[tri[0]]) + w1 * Vec3(values[tri[1]]) + w2 * Vec3(values[tri[2]]);
     };
     SurfacePoint x;
-    x.position = Vec3(transforms_[hit.instance] * Vec4(blend(mesh.positions), 1.0f));
-    Vec3 n = glm::normalize(normal_[hit.instance] * blend(mesh.normals));
-    const Vec3 t = mesh.tangents.empty() ? Vec3(0) : linear_[hit.instance] * blend(mesh.tangents);
+    x.position = Vec3(transforms_[hit.instance] * Vec4(blend(posed ? posed->positions : mesh.positions), 1.0f));
+    Vec3 n = glm::normalize(normal_[hit.instance] * blend(posed ? posed->normals : mesh.normals));
+    const Vec3 t = mesh.tangents.empty() ? Vec3(0)
+                                         : linear_[hit.instance] * blend(posed ? posed->tangents : mesh.tangents);
     const bool front = glm::dot(hit.geometric_normal, ray_direction) < 0;
     x.offset_normal = front ? hit.geometric_normal : -hit.geometric_normal;
     // A back face seen through a hole or an open mesh: shade the side we see.

@@ -3,6 +3,7 @@
 // part index. Moving to another time only updates instance transforms and
 // re-commits the top level; no part BVH is rebuilt.
 #include "src/core/scene.h"
+#include "src/core/skinning.h"
 #include "src/rays/ray_scene.h"
 
 namespace rsl {
@@ -32,6 +33,11 @@ public:
     RayOffset offset(int part) const { return RayOffset{rays_.instance_diagonal(part)}; }
 
     const Mat4& part_transform(int part) const { return transforms_[part]; }
+    // A skinned part's vertices at time() in its own frame (src/core/skinning.h),
+    // traced and shaded in place of its mesh's; null for a rigid part.
+    const PosedVertices* skinned(int part) const {
+        return skinned_[size_t(part)].positions.empty() ? nullptr : &skinned_[size_t(part)];
+    }
     // World-space vertex: position by the part's transform, normal by its
     // inverse transpose, tangent by its linear part (exact also under
     // non-uniform scale), frame by Gram-Schmidt (Frame::from_normal_tangent).
@@ -51,6 +57,7 @@ private:
     float time_ = 0;
     std::vector<Mat4> transforms_;
     std::vector<Mat3> linear_, normal_;
+    std::vector<PosedVertices> skinned_;  // per part; empty for a rigid one
     std::vector<std::vector<Vec3>> inward_;  // per part and vertex: towards its triangles (part frame), or 0
 };
 

@@ -77,6 +77,8 @@ struct RayScene::Impl {
     RTCScene top = nullptr;
     std::vector<RTCScene> meshes;
     std::vector<Bounds> mesh_bounds;  // in the mesh's own frame
+    std::vector<float*> mesh_vertices;  // per mesh: its Embree vertex buffer (x, y, z per vertex)
+    std::vector<size_t> mesh_vertex_count;
     std::vector<RTCGeometry> instances;
     std::vector<int> instance_mesh;
     std::vector<Mat4> transforms;
@@ -214,7 +216,34 @@ int RayScene::add_mesh(const TriangleMesh& mesh) {
     check_device(m.device, "mesh BVH build");
     m.meshes.push_back(scene);
     m.mesh_bounds.push_back(bounds);
+    m.mesh_vertices.push_back(vertices);
+    m.mesh_vertex_count.push_back(mesh.positions.size());
     return int(m.meshes.size()) - 1;
+}
+
+void RayScene::set_mesh_positions(int mesh_id, const std::vector<Vec3>& positions) {
+    Impl& m = *impl_;
+    RSL_CHECK(mesh_id >= 0 && mesh_id < int(m.meshes.size()));
+    RSL_CHECK_EQ(positions.size(), m.mesh_vertex_count[size_t(mesh_id)]);
+    float* vertices = m.mesh_vertices[size_t(mesh_id)];
+    Bounds bounds;
+    for (size_t i = 0; i < positions.size(); ++i) {
+        vertices[3 * i + 0] = positions[i].x;
+        vertices[3 * i + 1] = positions[i].y;
+        vertices[3 * i + 2] = positions[i].z;
+        bounds.extend(positions[i]);
+    }
+    RTCScene scene = m.meshes[size_t(mesh_id)];
+    RTCGeometry geometry = rtcGetGeometry(scene, 0);
+    rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(geometry);
+    rtcCommitScene(scene);
+    check_device(m.device, "mesh BVH refit");
+    m.mesh_bounds[size_t(mesh_id)] = bounds;
+    // Instances of the mesh must be re-committed for the top level to see the new bounds.
+    for (size_t i = 0; i < m.instances.size(); ++i)
+        if (m.instance_mesh[i] == mesh_id) rtcCommitGeometry(m.instances[i]);
+    m.committed = false;
 }
 
 int RayScene::add_instance(int mesh_id, const Mat4& part_to_world) {

@@ -72,6 +72,9 @@ public:
 
     int add_mesh(const TriangleMesh& mesh);                   // → mesh id (prototype BVH)
     int add_instance(int mesh_id, const Mat4& part_to_world);  // → instance id
+    // Moves a mesh's vertices (same count, same triangles) and refits its BVH
+    // (a skinned part posed anew, src/core/skinning.h); call commit() after.
+    void set_mesh_positions(int mesh_id, const std::vector<Vec3>& positions);
     void set_transform(int instance_id, const Mat4& part_to_world);
     void commit();  // after adding or moving; rebuilds only the top level
 

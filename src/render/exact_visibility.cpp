@@ -40,7 +40,9 @@ ExactVisibility::ExactVisibility(const Scene& scene, float t, ExactVisibilityMod
         auto rays = std::make_unique<RayScene>(/*origins_outside_surfaces=*/true);
         for (int p = 0; p < parts; ++p) {
             if (alone != (p == receiver)) continue;
-            rays->add_instance(rays->add_mesh(scene.parts[p].mesh), posed_.part_transform(p));
+            const int mesh = rays->add_mesh(scene.parts[p].mesh);
+            if (const PosedVertices* skinned = posed_.skinned(p)) rays->set_mesh_positions(mesh, skinned->positions);
+            rays->add_instance(mesh, posed_.part_transform(p));
         }
         rays->commit();
         per_part_.push_back(std::move(rays));

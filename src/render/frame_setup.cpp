@@ -23,6 +23,7 @@ FrameSetup::FrameSetup(const Scene& scene, const PartFields& fields) {
         culling_parts_.back().local_reach = field ? field->reach() : BoundingSphere{};
     }
     poses_.resize(parts);
+    skinned_.resize(parts);
 }
 
 void FrameSetup::reserve(size_t environment_lights, size_t local_lights) {
@@ -71,7 +72,12 @@ void FrameSetup::update(const Scene& scene, const EnvironmentLights& environment
         const Vec3 axes(glm::length(pose.linear[0]), glm::length(pose.linear[1]), glm::length(pose.linear[2]));
         pose.uniform_scale =
             std::max({axes.x, axes.y, axes.z}) <= (1.0f + 1e-4f) * std::min({axes.x, axes.y, axes.z});
-        pose.world_bounds = transform_sphere(pose.transform, local_bounds_[p]);
+        BoundingSphere local = local_bounds_[p];
+        if (scene.parts[p].skin) {
+            pose_skinned_part(scene, int(p), t, skinned_[p]);
+            local = posed_bounding_sphere(skinned_[p]);
+        }
+        pose.world_bounds = transform_sphere(pose.transform, local);
     }
     // Both maps turn together: the blend is of the two rotated maps.
     const Mat3 rotation = extra_rotation * scene.environment.rotation_at(t);

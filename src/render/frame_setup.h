@@ -18,6 +18,7 @@
 
 #include "src/lightfit/rsl.h"
 #include "src/core/scene.h"
+#include "src/core/skinning.h"
 #include "src/render/culling.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
@@ -76,6 +77,10 @@ public:
                 const std::optional<Vec3>& camera = std::nullopt);
 
     const std::vector<PartPose>& poses() const { return poses_; }
+    // A skinned part's vertices at t in its own frame (src/core/skinning.h),
+    // which replace its mesh's positions, normals and tangents; null for a
+    // rigid part.
+    const PosedVertices* skinned(size_t part) const { return skinned_[part].positions.empty() ? nullptr : &skinned_[part]; }
     // Environment lights first (first set, then second set), world space,
     // integrals already weighted by the blend.
     const std::vector<SquareLight>& environment_squares() const { return squares_; }
@@ -95,6 +100,7 @@ private:
     std::vector<CullingPart> culling_parts_;
     OccluderLists lists_;
     std::vector<PartPose> poses_;
+    std::vector<PosedVertices> skinned_;  // per part; empty for a rigid one
     std::vector<SquareLight> squares_;
     std::vector<Vec3> light_positions_;
     std::vector<Vec3> light_axes_;

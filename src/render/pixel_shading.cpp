@@ -175,7 +175,9 @@ void CpuRenderer::triangle_lights(BlockScratch& s, size_t part, const uint32_t* 
     const PartPose& pose = poses_[part];
     const TriangleMesh& mesh = scene_.parts[part].mesh;
     Vec3 p[3];
-    for (int c = 0; c < 3; ++c) p[c] = Vec3(pose.transform * Vec4(mesh.positions[corner[c]], 1.0f));
+    const PosedVertices* skinned = frame_.skinned(part);  // as posed this frame (src/core/skinning.h)
+    const std::vector<Vec3>& positions = skinned ? skinned->positions : mesh.positions;
+    for (int c = 0; c < 3; ++c) p[c] = Vec3(pose.transform * Vec4(positions[corner[c]], 1.0f));
     const Vec3 center = (p[0] + p[1] + p[2]) / 3.0f;
     const float radius = std::max({glm::length(p[0] - center), glm::length(p[1] - center), glm::length(p[2] - center)});
     const BoundingSphere sphere{center, radius * (1.0f + 1e-5f) + 1e-6f * (1.0f + glm::length(center))};

@@ -400,15 +400,20 @@ void CpuRenderer::load_block_points(BlockScratch& s, const Block& block) const {
     const PartPose& pose = poses_[size_t(block.part)];
     const int* const order = block_order_[size_t(block.part)].data() + block.begin;
     const bool has_tangents = !mesh.tangents.empty();
+    // A skinned part's vertices as posed this frame (src/core/skinning.h).
+    const PosedVertices* skinned = frame_.skinned(size_t(block.part));
+    const std::vector<Vec3>& positions = skinned ? skinned->positions : mesh.positions;
+    const std::vector<Vec3>& normals = skinned ? skinned->normals : mesh.normals;
+    const std::vector<Vec4>& tangents = skinned ? skinned->tangents : mesh.tangents;
     if (s.occluders.size() != scene_.parts.size()) s.occluders.assign(scene_.parts.size(), {});  // first block only
     ++s.stamp;  // every part's BlockOccluder is stale
     s.pool_used = 0;
     for (int k = 0; k < block.end - block.begin; ++k) {
         const int v = order[k];
         s.vertex[k] = v;
-        const Vec3 normal = glm::normalize(pose.normal * mesh.normals[v]);
-        const Vec3 tangent = has_tangents ? pose.linear * Vec3(mesh.tangents[v]) : Vec3(0);
-        set_point(s, k, Vec3(pose.transform * Vec4(mesh.positions[v], 1.0f)), Frame::from_normal_tangent(normal, tangent));
+        const Vec3 normal = glm::normalize(pose.normal * normals[v]);
+        const Vec3 tangent = has_tangents ? pose.linear * Vec3(tangents[v]) : Vec3(0);
+        set_point(s, k, Vec3(pose.transform * Vec4(positions[v], 1.0f)), Frame::from_normal_tangent(normal, tangent));
     }
 }
 

@@ -12,6 +12,7 @@
 #include "tools/assets/orb.h"
 #include "tools/assets/pbr_scene.h"
 #include "tools/assets/robot.h"
+#include "tools/assets/skinned_tube.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> generated_file_names() {
     return {"robot.glb",   "ground.obj",  "orb.obj",      "kitchen.glb",  "sunsky.exr",  "sunsky.png",
-            "studio.exr",  "studio.png",  "overcast.exr", "overcast.png", "pbr.glb",     "teapot.obj"};
+            "studio.exr",  "studio.png",  "overcast.exr", "overcast.png", "pbr.glb",     "teapot.obj",  "tube.glb"};
 }
 
 namespace {
@@ -91,6 +92,11 @@ GenerateReport generate_assets(const fs::path& dir, bool force) {
             const GeneratedModel pbr = make_pbr_showcase();
             write_glb(dir / "pbr.glb", pbr);
             note(fmt::format("pbr.glb: {}; glTF metallic-roughness materials, a 64x64 tile texture", model_summary(pbr)));
+            const GeneratedModel tube = make_bending_tube(demo_tube_options());
+            write_glb(dir / "tube.glb", tube);
+            note(fmt::format("tube.glb: a skinned tube of {} joints bending {:g} deg in a {:g} s loop, {} vertices",
+                             tube.skins[0].joint_nodes.size(), demo_tube_options().bend_degrees, tube.loop_seconds,
+                             tube.skins[0].mesh.vertex_count()));
             const TriangleMesh teapot = make_teapot();
             write_obj(dir / "teapot.obj", teapot);
             note(fmt::format("teapot.obj: the kitchen's teapot (instanced and animated scenes), {} vertices, {} triangles",

@@ -93,6 +93,17 @@ public:
         return int(model_.accessors.size()) - 1;
     }
 
+    int add_joints(const std::vector<std::array<uint16_t, 4>>& joints) {
+        const int view = add_view(joints.data(), joints.size() * sizeof(joints[0]), TINYGLTF_TARGET_ARRAY_BUFFER);
+        tinygltf::Accessor a;
+        a.bufferView = view;
+        a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+        a.count = joints.size();
+        a.type = TINYGLTF_TYPE_VEC4;
+        model_.accessors.push_back(a);
+        return int(model_.accessors.size()) - 1;
+    }
+
     int add_indices(const std::vector<uint32_t>& indices) {
         const int view = add_view(indices.data(), indices.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
         tinygltf::Accessor a;
@@ -207,6 +218,39 @@ void add_mesh(GltfBuilder& builder, tinygltf::Model& model, const Part& part, in
     model.meshes.push_back(m);
 }
 
+// A skinned mesh on a new root node, with its skin.
+void add_skin(GltfBuilder& builder, tinygltf::Model& model, tinygltf::Scene& root, const GeneratedSkin& skin,
+              int material) {
+    const size_t n = skin.mesh.vertex_count();
+    RSL_CHECK_EQ(skin.joints.size(), n);
+    RSL_CHECK_EQ(skin.weights.size(), n);
+    RSL_CHECK_EQ(skin.inverse_bind.size(), skin.joint_nodes.size());
+    Part part;
+    part.name = skin.name;
+    part.mesh = skin.mesh;
+    add_mesh(builder, model, part, material);
+    tinygltf::Primitive& primitive = model.meshes.back().primitives.back();
+    primitive.attributes["JOINTS_0"] = builder.add_joints(skin.joints);
+    primitive.attributes["WEIGHTS_0"] =
+        builder.add_floats(&skin.weights[0].x, n, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    tinygltf::Skin s;
+    s.name = skin.name;
+    s.joints = skin.joint_nodes;
+    std::vector<float> matrices;
+    for (const Mat4& m : skin.inverse_bind)
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) matrices.push_back(m[c][r]);
+    s.inverseBindMatrices =
+        builder.add_floats(matrices.data(), skin.inverse_bind.size(), TINYGLTF_TYPE_MAT4, 16, 0, false);
+    model.skins.push_back(s);
+    tinygltf::Node node;
+    node.name = skin.name;
+    node.mesh = int(model.meshes.size()) - 1;
+    node.skin = int(model.skins.size()) - 1;
+    model.nodes.push_back(node);
+    root.nodes.push_back(int(model.nodes.size()) - 1);
+}
+
 void add_channel(GltfBuilder& builder, tinygltf::Animation& animation, const std::vector<float>& times,
                  const float* values, int components, int node, const char* path) {
     RSL_CHECK_GE(times.size(), size_t(1));
@@ -269,6 +313,15 @@ void write_glb(const std::filesystem::path& path, const GeneratedModel& generate
         }
         add_mesh(builder, model, part, material);
         written.push_back(&part);
+    }
+    for (const GeneratedSkin& skin : generated.skins) {
+        int material = -1;
+        if (skin.material >= 0 && size_t(skin.material) < scene.materials.size()) {
+            int& m = materials[size_t(skin.material)];
+            if (m == -2) m = add_material(builder, model, scene.materials[size_t(skin.material)]);
+            material = m;
+        }
+        add_skin(builder, model, root, skin, material);
     }
     model.scenes.push_back(root);
     model.defaultScene = 0;

@@ -2,6 +2,8 @@
 // A generated model: node hierarchy, one rigid part per mesh node, and a
 // looping node animation, held in the same rsl::Scene types the glTF loader
 // produces, so a generated model and its file can be compared directly.
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -12,8 +14,21 @@
 
 namespace rsl::assets {
 
+// A skinned mesh of a generated model: bind-pose geometry on a node of its
+// own, whose vertices blend up to four joints (glTF JOINTS_0 / WEIGHTS_0).
+struct GeneratedSkin {
+    std::string name;  // the mesh's and its node's
+    TriangleMesh mesh;  // bind space (normals and tangents required)
+    std::vector<std::array<uint16_t, 4>> joints;  // per vertex: indices into joint_nodes
+    std::vector<Vec4> weights;                    // per vertex
+    std::vector<int> joint_nodes;                 // scene nodes
+    std::vector<Mat4> inverse_bind;               // per joint: bind space → joint frame
+    int material = -1;                            // scene material, or −1
+};
+
 struct GeneratedModel {
     Scene scene;             // nodes (rest transform + tracks) and parts (mesh per node)
+    std::vector<GeneratedSkin> skins;  // written as skinned meshes (each on a root node named after it)
     float loop_seconds = 0;  // the animation repeats: every node's pose at t equals its pose at t + loop_seconds
     std::string animation_name;
 
@@ -34,7 +49,9 @@ Vec3Track loop_translation_track(const std::function<Vec3(float t)>& translation
 // part (POSITION with min/max, NORMAL, TANGENT, TEXCOORD_0 when the mesh has
 // texture coordinates, uint32 indices), and one animation with the nodes'
 // tracks. A part whose material is gltf_pbr gets it as a glTF material, its
-// base colour texture as an embedded sRGB PNG. Written atomically.
+// base colour texture as an embedded sRGB PNG; each GeneratedSkin as a mesh
+// (with JOINTS_0 and WEIGHTS_0) on a root node of its own, and a glTF skin
+// with its inverse bind matrices. Written atomically.
 void write_glb(const std::filesystem::path& path, const GeneratedModel& model);
 
 // Wavefront OBJ with positions and normals (v, vn, f v//n). Written atomically.

@@ -131,7 +131,21 @@ void print_parts(const Scene& scene) {
         fmt::print("    {:<16} {:>7} vertices{} {:>7} triangles{}  material {} ({}){}  origin at {}\n", part.name,
                    part.mesh.vertex_count(), loaded_text, part.mesh.triangle_count(), dropped, m.name, m.model,
                    is_animated(scene, part.node) ? "  animated" : "", vec3_text(origin));
+        if (part.skin) {
+            const Skin& skin = scene.skins.at(size_t(part.skin->skin));
+            size_t blended = 0;
+            for (const Vec4& w : part.skin->weights) blended += w[0] < 1.0f;
+            fmt::print("      skin segment of mesh '{}' (skin '{}', joint '{}'): {} of its vertices blend several "
+                       "joints (linear blend skinning)\n",
+                       part.skin->mesh, skin.name, scene.nodes.at(size_t(part.node)).name, blended);
+        }
         print_mesh_bounds(part.mesh, "      ");
+    }
+    if (!scene.skins.empty()) {
+        size_t segments = 0;
+        for (const Part& part : scene.parts) segments += part.skin != nullptr;
+        fmt::print("  skins:             {} ({} segments, each a part moved by its joint; docs/design/SKINNING.md)\n",
+                   scene.skins.size(), segments);
     }
     // Fields are per unique mesh: what `rsl bake` would bake, and what the
     // default cache (beside the file) already holds.
