@@ -196,7 +196,7 @@ TEST_CASE("glossiness sweep sets valid parameters for every swept model, rougher
             previous_peak = peak;
         }
     }
-    MaterialDesc lambert{"floor", "lambert", {{"albedo", {0.5f, 0.5f, 0.5f}}}, {}};
+    MaterialDesc lambert{"floor", "lambert", {{"albedo", {0.5f, 0.5f, 0.5f}}}, {}, nullptr};
     REQUIRE_THROWS_AS(set_glossiness(lambert, 0.2f), Error);
     REQUIRE(sweep_roughness(0, 12) < sweep_roughness(11, 12));
 }
