@@ -120,12 +120,16 @@ void main() {
     vec3 p = vec3(0.0);
     LocalFrame frame;
     int vertex = 0;
+    int seam_partner = -1;
     if (in_block) {
         vertex = block_vertices[record.y + k];
         ivec2 texel = ivec2(vertex & (kArrayWidth - 1), vertex >> kArrayShift);
         vec4 position = texelFetch(u_positions, texel, 0);
         vec4 normal = texelFetch(u_normals, texel, 0);
-        vec3 tangent = texelFetch(u_tangents, texel, 0).xyz;
+        vec4 tangent_texel = texelFetch(u_tangents, texel, 0);
+        vec3 tangent = tangent_texel.xyz;
+        // The seam partner (w = enclosed + 2(partner + 1), gpu_layout.cpp): its OVDF is left out.
+        seam_partner = int(tangent_texel.w * 0.5) - 1;
         mat4 transform = part_transform(part);
         p = (transform * vec4(position.xyz, 1.0)).xyz;
         frame = frame_from_normal_tangent(normalize(part_normal_matrix(part) * normal.xyz), mat3(transform) * tangent);
@@ -186,6 +190,7 @@ void main() {
             for (int w = 0; w < LIGHT_WORDS; ++w) any = any || (s_lights[j * LIGHT_WORDS + w] & live[w]) != 0u;
             if (!any) continue;
             int o = s_occluder[j];
+            if (o == seam_partner) continue;  // a seam vertex on its neighbour (CpuRenderer::occluder_factors)
             OccluderAtVertex at = occluder_at_vertex(o, p);
             for (int w = 0; w < LIGHT_WORDS; ++w)
                 lookups += shadow_by_occluder(o, at, p, frame, w, s_lights[j * LIGHT_WORDS + w] & live[w], live);

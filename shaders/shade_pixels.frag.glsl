@@ -45,7 +45,7 @@ void set_corners() {
         vec4 normal = fetch(u_normals, vertex);
         vec4 tangent = fetch(u_tangents, vertex);
         g_corner_frame[c] = frame_from_normal_tangent(normalize(normal_matrix * normal.xyz), mat3(transform) * tangent.xyz);
-        corner_enclosed[c] = self && tangent.w > 0.5;  // as the CPU: only with the SVDF on
+        corner_enclosed[c] = self && mod(tangent.w, 2.0) > 0.5;  // as the CPU: only with the SVDF on; w = e + 2(s + 1)
         g_corner_cluster[c] = self && normal.w >= 0.0 ? int(normal.w) : -1;
         if (g_corner_cluster[c] >= 0) load_svdf_coefficients(svdf, local, c);
     }

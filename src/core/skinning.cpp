@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "src/core/error.h"
 
@@ -78,6 +79,32 @@ BoundingSphere posed_bounding_sphere(const PosedVertices& posed) {
 
 bool has_skinned_parts(const Scene& scene) {
     return std::any_of(scene.parts.begin(), scene.parts.end(), [](const Part& p) { return p.skin != nullptr; });
+}
+
+std::vector<std::vector<int>> seam_partners(const Scene& scene) {
+    std::map<std::pair<int, int>, int> segment_of;  // (skin, joint) → part
+    for (size_t p = 0; p < scene.parts.size(); ++p)
+        if (const PartSkin* skin = scene.parts[p].skin.get()) segment_of[{skin->skin, skin->joint}] = int(p);
+    std::vector<std::vector<int>> partners(scene.parts.size());
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        const PartSkin* skin = scene.parts[p].skin.get();
+        if (!skin) continue;
+        std::vector<int>& out = partners[p];
+        out.assign(skin->joints.size(), -1);
+        for (size_t v = 0; v < skin->joints.size(); ++v) {
+            float best = 0.0f;
+            for (int i = 0; i < 4; ++i) {
+                const int joint = int(skin->joints[v][i]);
+                const float w = skin->weights[v][i];
+                if (joint == skin->joint || !(w > best)) continue;
+                const auto it = segment_of.find({skin->skin, joint});
+                if (it == segment_of.end()) continue;  // a joint no vertex is assigned to: no segment
+                best = w;
+                out[v] = it->second;
+            }
+        }
+    }
+    return partners;
 }
 
 }  // namespace rsl

@@ -40,4 +40,11 @@ BoundingSphere posed_bounding_sphere(const PosedVertices& posed);
 // Whether any part of the scene is skinned.
 bool has_skinned_parts(const Scene& scene);
 
+// Per part, per vertex: the segment whose joint the vertex blends with the
+// largest weight after its own (a seam vertex), or -1; empty for a rigid
+// part. A seam vertex lies on its neighbour's surface, where that
+// neighbour's OVDF is coarsest, so the renderers leave that one occluder
+// out of its sum (docs/design/SKINNING.md "Visibility at the joints").
+std::vector<std::vector<int>> seam_partners(const Scene& scene);
+
 }  // namespace rsl

@@ -6,6 +6,7 @@
 
 #include "src/core/envmap.h"
 #include "src/core/error.h"
+#include "src/core/skinning.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/render/occluder_shape.h"
 #include "src/shading/ovdf_tables.h"
@@ -120,10 +121,11 @@ void pack_part_svdf(const Svdf& svdf, PackedGeometry& g, SharedFieldRecords& sha
     shared.svdf[&svdf] = record[kSlotSvdf];
 }
 
-// Part phase: the mesh's vertices as texels, with part index, SVDF cluster and enclosed flag.
-void append_part_vertices(const TriangleMesh& mesh, size_t p, const Svdf* svdf, PackedGeometry& g,
-                          SharedFieldRecords& shared) {
-    // The tangent's w: 1 where the SVDF finds the vertex enclosed (the per-pixel pass's corners).
+// Part phase: the mesh's vertices as texels, with part index, SVDF cluster, and in the tangent's w
+// the enclosed flag e and the seam partner s (skinning.h seam_partners, -1: none) as e + 2(s + 1).
+void append_part_vertices(const TriangleMesh& mesh, size_t p, const Svdf* svdf, const std::vector<int>& partners,
+                          PackedGeometry& g, SharedFieldRecords& shared) {
+    // The enclosed flag: where the SVDF finds the vertex enclosed (the per-pixel pass's corners).
     const std::vector<uint8_t>* enclosed = nullptr;
     if (svdf) {
         auto [it, added] = shared.enclosed.try_emplace(svdf);
@@ -135,7 +137,9 @@ void append_part_vertices(const TriangleMesh& mesh, size_t p, const Svdf* svdf, 
         const float cluster = svdf ? float(svdf->model.assignment[v]) : -1.0f;
         g.normals.push_back(Vec4(mesh.normals[v], cluster));
         const float enclosed_flag = enclosed && (*enclosed)[v] ? 1.0f : 0.0f;
-        g.tangents.push_back(Vec4(mesh.tangents.empty() ? Vec3(0.0f) : Vec3(mesh.tangents[v]), enclosed_flag));
+        const float partner = partners.empty() ? -1.0f : float(partners[v]);
+        g.tangents.push_back(Vec4(mesh.tangents.empty() ? Vec3(0.0f) : Vec3(mesh.tangents[v]),
+                                  enclosed_flag + 2.0f * (partner + 1.0f)));
     }
 }
 
@@ -252,13 +256,14 @@ PackedGeometry pack_geometry(const Scene& scene, const PartFields& fields, bool 
     g.part_static.assign(parts * kPartStride, Vec4(0.0f));
     pack_face_frames(g);
     SharedFieldRecords shared;
+    const std::vector<std::vector<int>> partners = seam_partners(scene);
     for (size_t p = 0; p < parts; ++p) {
         const TriangleMesh& mesh = scene.parts[p].mesh;
         Vec4* record = &g.part_static[p * kPartStride];
         write_part_shape(mesh, exact_shapes, g, record);
         const Svdf* svdf = p < fields.self.size() ? fields.self[p].get() : nullptr;
         if (svdf) pack_part_svdf(*svdf, g, shared, record);
-        append_part_vertices(mesh, p, svdf, g, shared);
+        append_part_vertices(mesh, p, svdf, partners[p], g, shared);
         const OccluderField* field = p < fields.occluder.size() ? fields.occluder[p].get() : nullptr;
         pack_part_ovdf(scene, p, field, g, shared, record);
     }

@@ -122,6 +122,9 @@ struct CpuRenderer::BlockScratch {
     std::vector<float> cosines;
     const float* light_cosines = nullptr;
     alignas(64) int32_t crossing[kShadeBlock];
+    // Per point the skinned segment whose OVDF it leaves out (-1: none):
+    // a seam vertex's neighbour (CpuRenderer::seam_partners_); -1 at pixels.
+    alignas(64) int32_t partner[kShadeBlock];
     // Compacted queries.
     int index[kShadeBlock];
     int query_vertex[kShadeBlock];  // the vertex of each query (shade_block)

@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "src/core/error.h"
+#include "src/core/skinning.h"
 #include "src/render/occluder_shape.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/core/sphere_light.h"
@@ -27,6 +28,7 @@ CpuRenderer::CpuRenderer(const Scene& scene, EnvironmentLights environment_light
         throw_file_error(scene.source, "GPU ray-traced visibility (RenderOptions::gpu_rays, --gpu-rays) exists on "
                                        "the GL backend only; on the CPU, RenderOptions::exact_visibility traces the same rays");
     const size_t parts = scene.parts.size();
+    seam_partners_ = seam_partners(scene);
     for (size_t p = 0; p < parts; ++p) {
         const Part& part = scene.parts[p];
         const size_t n = part.mesh.vertex_count();

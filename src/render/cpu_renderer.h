@@ -161,6 +161,9 @@ private:
     std::vector<BoundingSphere> local_reach_;        // per part: its occluder field's reach (radius 0: none)
     // Per part: the fast split lookup of its OVDF (null: the field's own lookup).
     std::vector<std::unique_ptr<const OvdfLookup>> fast_lookups_;
+    // Per part, per vertex: the skinned segment whose OVDF the vertex leaves
+    // out, -1 none; empty for a rigid part (skinning.h seam_partners).
+    std::vector<std::vector<int>> seam_partners_;
 
     // The frame at time_ (VertexRenderer::frame_): its fields as shade_block.cpp reads them.
     const std::vector<PartPose>& poses_ = frame_.poses();
