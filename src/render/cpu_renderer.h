@@ -41,7 +41,7 @@ namespace rsl {
 
 struct OccluderVertexScratch;  // shade_block.cpp
 
-class CpuRenderer final : public VertexRenderer {
+class CpuRenderer : public VertexRenderer {
 public:
     // As VertexRenderer's constructor (vertex_renderer.h).
     CpuRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,

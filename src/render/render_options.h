@@ -87,6 +87,11 @@ struct RenderOptions {
     std::shared_ptr<const ExactVisibility> exact_visibility;
     ShadowMapOptions shadow_maps;  // GL backend only
     GpuRayOptions gpu_rays;        // GL backend only
+    // The rays backend's S (src/render/ray_traced_renderer.h): every light's
+    // visibility from S×S jittered shadow rays per vertex, 1 to
+    // kMaxRaySamples; the other backends ignore it.
+    static constexpr int kMaxRaySamples = 16;
+    int ray_samples = 1;
 };
 
 // Counters of one shading pass (for `rsl render` and the benchmarks).

@@ -20,7 +20,6 @@
 #include "src/core/error.h"
 #include "src/frame/error_metrics.h"
 #include "src/frame/image_formation.h"
-#include "src/render/exact_visibility.h"
 #include "src/render/render_setup.h"
 #include "src/trace/environment_rays.h"
 #include "src/trace/ground_truth.h"
@@ -62,7 +61,7 @@ Row make_row(const std::string& method, int setting, int lights) {
 int samples_for_budget(uint64_t budget, uint64_t pairs) {
     if (pairs == 0) return 1;
     const double per_pair = double(budget) / double(pairs);
-    return std::clamp(int(std::floor(std::sqrt(per_pair))), 1, ExactVisibility::kMaxSamplesPerSide);
+    return std::clamp(int(std::floor(std::sqrt(per_pair))), 1, RenderOptions::kMaxRaySamples);
 }
 
 // The GL renderer's last vertex pass time (timer queries, or the clock
@@ -282,13 +281,14 @@ struct RowMeasurer {
         add_row(std::move(row), colors);
     }
 
-    // Ray-traced many-light: the fields unused, every visibility factor by
-    // rays of `samples`² per pair; returns the row's rays per frame.
+    // Ray-traced many-light, the rays backend: the fields unused, every
+    // visibility factor by rays of `samples`² per pair; returns the row's
+    // rays per frame.
     uint64_t measure_ray_row(const std::string& method, int samples) {
         RenderOptions o = options;
-        o.exact_visibility = std::make_shared<ExactVisibility>(scene, t, ExactVisibilityMode::All, samples, true);
-        CpuRenderer renderer(scene, lights_for(args.baseline_lights), PartFields{}, o);
-        measure(make_row(method, samples, args.baseline_lights), renderer);
+        o.ray_samples = samples;
+        const auto renderer = make_renderer(Backend::Rays, scene, lights_for(args.baseline_lights), PartFields{}, o);
+        measure(make_row(method, samples, args.baseline_lights), *renderer);
         return rows.back().rays;
     }
 };
@@ -315,11 +315,11 @@ void measure_ray_rows(RowMeasurer& m) {
     if (args.ray_budget > 0) {
         if (rays_at_one == 0) {  // the pairs that need rays, from one frame at S = 1
             RenderOptions o = m.options;
-            o.exact_visibility = std::make_shared<ExactVisibility>(m.scene, m.t, ExactVisibilityMode::All, 1, true);
-            CpuRenderer probe(m.scene, m.lights_for(args.baseline_lights), PartFields{}, o);
-            probe.set_time(m.t);
-            probe.shade();
-            rays_at_one = probe.stats().shadow_rays;
+            o.ray_samples = 1;
+            const auto probe = make_renderer(Backend::Rays, m.scene, m.lights_for(args.baseline_lights), PartFields{}, o);
+            probe->set_time(m.t);
+            probe->shade();
+            rays_at_one = probe->stats().shadow_rays;
         }
         const int samples = samples_for_budget(args.ray_budget, rays_at_one);
         say(args, fmt::format("ray budget {}: {} pairs need rays, so S = {}", args.ray_budget, rays_at_one, samples));
