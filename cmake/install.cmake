@@ -83,7 +83,7 @@ set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME librsl-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 set(rsl_dev_depends libembree-dev libopenexr-dev libeigen3-dev libglm-dev libtbb-dev nlohmann-json3-dev libfmt-dev)
 if(RSL_BUILD_GL)
-  list(APPEND rsl_dev_depends libgl-dev libegl-dev libopengl-dev libglfw3-dev libimgui-dev pkg-config)
+  list(APPEND rsl_dev_depends libgl-dev libegl-dev libopengl-dev)  # the viewer's GLFW and ImGui stay in the program
 endif()
 list(JOIN rsl_dev_depends ", " CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS)
 set(CPACK_DEBIAN_PROGRAM_DESCRIPTION "rsl renderer: the rsl program

@@ -1,4 +1,4 @@
-// The viewer's background is the environment (src/gl/skybox.h): in a
+// The viewer's background is the environment (tools/viewer/skybox.h): in a
 // screenshot, every sky pixel is the sRGB-encoded radiance of the cube-map
 // texel its view ray meets, after the environment's rotation at that time, so
 // two screenshots a quarter turn apart show the map turned.
@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "src/core/envmap.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"
 #include "tests/test_support.h"

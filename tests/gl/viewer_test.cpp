@@ -14,7 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "src/core/error.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"
 #include "tests/trace/trace_test_scenes.h"

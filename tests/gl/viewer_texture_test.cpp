@@ -16,7 +16,7 @@
 #include "tools/assets/primitives.h"
 #include "rsl/rsl.h"
 #include "src/core/image.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"
 #include "tests/test_support.h"

@@ -17,7 +17,7 @@
 #include "tools/bench/bench.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/headless_context.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "src/frame/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/render/render_setup.h"

@@ -1,4 +1,4 @@
-// rsl view SCENE: the interactive GPU viewer (src/gl/viewer.h).
+// rsl view SCENE: the interactive GPU viewer (tools/viewer/viewer.h).
 #ifdef RSL_HAVE_GL
 #include <memory>
 
@@ -7,7 +7,7 @@
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/scene.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "src/render/render_setup.h"
 
 namespace rsl::cli {
