@@ -1,7 +1,8 @@
 #pragma once
-// What the CPU runtime renderer computes and which approximations it uses
-// (docs/design/RENDERER.md). Every toggle exists so that one factor of the product
-// can be switched off and measured against the ground truth.
+// What every runtime renderer computes and which approximations it uses
+// (docs/design/RENDERER.md), whichever backend runs the sum; the few options
+// of one backend say so. Every toggle exists so that one factor of the
+// product can be switched off and measured against the ground truth.
 #include <map>
 #include <memory>
 #include <string>
