@@ -15,7 +15,7 @@ namespace rsl {
 
 class RenderSession {
 public:
-    // Loads the scene file, fits options.environment_lights RSLs, loads or
+    // Loads the scene file, fits options.environment_light_count RSLs, loads or
     // bakes the fields the options switch on (none for a backend without
     // BackendCapabilities::fields), makes the backend's renderer.
     RenderSession(const std::filesystem::path& scene_path, const RenderOptions& options,

@@ -47,7 +47,7 @@ enum class PixelShadows { Off, Planes, All };
 PixelShadows parse_pixel_shadows(const std::string& name);
 
 struct RenderOptions {
-    int environment_lights = 30;     // K: RSLs fitted to the environment map
+    int environment_light_count = 30;  // K: RSLs fitted to the environment map
     bool cross_face_lights = true;   // fit regions across cube-face borders (docs/design/LIGHTFIT.md)
     bool environment = true;         // shade with the environment's RSLs
     bool local_lights = true;        // shade with the scene's sphere lights

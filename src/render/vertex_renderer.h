@@ -26,8 +26,8 @@
 #include "src/render/frame_setup.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
-#include "src/frame/image_formation.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/image_formation.h"
+#include "src/image/vertex_colors.h"
 
 namespace rsl {
 

@@ -48,7 +48,7 @@ fs::path rising_orb_scene() {
 // Small BRDF tables: every renderer here builds its own (the test's time).
 RenderOptions small_options(int lights) {
     RenderOptions options;
-    options.environment_lights = lights;
+    options.environment_light_count = lights;
     options.local_lights = false;
     options.brdf_table.resolution = 24, options.brdf_table.view_samples = 8;
     return options;

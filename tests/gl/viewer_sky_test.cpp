@@ -25,7 +25,7 @@ test::Png screenshot(const fs::path& scene, float time, float exposure, const fs
     gl::ViewerOptions options;
     options.scene = scene;
     options.quick_fields = true;
-    options.render.environment_lights = 8;
+    options.render.environment_light_count = 8;
     options.width = 160, options.height = 120;
     options.panel = false;
     options.frames = 1;

@@ -52,7 +52,7 @@ gl::ViewerOptions screenshot_options(const fs::path& scene, const fs::path& shot
     gl::ViewerOptions options;
     options.scene = scene;
     options.quick_fields = true;
-    options.render.environment_lights = 20;
+    options.render.environment_light_count = 20;
     options.render.local_lights = false;  // the viewer adds a movable light; judge the sky's shadow alone
     options.width = 320, options.height = 240;
     options.panel = false;

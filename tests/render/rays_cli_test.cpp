@@ -4,7 +4,7 @@
 // read or baked.
 #include <catch2/catch.hpp>
 
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "src/render/cpu_renderer.h"
 #include "src/render/exact_visibility.h"
 #include "src/render/render_setup.h"
@@ -39,7 +39,7 @@ TEST_CASE("rsl render --backend rays writes the ray-traced row's vertex colours"
     const VertexColors written = read_vertex_colors(dir / "out.rslv");
 
     RenderOptions options;
-    options.environment_lights = 5;
+    options.environment_light_count = 5;
     options.self_visibility = options.occluders = false;  // the fields are not the rows'
     const RenderSetup setup = prepare_render(dir / "scene.json", options);
     options.exact_visibility = std::make_shared<ExactVisibility>(*setup.scene, t, ExactVisibilityMode::All, 3, true);

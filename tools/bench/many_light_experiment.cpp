@@ -18,8 +18,8 @@
 #include "src/backend/make_renderer.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/frame/error_metrics.h"
-#include "src/frame/image_formation.h"
+#include "src/image/error_metrics.h"
+#include "src/image/image_formation.h"
 #include "src/render/render_setup.h"
 #include "src/trace/environment_rays.h"
 #include "src/trace/ground_truth.h"
@@ -297,7 +297,7 @@ struct RowMeasurer {
 void measure_rsl_rows(RowMeasurer& m) {
     for (int k : m.args.rsl_lights) {
         RenderOptions o = m.options;
-        o.environment_lights = k;
+        o.environment_light_count = k;
         CpuRenderer renderer(m.scene, m.lights_for(k), m.setup.fields, o);
         m.measure(make_row("rsl", k, k), renderer);
     }
@@ -337,7 +337,7 @@ std::string measure_gl_rows(RowMeasurer& m) {
         try {
             for (int k : args.gl_lights) {
                 RenderOptions o = m.options;
-                o.environment_lights = k;
+                o.environment_light_count = k;
                 const auto renderer = make_renderer(Backend::Gl, m.scene, m.lights_for(k), m.setup.fields, o);
                 gl_device = renderer->device();
                 m.measure(make_row("rsl-gl", k, k), *renderer);
@@ -376,7 +376,7 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
     Scene& scene = *scene_ptr;
     RenderOptions options;
     options.local_lights = false;
-    options.environment_lights = args.baseline_lights;
+    options.environment_light_count = args.baseline_lights;
     say(args, "fitting lights and baking visibility fields...");
     RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet), .field_cache = {}});
 

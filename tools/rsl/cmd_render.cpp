@@ -17,9 +17,10 @@
 #include "tools/rsl/frame_output.h"
 #include "tools/rsl/image_args.h"
 #include "tools/rsl/progress_display.h"
+#include "tools/rsl/render_args.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 #include "src/render/render_setup.h"
 
 namespace rsl::cli {
@@ -77,7 +78,7 @@ std::string backends_offering(bool BackendCapabilities::*capability) {
 // Options phase: the renderer's options from the arguments, shadow maps checked before the fit and the bake.
 RenderOptions render_options(const RenderArgs& args, Backend backend) {
     RenderOptions options;
-    options.environment_lights = args.lights;
+    options.environment_light_count = args.lights;
     options.cross_face_lights = !args.same_face;
     options.self_visibility = !args.no_self;
     options.occluders = !args.no_occluders;
