@@ -14,7 +14,7 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(RSL_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/rsl)
-set(RSL_EXPORTED_LIBRARIES rsl_core rsl_brdf rsl_lightfit rsl_rays rsl_frame rsl_trace rsl_fields rsl_render
+set(RSL_EXPORTED_LIBRARIES rsl_core rsl_brdf rsl_lightfit rsl_rays rsl_image rsl_trace rsl_fields rsl_render
   ${RSL_GL_LIB} rsl_backend rsl_version rsl_api)
 foreach(library ${RSL_EXPORTED_LIBRARIES})
   string(REGEX REPLACE "^rsl_" "" short ${library})
@@ -83,7 +83,7 @@ set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME librsl-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 set(rsl_dev_depends libembree-dev libopenexr-dev libeigen3-dev libglm-dev libtbb-dev nlohmann-json3-dev libfmt-dev)
 if(RSL_BUILD_GL)
-  list(APPEND rsl_dev_depends libgl-dev libegl-dev libopengl-dev libglfw3-dev libimgui-dev pkg-config)
+  list(APPEND rsl_dev_depends libgl-dev libegl-dev libopengl-dev)  # the viewer's GLFW and ImGui stay in the program
 endif()
 list(JOIN rsl_dev_depends ", " CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS)
 set(CPACK_DEBIAN_PROGRAM_DESCRIPTION "rsl renderer: the rsl program

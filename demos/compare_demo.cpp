@@ -21,7 +21,7 @@
 #include "src/backend/make_renderer.h"
 #include "src/core/error.h"
 #include "src/render/render_setup.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl::demos {
@@ -37,7 +37,7 @@ DemoResult run_compare_demo(const DemoOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     std::shared_ptr<Scene> scene = load_demo_scene(options, "compare/scene.json");
     RenderOptions render;
-    render.environment_lights = kLightCounts[0];
+    render.environment_light_count = kLightCounts[0];
     const RenderSetup setup = prepare_render(scene, render, {.progress = cli::drawn_progress(options.progress), .field_cache = options.field_cache});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
     const float t = scene->animation.start;
@@ -75,7 +75,7 @@ DemoResult run_compare_demo(const DemoOptions& options) {
         timing.time = t;
         begin = std::chrono::steady_clock::now();
         RenderOptions k_options = render;
-        k_options.environment_lights = lights;
+        k_options.environment_light_count = lights;
         RslSet set =
             lights == kLightCounts[0] ? setup.environment_lights.first : fit_scene_lights(*setup.scene, setup.environment, lights);
         const std::unique_ptr<VertexRenderer> renderer =

@@ -10,7 +10,7 @@
 #include "demos/contact_sheet.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 
 namespace rsl::demos {
 

@@ -27,7 +27,7 @@ DemoResult run_kitchen_demo(const DemoOptions& options) {
     if (scene->environment.second_file.empty())
         throw_file_error(scene->source, "the kitchen demo needs environment.second_file (the map it changes to)");
     RenderOptions render;
-    if (options.quick) render.environment_lights = kQuickLights;
+    if (options.quick) render.environment_light_count = kQuickLights;
     RenderSession session(scene, render, Backend::Cpu,
                           {.progress = cli::drawn_progress(options.progress), .field_cache = options.field_cache});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
@@ -41,7 +41,7 @@ DemoResult run_kitchen_demo(const DemoOptions& options) {
     result.notes.push_back(fmt::format(
         "{} vertices; {} and {} ({} RSLs each) blended by the renderer over a {} s period; {} local light(s)", scene->vertex_count(),
         scene->environment.file.filename().string(), scene->environment.second_file.filename().string(),
-        render.environment_lights, scene->environment.blend_period_seconds, scene->lights.size()));
+        render.environment_light_count, scene->environment.blend_period_seconds, scene->lights.size()));
     return result;
 }
 

@@ -53,7 +53,7 @@ DemoResult run_materials_demo(const DemoOptions& options) {
             swept.push_back(part.material);
     if (swept.empty()) throw_file_error(scene->source, "no part named orb*: nothing to sweep");
     RenderOptions render;
-    if (options.quick) render.environment_lights = kQuickLights;
+    if (options.quick) render.environment_light_count = kQuickLights;
     RenderSession session(scene, render, Backend::Cpu,
                           {.progress = cli::drawn_progress(options.progress), .field_cache = options.field_cache});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());

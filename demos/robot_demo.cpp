@@ -19,7 +19,7 @@ DemoResult run_robot_demo(const DemoOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     std::shared_ptr<Scene> scene = load_demo_scene(options, "robot/scene.json");
     RenderOptions render;
-    if (options.quick) render.environment_lights = kQuickLights;
+    if (options.quick) render.environment_light_count = kQuickLights;
     RenderSession session(scene, render, Backend::Cpu,
                           {.progress = cli::drawn_progress(options.progress), .field_cache = options.field_cache});
     result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());

@@ -66,10 +66,11 @@ std::unique_ptr<PyRenderer> make_renderer(const api::Scene& scene, int lights, c
                                           const py::object& field_cache, bool cross_face, bool self_visibility,
                                           bool occluders, const std::map<std::string, std::string>& part_materials,
                                           const py::object& progress, const std::string& pixel_shadows,
-                                          bool pixel_highlights, bool exact_diffuse_light) {
+                                          bool pixel_highlights, int ray_samples, bool exact_diffuse_light) {
     api::RenderSettings settings;
     settings.lights = lights;
     settings.backend = backend;
+    settings.ray_samples = ray_samples;
     if (!field_cache.is_none()) settings.field_cache = path_argument(field_cache, "field_cache");
     settings.cross_face_lights = cross_face;
     settings.self_visibility = self_visibility;
@@ -119,10 +120,12 @@ void bind_renderer(py::module_& m) {
              py::arg("field_cache") = py::none(), py::arg("cross_face_lights") = true,
              py::arg("self_visibility") = true, py::arg("occluders") = true,
              py::arg("part_materials") = std::map<std::string, std::string>{}, py::arg("progress") = py::none(),
-             py::arg("pixel_shadows") = "planes", py::arg("pixel_highlights") = true,
+             py::arg("pixel_shadows") = "planes", py::arg("pixel_highlights") = true, py::arg("ray_samples") = 1,
              py::arg("exact_diffuse_light") = true,
              "Fits `lights` square lights to the environment and loads or bakes the fields (field_cache: a "
-             "folder; None: beside the scene file). progress(what, fraction) hears the fit and the bakes. "
+             "folder; None: beside the scene file). backend: cpu, rays (every light's visibility from "
+             "ray_samples x ray_samples shadow rays per vertex, no fields), gl, gl-current (build_info()"
+             "['backends'] lists this module's). progress(what, fraction) hears the fit and the bakes. "
              "pixel_shadows: which parts' render_image() takes the other parts' shadows per pixel (planes, "
              "all, off), as `rsl render --pixel-shadows`; pixel_highlights: glossy parts take the BRDF per "
              "pixel there; exact_diffuse_light: the diffuse term takes the environment's exact irradiance, the "

@@ -52,7 +52,7 @@ uniform bool u_self_visibility;
 uniform vec3 u_face_normal[kCubeFaces];  // the OVDF cube faces (as Ovdf::prepare)
 uniform vec3 u_face_s[kCubeFaces];
 uniform vec3 u_face_t[kCubeFaces];
-// The shadow-mapped baseline (src/gl/shadow_maps.h): layer l = environment light l.
+// The shadow-mapped baseline (src/gl/shadow_map_pass.h): layer l = environment light l.
 uniform bool u_shadow_maps;      // environment lights' visibility from the maps
 uniform bool u_shadow_pcss;      // PCSS (blocker search); else PCF at u_pcf_depth
 uniform vec4 u_shadow_sphere;    // the maps' sphere: centre, radius

@@ -1,5 +1,5 @@
 #version 330 core
-// Depth pass of the shadow-mapped baseline (src/gl/shadow_maps.h): one part
+// Depth pass of the shadow-mapped baseline (src/gl/shadow_map_pass.h): one part
 // into one light's orthographic map. Prepended by the host: the layout
 // constants and the shading core, whose shadow_map_point the shading pass
 // uses too, so a vertex finds itself in the map where it was drawn.

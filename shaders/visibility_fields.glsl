@@ -4,7 +4,7 @@
 // tables), the exact shapes of grounds and boxes (src/render/occluder_shape.h)
 // and the box test, as the CPU computes them. After shading_data.glsl.
 
-// ---- visibility distance tables (src/fields/vdt.h, svdf.h, ovdf.cpp) ----
+// ---- visibility distance tables (src/fields/visibility_distance_table.h, svdf.h, ovdf.cpp) ----
 
 // The self-visibility point_sum.glsl multiplies each light by: g_self_corners
 // = 0: none (a flat rectangle, or the SVDF switched off); 1: the vertex's

@@ -24,7 +24,7 @@
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "src/core/json_file.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "tests/radiance_encoder.h"
 
 namespace rsl::fuzz {

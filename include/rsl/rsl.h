@@ -173,11 +173,19 @@ struct RenderSettings {
     // the squares giving only its shadows (Heitz et al. 2018), as `rsl render
     // --exact-diffuse-light`; false: the RSL paper's sum (docs/design/RENDERER.md).
     bool exact_diffuse_light = true;
-    // "cpu"; "gl": the GPU renderer in an offscreen context of its own;
-    // "gl-current": the GPU renderer in the OpenGL ≥ 4.3 core context current
-    // on the calling thread (the engine's), see gl_color_buffer(); that
-    // context must be current whenever the Renderer is used or destroyed.
+    // "cpu"; "rays": the CPU sum with every light's visibility from shadow
+    // rays traced by Embree (the ray-traced baseline: no fields, so
+    // self_visibility and occluders change nothing), see ray_samples; "gl":
+    // the GPU renderer in an offscreen context of its own; "gl-current": the
+    // GPU renderer in the OpenGL ≥ 4.3 core context current on the calling
+    // thread (the engine's), see gl_color_buffer(); that context must be
+    // current whenever the Renderer is used or destroyed. build_info()
+    // lists the backends this library has.
     std::string backend = "cpu";
+    // S: S×S jittered shadow rays per vertex and light (1 to 16), as `rsl
+    // render --ray-samples`; another value than 1 needs a backend that
+    // traces them ("rays").
+    int ray_samples = 1;
     // Folder of the field files (made if missing; reused across runs and with
     // `rsl bake -o`). Empty: <scene folder>/.rsl-cache for a loaded scene; a
     // scene built in code then bakes in memory every time.
@@ -192,7 +200,7 @@ struct VertexColors {
     std::vector<size_t> part_offsets;  // part p: vertices part_offsets[p] .. part_offsets[p + 1]
     std::vector<float> rgb;            // 3 per vertex
     float time = 0;
-    std::string scene_name, producer;  // producer: "rsl-cpu", "rsl-gl", "truth"
+    std::string scene_name, producer;  // producer: "rsl-" and the backend ("rsl-cpu"), or "truth"
     size_t vertex_count() const { return rgb.size() / 3; }
 };
 
@@ -233,7 +241,7 @@ public:
     Renderer& operator=(Renderer&& other) noexcept;
     ~Renderer();
 
-    std::string backend() const;  // "cpu", "gl", "gl-current"
+    std::string backend() const;  // "cpu", "rays", "gl", "gl-current"
     std::string device() const;   // where it runs ("GPU: EGL surfaceless: OpenGL 4.5 …")
     SetupReport setup() const;
     std::vector<std::string> part_names() const;

@@ -120,6 +120,24 @@ class ModuleTest(unittest.TestCase):
         np.testing.assert_array_equal(paper_colors, rsl.read_vertex_colors(f"{self.folder}/paper.rslv")[0])
         self.assertGreater(rsl.compare(paper_colors, colors)["relative_l2"], 1e-3)
 
+    def test_rays_backend_is_rsl_render_backend_rays(self):
+        out = self.folder
+        status, text = run_rsl("render", self.scene_file, "--backend", "rays", "--ray-samples", "2", "--time", "0.25",
+                               "--lights", "12", "-q", "-o", f"{out}/rays.exr", "--vertex-out", f"{out}/rays.rslv")
+        self.assertEqual(status, 0, text)
+        rays = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12, backend="rays", ray_samples=2)
+        self.assertEqual(rays.backend, "rays")
+        self.assertEqual(rays.setup["fields_loaded"] + rays.setup["fields_baked"], 0)
+        rays.set_time(0.25)
+        colors = rays.shade()
+        cli, info = rsl.read_vertex_colors(f"{out}/rays.rslv")
+        self.assertEqual(info["producer"], "rsl-rays")
+        self.assertGreater(colors.max(), 0.01)
+        np.testing.assert_array_equal(colors, cli)
+        self.assertIn("rays", rsl.build_info()["backends"])
+        with self.assertRaisesRegex(rsl.Error, r"ray_samples 2: the cpu backend traces no rays \(backends that do: rays\)"):
+            rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12, ray_samples=2)
+
     def test_truth_and_errors_are_rsl_truths_and_compares(self):
         colors, truth = self.renderer.shade(), self.renderer.truth()
         cli_truth, info = rsl.read_vertex_colors(f"{self.folder}/truth.rslv")

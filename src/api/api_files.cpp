@@ -10,7 +10,7 @@
 #include "src/api/api_convert.h"
 #include "src/backend/make_renderer.h"
 #include "src/core/envmap.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/render/part_fields.h"
 #include "src/render/cpu_renderer.h"
 #include "src/core/memory_limit.h"

@@ -1,6 +1,8 @@
 // The "gl-current" backend's output (include/rsl/rsl.h): the GPU renderer
 // in the caller's context fills its vertex-colour buffer, which the caller
 // draws with its own pipeline; nothing is read back.
+#include <fmt/ranges.h>
+
 #include "src/api/renderer_state.h"
 #include "src/core/error.h"
 #ifdef RSL_HAVE_GL
@@ -11,12 +13,15 @@ namespace rsl::api {
 
 #ifdef RSL_HAVE_GL
 namespace {
+// The backends that render in the caller's context make a gl::GlRenderer
+// (make_renderer.h, BackendCapabilities::caller_context).
 gl::GlRenderer& caller_context_renderer(Backend backend, VertexRenderer& renderer) {
-    if (backend != Backend::GlCurrentContext)
-        throw_error("the GL colour buffer belongs to the gl-current backend (this renderer is {})",
+    auto* gl_renderer = dynamic_cast<gl::GlRenderer*>(&renderer);
+    if (!backend_capabilities(backend).caller_context || !gl_renderer)
+        throw_error("the GL colour buffer belongs to a backend that renders in the caller's context ({}; this "
+                    "renderer is {})", fmt::join(backends_with(&BackendCapabilities::caller_context), ", "),
                     backend_name(backend));
-    // make_renderer's gl-current case makes exactly this class.
-    return static_cast<gl::GlRenderer&>(renderer);
+    return *gl_renderer;
 }
 }  // namespace
 

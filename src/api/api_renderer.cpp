@@ -7,7 +7,7 @@
 #include "src/api/api_convert.h"
 #include "src/api/renderer_state.h"
 #include "src/core/scene_limits.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl::api {
@@ -30,7 +30,14 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : state_(
     State& s = *state_;
     if (settings.lights < 1) throw_error("lights {}: expected at least 1", settings.lights);
     const Backend backend = parse_backend(settings.backend);
-    s.options.environment_lights = settings.lights;
+    if (settings.ray_samples < 1 || settings.ray_samples > RenderOptions::kMaxRaySamples)
+        throw_error("ray_samples {}: expected S of 1 to {} (S×S rays per vertex and light)", settings.ray_samples,
+                    RenderOptions::kMaxRaySamples);
+    if (settings.ray_samples != 1 && !backend_capabilities(backend).ray_samples)
+        throw_error("ray_samples {}: the {} backend traces no rays (backends that do: {})", settings.ray_samples,
+                    settings.backend, fmt::join(backends_with(&BackendCapabilities::ray_samples), ", "));
+    s.options.ray_samples = settings.ray_samples;
+    s.options.environment_light_count = settings.lights;
     s.options.cross_face_lights = settings.cross_face_lights;
     s.options.self_visibility = settings.self_visibility;
     s.options.occluders = settings.occluders;

@@ -2,6 +2,7 @@
 
 #include "src/core/error.h"
 #include "src/render/cpu_renderer.h"
+#include "src/render/ray_traced_renderer.h"
 #ifdef RSL_HAVE_GL
 #include "src/gl/gl.h"
 #include "src/gl/headless_renderer.h"
@@ -11,14 +12,16 @@ namespace rsl {
 
 Backend parse_backend(const std::string& name) {
     if (name == "cpu") return Backend::Cpu;
+    if (name == "rays") return Backend::Rays;
     if (name == "gl") return Backend::Gl;
     if (name == "gl-current") return Backend::GlCurrentContext;
-    throw_error("unknown renderer backend '{}' (known: cpu, gl, gl-current)", name);
+    throw_error("unknown renderer backend '{}' (known: cpu, rays, gl, gl-current)", name);
 }
 
 std::string backend_name(Backend backend) {
     switch (backend) {
     case Backend::Cpu: return "cpu";
+    case Backend::Rays: return "rays";
     case Backend::Gl: return "gl";
     case Backend::GlCurrentContext: return "gl-current";
     }
@@ -27,20 +30,22 @@ std::string backend_name(Backend backend) {
 
 std::vector<std::string> available_backends() {
 #ifdef RSL_HAVE_GL
-    return {"cpu", "gl", "gl-current"};
+    return {"cpu", "rays", "gl", "gl-current"};
 #else
-    return {"cpu"};
+    return {"cpu", "rays"};
 #endif
 }
 
 BackendCapabilities backend_capabilities(Backend backend) {
     BackendCapabilities can;
     switch (backend) {
-    case Backend::Cpu: can.standalone = true; break;
+    case Backend::Cpu: can.standalone = can.fields = true; break;
+    case Backend::Rays: can.standalone = can.ray_samples = true; break;
     case Backend::Gl:
     case Backend::GlCurrentContext:
         can.standalone = backend == Backend::Gl;
-        can.device = can.per_pixel_pass = can.gpu_rays = can.shadow_maps = can.timer_queries = true;
+        can.caller_context = backend == Backend::GlCurrentContext;
+        can.fields = can.device = can.per_pixel_pass = can.gpu_rays = can.shadow_maps = can.timer_queries = true;
         break;
     }
     return can;
@@ -59,6 +64,7 @@ std::unique_ptr<VertexRenderer> make_renderer(Backend backend, const Scene& scen
     switch (backend) {
     case Backend::Cpu:
         return std::make_unique<CpuRenderer>(scene, std::move(environment_lights), std::move(fields), options);
+    case Backend::Rays: return std::make_unique<RayTracedRenderer>(scene, std::move(environment_lights), options);
     case Backend::Gl:
 #ifdef RSL_HAVE_GL
         return std::make_unique<gl::HeadlessGlRenderer>(scene, std::move(environment_lights), std::move(fields),

@@ -8,9 +8,21 @@ RenderSession::RenderSession(const std::filesystem::path& scene_path, const Rend
                              const SetupOptions& setup)
     : RenderSession(std::make_shared<Scene>(load_scene(scene_path)), options, backend, setup) {}
 
+namespace {
+
+// What prepare_render makes for `backend`: no fields for a backend that does
+// not shade with them (BackendCapabilities::fields).
+RenderOptions setup_options(const RenderOptions& options, Backend backend) {
+    RenderOptions o = options;
+    if (!backend_capabilities(backend).fields) o.self_visibility = o.occluders = false;
+    return o;
+}
+
+}  // namespace
+
 RenderSession::RenderSession(std::shared_ptr<Scene> scene, const RenderOptions& options, Backend backend,
                              const SetupOptions& setup)
-    : setup_(prepare_render(std::move(scene), options, setup)),
+    : setup_(prepare_render(std::move(scene), setup_options(options, backend), setup)),
       backend_(backend),
       renderer_(make_renderer(backend, *setup_.scene, setup_.environment_lights, setup_.fields, options)),
       colors_(renderer_->make_output()) {}

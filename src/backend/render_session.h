@@ -15,8 +15,9 @@ namespace rsl {
 
 class RenderSession {
 public:
-    // Loads the scene file, fits options.environment_lights RSLs, loads or
-    // bakes the fields the options switch on, makes the backend's renderer.
+    // Loads the scene file, fits options.environment_light_count RSLs, loads or
+    // bakes the fields the options switch on (none for a backend without
+    // BackendCapabilities::fields), makes the backend's renderer.
     RenderSession(const std::filesystem::path& scene_path, const RenderOptions& options,
                   Backend backend = Backend::Cpu, const SetupOptions& setup = {});
     // The same for a scene in memory; the session shares it with the caller,

@@ -1,7 +1,7 @@
 #pragma once
 // Base-colour textures (glTF baseColorTexture): a linear-RGB image sampled
 // bilinearly at glTF texture coordinates with the sampler's wrap modes.
-// Image formation (src/frame) and the ground truth multiply a textured
+// Image formation (src/image) and the ground truth multiply a textured
 // part's diffuse sum by it per pixel; the GL display pass samples the same
 // texels with the same filter (docs/SCENE_FORMAT.md, "glTF materials").
 #include <memory>

@@ -21,7 +21,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "src/fields/vdt.h"
+#include "src/fields/visibility_distance_table.h"
 #include "src/core/math.h"
 #include "src/core/mesh.h"
 #include "src/core/progress.h"

@@ -41,15 +41,15 @@
 #include <memory>
 #include <vector>
 
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "src/core/scene.h"
 #include "src/gl/gl_objects.h"
 #include "src/gl/gpu_layout.h"
 #include "src/gl/ray_traced_visibility.h"
-#include "src/gl/shadow_maps.h"
+#include "src/gl/shadow_map_pass.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "src/render/vertex_renderer.h"
 
 namespace rsl::gl {

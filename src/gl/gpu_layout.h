@@ -38,7 +38,7 @@
 #include "src/brdf/brdf_table.h"
 #include "src/core/scene.h"
 #include "src/gl/gpu_interface.h"
-#include "src/render/culling.h"
+#include "src/render/occluder_culling.h"
 #include "src/render/frame_setup.h"
 #include "src/render/part_fields.h"
 #include "src/render/vertex_blocks.h"

@@ -9,7 +9,7 @@
 // entries made stale by a merge are recognised by version stamps when popped
 // and dropped (lazy invalidation). Region statistics add up, texel lists are
 // appended smaller-into-larger, so the whole merge is near-linear in texels.
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "src/lightfit/square_fit.h"
 #include "src/core/envmap.h"
 

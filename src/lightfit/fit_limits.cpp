@@ -63,7 +63,7 @@ CrowdedLight find_crowded_light(const CubeMap& map, const RslSet& set) {
         energy[size_t(l)] += energy_of(i);
         peak[size_t(l)] = std::max(peak[size_t(l)], double(luminance(map.radiance(i))));
         // Outside the square's circumscribed cone (2·asin(r/2) about its centre, in the equal-area
-        // chart: src/lightfit/rsl.h), widened by the texel's own half-width.
+        // chart: src/lightfit/square_light.h), widened by the texel's own half-width.
         const RotatableSquareLight& light = set.lights[size_t(l)];
         const double cone = 2.0 * std::asin(std::min(0.5 * double(light.half_diagonal), 1.0)) +
                             0.5 * std::sqrt(double(map.solid_angle(i)));

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "src/core/envmap.h"
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 
 namespace rsl {
 

@@ -3,7 +3,7 @@
 // reconstruction, and the Figure-6-style preview of a fit.
 #include <filesystem>
 
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "src/core/envmap.h"
 #include "src/core/image.h"
 

@@ -5,7 +5,7 @@
 // start from.
 #include <vector>
 
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 

@@ -23,17 +23,17 @@
 #include <span>
 #include <vector>
 
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
-#include "src/render/culling.h"
+#include "src/render/occluder_culling.h"
 #include "src/render/frame_setup.h"
 #include "src/render/ovdf_lookup.h"
 #include "src/render/part_fields.h"
 #include "src/render/occluder_shape.h"
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "src/render/vertex_blocks.h"
 #include "src/render/vertex_renderer.h"
 
@@ -41,7 +41,7 @@ namespace rsl {
 
 struct OccluderVertexScratch;  // shade_block.cpp
 
-class CpuRenderer final : public VertexRenderer {
+class CpuRenderer : public VertexRenderer {
 public:
     // As VertexRenderer's constructor (vertex_renderer.h).
     CpuRenderer(const Scene& scene, EnvironmentLights environment_lights, PartFields fields,

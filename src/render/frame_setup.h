@@ -16,10 +16,10 @@
 #include <span>
 #include <vector>
 
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "src/core/scene.h"
 #include "src/core/skinning.h"
-#include "src/render/culling.h"
+#include "src/render/occluder_culling.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"

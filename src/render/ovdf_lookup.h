@@ -24,7 +24,7 @@
 // pinned to Ovdf::distance by tests/render/ovdf_lookup_test.cpp.
 
 #include "src/fields/ovdf.h"
-#include "src/fields/vdt.h"
+#include "src/fields/visibility_distance_table.h"
 #include "src/shading/ovdf_tables.h"
 #include "src/shading/ovdf_small_occluder.h"
 

@@ -40,6 +40,10 @@ PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options)
 
 PartFields load_part_fields(const Scene& scene, const FieldBakeOptions& options, FieldLoadReport* report) {
     if (scene.source.empty() && options.cache_directory.empty()) return bake_part_fields(scene, options);
+    if (!options.self_visibility && !options.occluders) {  // no field wanted: the cache is not read
+        if (report) *report = FieldLoadReport{};
+        return bake_part_fields(scene, options);
+    }
     CachedFields cached =
         load_or_bake_fields(scene, options.occluders, options.cache_directory, options.progress);
     PartFields fields;

@@ -63,7 +63,7 @@ PartFields bake_part_fields(const Scene& scene, const FieldBakeOptions& options)
 // The fields from the scene's field cache (options.cache_directory, by default
 // <scene folder>/.rsl-cache: the files `rsl bake` writes), baking and writing
 // only the missing or stale ones, reporting to options.progress. A scene with neither a source file nor a cache folder
-// is baked in memory. Counts the field files reused and baked (one per unique
+// is baked in memory; with neither field switched on, nothing is read or baked. Counts the field files reused and baked (one per unique
 // mesh and kind, however many parts use the mesh).
 struct FieldLoadReport {
     int loaded = 0, baked = 0;

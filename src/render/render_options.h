@@ -1,7 +1,8 @@
 #pragma once
-// What the CPU runtime renderer computes and which approximations it uses
-// (docs/design/RENDERER.md). Every toggle exists so that one factor of the product
-// can be switched off and measured against the ground truth.
+// What every runtime renderer computes and which approximations it uses
+// (docs/design/RENDERER.md), whichever backend runs the sum; the few options
+// of one backend say so. Every toggle exists so that one factor of the
+// product can be switched off and measured against the ground truth.
 #include <map>
 #include <memory>
 #include <string>
@@ -46,7 +47,7 @@ enum class PixelShadows { Off, Planes, All };
 PixelShadows parse_pixel_shadows(const std::string& name);
 
 struct RenderOptions {
-    int environment_lights = 30;     // K: RSLs fitted to the environment map
+    int environment_light_count = 30;  // K: RSLs fitted to the environment map
     bool cross_face_lights = true;   // fit regions across cube-face borders (docs/design/LIGHTFIT.md)
     bool environment = true;         // shade with the environment's RSLs
     bool local_lights = true;        // shade with the scene's sphere lights
@@ -87,6 +88,11 @@ struct RenderOptions {
     std::shared_ptr<const ExactVisibility> exact_visibility;
     ShadowMapOptions shadow_maps;  // GL backend only
     GpuRayOptions gpu_rays;        // GL backend only
+    // The rays backend's S (src/render/ray_traced_renderer.h): every light's
+    // visibility from S×S jittered shadow rays per vertex, 1 to
+    // kMaxRaySamples; the other backends ignore it.
+    static constexpr int kMaxRaySamples = 16;
+    int ray_samples = 1;
 };
 
 // Counters of one shading pass (for `rsl render` and the benchmarks).

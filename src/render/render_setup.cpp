@@ -19,17 +19,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 }  // namespace
 
-std::map<std::string, std::string> parse_material_overrides(const std::vector<std::string>& entries) {
-    std::map<std::string, std::string> overrides;
-    for (const std::string& entry : entries) {
-        const size_t eq = entry.find('=');
-        if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size())
-            throw_error("--material '{}': expected PART=MATERIAL", entry);
-        overrides[entry.substr(0, eq)] = entry.substr(eq + 1);
-    }
-    return overrides;
-}
-
 CubeMap RenderSetup::environment_at(float t) const {
     if (second_environment.resolution() == 0) return environment;
     return blend_environments(environment, second_environment, scene->environment.blend_weight_at(t));
@@ -49,16 +38,16 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
         auto start = std::chrono::steady_clock::now();
         setup.environment = scene_environment_map(s, s.environment.resolution);
         setup.environment_lights.first =
-            fit_scene_lights(s, setup.environment, options.environment_lights, options.cross_face_lights);
+            fit_scene_lights(s, setup.environment, options.environment_light_count, options.cross_face_lights);
         if (!s.environment.second_file.empty()) {
             setup.second_environment = scene_environment_map(s, s.environment.resolution, true);
             setup.environment_lights.second =  // the suns in both, so the blend keeps them whole
-                fit_scene_lights(s, setup.second_environment, options.environment_lights, options.cross_face_lights);
+                fit_scene_lights(s, setup.second_environment, options.environment_light_count, options.cross_face_lights);
         }
         setup.fit_seconds = seconds_since(start);
         // Too few lights for a bright source: an error the truth will show (docs/design/LIGHTFIT.md).
         const std::string crowded = crowded_light_warning(
-            describe_environment(s.environment), options.environment_lights,
+            describe_environment(s.environment), options.environment_light_count,
             find_crowded_light(setup.environment, setup.environment_lights.first));
         if (!crowded.empty()) warn("{}", crowded);
         if (how.progress) how.progress("fit", 1.0);

@@ -31,9 +31,6 @@ struct RenderSetup {
     int fields_loaded = 0, fields_baked = 0;    // field files reused from / written to the cache
 };
 
-// "PART=MATERIAL" strings → overrides; throws rsl::Error on a malformed entry.
-std::map<std::string, std::string> parse_material_overrides(const std::vector<std::string>& entries);
-
 // How prepare_render reports and where it keeps the fields.
 struct SetupOptions {
     // Hears (what, fraction) of the fit ("fit", once done) and of every field
@@ -44,7 +41,7 @@ struct SetupOptions {
     std::filesystem::path field_cache;
 };
 
-// Loads the scene and its environment, fits options.environment_lights RSLs,
+// Loads the scene and its environment, fits options.environment_light_count RSLs,
 // bakes the fields the options switch on.
 RenderSetup prepare_render(const std::filesystem::path& scene_path, const RenderOptions& options,
                            const SetupOptions& setup = {});

@@ -12,10 +12,11 @@
 // and adds one case to that factory.
 //
 // Call order per frame: edits (materials, lights) at any time between
-// frames, then set_time (or set_view), then shade. Material edits made
-// through materials() take effect at the next shade(): the renderer compares
-// each material's revision() with the one it last built from, and rebuilds
-// (CPU) or re-uploads (GL) only the tables that changed.
+// frames, then set_time (or set_view), then shade. A material edit made
+// through materials() builds that material's table at the edit; the next
+// shade() takes it up: the renderer compares each material's revision() with
+// the one it last used, and re-points its parts to (CPU) or re-uploads (GL)
+// only the tables that changed.
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,8 +26,8 @@
 #include "src/render/frame_setup.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
-#include "src/frame/image_formation.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/image_formation.h"
+#include "src/image/vertex_colors.h"
 
 namespace rsl {
 

@@ -4,7 +4,7 @@
 // skip exactly the same (block, light, occluder) lookups. Spheres are
 // (center, radius) in a vec4. A test that says "cannot shadow" must hold for
 // every point of the receiver sphere and every direction of the light;
-// tests/render/culling_test.cpp pins them against brute-force rays.
+// tests/render/occluder_culling_test.cpp pins them against brute-force rays.
 #include "src/shading/glsl_subset.h"
 
 namespace rsl::shading {

@@ -1,6 +1,6 @@
 #pragma once
 // The shadow-mapped baseline's filter (the GL renderer's competitor,
-// src/gl/shadow_maps.h; docs/design/GPU_DESIGN.md "Shadow-mapped visibility").
+// src/gl/shadow_map_pass.h; docs/design/GPU_DESIGN.md "Shadow-mapped visibility").
 #include "src/shading/frames.h"
 
 namespace rsl::shading {

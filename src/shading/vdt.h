@@ -1,5 +1,5 @@
 #pragma once
-// The visibility distance table's rule (RSL paper §4.2; src/fields/vdt.h): the
+// The visibility distance table's rule (RSL paper §4.2; src/fields/visibility_distance_table.h): the
 // visible share of a square from the signed distance at its centre.
 #include "src/shading/glsl_subset.h"
 

@@ -3,7 +3,7 @@
 #include "src/trace/ground_truth.h"
 
 #include "src/core/scene_environment.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 
 #include <cmath>
 

@@ -164,6 +164,46 @@ TEST_CASE("poses, environment rotation, camera and materials set in code equal a
     CHECK(m[14] == Approx(-0.1f));
 }
 
+TEST_CASE("the API's rays backend is rsl render --backend rays, bit for bit, with no fields", "[api][rays]") {
+    const auto folder = test::scratch_dir("api-rays");
+    const auto scene_file = test::write_api_scene(folder, "scene.json");
+    const std::string out = folder.string();
+    const auto [status, text] = test::run_rsl(
+        fmt::format("render {} --backend rays --ray-samples 2 --time 0.25 --lights 12 -q -o {}/cli.exr "
+                    "--vertex-out {}/cli.rslv", scene_file.string(), out, out));
+    INFO(text);
+    REQUIRE(status == 0);
+
+    api::RenderSettings settings;
+    settings.lights = 12;
+    settings.backend = "rays";
+    settings.ray_samples = 2;
+    Renderer renderer(Scene::load(scene_file.string()), settings);
+    CHECK(renderer.backend() == "rays");
+    CHECK(renderer.setup().fields_loaded + renderer.setup().fields_baked == 0);
+    renderer.set_time(0.25f);
+    const api::VertexColors colors = renderer.shade();
+    CHECK(colors.producer == "rsl-rays");
+    require_same_colors(colors, api::read_vertex_colors(out + "/cli.rslv"));
+    REQUIRE(max_value(colors) > 0.01);
+    CHECK(renderer.render_image().rgba == api::read_image(out + "/cli.exr").rgba);
+    // Another S traces other rays: the setting reaches the renderer.
+    settings.ray_samples = 1;
+    Renderer one_ray(Scene::load(scene_file.string()), settings);
+    one_ray.set_time(0.25f);
+    CHECK(one_ray.shade().rgb != colors.rgb);
+
+    const std::vector<std::string> backends = api::build_info().backends;
+    CHECK(std::find(backends.begin(), backends.end(), "rays") != backends.end());
+    settings.ray_samples = 17;
+    CHECK(test::error_of([&] { Renderer(Scene::load(scene_file.string()), settings); }) ==
+          "ray_samples 17: expected S of 1 to 16 (S×S rays per vertex and light)");
+    settings.backend = "cpu";
+    settings.ray_samples = 2;
+    CHECK(test::error_of([&] { Renderer(Scene::load(scene_file.string()), settings); }) ==
+          "ray_samples 2: the cpu backend traces no rays (backends that do: rays)");
+}
+
 TEST_CASE("the API's errors carry the message rsl prints", "[api]") {
     const auto folder = test::scratch_dir("api-errors");
     const std::string missing = (folder / "missing.json").string();

@@ -35,7 +35,7 @@ void require_equal(const VertexColors& a, const VertexColors& b) {
 TEST_CASE("A session shades and forms images as its parts do by hand", "[backend][session]") {
     const fs::path path = session_scene();
     RenderOptions options;
-    options.environment_lights = 12;
+    options.environment_light_count = 12;
     RenderSession session(path, options);
     CHECK(session.backend() == Backend::Cpu);
     CHECK(session.setup().environment_lights.light_count() == 12);
@@ -70,7 +70,7 @@ TEST_CASE("A session shades and forms images as its parts do by hand", "[backend
 
 TEST_CASE("A session's image needs a shade that kept the image's terms", "[backend][session]") {
     RenderOptions options;
-    options.environment_lights = 8;
+    options.environment_light_count = 8;
     RenderSession session(session_scene(), options);
     CHECK_THROWS_WITH(session.image(session.camera(16, 12)), Catch::Contains("needs a shade() of the current frame"));
     session.shade(0.2f, false);

@@ -5,7 +5,7 @@
 #include <Eigen/SVD>
 #include <catch2/catch.hpp>
 
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "tests/baselines/baseline_scenes.h"
 #include "tools/baselines/eigentransport.h"
 #include "tools/baselines/prt.h"

@@ -5,8 +5,8 @@
 // per-pixel truth as the CPU's per-pixel shadows do, and agree with them.
 #include <catch2/catch.hpp>
 
-#include "src/frame/error_metrics.h"
-#include "src/frame/image_formation.h"
+#include "src/image/error_metrics.h"
+#include "src/image/image_formation.h"
 #include "src/gl/gl_renderer.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"

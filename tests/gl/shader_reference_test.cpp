@@ -19,7 +19,7 @@
 #include "src/gl/gl_objects.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/gpu_bvh.h"
-#include "src/gl/skybox.h"
+#include "tools/viewer/skybox.h"
 #include "src/render/part_fields.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/render/render_test_scenes.h"

@@ -1,4 +1,4 @@
-// The viewer's background is the environment (src/gl/skybox.h): in a
+// The viewer's background is the environment (tools/viewer/skybox.h): in a
 // screenshot, every sky pixel is the sRGB-encoded radiance of the cube-map
 // texel its view ray meets, after the environment's rotation at that time, so
 // two screenshots a quarter turn apart show the map turned.
@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "src/core/envmap.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"
 #include "tests/test_support.h"
@@ -25,7 +25,7 @@ test::Png screenshot(const fs::path& scene, float time, float exposure, const fs
     gl::ViewerOptions options;
     options.scene = scene;
     options.quick_fields = true;
-    options.render.environment_lights = 8;
+    options.render.environment_light_count = 8;
     options.width = 160, options.height = 120;
     options.panel = false;
     options.frames = 1;

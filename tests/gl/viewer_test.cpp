@@ -14,7 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "src/core/error.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"
 #include "tests/trace/trace_test_scenes.h"
@@ -52,7 +52,7 @@ gl::ViewerOptions screenshot_options(const fs::path& scene, const fs::path& shot
     gl::ViewerOptions options;
     options.scene = scene;
     options.quick_fields = true;
-    options.render.environment_lights = 20;
+    options.render.environment_light_count = 20;
     options.render.local_lights = false;  // the viewer adds a movable light; judge the sky's shadow alone
     options.width = 320, options.height = 240;
     options.panel = false;

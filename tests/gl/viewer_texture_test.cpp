@@ -16,7 +16,7 @@
 #include "tools/assets/primitives.h"
 #include "rsl/rsl.h"
 #include "src/core/image.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"
 #include "tests/test_support.h"
@@ -57,7 +57,7 @@ TEST_CASE("the viewer's textured pass shows the CPU image of a textured glTF gro
     gl::ViewerOptions options;
     options.scene = dir / "scene.json";
     options.quick_fields = true;
-    options.render.environment_lights = 20;
+    options.render.environment_light_count = 20;
     options.render.local_lights = false;  // the viewer's movable light is not in the scene file
     options.width = width, options.height = height;
     options.panel = false;

@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "src/core/envmap.h"
 #include "src/core/image.h"
 #include "tests/test_support.h"

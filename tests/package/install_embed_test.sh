@@ -3,7 +3,10 @@
 # writes nothing into the build folder) into a temporary prefix, then
 # examples/embed configured and built as a separate project against that
 # prefix only (find_package(rsl)), run, and its image checked with the
-# installed `rsl compare`; the installed Python module imports.
+# installed `rsl compare`; the installed Python module imports. The package
+# needs neither GLFW nor ImGui (the viewer that uses them is the program's):
+# its CMake files name neither, and embed is configured and built with their
+# development files hidden (in a mount namespace of this test's own).
 #   install_embed_test.sh BUILD_DIR SOURCE_DIR PYTHON
 set -euo pipefail
 build=$1 source=$2 python=$3
@@ -38,15 +41,40 @@ done
 [ "$(find "$prefix/include" -type f | wc -l)" -eq 3 ] || fail "headers other than <rsl/rsl.h>, <rsl/error.h>, <rsl/version.h> installed"
 "$prefix/bin/rsl" --version | tee "$work/version.txt"
 grep -q "^rsl [0-9]" "$work/version.txt" || fail "rsl --version"
+if grep -il "glfw\|imgui" "$prefix"/lib/cmake/rsl/*.cmake; then fail "the CMake package names GLFW or ImGui"; fi
+
+# `without_window_libraries CMD...`: CMD with GLFW's and ImGui's headers,
+# CMake package and pkg-config files hidden, where a mount namespace is allowed.
+hide_window_libraries=0
+if unshare -m true 2>/dev/null; then hide_window_libraries=1; fi
+without_window_libraries() {
+  if [ "$hide_window_libraries" = 0 ]; then "$@"; return; fi
+  unshare -m bash -c 'set -e
+    for d in /usr/include/GLFW /usr/include/imgui /usr/lib/*/cmake/glfw3; do
+      if [ -d "$d" ]; then mount -t tmpfs none "$d"; fi
+    done
+    for f in /usr/lib/*/pkgconfig/imgui.pc /usr/lib/*/pkgconfig/glfw3.pc; do
+      if [ -e "$f" ]; then mount --bind /dev/null "$f"; fi
+    done
+    if [ -e /usr/include/GLFW/glfw3.h ] || [ -e /usr/include/imgui/imgui.h ]; then
+      echo "GLFW or ImGui headers still visible"; exit 1
+    fi
+    "$@"' hide "$@"
+}
 
 echo "== examples/embed against $prefix"
+if [ "$hide_window_libraries" = 1 ]; then
+  echo "GLFW's and ImGui's development files hidden"
+else
+  echo "WARN: unshare -m refused (no CAP_SYS_ADMIN): embed built with GLFW's and ImGui's development files visible"
+fi
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-cmake -S "$source/examples/embed" -B "$work/embed" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+without_window_libraries cmake -S "$source/examples/embed" -B "$work/embed" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF "${launcher[@]}" >"$work/embed-configure.log"
 # It must have found the installed package, not the build tree.
 grep -q "^rsl_DIR:PATH=$prefix/lib/cmake/rsl$" "$work/embed/CMakeCache.txt" || fail "embed found rsl elsewhere: $(grep rsl_DIR "$work/embed/CMakeCache.txt")"
-cmake --build "$work/embed" >"$work/embed-build.log" || { cat "$work/embed-build.log"; fail "embed does not build"; }
+without_window_libraries cmake --build "$work/embed" >"$work/embed-build.log" || { cat "$work/embed-build.log"; fail "embed does not build"; }
 "$work/embed/embed" "$source/assets/generated/sunsky.exr" "$work/out" | tee "$work/embed.txt"
 for f in first last last_truth; do [ -s "$work/out/$f.exr" ] && [ -s "$work/out/$f.png" ] || fail "embed wrote no $f.exr/.png"; done
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "src/lightfit/scene_lights.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"
@@ -36,7 +36,7 @@ struct PartErrors {
 PartErrors render_against_truth(const Scene& scene, const CubeMap& environment, const RenderOptions& options) {
     const VertexColors truth = GroundTruth(scene, environment, 0.0f).shade_vertices();
     const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    CpuRenderer renderer(scene, fit_environment_lights(environment, options.environment_lights), fields, options);
+    CpuRenderer renderer(scene, fit_environment_lights(environment, options.environment_light_count), fields, options);
     const VertexColors ours = renderer.shade();
     const VertexErrorReport report = compare_vertex_colors(ours, truth);
     return {report.total.relative_l2(), report.parts[1].relative_l2(), report.parts[2].relative_l2()};
@@ -57,7 +57,7 @@ const BoxRuns& box_runs() {
     static const BoxRuns runs = [] {
         const CubeMap environment = test_environment();
         RenderOptions options;
-        options.environment_lights = 30;
+        options.environment_light_count = 30;
         options.exact_shapes = true;
         RenderOptions ovdf = options;
         ovdf.exact_shapes = false;

@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/lightfit/scene_lights.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"

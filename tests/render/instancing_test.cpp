@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "src/lightfit/scene_lights.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"

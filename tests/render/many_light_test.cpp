@@ -9,7 +9,7 @@
 
 #include "src/lightfit/scene_lights.h"
 #include "src/lightfit/reconstruct.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/render/exact_visibility.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"

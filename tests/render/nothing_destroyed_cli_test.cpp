@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "src/core/image.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "tests/hostile_inputs.h"
 #include "tests/test_support.h"
 

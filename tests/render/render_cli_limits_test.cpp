@@ -60,6 +60,10 @@ TEST_CASE("rsl render refuses non-finite and out-of-range numbers before loading
         {"--height -3", "--height -3: expected 1 to 16384 pixels"},
         {"--samples 1000", "--samples 1000: expected 1 to 16"},
         {"--gpu-rays 17", "--gpu-rays 17: expected S of 1..16"},
+        {"--backend rays --ray-samples 17", "--ray-samples 17: expected S of 1..16"},
+        {"--ray-samples 2", "--ray-samples: the cpu backend traces no rays (add --backend rays)"},
+        {"--backend rays --no-occluders", "--no-occluders: the rays backend shades with no fields"},
+        {"--material box", "--material 'box': expected PART=MATERIAL"},
 #ifdef RSL_HAVE_GL
         {"--gpu-rays 2", "--gpu-rays: GPU ray-traced visibility is a GPU baseline (add --backend gl)"},
         {"--gpu-rays 2 --backend gl --shadow-maps 256", "--gpu-rays and --shadow-maps: pick one"},

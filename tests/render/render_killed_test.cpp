@@ -8,7 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/fields/field_file.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "tests/interrupted_run.h"
 #include "tests/test_support.h"
 

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"

@@ -7,7 +7,7 @@
 
 #include "src/lightfit/scene_lights.h"
 #include "src/core/scene_environment.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"
 #include "tests/render/render_test_scenes.h"

@@ -11,7 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "src/core/image.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "tests/core/gltf_builder.h"
 #include "tests/test_support.h"
 

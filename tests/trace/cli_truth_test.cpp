@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/image.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "tests/test_support.h"
 
 using namespace rsl;

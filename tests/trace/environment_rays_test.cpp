@@ -10,7 +10,7 @@
 #include <tbb/global_control.h>
 
 #include "src/core/error.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/trace/environment_rays.h"
 #include "src/trace/ground_truth.h"
 #include "src/trace/sample_sequence.h"

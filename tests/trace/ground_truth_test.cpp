@@ -6,7 +6,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 #include "src/trace/ground_truth.h"
 #include "tests/trace/trace_test_scenes.h"
 

@@ -3,7 +3,7 @@
 // name; the rerun completes and sweeps every temporary a dead run left.
 #include <catch2/catch.hpp>
 
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "tests/interrupted_run.h"
 #include "tests/test_support.h"
 

@@ -1,7 +1,7 @@
 // The experiment behind `rsl baselines` (docs/BASELINES.md): one static frame
 // of a scene with every method against the ground truth. SH PRT, Haar PRT,
 // eigentransport and the RSL renderer share the truth's vertices, camera and image formation;
-// images are compared with compare_images (src/frame/error_metrics.h), the
+// images are compared with compare_images (src/image/error_metrics.h), the
 // same definition `rsl compare` uses.
 #include "tools/rsl/progress_display.h"
 #include "tools/bench/baselines_experiment.h"
@@ -23,8 +23,8 @@
 #include "tools/baselines/triple.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/frame/error_metrics.h"
-#include "src/frame/image_formation.h"
+#include "src/image/error_metrics.h"
+#include "src/image/image_formation.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/render/render_setup.h"
 #include "src/core/scene_environment.h"
@@ -420,16 +420,16 @@ void measure_rsl(const std::shared_ptr<Scene>& scene_ptr, const PrtPrecompute& u
     const float t = m.t;
     RenderOptions options;
     options.local_lights = false;
-    options.environment_lights = args.rsl_lights.front();
+    options.environment_light_count = args.rsl_lights.front();
     say(args, "RSL: fitting lights and baking visibility fields...");
     RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet), .field_cache = {}});
     const size_t bytes = field_bytes(setup.fields);
     for (int lights : args.rsl_lights) {
         const auto fit_start = Clock::now();
-        RslSet set = lights == options.environment_lights ? setup.environment_lights.first
+        RslSet set = lights == options.environment_light_count ? setup.environment_lights.first
                                                             : fit_scene_lights(*setup.scene, setup.environment, lights);
-        const double fit_s = lights == options.environment_lights ? setup.fit_seconds : seconds_since(fit_start);
-        options.environment_lights = lights;
+        const double fit_s = lights == options.environment_light_count ? setup.fit_seconds : seconds_since(fit_start);
+        options.environment_light_count = lights;
         CpuRenderer renderer(scene, std::move(set), setup.fields, options);
         renderer.set_time(t);
         VertexColors colors = renderer.make_output();

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <fmt/core.h>
 
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "tools/baselines/eigentransport.h"
 #include "tools/baselines/prt.h"
 #include "tools/baselines/triple.h"

@@ -17,8 +17,8 @@
 #include "tools/bench/bench.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/headless_context.h"
-#include "src/gl/viewer.h"
-#include "src/frame/error_metrics.h"
+#include "tools/viewer/viewer.h"
+#include "src/image/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/render/render_setup.h"
 #include "tools/assets/yard.h"
@@ -97,7 +97,7 @@ void bench_scene(std::shared_ptr<Scene> scene, const std::string& name, const Be
     // (fewer PCA vectors: cheaper lookups, so faster than the full fields).
     if (options.quick) gl::use_quick_fields(scene->precompute);
     RenderOptions render;
-    render.environment_lights = 30;
+    render.environment_light_count = 30;
     const RenderSetup setup = prepare_render(scene, render, {.progress = {}, .field_cache = options.field_cache});
     gl::GlRenderer renderer(*scene, setup.environment_lights, setup.fields, render);
     CpuRenderer cpu(*scene, setup.environment_lights, setup.fields, render);

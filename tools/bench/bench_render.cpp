@@ -12,9 +12,9 @@
 #include "tools/bench/render_bench_cases.h"
 #include "src/backend/render_session.h"
 #include "src/render/render_setup.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/trace/ground_truth.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 
 namespace rsl::bench {
 namespace {
@@ -137,7 +137,7 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
         return;
     }
     RenderOptions render_options;
-    render_options.environment_lights = c.lights;
+    render_options.environment_light_count = c.lights;
     RenderSession session(scene, render_options, Backend::Cpu, {.progress = {}, .field_cache = options.field_cache});
     const RenderSetup& setup = session.setup();
     VertexRenderer& renderer = session.renderer();

@@ -18,7 +18,7 @@
 #include "src/rays/posed_scene.h"
 #include "src/shading/squares.h"
 #include "src/core/scene_environment.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/lightfit/scene_lights.h"
 #include "src/render/exact_visibility.h"
 #include "src/render/render_setup.h"
@@ -54,7 +54,7 @@ fs::path named_probe(const BenchOptions& options, const std::string& name) {
 VertexColors render(const Scene& scene, const RslSet& rsls, const PartFields& fields, float t,
                     const std::function<void(RenderOptions&)>& edit) {
     RenderOptions options;
-    options.environment_lights = int(rsls.lights.size());
+    options.environment_light_count = int(rsls.lights.size());
     edit(options);
     const std::unique_ptr<VertexRenderer> renderer = make_renderer(Backend::Cpu, scene, rsls, fields, options);
     renderer->set_time(t);

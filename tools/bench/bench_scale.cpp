@@ -24,7 +24,7 @@
 #include "src/fields/field_cache.h"
 #include "src/backend/render_session.h"
 #include "src/core/image.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/render/render_setup.h"
 #include "src/trace/ground_truth.h"
@@ -151,7 +151,7 @@ ScaleRow bench_yard(const BenchOptions& options, int instances, float reach) {
     const fs::path dir = options.output / "scale" / fmt::format("yard-{}", instances);
     const std::shared_ptr<Scene> scene = write_and_load_yard(options, dir, instances, reach);
     RenderOptions render_options;
-    render_options.environment_lights = 30;
+    render_options.environment_light_count = 30;
     RenderSession session(scene, render_options, Backend::Cpu, {.progress = cli::drawn_progress(true), .field_cache = {}});
     const RenderSetup& setup = session.setup();
     size_t unique_fields = 0, unique_meshes = 0;

@@ -17,7 +17,7 @@
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 #include "src/trace/ground_truth.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 #include "src/core/scene_environment.h"
 
 namespace rsl::bench {

@@ -18,9 +18,8 @@
 #include "src/backend/make_renderer.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/frame/error_metrics.h"
-#include "src/frame/image_formation.h"
-#include "src/render/exact_visibility.h"
+#include "src/image/error_metrics.h"
+#include "src/image/image_formation.h"
 #include "src/render/render_setup.h"
 #include "src/trace/environment_rays.h"
 #include "src/trace/ground_truth.h"
@@ -62,7 +61,7 @@ Row make_row(const std::string& method, int setting, int lights) {
 int samples_for_budget(uint64_t budget, uint64_t pairs) {
     if (pairs == 0) return 1;
     const double per_pair = double(budget) / double(pairs);
-    return std::clamp(int(std::floor(std::sqrt(per_pair))), 1, ExactVisibility::kMaxSamplesPerSide);
+    return std::clamp(int(std::floor(std::sqrt(per_pair))), 1, RenderOptions::kMaxRaySamples);
 }
 
 // The GL renderer's last vertex pass time (timer queries, or the clock
@@ -288,13 +287,14 @@ struct RowMeasurer {
         add_row(std::move(row), colors);
     }
 
-    // Ray-traced many-light: the fields unused, every visibility factor by
-    // rays of `samples`² per pair; returns the row's rays per frame.
+    // Ray-traced many-light, the rays backend: the fields unused, every
+    // visibility factor by rays of `samples`² per pair; returns the row's
+    // rays per frame.
     uint64_t measure_ray_row(const std::string& method, int samples) {
         RenderOptions o = options;
-        o.exact_visibility = std::make_shared<ExactVisibility>(scene, t, ExactVisibilityMode::All, samples, true);
-        CpuRenderer renderer(scene, lights_for(args.baseline_lights), PartFields{}, o);
-        measure(make_row(method, samples, args.baseline_lights), renderer);
+        o.ray_samples = samples;
+        const auto renderer = make_renderer(Backend::Rays, scene, lights_for(args.baseline_lights), PartFields{}, o);
+        measure(make_row(method, samples, args.baseline_lights), *renderer);
         return rows.back().rays;
     }
 };
@@ -303,7 +303,7 @@ struct RowMeasurer {
 void measure_rsl_rows(RowMeasurer& m) {
     for (int k : m.args.rsl_lights) {
         RenderOptions o = m.options;
-        o.environment_lights = k;
+        o.environment_light_count = k;
         CpuRenderer renderer(m.scene, m.lights_for(k), m.setup.fields, o);
         m.measure(make_row("rsl", k, k), renderer);
     }
@@ -321,11 +321,11 @@ void measure_ray_rows(RowMeasurer& m) {
     if (args.ray_budget > 0) {
         if (rays_at_one == 0) {  // the pairs that need rays, from one frame at S = 1
             RenderOptions o = m.options;
-            o.exact_visibility = std::make_shared<ExactVisibility>(m.scene, m.t, ExactVisibilityMode::All, 1, true);
-            CpuRenderer probe(m.scene, m.lights_for(args.baseline_lights), PartFields{}, o);
-            probe.set_time(m.t);
-            probe.shade();
-            rays_at_one = probe.stats().shadow_rays;
+            o.ray_samples = 1;
+            const auto probe = make_renderer(Backend::Rays, m.scene, m.lights_for(args.baseline_lights), PartFields{}, o);
+            probe->set_time(m.t);
+            probe->shade();
+            rays_at_one = probe->stats().shadow_rays;
         }
         const int samples = samples_for_budget(args.ray_budget, rays_at_one);
         say(args, fmt::format("ray budget {}: {} pairs need rays, so S = {}", args.ray_budget, rays_at_one, samples));
@@ -343,7 +343,7 @@ std::string measure_gl_rows(RowMeasurer& m) {
         try {
             for (int k : args.gl_lights) {
                 RenderOptions o = m.options;
-                o.environment_lights = k;
+                o.environment_light_count = k;
                 const auto renderer = make_renderer(Backend::Gl, m.scene, m.lights_for(k), m.setup.fields, o);
                 gl_device = renderer->device();
                 m.measure(make_row("rsl-gl", k, k), *renderer);
@@ -383,7 +383,7 @@ void run_many_light_experiment(const ManyLightExperiment& args) {
     check_experiment_outputs(scene, args.output, {"truth"}, kFixedOutputs);  // before the hours of work
     RenderOptions options;
     options.local_lights = false;
-    options.environment_lights = args.baseline_lights;
+    options.environment_light_count = args.baseline_lights;
     say(args, "fitting lights and baking visibility fields...");
     RenderSetup setup = prepare_render(scene_ptr, options, {.progress = cli::drawn_progress(!args.quiet), .field_cache = {}});
 

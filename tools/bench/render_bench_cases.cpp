@@ -7,7 +7,7 @@
 
 #include "src/lightfit/reconstruct.h"
 #include "src/render/render_setup.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl {

@@ -13,7 +13,6 @@
 #include "tools/rsl/command.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
-#include "src/render/exact_visibility.h"
 #include "src/render/render_options.h"
 
 namespace rsl::cli {
@@ -151,8 +150,8 @@ RegisterCommand baselines_command({"baselines",
                 if (args->no_rsl) many->rsl_lights.clear();
                 many->ray_samples = parse_list(*rays, "--ray-samples", true);
                 for (int s : many->ray_samples)
-                    if (s > ExactVisibility::kMaxSamplesPerSide)
-                        throw_error("--ray-samples: {} is above {}", s, ExactVisibility::kMaxSamplesPerSide);
+                    if (s > RenderOptions::kMaxRaySamples)
+                        throw_error("--ray-samples: {} is above {}", s, RenderOptions::kMaxRaySamples);
                 many->shadow_map_resolutions = parse_list(*maps, "--shadow-maps", true);
                 for (int r : many->shadow_map_resolutions)
                     if (r < ShadowMapOptions::kMinResolution || r > ShadowMapOptions::kMaxResolution)

@@ -19,9 +19,9 @@
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
-#include "src/frame/error_metrics.h"
-#include "src/frame/image_formation.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/error_metrics.h"
+#include "src/image/image_formation.h"
+#include "src/image/vertex_colors.h"
 
 namespace rsl::cli {
 namespace {

@@ -1,5 +1,6 @@
 // `rsl render SCENE --time T -o out.exr`: the CPU runtime renderer
-// (docs/design/RENDERER.md), or with --backend gl the GPU one (docs/GPU.md).
+// (docs/design/RENDERER.md), with --backend rays its sum with ray-traced
+// visibility (docs/BASELINES.md), with --backend gl the GPU one (docs/GPU.md).
 // Per-vertex colours from the RSL sum and the image the renderer forms of
 // them (VertexRenderer::form_image: the same picture on either backend),
 // written as EXR + PNG or PNG (tools/rsl/frame_output.h), and optionally as
@@ -16,9 +17,10 @@
 #include "tools/rsl/frame_output.h"
 #include "tools/rsl/image_args.h"
 #include "tools/rsl/progress_display.h"
+#include "tools/rsl/render_args.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 #include "src/render/render_setup.h"
 
 namespace rsl::cli {
@@ -47,6 +49,7 @@ struct RenderArgs {
     int shadow_maps = 0;  // 0: off; else the resolution (GL only)
     std::string shadow_filter = "pcss";
     int gpu_rays = 0;  // 0: off; else S (GL only)
+    int ray_samples = 0;  // 0: not given; else S (backends with BackendCapabilities::ray_samples)
 };
 
 // Checking phase: the light count, image size, samples, time, exposure and
@@ -75,7 +78,7 @@ std::string backends_offering(bool BackendCapabilities::*capability) {
 // Options phase: the renderer's options from the arguments, shadow maps checked before the fit and the bake.
 RenderOptions render_options(const RenderArgs& args, Backend backend) {
     RenderOptions options;
-    options.environment_lights = args.lights;
+    options.environment_light_count = args.lights;
     options.cross_face_lights = !args.same_face;
     options.self_visibility = !args.no_self;
     options.occluders = !args.no_occluders;
@@ -85,11 +88,24 @@ RenderOptions render_options(const RenderArgs& args, Backend backend) {
     options.pixel_shadows = parse_pixel_shadows(args.pixel_shadows);
     options.pixel_highlights = args.pixel_highlights;
     options.material_override = parse_material_overrides(args.materials);
+    const BackendCapabilities can = backend_capabilities(backend);
+    if (!can.fields && (args.no_self || args.no_occluders))
+        throw_error("{}: the {} backend shades with no fields (its rays find every part's shadows)",
+                    args.no_self ? "--no-self" : "--no-occluders", backend_name(backend));
+    if (args.ray_samples != 0) {
+        if (args.ray_samples < 1 || args.ray_samples > RenderOptions::kMaxRaySamples)
+            throw_error("--ray-samples {}: expected S of 1..{} (SxS rays per vertex and light)", args.ray_samples,
+                        RenderOptions::kMaxRaySamples);
+        if (!can.ray_samples)
+            throw_error("--ray-samples: the {} backend traces no rays (add {})", backend_name(backend),
+                        backends_offering(&BackendCapabilities::ray_samples));
+        options.ray_samples = args.ray_samples;
+    }
     if (args.shadow_maps != 0) {  // before the fit and the bake: a bad value costs nothing
         if (args.shadow_maps < ShadowMapOptions::kMinResolution || args.shadow_maps > ShadowMapOptions::kMaxResolution)
             throw_error("--shadow-maps {}: expected a resolution of {}..{} texels", args.shadow_maps,
                         ShadowMapOptions::kMinResolution, ShadowMapOptions::kMaxResolution);
-        if (!backend_capabilities(backend).shadow_maps)
+        if (!can.shadow_maps)
             throw_error("--shadow-maps: shadow-mapped visibility is a GPU baseline (add {})",
                         backends_offering(&BackendCapabilities::shadow_maps));
         options.shadow_maps.enabled = true;
@@ -100,7 +116,7 @@ RenderOptions render_options(const RenderArgs& args, Backend backend) {
         if (args.gpu_rays < 1 || args.gpu_rays > GpuRayOptions::kMaxSamplesPerSide)
             throw_error("--gpu-rays {}: expected S of 1..{} (SxS rays per vertex and light)", args.gpu_rays,
                         GpuRayOptions::kMaxSamplesPerSide);
-        if (!backend_capabilities(backend).gpu_rays)
+        if (!can.gpu_rays)
             throw_error("--gpu-rays: GPU ray-traced visibility is a GPU baseline (add {})",
                         backends_offering(&BackendCapabilities::gpu_rays));
         if (args.shadow_maps != 0) throw_error("--gpu-rays and --shadow-maps: pick one visibility baseline");
@@ -152,10 +168,13 @@ void render_frames(const RenderArgs& args, RenderSession& session, FrameOutput& 
         const std::string blend = session.setup().environment_lights.blends()
                                       ? fmt::format(", second map {:.0f}%", 100.0f * scene.environment.blend_weight_at(t))
                                       : "";
+        const std::string rays = backend_capabilities(session.backend()).ray_samples
+                                     ? fmt::format(" ({:.2f} M shadow rays)", double(stats.shadow_rays) / 1e6)
+                                     : "";
         if (args.quiet) continue;
-        fmt::print("t={:.3f}: {} vertices x {} lights{}, {} shading {:.1f} ms, image {:.1f} ms; occluder pairs {} ({} "
-                   "culled) -> {}\n",
-                   t, colors.vertex_count(), stats.lights, blend, renderer.backend(), shading_ms, image_ms,
+        fmt::print("t={:.3f}: {} vertices x {} lights{}, {} shading {:.1f} ms{}, image {:.1f} ms; occluder pairs {} "
+                   "({} culled) -> {}\n",
+                   t, colors.vertex_count(), stats.lights, blend, renderer.backend(), shading_ms, rays, image_ms,
                    stats.occluder_pairs, stats.occluder_pairs_culled, exr.string());
         if (const std::string passes = renderer.pass_times(); !passes.empty()) fmt::print("  GPU passes: {}\n", passes);
         if (f == 0 && output.sequence_exposure())
@@ -212,7 +231,10 @@ RegisterCommand render_command({"render",
             "frame's exposure unless --exposure is given");
         time->excludes(frames);
         app.add_option("--lights,-k", args->lights, "Number of environment RSLs fitted to the map (each glTF sun adds one of its own)")->capture_default_str();
-        app.add_option("--backend", args->backend, "cpu, or gl (the GPU renderer, where this rsl has it)")
+        app.add_option("--backend", args->backend,
+                       "cpu (the fields' sum), rays (the same sum with every light's visibility from shadow rays "
+                       "traced by Embree, no fields: the ray-traced baseline; --ray-samples), or gl (the GPU "
+                       "renderer, where this rsl has it)")
             ->check(CLI::IsMember(backends_with(&BackendCapabilities::standalone)))->capture_default_str();
         app.add_flag("--same-face", args->same_face, "Fit light regions within one cube face only (the paper's rule)");
         app.add_flag("--no-self", args->no_self, "Switch self-visibility (SVDF) off");
@@ -261,6 +283,9 @@ RegisterCommand render_command({"render",
         app.add_option("--gpu-rays", args->gpu_rays,
             "S: the ray-traced baseline (gl backend): every light's visibility from SxS jittered shadow rays per "
             "vertex, traced on the GPU through a BVH of the posed parts, instead of the fields (1..16; docs/GPU.md)");
+        app.add_option("--ray-samples", args->ray_samples,
+            "S: with --backend rays, SxS jittered shadow rays per vertex and light (1..16; default 1; "
+            "docs/BASELINES.md)");
         app.add_flag("--quiet,-q", args->quiet, "No progress or per-frame lines (errors and warnings still go to stderr)");
         app.callback([args] { run_render(*args); });
     }});

@@ -20,7 +20,7 @@
 #include "src/core/scene.h"
 #include "src/core/scene_environment.h"
 #include "src/trace/ground_truth.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 
 namespace rsl::cli {
 namespace {

@@ -1,13 +1,14 @@
-// rsl view SCENE: the interactive GPU viewer (src/gl/viewer.h).
+// rsl view SCENE: the interactive GPU viewer (tools/viewer/viewer.h).
 #ifdef RSL_HAVE_GL
 #include <memory>
 
 #include "tools/rsl/progress_display.h"
 #include "tools/rsl/command.h"
+#include "tools/rsl/render_args.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/core/scene.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 #include "src/render/render_setup.h"
 
 namespace rsl::cli {
@@ -55,7 +56,7 @@ RegisterCommand view_command({"view",
             if (!args->screenshot.empty()) check_outputs_apart({args->screenshot}, load_scene(args->scene).input_files);
             gl::ViewerOptions options;
             options.scene = args->scene;
-            options.render.environment_lights = args->lights;
+            options.render.environment_light_count = args->lights;
             options.render.material_override = parse_material_overrides(args->materials);
             options.quick_fields = args->quick;
             options.start_time = args->time;

@@ -14,7 +14,7 @@
 #include "src/core/animated_png.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 
 namespace rsl::cli {
 

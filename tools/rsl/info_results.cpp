@@ -6,10 +6,10 @@
 
 #include <fmt/core.h>
 
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "tools/rsl/info.h"
 #include "src/core/json_file.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 
 namespace rsl::cli {
 

@@ -13,7 +13,7 @@
 //
 // with D bilinearly interpolated between texel centers.
 //
-// Where the boundary lies (pinned by tests/fields/vdt_test.cpp):
+// Where the boundary lies (pinned by tests/fields/visibility_distance_table_test.cpp):
 //  * Binary mode: a texel is visible iff coverage ≥ ½, and the boundary runs
 //    along texel edges. A texel's value is the distance from its center to the
 //    nearest texel center of the opposite class, minus half a texel. For a

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "src/render/culling.h"
+#include "src/render/occluder_culling.h"
 #include "src/render/cpu_renderer.h"
 #include "src/render/square_lights.h"
 #include "src/shading/culling.h"

@@ -1,4 +1,4 @@
-#include "src/gl/shadow_maps.h"
+#include "src/gl/shadow_map_pass.h"
 
 #include <algorithm>
 #include <cmath>

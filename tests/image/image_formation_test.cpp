@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/error.h"
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 #include "tests/trace/trace_test_scenes.h"
 #include "tests/random_cases.h"
 

@@ -1,5 +1,5 @@
 // Reader and writer of .rslv per-vertex colour files (format in vertex_colors.h).
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 
 #include <cmath>
 #include <cstring>

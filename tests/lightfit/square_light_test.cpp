@@ -6,7 +6,7 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "tests/test_support.h"

@@ -1,4 +1,4 @@
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 
 #include <algorithm>
 #include <array>

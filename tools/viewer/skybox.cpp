@@ -1,4 +1,4 @@
-#include "src/gl/skybox.h"
+#include "tools/viewer/skybox.h"
 
 #include "src/core/error.h"
 

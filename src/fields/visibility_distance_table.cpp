@@ -1,4 +1,4 @@
-#include "src/fields/vdt.h"
+#include "src/fields/visibility_distance_table.h"
 
 #include <cmath>
 #include <limits>

@@ -10,7 +10,7 @@
 #include "src/core/binary_io.h"
 #include "src/core/texture.h"
 #include "src/core/error.h"
-#include "src/frame/vertex_colors.h"
+#include "src/image/vertex_colors.h"
 #include "tests/test_support.h"
 #include "tests/random_cases.h"
 

@@ -1,4 +1,4 @@
-#include "src/lightfit/rsl.h"
+#include "src/lightfit/square_light.h"
 
 #include <cmath>
 

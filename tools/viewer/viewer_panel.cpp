@@ -6,7 +6,7 @@
 
 #include "src/lightfit/scene_lights.h"
 #include "src/core/error.h"
-#include "src/gl/viewer_state.h"
+#include "tools/viewer/viewer_state.h"
 #include "src/render/cpu_renderer.h"
 
 namespace rsl::gl {

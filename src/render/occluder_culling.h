@@ -3,7 +3,7 @@
 // point of a receiver part from a light. Bounding spheres only; a test that
 // says "cannot" must be right for every point of the receiver sphere and every
 // direction of the light, so that culling never changes an image (pinned by
-// tests/render/culling_test.cpp against brute-force rays).
+// tests/render/occluder_culling_test.cpp against brute-force rays).
 #include <algorithm>
 #include <span>
 #include <vector>

@@ -1,6 +1,6 @@
 // The viewer's window, input and frame loop (panel: viewer_panel.cpp).
 #define GLFW_INCLUDE_NONE
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -17,8 +17,8 @@
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "src/gl/gl.h"
-#include "src/gl/skybox.h"
-#include "src/gl/viewer_state.h"
+#include "tools/viewer/skybox.h"
+#include "tools/viewer/viewer_state.h"
 #include "src/render/render_setup.h"
 
 namespace rsl::gl {

@@ -1,4 +1,4 @@
-#include "src/render/culling.h"
+#include "src/render/occluder_culling.h"
 
 namespace rsl {
 

@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/error.h"
-#include "src/frame/error_metrics.h"
+#include "src/image/error_metrics.h"
 #include "tests/random_cases.h"
 
 using namespace rsl;

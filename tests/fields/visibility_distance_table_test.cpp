@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "src/fields/vdt.h"
+#include "src/fields/visibility_distance_table.h"
 #include "tests/random_cases.h"
 
 using namespace rsl;

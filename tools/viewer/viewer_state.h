@@ -8,7 +8,7 @@
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
 #include "src/gl/gl_renderer.h"
-#include "src/gl/viewer.h"
+#include "tools/viewer/viewer.h"
 
 namespace rsl::gl {
 

@@ -1,4 +1,4 @@
-#include "src/frame/image_formation.h"
+#include "src/image/image_formation.h"
 
 #include <algorithm>
 #include <atomic>
