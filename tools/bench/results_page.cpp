@@ -36,7 +36,7 @@ struct Section {
     std::vector<Column> columns;
     std::function<bool(const json&)> keep = [](const json&) { return true; };
     // Rows merged before the table is written (the accuracy's K in columns); none: as they come.
-    std::function<std::vector<json>(const std::vector<json>&)> combine;
+    std::function<std::vector<json>(const std::vector<json>&)> combine = nullptr;
 };
 
 std::string with_thousands(long long value) {

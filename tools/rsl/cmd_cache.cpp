@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <ctime>
 #include <map>
-#include <optional>
 
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -134,8 +133,8 @@ void list_cache(const CacheArgs& args, const fs::path& folder) {
 void prune_cache(const CacheArgs& args, const fs::path& folder, bool clear) {
     if (!clear && args.scenes.empty() && args.older_than.empty())
         throw_error("rsl cache prune: give --scene SCENE (keep what those scenes use) and/or --older-than DATE");
-    const std::optional<std::time_t> before =
-        args.older_than.empty() ? std::nullopt : std::optional<std::time_t>(parse_date(args.older_than));
+    const bool by_date = !args.older_than.empty();
+    const std::time_t before = by_date ? parse_date(args.older_than) : 0;
     std::vector<fs::path> scenes(args.scenes.begin(), args.scenes.end());
     const auto used = users(scenes, folder, true);
     size_t removed = 0, kept = 0;
@@ -144,7 +143,7 @@ void prune_cache(const CacheArgs& args, const fs::path& folder, bool clear) {
         bool remove = true;
         if (!clear) {
             if (!scenes.empty() && used.count(entry.file.lexically_normal())) remove = false;
-            if (before && to_time_t(entry.modified) >= *before) remove = false;
+            if (by_date && to_time_t(entry.modified) >= before) remove = false;
         }
         if (!remove) {
             ++kept;
