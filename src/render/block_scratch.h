@@ -125,6 +125,7 @@ struct CpuRenderer::BlockScratch {
     // Per point the skinned segment whose OVDF it leaves out (-1: none):
     // a seam vertex's neighbour (CpuRenderer::seam_partners_); -1 at pixels.
     alignas(64) int32_t partner[kShadeBlock];
+    bool any_partner = false;  // some point of the block has one
     // Compacted queries.
     int index[kShadeBlock];
     int query_vertex[kShadeBlock];  // the vertex of each query (shade_block)

@@ -257,7 +257,7 @@ Color CpuRenderer::shade_pixel(const VertexColors& colors, const PosedScene& pos
     // The point and its shading frame, as the per-pixel truth takes them.
     const SurfacePoint x = posed.hit_point(hit, ray_direction);
     set_point(s, 0, x.position, x.frame);
-    s.partner[0] = -1;  // a pixel takes every occluder's shadow (shade_block.cpp, seam partners)
+    s.partner[0] = -1, s.any_partner = false;  // a pixel takes every occluder's shadow (shade_block.cpp, seam partners)
     occluders.point_sphere = BoundingSphere{x.position, 1e-6f * (1.0f + glm::length(x.position))};
     if (highlights) return pixel_highlights(s, occluders, part, corner, w);
     return pixel_shadows(s, occluders, terms, corner, w, texture, hit);

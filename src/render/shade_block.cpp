@@ -151,7 +151,8 @@ void CpuRenderer::occluder_factors(BlockScratch& s, OccluderVertexScratch& v, in
         }
     }
     // A seam vertex leaves its neighbouring segment out (skinning.h seam_partners).
-    for (int k = 0; k < n; ++k) s.needed[k] &= int32_t(s.partner[k] != o);
+    if (s.any_partner)
+        for (int k = 0; k < n; ++k) s.needed[k] &= int32_t(s.partner[k] != o);
     // The lookups visit the needed queries alone (for_each_needed).
     for (int k = 0; k < n; ++k) s.needed_bytes[k] = uint8_t(s.needed[k]);
     for (int k = n; k < kShadeBlock && k % 8 != 0; ++k) s.needed_bytes[k] = 0;
@@ -282,6 +283,7 @@ void CpuRenderer::set_lights_at_point(BlockScratch& s, size_t lights) const {
         s.environment_slot[k] = l < environment ? 1.0f : 0.0f;
         s.partner[k] = -1;  // a pixel takes every occluder's shadow, on either backend
     }
+    s.any_partner = false;
     s.light_cosines = nullptr;  // each slot's c from its own square (brdf_queries)
     project_lights(s, int(lights));
 }
@@ -409,6 +411,7 @@ void CpuRenderer::load_block_points(BlockScratch& s, const Block& block) const {
     const std::vector<Vec3>& normals = skinned ? skinned->normals : mesh.normals;
     const std::vector<Vec4>& tangents = skinned ? skinned->tangents : mesh.tangents;
     const std::vector<int>& partners = seam_partners_[size_t(block.part)];
+    s.any_partner = false;
     if (s.occluders.size() != scene_.parts.size()) s.occluders.assign(scene_.parts.size(), {});  // first block only
     ++s.stamp;  // every part's BlockOccluder is stale
     s.pool_used = 0;
@@ -416,6 +419,7 @@ void CpuRenderer::load_block_points(BlockScratch& s, const Block& block) const {
         const int v = order[k];
         s.vertex[k] = v;
         s.partner[k] = partners.empty() ? -1 : partners[size_t(v)];
+        s.any_partner = s.any_partner || s.partner[k] >= 0;
         const Vec3 normal = glm::normalize(pose.normal * normals[v]);
         const Vec3 tangent = has_tangents ? pose.linear * Vec3(tangents[v]) : Vec3(0);
         set_point(s, k, Vec3(pose.transform * Vec4(positions[v], 1.0f)), Frame::from_normal_tangent(normal, tangent));
