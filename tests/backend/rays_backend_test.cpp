@@ -18,9 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // The generated orb rising from a floor grid under the sun and sky: its
-// shadow on the floor moves between frames.
-fs::path rising_orb_scene() {
-    const fs::path folder = fs::path(RSL_BINARY_DIR) / "rays-backend-test";
+// shadow on the floor moves between frames. A folder per test case: ctest
+// runs them side by side, and one bakes into its scene's cache.
+fs::path rising_orb_scene(const std::string& name) {
+    const fs::path folder = fs::path(RSL_BINARY_DIR) / "rays-backend-test" / name;
     fs::create_directories(folder);
     test::write_text(folder / "floor.obj", test::floor_obj(24, 0.8f));
     test::write_text(folder / "scene.json", fmt::format(R"({{
@@ -78,7 +79,7 @@ VertexColors row_by_hand(const Scene& scene, const EnvironmentLights& lights, Re
 
 TEST_CASE("The rays backend shades as the ray-traced rows, bit for bit, at every frame", "[backend][rays]") {
     const RenderOptions options = small_options(8);
-    const RenderSetup setup = prepare_render(rising_orb_scene(), options);
+    const RenderSetup setup = prepare_render(rising_orb_scene("rows"), options);
     const Scene& scene = *setup.scene;
     for (const int samples : {1, 2}) {
         RenderOptions o = options;
@@ -105,7 +106,7 @@ TEST_CASE("The rays backend shades as the ray-traced rows, bit for bit, at every
 TEST_CASE("The rays backend follows a part moved between frames at the same time", "[backend][rays]") {
     RenderOptions options = small_options(6);
     options.ray_samples = 2;
-    RenderSetup setup = prepare_render(rising_orb_scene(), options);
+    RenderSetup setup = prepare_render(rising_orb_scene("moved"), options);
     Scene& scene = *setup.scene;
     const auto renderer = make_renderer(Backend::Rays, scene, setup.environment_lights, PartFields{}, options);
     renderer->set_time(0.3f);
@@ -121,7 +122,7 @@ TEST_CASE("The rays backend follows a part moved between frames at the same time
 }
 
 TEST_CASE("A session of the rays backend bakes no fields and refuses a bad S", "[backend][rays]") {
-    const fs::path path = rising_orb_scene();
+    const fs::path path = rising_orb_scene("session");
     fs::remove_all(path.parent_path() / ".rsl-cache");
     RenderOptions options = small_options(6);
     options.ray_samples = 2;
