@@ -55,6 +55,39 @@ size_t nearest_vertex(const TriangleMesh& mesh, const glm::dvec3& p) {
     return best;
 }
 
+// The two-joint test tube (90° at t = 1, straight at t = 0) as a scene of
+// its two segments with small fields, baked in memory.
+Scene two_joint_tube(const std::string& name) {
+    assets::TubeOptions options;
+    options.radius = 0.1f;
+    options.length = 1.2f;
+    options.spacing = 0.03f;
+    Scene scene = load_written(assets::make_bending_tube(options), name, nullptr);
+    small_fields(scene);
+    scene.source.clear();
+    return scene;
+}
+
+// The scene under a sky with a sun at t: 30 RSLs and the fields, the
+// renderer's colours and the truth's.
+struct ShadedAgainstTruth {
+    CubeMap environment;
+    RslSet lights;
+    PartFields fields;
+    VertexColors rendered, truth;
+};
+ShadedAgainstTruth shade_against_truth(const Scene& scene, float t) {
+    ShadedAgainstTruth out;
+    out.environment = test::sky_with_sun(16);
+    out.lights = fit_environment_lights(out.environment, 30);
+    out.fields = bake_part_fields(scene, FieldBakeOptions{});
+    CpuRenderer renderer(scene, out.lights, out.fields, RenderOptions{});
+    renderer.set_time(t);
+    out.rendered = renderer.shade();
+    out.truth = GroundTruth(scene, out.environment, t).shade_vertices();
+    return out;
+}
+
 }  // namespace
 
 TEST_CASE("Skinned vertices equal the glTF's matrices applied by brute force", "[render][skin]") {
@@ -136,26 +169,18 @@ TEST_CASE("Skin weights: bad JOINTS_0 and WEIGHTS_0 are refused naming the file"
 
 TEST_CASE("A two-joint tube bent at 90 degrees shadows itself and the ground as the truth says",
           "[render][skin][accuracy]") {
-    assets::TubeOptions options;  // two joints, 90° at t = 1
-    options.radius = 0.1f;
-    options.length = 1.2f;
-    options.spacing = 0.03f;
-    Scene scene = load_written(assets::make_bending_tube(options), "bent", nullptr);
-    small_fields(scene);
-    scene.source.clear();
+    Scene scene = two_joint_tube("bent");  // 90° at t = 1
     test::add_part(scene, test::make_plane(3.0f, 30, "ground"));
     const float t = 1.0f;
     // The tip half points along −X at the full bend.
     const Vec3 tip_axis = Mat3(scene.part_transform_at(1, t)) * Vec3(0, 1, 0);
     REQUIRE(glm::length(tip_axis - Vec3(-1, 0, 0)) < 1e-5f);
 
-    const CubeMap environment = test::sky_with_sun(16);
-    const RslSet lights = fit_environment_lights(environment, 30);
-    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    CpuRenderer renderer(scene, lights, fields, RenderOptions{});
-    renderer.set_time(t);
-    const VertexColors rendered = renderer.shade();
-    const VertexColors truth = GroundTruth(scene, environment, t).shade_vertices();
+    const ShadedAgainstTruth shaded = shade_against_truth(scene, t);
+    const VertexColors& rendered = shaded.rendered;
+    const VertexColors& truth = shaded.truth;
+    const RslSet& lights = shaded.lights;
+    const PartFields& fields = shaded.fields;
     RenderOptions unshadowed_options;
     unshadowed_options.self_visibility = unshadowed_options.occluders = false;
     CpuRenderer unshadowed_renderer(scene, lights, fields, unshadowed_options);
@@ -194,13 +219,7 @@ TEST_CASE("A two-joint tube bent at 90 degrees shadows itself and the ground as 
 
 TEST_CASE("A straight skinned tube's seams match the truth: a seam vertex leaves its neighbour's OVDF out",
           "[render][skin][accuracy]") {
-    assets::TubeOptions options;  // two joints, straight at t = 0
-    options.radius = 0.1f;
-    options.length = 1.2f;
-    options.spacing = 0.03f;
-    Scene scene = load_written(assets::make_bending_tube(options), "straight", nullptr);
-    small_fields(scene);
-    scene.source.clear();
+    const Scene scene = two_joint_tube("straight");
     const float t = 0.0f;
     REQUIRE(glm::length(Mat3(scene.part_transform_at(1, t)) * Vec3(0, 1, 0) - Vec3(0, 1, 0)) < 1e-5f);
     // Every vertex that blends the other joint names the other segment; the others none.
@@ -217,13 +236,9 @@ TEST_CASE("A straight skinned tube's seams match the truth: a seam vertex leaves
     }
     REQUIRE(seams > 100);
 
-    const CubeMap environment = test::sky_with_sun(16);
-    const RslSet lights = fit_environment_lights(environment, 30);
-    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
-    CpuRenderer renderer(scene, lights, fields, RenderOptions{});
-    renderer.set_time(t);
-    const VertexColors rendered = renderer.shade();
-    const VertexColors truth = GroundTruth(scene, environment, t).shade_vertices();
+    const ShadedAgainstTruth shaded = shade_against_truth(scene, t);
+    const VertexColors& rendered = shaded.rendered;
+    const VertexColors& truth = shaded.truth;
     ErrorStats seam, rest;
     for (size_t p = 0; p < 2; ++p)
         for (size_t v = 0; v < truth.parts[p].size(); ++v)
