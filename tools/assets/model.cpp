@@ -73,13 +73,19 @@ class GltfBuilder {
 public:
     explicit GltfBuilder(tinygltf::Model& model) : model_(model) { model_.buffers.resize(1); }
 
-    int add_floats(const float* data, size_t count, int type, int components, int target, bool with_bounds) {
-        const int view = add_view(data, count * components * sizeof(float), target);
+    // An accessor of `count` elements of `type` over view `view`.
+    static tinygltf::Accessor accessor(int view, int component_type, size_t count, int type) {
         tinygltf::Accessor a;
         a.bufferView = view;
-        a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+        a.componentType = component_type;
         a.count = count;
         a.type = type;
+        return a;
+    }
+
+    int add_floats(const float* data, size_t count, int type, int components, int target, bool with_bounds) {
+        tinygltf::Accessor a = accessor(add_view(data, count * components * sizeof(float), target),
+                                        TINYGLTF_COMPONENT_TYPE_FLOAT, count, type);
         if (with_bounds) {  // required for POSITION and animation inputs
             a.minValues.assign(components, 1e300);
             a.maxValues.assign(components, -1e300);
@@ -95,23 +101,13 @@ public:
 
     int add_joints(const std::vector<std::array<uint16_t, 4>>& joints) {
         const int view = add_view(joints.data(), joints.size() * sizeof(joints[0]), TINYGLTF_TARGET_ARRAY_BUFFER);
-        tinygltf::Accessor a;
-        a.bufferView = view;
-        a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-        a.count = joints.size();
-        a.type = TINYGLTF_TYPE_VEC4;
-        model_.accessors.push_back(a);
+        model_.accessors.push_back(accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, joints.size(), TINYGLTF_TYPE_VEC4));
         return int(model_.accessors.size()) - 1;
     }
 
     int add_indices(const std::vector<uint32_t>& indices) {
         const int view = add_view(indices.data(), indices.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-        tinygltf::Accessor a;
-        a.bufferView = view;
-        a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-        a.count = indices.size();
-        a.type = TINYGLTF_TYPE_SCALAR;
-        model_.accessors.push_back(a);
+        model_.accessors.push_back(accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices.size(), TINYGLTF_TYPE_SCALAR));
         return int(model_.accessors.size()) - 1;
     }
 
