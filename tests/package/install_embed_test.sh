@@ -90,6 +90,24 @@ covered=$(sed -n 's/.*over \([0-9]*\) covered pixels.*/\1/p' "$work/truth.txt")
 less_than "$error" 0.15 || fail "last frame against its truth: relative L2 $error ≥ 0.15"
 less_than 0.10 "$moved" || fail "first and last frames differ by only $moved: nothing moved"
 
+echo "== the figures docs/API.md quotes for this run"
+# "(measured: P% over the pixels, V% over the vertices) ... (M%: the ball rolled)",
+# each within one unit of the last digit printed there (builds for other CPUs
+# round differently).
+api=$(tr '\n' ' ' <"$source/docs/API.md")
+vertices=$(sed -n 's/.*last frame against the ground truth: relative L2 \([0-9.eE+-]*\).*/\1/p' "$work/embed.txt" | head -1)
+check_quoted() {  # name, measured fraction, the doc's sentence pattern around one "([0-9.]+)%"
+  quoted=$(printf '%s' "$api" | sed -n "s/.*$3.*/\1/p")
+  [ -n "$quoted" ] || fail "docs/API.md no longer quotes the $1 (pattern: $3)"
+  awk -v q="$quoted" -v m="$2" 'BEGIN { d = length(q) - index(q, "."); if (index(q, ".") == 0) d = 0;
+      u = 10 ^ -d; e = 100 * m - q; exit !(e <= u && -e <= u) }' ||
+    fail "docs/API.md quotes the $1 as $quoted%; this run measured $(awk -v m="$2" 'BEGIN { printf "%.2f", 100 * m }')%"
+  echo "API.md's $1: $quoted% (measured $2)"
+}
+check_quoted "pixels' error" "$error" 'measured: *\([0-9.]*\)% over the pixels'
+check_quoted "vertices' error" "$vertices" 'over the pixels, *\([0-9.]*\)% over the vertices'
+check_quoted "first-to-last difference" "$moved" '(\([0-9.]*\)%: the ball rolled'
+
 echo "== the installed Python module"
 if [ -n "$python" ]; then
   PYTHONPATH="$prefix/lib/python3/dist-packages" "$python" -c "import rsl, sys; print('import rsl:', rsl.__file__, rsl.__version__); sys.exit(not rsl.__file__.startswith('$prefix'))"
