@@ -14,7 +14,7 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(RSL_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/rsl)
-set(RSL_EXPORTED_LIBRARIES rsl_core rsl_brdf rsl_lightfit rsl_rays rsl_image rsl_trace rsl_fields rsl_render
+set(RSL_EXPORTED_LIBRARIES rsl_core rsl_formats rsl_brdf rsl_lightfit rsl_rays rsl_image rsl_trace rsl_fields rsl_render
   ${RSL_GL_LIB} rsl_backend rsl_version rsl_api)
 foreach(library ${RSL_EXPORTED_LIBRARIES})
   string(REGEX REPLACE "^rsl_" "" short ${library})

@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "tools/rsl/progress_display.h"
+#include "src/formats/image_file.h"
 #include "src/lightfit/scene_lights.h"
 #include "demos/contact_sheet.h"
 #include "demos/demo_runners.h"

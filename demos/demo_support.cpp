@@ -10,6 +10,8 @@
 #include "demos/contact_sheet.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/formats/image_file.h"
+#include "src/formats/scene_file.h"
 #include "src/image/image_formation.h"
 
 namespace rsl::demos {

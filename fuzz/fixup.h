@@ -7,7 +7,7 @@
 #include <cstring>
 #include <string>
 
-#include "src/core/binary_io.h"
+#include "src/formats/binary_io.h"
 
 namespace rsl::fuzz {
 

@@ -5,9 +5,10 @@
 #include <cmath>
 
 #include "fuzz/fuzz_support.h"
+#include "src/formats/environment_file.h"
 #include "src/lightfit/decompose.h"
 #include "src/core/envmap.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 
 using namespace rsl;
 

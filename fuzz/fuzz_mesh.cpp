@@ -4,6 +4,7 @@
 // the glTF loader, then the default camera framed on the posed parts).
 #include "fuzz/fuzz_support.h"
 #include "src/core/scene.h"
+#include "src/formats/scene_file.h"
 
 using namespace rsl;
 

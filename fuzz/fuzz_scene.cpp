@@ -6,6 +6,7 @@
 #include "fuzz/seeds/seeds.h"
 #include "src/brdf/brdf.h"
 #include "src/core/scene.h"
+#include "src/formats/scene_file.h"
 
 using namespace rsl;
 

@@ -1,11 +1,11 @@
-// Fuzzer of the per-vertex colour reader (.rslv, src/image/vertex_colors.h).
+// Fuzzer of the per-vertex colour reader (.rslv, src/formats/vertex_colors.h).
 // The checksum is made right first (fuzz/fixup.h) so that mutations reach
 // the parser; an accepted file must write and read back the same.
 #include <cmath>
 
 #include "fuzz/fixup.h"
 #include "fuzz/fuzz_support.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 
 using namespace rsl;
 

@@ -1,5 +1,5 @@
 #version 330 core
-// Exposure and the sRGB transfer curve (srgb.glsl, as src/core/image.h's tone-mapped PNG).
+// Exposure and the sRGB transfer curve (srgb.glsl, as src/formats/image_file.h's tone-mapped PNG).
 // A textured part is formed as the CPU's image formation does it: the
 // interpolated diffuse layer times the base colour texture per pixel (linear
 // RGB, bilinear between texel centers, the sampler's wrap modes), plus the

@@ -1,5 +1,5 @@
 // The sRGB transfer curve of the viewer's passes (display.frag.glsl,
-// skybox.frag.glsl), as src/core/image.h's tone-mapped PNG; the host puts it
+// skybox.frag.glsl), as src/formats/image_file.h's tone-mapped PNG; the host puts it
 // before a shader's own text (gl_objects.h srgb_prelude).
 vec3 srgb(vec3 c) {
     c = clamp(c, 0.0, 1.0);

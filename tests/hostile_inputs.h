@@ -2,7 +2,7 @@
 // The hostile inputs of issue 20 — what mutation fuzzing (docs/design/FUZZING.md)
 // and a hostile user's review found — built the way the fuzzer made them:
 // flipped bits, a corrupted header field, an out-of-range number. The
-// regression tests (tests/core/hostile_input_test.cpp,
+// regression tests (tests/formats/hostile_input_test.cpp,
 // tests/fields/field_file_test.cpp) check how each is refused; the input
 // sweep (tests/fuzz/input_sweep_test.cpp) runs every one through `rsl`.
 #include <cmath>
@@ -15,7 +15,7 @@
 #include "fuzz/fixup.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 #include "tests/radiance_encoder.h"
 
 namespace rsl::test::hostile {

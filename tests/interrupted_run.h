@@ -17,7 +17,7 @@
 #include <catch2/catch.hpp>
 
 #include "src/core/atomic_file.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 #include "tests/test_support.h"
 
 namespace rsl::test {

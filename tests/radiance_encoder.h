@@ -1,8 +1,8 @@
 #pragma once
 // A tiny Radiance (.hdr) writer, independent of the reader in
-// src/core/image.cpp so that tests check the reader decodes what it writes
-// (tests/core/image_test.cpp), and so that hostile-input tests and the fuzz
-// seeds (fuzz/seeds) can build files byte by byte: flat or new-style
+// src/formats/image_file.cpp so that tests check the reader decodes what it
+// writes (tests/formats/image_file_test.cpp), and so that hostile-input tests
+// and the fuzz seeds (fuzz/seeds) can build files byte by byte: flat or new-style
 // run-length encoded scanlines.
 #include <algorithm>
 #include <cmath>

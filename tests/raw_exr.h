@@ -9,7 +9,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
 
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 
 namespace rsl::test {
 

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "src/core/gltf_model.h"  // tinygltf, configured as the loader compiles it
+#include "src/formats/gltf_model.h"  // tinygltf, configured as the loader compiles it
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfEnvmapAttribute.h>
@@ -22,9 +22,9 @@
 #include "src/fields/solid_pieces.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/core/image.h"
-#include "src/core/json_file.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/image_file.h"
+#include "src/formats/json_file.h"
+#include "src/formats/vertex_colors.h"
 #include "tests/radiance_encoder.h"
 
 namespace rsl::fuzz {

@@ -8,7 +8,7 @@
 #include "src/core/error.h"
 #include "src/core/image.h"
 #include "src/core/scene.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 
 namespace rsl::api {
 

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "src/formats/environment_file.h"
+#include "src/formats/image_file.h"
 #include "src/lightfit/scene_lights.h"
 #include "src/lightfit/reconstruct.h"
 #include "src/api/api_convert.h"

@@ -9,6 +9,7 @@
 #include "src/core/envmap.h"
 #include "src/core/mesh.h"
 #include "src/core/precompute_limits.h"
+#include "src/formats/scene_file.h"
 
 namespace rsl::api {
 

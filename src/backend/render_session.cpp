@@ -1,4 +1,5 @@
 #include "src/backend/render_session.h"
+#include "src/formats/scene_file.h"
 
 #include <utility>
 

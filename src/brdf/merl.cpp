@@ -8,7 +8,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/core/file_reading.h"
+#include "src/formats/file_reading.h"
 
 namespace rsl {
 namespace {

@@ -18,7 +18,7 @@
 #include <sys/types.h>
 #include <unistd.h>
 
-#include "src/core/binary_io.h"
+#include "src/core/checksum.h"
 #include "src/core/error.h"
 
 namespace rsl {

@@ -98,8 +98,6 @@ CubeMap cube_from_strip(const Image& strip, int n);
 // Scene files, `rsl fit`, `rsl truth`, `rsl baselines` and the API share it.
 inline constexpr int kMaxCubeResolution = 512;
 
-// Any supported environment file (.exr or .hdr; lat-long 2:1 or cube strip 1:6) → cube map.
-CubeMap load_environment(const std::filesystem::path& path, int n);
 
 // Energy of a lat-long image as the integral it represents (per-pixel solid angles).
 DVec3 latlong_energy(const Image& latlong);

@@ -57,8 +57,4 @@ void compute_tangents(TriangleMesh& mesh);
 size_t validate_and_complete(TriangleMesh& mesh, const std::filesystem::path& source,
                              std::vector<uint32_t>* kept_vertices = nullptr);
 
-// Wavefront OBJ (v, vn, f with any of v, v/t, v//n, v/t/n; negative indices;
-// polygons fan-triangulated). Vertices are split where normals differ.
-TriangleMesh load_obj(const std::filesystem::path& path);
-
 }  // namespace rsl

@@ -220,25 +220,10 @@ struct Scene {
     size_t vertex_count() const;
 };
 
-// Loads a JSON scene file, a .gltf/.glb (one part per mesh node, node
-// animation), or a single .obj (one part). Throws rsl::Error naming the file.
-Scene load_scene(const std::filesystem::path& path);
 // Splits every part's long edges per scene.subdivision (src/core/subdivide.h)
-// and records each part's loaded vertex count. load_scene calls it; a scene
-// built in code calls it when it wants the same meshes a file would give.
+// and records each part's loaded vertex count. load_scene
+// (src/formats/scene_file.h) calls it; a scene built in code calls it when it
+// wants the same meshes a file would give.
 void subdivide_scene_parts(Scene& scene);
-// Parts, nodes, animation, lights and camera of a glTF file's default scene,
-// appended to `scene`. Its materials become scene materials (Convert), or
-// every part takes default_material (Override: a scene file's
-// `part_materials["*"]`, docs/SCENE_FORMAT.md).
-enum class GltfMaterialUse { Convert, Override };
-void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material,
-                    GltfMaterialUse use = GltfMaterialUse::Convert);
-
-// How rsl treats a glTF extension: "honoured", "ignored: …" (the file still
-// renders, without what the extension adds) or "not supported: …"; a file
-// that requires an extension rsl does not honour is refused.
-std::string gltf_extension_support(const std::string& name);
-bool gltf_extension_honoured(const std::string& name);
 
 }  // namespace rsl

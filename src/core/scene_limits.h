@@ -10,7 +10,7 @@ namespace rsl {
 
 // The brightest lights a scene may hold, per channel: far past any real lamp
 // or sun, and low enough that every result stays within what an image file
-// holds (kMaxRadiance, src/core/image.h) instead of overflowing to Inf and NaN.
+// holds (kMaxRadiance, src/formats/image_file.h) instead of overflowing to Inf and NaN.
 inline constexpr float kMaxLightPower = 1e12f;     // W
 inline constexpr float kMaxLightRadiance = 1e13f;  // power / (4π² radius²)
 inline constexpr float kMaxSunIrradiance = 1e12f;  // a glTF sun's intensity × colour

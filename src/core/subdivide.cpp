@@ -6,7 +6,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "src/core/binary_io.h"
+#include "src/core/checksum.h"
 #include "src/core/error.h"
 #include "src/core/memory_limit.h"
 #include "src/core/scene.h"

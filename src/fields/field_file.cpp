@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "src/core/atomic_file.h"
-#include "src/core/binary_io.h"
+#include "src/formats/binary_io.h"
 #include "src/core/error.h"
-#include "src/core/file_reading.h"
+#include "src/formats/file_reading.h"
 #include "src/shading/ovdf_tables.h"
 
 namespace rsl {

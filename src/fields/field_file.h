@@ -26,7 +26,7 @@
 
 #include "src/fields/ovdf.h"
 #include "src/fields/svdf.h"
-#include "src/core/binary_io.h"  // fnv1a64
+#include "src/core/checksum.h"
 #include "src/core/mesh.h"
 #include "src/shading/ovdf_tables.h"
 

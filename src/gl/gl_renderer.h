@@ -49,7 +49,7 @@
 #include "src/gl/shadow_map_pass.h"
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 #include "src/render/vertex_renderer.h"
 
 namespace rsl::gl {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "src/core/image.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 
 namespace rsl {
 

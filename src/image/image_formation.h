@@ -14,7 +14,7 @@
 #include "src/core/scene.h"
 #include "src/rays/posed_scene.h"
 #include "src/core/progress.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 
 namespace rsl {
 

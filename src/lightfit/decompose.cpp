@@ -8,7 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "src/core/error.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 
 namespace rsl::lightfit {
 

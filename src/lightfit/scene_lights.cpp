@@ -4,7 +4,7 @@
 
 #include "src/lightfit/decompose.h"
 #include "src/lightfit/irradiance.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 
 namespace rsl {
 

@@ -6,7 +6,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/core/json_file.h"
+#include "src/formats/json_file.h"
 
 namespace rsl {
 

@@ -12,7 +12,7 @@
 #include "src/render/ovdf_occluder.h"
 #include "src/core/sphere_light.h"
 #include "src/render/block_scratch.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 #include "src/render/vertex_blocks.h"
 
 namespace rsl {

@@ -33,7 +33,7 @@
 #include "src/render/occluder_shape.h"
 #include "src/render/render_options.h"
 #include "src/render/square_lights.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 #include "src/render/vertex_blocks.h"
 #include "src/render/vertex_renderer.h"
 

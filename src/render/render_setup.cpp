@@ -1,5 +1,6 @@
 #include "src/render/render_setup.h"
 
+#include "src/formats/scene_file.h"
 #include "src/lightfit/fit_limits.h"
 
 #include "src/lightfit/scene_lights.h"
@@ -9,7 +10,7 @@
 
 #include <fmt/format.h>
 #include "src/core/error.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 
 namespace rsl {
 

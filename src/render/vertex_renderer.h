@@ -27,7 +27,7 @@
 #include "src/render/part_fields.h"
 #include "src/render/render_options.h"
 #include "src/image/image_formation.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 
 namespace rsl {
 

@@ -10,7 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "src/core/error.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 #include "src/core/sphere_light.h"
 #include "src/trace/sample_sequence.h"
 #include "src/trace/shadow_batch.h"

@@ -37,7 +37,7 @@
 #include "src/core/progress.h"
 #include "src/core/scene.h"
 #include "src/image/image_formation.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 #include "src/rays/posed_scene.h"
 #include "src/trace/brdf_sampler.h"
 #include "src/trace/environment_sampler.h"

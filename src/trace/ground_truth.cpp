@@ -2,7 +2,7 @@
 // shadow rays in coherent per-point batches (docs/design/TRUTH.md).
 #include "src/trace/ground_truth.h"
 
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 #include "src/image/image_formation.h"
 
 #include <cmath>

@@ -23,7 +23,7 @@
 #include "src/core/sphere_light.h"
 #include "src/rays/posed_scene.h"
 #include "src/core/progress.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 #include "src/trace/scene_integrand.h"
 
 namespace rsl {

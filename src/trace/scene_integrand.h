@@ -11,7 +11,7 @@
 #include "src/brdf/brdf.h"
 #include "src/core/progress.h"
 #include "src/core/scene.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 
 namespace rsl {
 

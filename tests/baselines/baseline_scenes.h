@@ -7,7 +7,7 @@
 
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 #include "tests/trace/trace_test_scenes.h"
 
 namespace rsl::test {

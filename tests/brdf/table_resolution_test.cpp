@@ -8,6 +8,7 @@
 
 #include "src/brdf/material_library.h"
 #include "src/brdf/table_resolution.h"
+#include "src/formats/scene_file.h"
 #include "tests/brdf/brdf_test_util.h"
 #include "tests/test_support.h"
 

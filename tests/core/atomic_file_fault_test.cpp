@@ -16,7 +16,7 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 #include "tests/interrupted_run.h"
 #include "tests/private_mounts.h"
 #include "tests/test_support.h"

@@ -13,7 +13,8 @@
 
 #include "src/core/envmap.h"
 #include "src/core/error.h"
-#include "src/core/image.h"
+#include "src/formats/environment_file.h"
+#include "src/formats/image_file.h"
 #include "tests/raw_exr.h"
 #include "tests/test_support.h"
 #include "tests/random_cases.h"

@@ -20,8 +20,9 @@
 #include "tools/assets/robot.h"
 #include "src/core/atomic_file.h"
 #include "src/core/envmap.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 #include "src/core/scene.h"
+#include "src/formats/scene_file.h"
 
 using namespace rsl;
 using namespace rsl::assets;

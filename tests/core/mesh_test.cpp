@@ -9,6 +9,8 @@
 #include "src/core/error.h"
 #include "src/core/mesh.h"
 #include "src/core/scene.h"
+#include "src/formats/obj_loader.h"
+#include "src/formats/scene_file.h"
 #include "tests/test_support.h"
 
 using namespace rsl;

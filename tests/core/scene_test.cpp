@@ -11,6 +11,7 @@
 
 #include "src/core/error.h"
 #include "src/core/scene.h"
+#include "src/formats/scene_file.h"
 #include "tests/test_support.h"
 #include "tests/random_cases.h"
 

@@ -7,6 +7,7 @@
 
 #include "src/core/scene.h"
 #include "src/core/subdivide.h"
+#include "src/formats/scene_file.h"
 #include "tests/test_support.h"
 #include "tests/trace/trace_test_scenes.h"
 #include "tests/random_cases.h"

@@ -11,7 +11,7 @@
 
 #include <unistd.h>
 
-// stb_image's implementation is in rsl_core (src/core/gltf_materials.cpp).
+// stb_image's implementation is in rsl_formats (src/formats/gltf_materials.cpp).
 
 #include "demos/demo.h"
 #include "demos/demo_runners.h"

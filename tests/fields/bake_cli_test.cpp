@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "src/fields/field_file.h"
-#include "tests/core/gltf_builder.h"
+#include "tests/formats/gltf_builder.h"
 #include "tests/interrupted_run.h"
 #include "tests/special_files.h"
 #include "tests/test_support.h"

@@ -6,7 +6,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "src/core/file_reading.h"
+#include "src/formats/file_reading.h"
 #include "src/fields/field_file.h"
 #include "tests/special_files.h"
 #include "tests/test_support.h"

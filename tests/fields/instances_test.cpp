@@ -10,6 +10,7 @@
 
 #include "src/fields/field_cache.h"
 #include "src/fields/field_file.h"
+#include "src/formats/scene_file.h"
 #include "tests/test_support.h"
 #include "tests/trace/trace_test_scenes.h"
 

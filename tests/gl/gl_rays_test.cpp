@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "src/core/error.h"
+#include "src/formats/scene_file.h"
 #include "src/gl/gl_renderer.h"
 #include "src/render/cpu_renderer.h"
 #include "src/render/exact_visibility.h"

@@ -4,9 +4,10 @@
 
 #include <filesystem>
 
+#include "src/formats/scene_file.h"
 #include "src/lightfit/scene_lights.h"
 #include "src/render/occluder_shape.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/gpu_layout.h"
 #include "tools/assets/pbr_scene.h"

@@ -2,6 +2,7 @@
 // posed vertices uploaded in place of the bind pose shade as the CPU's.
 #include <catch2/catch.hpp>
 
+#include "src/formats/scene_file.h"
 #include "src/gl/gl_renderer.h"
 #include "src/render/cpu_renderer.h"
 #include "tests/gl/gl_test_support.h"

@@ -10,7 +10,7 @@
 
 #include "src/gl/headless_context.h"
 #include "src/render/cpu_renderer.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 #include "tests/render/render_test_scenes.h"
 
 namespace rsl::test {

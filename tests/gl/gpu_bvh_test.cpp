@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <random>
 
+#include "src/formats/scene_file.h"
 #include "src/gl/gpu_bvh.h"
 #include "src/rays/posed_scene.h"
 #include "tests/gl/gl_test_support.h"

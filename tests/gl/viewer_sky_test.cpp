@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "src/core/envmap.h"
+#include "src/formats/environment_file.h"
 #include "tools/viewer/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"

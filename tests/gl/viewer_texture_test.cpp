@@ -15,7 +15,7 @@
 #include "tools/assets/pbr_scene.h"
 #include "tools/assets/primitives.h"
 #include "rsl/rsl.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 #include "tools/viewer/viewer.h"
 #include "tests/gl/viewer_test_support.h"
 #include "tests/png_test_support.h"

@@ -8,9 +8,10 @@
 
 #include <catch2/catch.hpp>
 
+#include "src/formats/environment_file.h"
 #include "src/lightfit/square_light.h"
 #include "src/core/envmap.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 #include "tests/test_support.h"
 
 using namespace rsl;

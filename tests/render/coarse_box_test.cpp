@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "src/formats/environment_file.h"
 #include "src/lightfit/scene_lights.h"
 #include "src/image/error_metrics.h"
 #include "src/render/cpu_renderer.h"

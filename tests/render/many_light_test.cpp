@@ -7,6 +7,8 @@
 
 #include <filesystem>
 
+#include "src/formats/environment_file.h"
+#include "src/formats/scene_file.h"
 #include "src/lightfit/scene_lights.h"
 #include "src/lightfit/reconstruct.h"
 #include "src/image/error_metrics.h"

@@ -9,8 +9,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "src/core/image.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/image_file.h"
+#include "src/formats/vertex_colors.h"
 #include "tests/hostile_inputs.h"
 #include "tests/test_support.h"
 

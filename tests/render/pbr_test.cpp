@@ -4,6 +4,7 @@
 // compared with the Embree truth, per vertex and per pixel.
 #include <catch2/catch.hpp>
 
+#include "src/formats/scene_file.h"
 #include "src/lightfit/scene_lights.h"
 #include "tools/assets/model.h"
 #include "tools/assets/pbr_scene.h"

@@ -4,7 +4,7 @@
 // read or baked.
 #include <catch2/catch.hpp>
 
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 #include "src/render/cpu_renderer.h"
 #include "src/render/exact_visibility.h"
 #include "src/render/render_setup.h"

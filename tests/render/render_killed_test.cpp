@@ -8,7 +8,8 @@
 #include <catch2/catch.hpp>
 
 #include "src/fields/field_file.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/image_file.h"
+#include "src/formats/vertex_colors.h"
 #include "tests/interrupted_run.h"
 #include "tests/test_support.h"
 

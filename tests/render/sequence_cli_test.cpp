@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 #include "tests/png_test_support.h"
 #include "tests/test_support.h"
 

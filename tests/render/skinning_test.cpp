@@ -7,6 +7,7 @@
 
 #include "src/core/error.h"
 #include "src/core/skinning.h"
+#include "src/formats/scene_file.h"
 #include "src/image/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/render/part_fields.h"

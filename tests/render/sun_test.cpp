@@ -6,7 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "src/lightfit/scene_lights.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 #include "src/image/error_metrics.h"
 #include "src/render/cpu_renderer.h"
 #include "src/trace/ground_truth.h"

@@ -10,9 +10,9 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "src/core/image.h"
-#include "src/image/vertex_colors.h"
-#include "tests/core/gltf_builder.h"
+#include "src/formats/image_file.h"
+#include "src/formats/vertex_colors.h"
+#include "tests/formats/gltf_builder.h"
 #include "tests/test_support.h"
 
 using namespace rsl;

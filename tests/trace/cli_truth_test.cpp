@@ -6,8 +6,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "src/core/image.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/image_file.h"
+#include "src/formats/vertex_colors.h"
 #include "tests/test_support.h"
 
 using namespace rsl;

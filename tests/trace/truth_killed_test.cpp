@@ -3,7 +3,8 @@
 // name; the rerun completes and sweeps every temporary a dead run left.
 #include <catch2/catch.hpp>
 
-#include "src/image/vertex_colors.h"
+#include "src/formats/image_file.h"
+#include "src/formats/vertex_colors.h"
 #include "tests/interrupted_run.h"
 #include "tests/test_support.h"
 

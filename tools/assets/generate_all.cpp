@@ -15,6 +15,7 @@
 #include "tools/assets/skinned_tube.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/formats/image_file.h"
 
 namespace rsl::assets {
 namespace fs = std::filesystem;

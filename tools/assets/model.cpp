@@ -5,13 +5,14 @@
 #include <fstream>
 #include <sstream>
 
-#include "src/core/gltf_model.h"  // tinygltf, configured as the loader compiles it
+#include "src/formats/gltf_model.h"  // tinygltf, configured as the loader compiles it
 
 #include <fmt/format.h>
 #include <stb_image_write.h>  // compiled in src/core/image.cpp
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/formats/image_file.h"
 
 namespace rsl::assets {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 
 namespace rsl::raster {
 

@@ -15,7 +15,7 @@
 
 #include "src/core/envmap.h"
 #include "src/trace/ground_truth.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 
 namespace rsl {
 

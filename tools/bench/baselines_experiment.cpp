@@ -5,6 +5,9 @@
 // same definition `rsl compare` uses.
 #include "tools/rsl/progress_display.h"
 #include "tools/bench/baselines_experiment.h"
+#include "src/formats/environment_file.h"
+#include "src/formats/image_file.h"
+#include "src/formats/scene_file.h"
 #include "src/lightfit/scene_lights.h"
 
 #include "tools/bench/experiment_support.h"
@@ -27,7 +30,7 @@
 #include "src/image/image_formation.h"
 #include "src/render/ovdf_occluder.h"
 #include "src/render/render_setup.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 
 namespace rsl {
 namespace {

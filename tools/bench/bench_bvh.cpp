@@ -8,6 +8,7 @@
 
 #include "src/core/error.h"
 #include "src/fields/field_cache.h"
+#include "src/formats/scene_file.h"
 #include "src/rays/bvh_builder.h"
 #include "tools/bench/bench.h"
 

@@ -12,7 +12,7 @@
 
 #include "tools/bench/bench.h"
 #include "src/core/envmap.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 
 namespace rsl::bench {
 namespace {

@@ -8,6 +8,8 @@
 #include "src/fields/svdf.h"
 #include "tools/bench/bench.h"
 #include "src/core/scene.h"
+#include "src/formats/obj_loader.h"
+#include "src/formats/scene_file.h"
 #include "src/rays/ray_scene.h"
 
 namespace rsl::bench {

@@ -15,6 +15,7 @@
 
 #include "src/fields/cpca.h"
 #include "tools/bench/bench.h"
+#include "src/formats/scene_file.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/headless_context.h"
 #include "tools/viewer/viewer.h"

@@ -7,6 +7,7 @@
 
 #include <fmt/core.h>
 
+#include "src/formats/environment_file.h"
 #include "src/lightfit/decompose.h"
 #include "src/lightfit/reconstruct.h"
 #include "tools/bench/bench.h"

@@ -6,6 +6,7 @@
 
 #include "tools/bench/bench.h"
 #include "src/core/scene.h"
+#include "src/formats/scene_file.h"
 
 namespace rsl::bench {
 namespace {

@@ -16,9 +16,10 @@
 #include "tools/bench/bench.h"
 #include "src/core/envmap.h"
 #include "src/core/scene.h"
+#include "src/formats/scene_file.h"
 #include "src/trace/ground_truth.h"
 #include "src/image/image_formation.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
 
 namespace rsl::bench {
 namespace {

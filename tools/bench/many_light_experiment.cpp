@@ -5,6 +5,8 @@
 // truth under the scene's own environment.
 #include "tools/rsl/progress_display.h"
 #include "tools/bench/many_light_experiment.h"
+#include "src/formats/image_file.h"
+#include "src/formats/scene_file.h"
 #include "src/lightfit/scene_lights.h"
 
 #include <algorithm>

@@ -1,5 +1,7 @@
 #include "tools/rsl/progress_display.h"
 #include "tools/bench/render_bench_cases.h"
+#include "src/formats/environment_file.h"
+#include "src/formats/scene_file.h"
 #include "src/lightfit/scene_lights.h"
 
 #include <chrono>

@@ -13,6 +13,7 @@
 #include "tools/rsl/progress_display.h"
 #include "tools/rsl/unique_meshes.h"
 #include "src/core/scene.h"
+#include "src/formats/scene_file.h"
 
 namespace rsl::cli {
 namespace {

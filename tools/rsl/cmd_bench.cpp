@@ -14,7 +14,7 @@
 #include "tools/rsl/data_folder.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/core/file_reading.h"
+#include "src/formats/file_reading.h"
 
 namespace rsl::cli {
 

@@ -14,6 +14,7 @@
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/fields/cache_folder.h"
+#include "src/formats/scene_file.h"
 #include "tools/rsl/command.h"
 
 namespace rsl::cli {

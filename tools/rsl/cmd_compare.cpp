@@ -17,11 +17,12 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
 #include "src/core/scene.h"
+#include "src/formats/scene_file.h"
 #include "src/image/error_metrics.h"
 #include "src/image/image_formation.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/vertex_colors.h"
 
 namespace rsl::cli {
 namespace {

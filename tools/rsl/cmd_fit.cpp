@@ -4,6 +4,8 @@
 
 #include <fmt/core.h>
 
+#include "src/formats/environment_file.h"
+#include "src/formats/image_file.h"
 #include "src/lightfit/decompose.h"
 #include "src/lightfit/reconstruct.h"
 #include "tools/rsl/command.h"

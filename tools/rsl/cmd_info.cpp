@@ -11,10 +11,13 @@
 #include "tools/rsl/unique_meshes.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
-#include "src/core/image.h"
+#include "src/formats/environment_file.h"
+#include "src/formats/gltf_file.h"
+#include "src/formats/image_file.h"
 #include "src/core/memory_limit.h"
 #include "src/core/scene.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
+#include "src/formats/scene_file.h"
 #include "src/render/memory_estimate.h"
 
 namespace rsl::cli {

@@ -20,6 +20,7 @@
 #include "tools/rsl/render_args.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
+#include "src/formats/scene_file.h"
 #include "src/image/image_formation.h"
 #include "src/render/render_setup.h"
 

@@ -18,7 +18,8 @@
 #include "src/core/image.h"
 #include "tools/rsl/progress_display.h"
 #include "src/core/scene.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/scene_environment.h"
+#include "src/formats/scene_file.h"
 #include "src/trace/ground_truth.h"
 #include "src/image/image_formation.h"
 

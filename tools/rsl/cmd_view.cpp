@@ -9,6 +9,7 @@
 #include "src/core/error.h"
 #include "src/core/scene.h"
 #include "tools/viewer/viewer.h"
+#include "src/formats/scene_file.h"
 #include "src/render/render_setup.h"
 
 namespace rsl::cli {

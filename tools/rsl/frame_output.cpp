@@ -8,7 +8,8 @@
 
 #include "demos/demo_support.h"
 #include "src/core/error.h"
-#include "src/core/scene_environment.h"
+#include "src/formats/image_file.h"
+#include "src/formats/scene_environment.h"
 
 namespace rsl::cli {
 

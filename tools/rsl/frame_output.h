@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "src/core/animated_png.h"
-#include "src/core/image.h"
+#include "src/formats/animated_png.h"
+#include "src/formats/image_file.h"
 #include "src/core/scene.h"
 #include "src/image/image_formation.h"
 

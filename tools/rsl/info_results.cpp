@@ -8,8 +8,8 @@
 
 #include "src/lightfit/square_light.h"
 #include "tools/rsl/info.h"
-#include "src/core/json_file.h"
-#include "src/image/vertex_colors.h"
+#include "src/formats/json_file.h"
+#include "src/formats/vertex_colors.h"
 
 namespace rsl::cli {
 

@@ -15,7 +15,8 @@
 
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
-#include "src/core/image.h"
+#include "src/formats/image_file.h"
+#include "src/formats/scene_file.h"
 #include "src/gl/gl.h"
 #include "tools/viewer/skybox.h"
 #include "tools/viewer/viewer_state.h"

@@ -1,0 +1,175 @@
+// glTF materials and base colour textures (gltf_materials.h).
+#include "src/formats/gltf_model.h"  // tinygltf, configured as the loader compiles it
+
+// The one translation unit that compiles stb_image (Debian's libstb-dev
+// header; the tests' PNG reader uses it too), for the two formats glTF 2.0
+// core allows.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#include <stb_image.h>
+#pragma GCC diagnostic pop
+
+#include "src/formats/gltf_materials.h"
+
+#include <array>
+
+#include <fmt/format.h>
+
+#include "src/core/error.h"
+#include "src/formats/file_reading.h"
+
+namespace rsl {
+
+bool decode_gltf_image(tinygltf::Image* image, int image_index, std::string*, std::string*, int, int,
+                       const unsigned char* bytes, int size, void* user_data) {
+    auto* errors = static_cast<GltfImageErrors*>(user_data);
+    int width = 0, height = 0, channels = 0;
+    unsigned char* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
+    if (!pixels) {
+        (*errors)[image_index] = fmt::format("cannot decode it ({}; glTF images are PNG or JPEG)",
+                                             stbi_failure_reason() ? stbi_failure_reason() : "unknown error");
+        return true;  // fatal only if a material uses it
+    }
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
+    stbi_image_free(pixels);
+    return true;
+}
+
+namespace {
+
+TextureWrap wrap_mode(int gl_wrap) {
+    if (gl_wrap == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::ClampToEdge;
+    if (gl_wrap == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::MirroredRepeat;
+    return TextureWrap::Repeat;  // glTF's default, and what an unknown value falls back to
+}
+
+}  // namespace
+
+GltfMaterials::GltfMaterials(const tinygltf::Model& model, const GltfImageErrors& image_errors,
+                             const std::filesystem::path& path)
+    : model_(model), image_errors_(image_errors), path_(path) {}
+
+int GltfMaterials::checked_index(int material) const {
+    if (material < -1 || material >= int(model_.materials.size()))
+        throw_file_error(path_, "material index {} is out of range ({} materials)", material, model_.materials.size());
+    return material;
+}
+
+int GltfMaterials::texcoord_set(int material) const {
+    if (material < 0) return -1;
+    const tinygltf::TextureInfo& info = model_.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture;
+    if (info.index < 0) return -1;
+    if (info.texCoord < 0) throw_file_error(path_, "material '{}': texCoord {} is negative", name(material), info.texCoord);
+    return info.texCoord;
+}
+
+std::string GltfMaterials::name(int material) const {
+    if (material < 0) return "default";
+    const std::string& n = model_.materials[size_t(material)].name;
+    return n.empty() ? fmt::format("material{}", material) : n;
+}
+
+int GltfMaterials::scene_material(int material, Scene& scene, int default_material) {
+    if (material < 0) return default_material;
+    if (auto it = scene_index_.find(material); it != scene_index_.end()) return it->second;
+    MaterialDesc desc = convert(material);
+    // Scene materials are looked up by name (part_materials, live edits): a
+    // glTF name the scene file already uses gets the file's name appended.
+    const auto taken = [&](const std::string& n) {
+        for (const MaterialDesc& m : scene.materials)
+            if (m.name == n) return true;
+        return false;
+    };
+    if (taken(desc.name)) desc.name += " (" + path_.filename().string() + ")";
+    for (int k = 2; taken(desc.name); ++k) desc.name = fmt::format("{} #{}", name(material), k);
+    scene.materials.push_back(std::move(desc));
+    return scene_index_[material] = int(scene.materials.size()) - 1;
+}
+
+MaterialDesc GltfMaterials::convert(int material) {
+    const tinygltf::Material& source = model_.materials[size_t(material)];
+    const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+    const std::string what = fmt::format("material '{}'", name(material));
+    MaterialDesc desc;
+    desc.name = name(material);
+    desc.model = "gltf_pbr";
+    // tinygltf fills glTF's defaults (1, 1, 1) when the file leaves them out.
+    if (pbr.baseColorFactor.size() != 4)
+        throw_file_error(path_, "{}: baseColorFactor has {} values, not 4", what, pbr.baseColorFactor.size());
+    const auto unit = [&](double x, const char* key) {
+        if (!(x >= 0.0 && x <= 1.0)) throw_file_error(path_, "{}: {} must be in [0, 1] (got {})", what, key, x);
+        return float(x);
+    };
+    desc.params["base_color"] = {unit(pbr.baseColorFactor[0], "baseColorFactor"),
+                                 unit(pbr.baseColorFactor[1], "baseColorFactor"),
+                                 unit(pbr.baseColorFactor[2], "baseColorFactor")};
+    desc.params["metallic"] = {unit(pbr.metallicFactor, "metallicFactor")};
+    desc.params["roughness"] = {unit(pbr.roughnessFactor, "roughnessFactor")};
+    if (pbr.baseColorTexture.index >= 0) desc.base_color_texture = texture(pbr.baseColorTexture.index, what);
+
+    if (pbr.metallicRoughnessTexture.index >= 0) ignored_.insert("metallicRoughnessTexture (the factors are used)");
+    if (source.normalTexture.index >= 0) ignored_.insert("normalTexture");
+    if (source.occlusionTexture.index >= 0) ignored_.insert("occlusionTexture");
+    if (source.emissiveTexture.index >= 0 ||
+        (source.emissiveFactor.size() == 3 &&
+         (source.emissiveFactor[0] > 0 || source.emissiveFactor[1] > 0 || source.emissiveFactor[2] > 0)))
+        ignored_.insert("emission");
+    if (source.alphaMode == "BLEND" || source.alphaMode == "MASK") ignored_.insert("alphaMode " + source.alphaMode);
+    for (const auto& [extension, value] : source.extensions) ignored_.insert(extension);
+    return desc;
+}
+
+std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const std::string& what) {
+    if (auto it = textures_.find(texture_index); it != textures_.end()) return it->second;
+    if (size_t(texture_index) >= model_.textures.size())
+        throw_file_error(path_, "{}: baseColorTexture index {} is out of range ({} textures)", what, texture_index,
+                         model_.textures.size());
+    const tinygltf::Texture& source = model_.textures[size_t(texture_index)];
+    if (source.source < 0 || size_t(source.source) >= model_.images.size())
+        throw_file_error(path_, "{}: texture {} has no image in range (source {}, {} images)", what, texture_index,
+                         source.source, model_.images.size());
+    const tinygltf::Image& image = model_.images[size_t(source.source)];
+    const std::string image_name = !image.name.empty() ? echo_value(image.name)
+                                   : !image.uri.empty() && image.uri.substr(0, 5) != "data:"
+                                       ? echo_value(image.uri)
+                                       : fmt::format("image{}", source.source);
+    if (auto e = image_errors_.find(source.source); e != image_errors_.end())
+        throw_file_error(path_, "{}: base colour image '{}': {}", what, image_name, echo_message(e->second));
+    if (image.image.empty() || image.component != 4 || image.width < 1 || image.height < 1)
+        throw_file_error(path_, "{}: base colour image '{}' could not be read (missing file?)", what, image_name);
+
+    auto texture = std::make_shared<Texture>();
+    texture->name = image_name;
+    if (source.sampler >= 0) {
+        if (size_t(source.sampler) >= model_.samplers.size())
+            throw_file_error(path_, "{}: texture {} sampler {} is out of range ({} samplers)", what, texture_index,
+                             source.sampler, model_.samplers.size());
+        texture->wrap_s = wrap_mode(model_.samplers[size_t(source.sampler)].wrapS);
+        texture->wrap_t = wrap_mode(model_.samplers[size_t(source.sampler)].wrapT);
+    }
+    // glTF base colour images are sRGB-encoded; the renderer works in linear RGB.
+    std::array<float, 256> decoded;
+    for (int v = 0; v < 256; ++v) decoded[size_t(v)] = srgb_to_linear(float(v) / 255.0f);
+    texture->image = Image(image.width, image.height, 3);
+    for (size_t p = 0; p < size_t(image.width) * size_t(image.height); ++p)
+        for (int c = 0; c < 3; ++c) texture->image.pixels[3 * p + size_t(c)] = decoded[image.image[4 * p + size_t(c)]];
+    return textures_[texture_index] = std::move(texture);
+}
+
+void GltfMaterials::warn_ignored() const {
+    if (ignored_.empty()) return;
+    std::string list;
+    for (const std::string& what : ignored_) list += (list.empty() ? "" : ", ") + what;
+    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness and baseColorTexture): {}", list);
+}
+
+}  // namespace rsl
