@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <mutex>
+
+#include "src/core/scene_limits.h"
 
 namespace rsl::api {
 
@@ -20,6 +23,12 @@ Transform to_transform(const Pose& pose, const std::string& what) {
     if (!std::isfinite(norm) || norm < 1e-6f)
         throw_error("{} rotation: quaternion ({}, {}, {}, {}) is not a rotation", what, q[0], q[1], q[2], q[3]);
     t.rotation = rotation;  // Transform::matrix() normalizes it, as it does a file's
+    // As a scene file's part: the ray scene cannot invert a scale of 1e20 (det Inf) or 1e-30 (det 0).
+    if (!invertible_transform(t.matrix()))
+        throw_error("{} scale: ({}, {}, {}) makes a singular transform (determinant {}); expected a product of "
+                    "the scales from {} to {}", what, t.scale.x, t.scale.y, t.scale.z,
+                    double(t.scale.x) * t.scale.y * t.scale.z, kMinTransformDeterminant,
+                    std::numeric_limits<float>::max());
     return t;
 }
 
