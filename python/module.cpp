@@ -45,10 +45,13 @@ void bind_files(py::module_& m) {
     m.def(
         "set_memory_limit",
         [](const py::object& limit) {
-            if (py::isinstance<py::str>(limit))
-                api::set_memory_limit(limit.cast<std::string>());
-            else
-                api::set_memory_limit(limit.cast<uint64_t>());
+            if (py::isinstance<py::str>(limit)) return api::set_memory_limit(limit.cast<std::string>());
+            const std::optional<long long> bytes = int_argument(limit);
+            if (!bytes || *bytes < 0)
+                throw Error(fmt::format("set_memory_limit {}: expected a number of bytes (0: none) or a size such as "
+                                        "'8G' or 'none'", py::isinstance<py::int_>(limit) ? std::string(py::str(limit))
+                                                                                          : type_name(limit)));
+            api::set_memory_limit(uint64_t(*bytes));
         },
         py::arg("limit"),
         "Set the memory limit: bytes (0: none) or a size such as '8G' or 'none'; shared with the rsl program's "
@@ -135,8 +138,34 @@ std::string path_argument(const py::object& value, const char* name) {
         const py::object path = value.attr("__fspath__")();
         if (py::isinstance<py::str>(path)) return path.cast<std::string>();
     }
-    throw Error(fmt::format("{}: expected a path (str or os.PathLike), got {}", name,
-                            py::str(py::type::of(value).attr("__name__")).cast<std::string>()));
+    throw Error(fmt::format("{}: expected a path (str or os.PathLike), got {}", name, type_name(value)));
+}
+
+std::string type_name(const py::handle& value) { return py::str(py::type::handle_of(value).attr("__name__")); }
+
+std::optional<long long> int_argument(const py::handle& value) {
+    if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value)) return std::nullopt;
+    int overflow = 0;
+    const long long number = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow != 0) return std::nullopt;
+    return number;
+}
+
+int int_argument(const py::handle& value, const std::string& what, int lo, int hi) {
+    const std::optional<long long> number = int_argument(value);
+    if (number && *number >= lo && *number <= hi) return int(*number);
+    const std::string shown = py::isinstance<py::int_>(value) ? std::string(py::str(value)) : type_name(value);
+    throw Error(fmt::format("{} {}: expected a whole number from {} to {}", what, shown, lo, hi));
+}
+
+std::vector<float> numbers_argument(const py::handle& value, const std::string& what, const char* expected) {
+    try {
+        if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) return {value.cast<float>()};
+        if (!py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value))
+            return value.cast<std::vector<float>>();
+    } catch (const py::cast_error&) {  // an int past a double's range, a list holding a str
+    }
+    throw Error(fmt::format("{}: expected {}, got {}", what, expected, type_name(value)));
 }
 
 py::dict error_dict(const api::VertexError& e, bool with_objects) {

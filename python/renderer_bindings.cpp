@@ -14,8 +14,14 @@
 namespace rsl::python {
 namespace {
 
-int part_index(const std::vector<std::string>& names, const py::object& part) {
-    if (py::isinstance<py::int_>(part)) return part.cast<int>();
+int part_index(const std::vector<std::string>& names, const std::string& scene, const py::object& part) {
+    if (py::isinstance<py::int_>(part) && !py::isinstance<py::bool_>(part)) {
+        const std::optional<long long> index = int_argument(part);
+        if (index && *index >= 0 && *index < static_cast<long long>(names.size())) return int(*index);
+        throw Error(fmt::format("part {}: scene '{}' has {} parts", std::string(py::str(part)), scene, names.size()));
+    }
+    if (!py::isinstance<py::str>(part))
+        throw Error(fmt::format("part: expected an index or a name, got {}", type_name(part)));
     const std::string name = part.cast<std::string>();
     for (size_t p = 0; p < names.size(); ++p)
         if (names[p] == name) return int(p);
@@ -160,7 +166,7 @@ void bind_renderer(py::module_& m) {
                          for (int row = 0; row < 4; ++row) column_major[4 * c + row] = rows[4 * row + c];
                      pose = api::Pose::from_matrix(column_major);
                  }
-                 const int index = part_index(r.part_names, part);
+                 const int index = part_index(r.part_names, r.scene_name, part);
                  r.locked([&](auto& x) { x.set_part_pose(index, pose); });
              },
              py::arg("part"), py::arg("translation") = std::vector<float>{0, 0, 0},
@@ -170,7 +176,7 @@ void bind_renderer(py::module_& m) {
              "or a 4×4 matrix (numpy row-major, M @ [x, y, z, 1])")
         .def("part_transform",
              [](const PyRenderer& r, const py::object& part) {
-                 const int index = part_index(r.part_names, part);
+                 const int index = part_index(r.part_names, r.scene_name, part);
                  const std::array<float, 16> c = r.locked([&](const auto& x) { return x.part_transform(index); });
                  std::vector<float> rows(16);
                  for (int col = 0; col < 4; ++col)
@@ -222,9 +228,7 @@ void bind_renderer(py::module_& m) {
              py::arg("part"), py::arg("material"))
         .def("set_material_parameter",
              [](PyRenderer& r, const std::string& material, const std::string& key, const py::object& value) {
-                 const std::vector<float> values = py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)
-                                                       ? std::vector<float>{value.cast<float>()}
-                                                       : value.cast<std::vector<float>>();
+                 const std::vector<float> values = numbers_argument(value, fmt::format("set_material_parameter '{}'", key));
                  r.locked([&](auto& x) { x.set_material_parameter(material, key, values); });
              },
              py::arg("material"), py::arg("key"), py::arg("value"))

@@ -347,6 +347,30 @@ class ModuleTest(unittest.TestCase):
         with self.assertRaisesRegex(rsl.Error, re.escape("local light 0: radiance power / (4π² radius²)")):
             r.set_sphere_lights(one, np.array([1e-9], dtype=np.float32), np.full((1, 3), 100, dtype=np.float32))
 
+    def test_arguments_pybind_cannot_cast_are_rsl_errors_naming_them(self):
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        for part in (10**12, 2**70, -1):  # pybind's "Unable to cast Python instance to C++ type" for the first two
+            with self.assertRaisesRegex(rsl.Error, re.escape(f"part {part}: scene 'python-test' has 2 parts")):
+                r.set_part_pose(part)
+        with self.assertRaisesRegex(rsl.Error, re.escape("part: expected an index or a name, got float")):
+            r.part_transform(1.5)
+        for value, got in (("red", "str"), (["a", 1, 2], "list"), (10**400, "int"), (None, "NoneType")):
+            with self.assertRaisesRegex(rsl.Error, re.escape(f"set_material_parameter 'albedo': expected a number "
+                                                             f"or 3 numbers, got {got}")):
+                r.set_material_parameter("floor", "albedo", value)
+        for limit, shown in ((-1, "-1"), (2**70, str(2**70)), (1.5, "float")):
+            with self.assertRaisesRegex(rsl.Error, re.escape(f"set_memory_limit {shown}: expected a number of bytes")):
+                rsl.set_memory_limit(limit)
+        with self.assertRaisesRegex(rsl.Error, re.escape("set_precompute svdf_resolution 1000000000000: expected a "
+                                                         "whole number from 0 to 2147483647")):
+            rsl.Scene.load(self.scene_file).set_precompute(svdf_resolution=10**12)
+        # A scale whose determinant is Inf or 0 in float: refused here, not later by the ray scene, unnamed.
+        before = r.part_transform("orb")
+        for scale in ((1e20, 1e20, 1e20), (1e-30, 1, 1)):
+            with self.assertRaisesRegex(rsl.Error, re.escape("part 'orb' pose scale: ") + ".*makes a singular transform"):
+                r.set_part_pose("orb", scale=scale)
+        np.testing.assert_array_equal(r.part_transform("orb"), before)  # unchanged
+
     def test_non_finite_values_are_refused_before_anything_is_formed_or_written(self):
         colors = self.renderer.shade().copy()
         colors[3, 1] = np.nan

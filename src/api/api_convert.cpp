@@ -25,8 +25,8 @@ Transform to_transform(const Pose& pose, const std::string& what) {
     t.rotation = rotation;  // Transform::matrix() normalizes it, as it does a file's
     // As a scene file's part: the ray scene cannot invert a scale of 1e20 (det Inf) or 1e-30 (det 0).
     if (!invertible_transform(t.matrix()))
-        throw_error("{} scale: ({}, {}, {}) makes a singular transform (determinant {}); expected a product of "
-                    "the scales from {} to {}", what, t.scale.x, t.scale.y, t.scale.z,
+        throw_error("{} scale: ({:g}, {:g}, {:g}) makes a singular transform (determinant {:g}); expected a product of "
+                    "the scales from {:g} to {:g}", what, t.scale.x, t.scale.y, t.scale.z,
                     double(t.scale.x) * t.scale.y * t.scale.z, kMinTransformDeterminant,
                     std::numeric_limits<float>::max());
     return t;
