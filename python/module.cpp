@@ -111,13 +111,15 @@ void bind_files(py::module_& m) {
         "`rsl compare` of two RGBA images ((H, W, 4)): over the pixels the reference covers");
     m.def("read_image", [](const std::string& path) { return image_to_numpy(api::read_image(path)); },
           py::arg("path"), "An .exr as an (H, W, 4) float32 array (row 0 at the top)");
-    m.def("write_image", [](const std::string& path, const FloatArray& image, float exposure) {
+    m.def("write_image",
+          [](const std::string& path, const FloatArray& image, float exposure, const std::vector<std::string>& inputs) {
               api::Image converted = image_from_numpy(image, "image");
               check_finite(image, path, "image", true);
-              api::write_image(path, std::move(converted), exposure);
+              api::write_image(path, std::move(converted), exposure, inputs);
           },
-          py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
-          "Writes an (H, W, 4) image as .exr and a tone-mapped .png beside it (exposure in stops, 0: automatic)");
+          py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f, py::arg("inputs") = std::vector<std::string>{},
+          "Writes an (H, W, 4) image as .exr and a tone-mapped .png beside it (exposure in stops, 0: automatic); "
+          "a path that is one of `inputs` (a scene's or renderer's input_files) is refused");
     m.def(
         "read_vertex_colors",
         [](const std::string& path) {

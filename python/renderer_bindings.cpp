@@ -141,6 +141,9 @@ void bind_renderer(py::module_& m) {
         .def_property_readonly("device",
                                [](const PyRenderer& r) { return r.locked([](const auto& x) { return x.device(); }); })
         .def_property_readonly("part_names", [](const PyRenderer& r) { return r.part_names; })
+        .def_property_readonly("input_files",
+                               [](const PyRenderer& r) { return r.locked([](const auto& x) { return x.input_files(); }); },
+                               "The files its scene was read from, which no write may replace")
         .def_property_readonly("part_offsets", [](const PyRenderer& r) { return r.part_offsets; },
                                "Part p is rows part_offsets[p]:part_offsets[p + 1] of the colour arrays")
         .def_property_readonly("setup",
@@ -279,11 +282,12 @@ void bind_renderer(py::module_& m) {
                  c.scene_name = r.scene_name;
                  r.locked([&](const auto& x) {
                      c.time = x.time();
-                     api::write_vertex_colors(path, c);
+                     api::write_vertex_colors(path, c, x.input_files());
                  });
              },
              py::arg("path"), py::arg("colors"), py::arg("producer") = "python",
-             "Writes (N, 3) colours of this scene as an .rslv file (for rsl compare)");
+             "Writes (N, 3) colours of this scene as an .rslv file (for rsl compare); a path that is one of its "
+             "scene's input_files is refused");
 }
 
 }  // namespace rsl::python

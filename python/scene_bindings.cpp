@@ -125,6 +125,8 @@ void bind_scene(py::module_& m) {
         .def_property_readonly("precompute", [](const api::Scene& s) { return precompute_dict(s.precompute()); })
         .def_property_readonly("name", &api::Scene::name)
         .def_property_readonly("part_names", &api::Scene::part_names)
+        .def_property_readonly("input_files", &api::Scene::input_files,
+                               "The files it was read from (scene file, meshes, maps), which no write may replace")
         .def_property_readonly("material_names", &api::Scene::material_names)
         .def_property_readonly("part_vertex_counts", &api::Scene::part_vertex_counts)
         .def_property_readonly("vertex_count", &api::Scene::vertex_count)

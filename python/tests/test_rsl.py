@@ -371,6 +371,34 @@ class ModuleTest(unittest.TestCase):
                 r.set_part_pose("orb", scale=scale)
         np.testing.assert_array_equal(r.part_transform("orb"), before)  # unchanged
 
+    def test_writes_never_replace_the_scenes_inputs(self):
+        folder = tempfile.mkdtemp(prefix="rsl_py_inputs_")
+        self.addCleanup(shutil.rmtree, folder, ignore_errors=True)
+        scene_file = write_scene(folder, "scene.json")
+        mesh = os.path.join(folder, "floor.obj")
+        with open(mesh, "rb") as f:
+            before = f.read()
+        r = rsl.Renderer(rsl.Scene.load(scene_file), lights=4)
+        self.assertIn(os.path.realpath(mesh), [os.path.realpath(p) for p in r.input_files])
+        # By another spelling of the same file: the check compares files, not strings.
+        spelled = os.path.join(folder, ".", "floor.obj")
+        with self.assertRaisesRegex(rsl.Error, re.escape(spelled + ": this output is the input ") + ".*floor.obj"):
+            r.write_vertex_colors(spelled, r.shade())
+        with open(mesh, "rb") as f:
+            self.assertEqual(f.read(), before)  # was replaced by the colours
+        # The free function knows a scene's inputs only when given them.
+        environment = os.path.join(folder, "sky.exr")
+        shutil.copy(SUNSKY, environment)
+        with open(environment, "rb") as f:
+            sky = f.read()
+        built = rsl.Scene("built")
+        built.set_environment(environment, 8)
+        with self.assertRaisesRegex(rsl.Error, re.escape(environment + ": this output is the input " + environment)):
+            rsl.write_image(environment, np.ones((2, 3, 4), dtype=np.float32), inputs=built.input_files)
+        with open(environment, "rb") as f:
+            self.assertEqual(f.read(), sky)
+        self.assertFalse(os.path.exists(os.path.join(folder, "sky.png")))
+
     def test_non_finite_values_are_refused_before_anything_is_formed_or_written(self):
         colors = self.renderer.shade().copy()
         colors[3, 1] = np.nan

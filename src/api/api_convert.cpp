@@ -10,6 +10,14 @@
 
 namespace rsl::api {
 
+std::vector<std::string> input_files(const ::rsl::Scene& scene) {
+    std::vector<std::string> files;
+    for (const std::filesystem::path& file : scene.input_files) files.push_back(file.string());
+    for (const std::filesystem::path& map : {scene.environment.file, scene.environment.second_file})
+        if (!map.empty()) files.push_back(map.string());
+    return files;
+}
+
 Transform to_transform(const Pose& pose, const std::string& what) {
     Transform t;
     t.translation = finite_vec3(pose.translation, what + " translation");

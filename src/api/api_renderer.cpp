@@ -77,6 +77,8 @@ std::vector<std::string> Renderer::part_names() const {
     return names;
 }
 
+std::vector<std::string> Renderer::input_files() const { return ::rsl::api::input_files(state_->scene()); }
+
 std::array<float, 16> Renderer::part_transform(int part) const {
     state_->check_part(part);
     const Mat4 m = state_->scene().part_transform_at(part, state_->time);
