@@ -1,5 +1,6 @@
 #include "src/core/memory_limit.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -97,12 +98,16 @@ std::string memory_size_text(uint64_t bytes) {
     return fmt::format("{} bytes", bytes);
 }
 
+uint64_t image_memory_bytes(int width, int height) {
+    return kImageBytesPerPixel * uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0));
+}
+
 void check_memory_estimate(uint64_t estimate_bytes, const std::filesystem::path& file, const std::string& what) {
     const uint64_t limit = memory_limit();
     if (limit == 0 || estimate_bytes <= limit) return;
     throw_file_error(file,
                      "needs about {} of memory ({}), over rsl's limit of {}: make the scene smaller (fewer parts "
-                     "or vertices, a coarser subdivision or fields), or raise the limit with --memory-limit or "
+                     "or vertices, a coarser subdivision or fields, a smaller image), or raise the limit with --memory-limit or "
                      "RSL_MEMORY_LIMIT (docs/SCENE_FORMAT.md, \"Memory\")",
                      memory_size_text(estimate_bytes), what, memory_size_text(limit));
 }

@@ -210,6 +210,7 @@ void run_render(const RenderArgs& args) {
     ProgressDisplay display(!args.quiet);
     SetupOptions how;
     how.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
+    how.image_width = args.width.value_or(0), how.image_height = args.height.value_or(0);
     // Every backend shades the same per-vertex sum and forms the same image.
     RenderSession session(scene, options, backend, how);
     const RenderSetup& setup = session.setup();
