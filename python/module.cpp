@@ -8,6 +8,7 @@
 
 #include "python/bindings.h"
 #include "python/numpy_convert.h"
+#include "src/core/memory_limit.h"  // set_memory_limit_setter: the one call past the public API
 
 namespace rsl::python {
 namespace {
@@ -193,6 +194,7 @@ PYBIND11_MODULE(rsl, m) {
     py::register_exception<rsl::Error>(m, "Error", PyExc_RuntimeError);
     py::register_exception<rsl::InternalError>(m, "InternalError", PyExc_RuntimeError);
     m.attr("__version__") = RSL_VERSION_STRING;
+    rsl::set_memory_limit_setter("rsl.set_memory_limit");  // the refusal's way out (src/core/memory_limit.h)
     bind_files(m);
     bind_scene(m);
     bind_renderer(m);

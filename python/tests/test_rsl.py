@@ -399,6 +399,23 @@ class ModuleTest(unittest.TestCase):
             self.assertEqual(f.read(), sky)
         self.assertFalse(os.path.exists(os.path.join(folder, "sky.png")))
 
+    def test_the_memory_refusal_names_pythons_way_out(self):
+        limit = rsl.memory_limit()
+        self.addCleanup(rsl.set_memory_limit, limit)
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        rsl.set_memory_limit("100M")
+        # 16384² pixels at 32 bytes: 8.6 GB, refused before the image is allocated.
+        with self.assertRaisesRegex(rsl.Error, re.escape("16384×16384 image), over rsl's limit of 105 MB") +
+                                    ".*raise the limit with rsl.set_memory_limit or RSL_MEMORY_LIMIT"):
+            r.render_image(width=16384, height=16384)
+        rsl.set_memory_limit("20M")  # below even the scene's own estimate
+        with self.assertRaisesRegex(rsl.Error, re.escape(self.scene_file + ": needs about ") +
+                                    ".*raise the limit with rsl.set_memory_limit or RSL_MEMORY_LIMIT"):
+            rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        with self.assertRaises(rsl.Error) as refused:
+            rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        self.assertNotIn("--memory-limit", str(refused.exception))  # the program's flag, not Python's
+
     def test_non_finite_values_are_refused_before_anything_is_formed_or_written(self):
         colors = self.renderer.shade().copy()
         colors[3, 1] = np.nan

@@ -29,6 +29,12 @@ std::string memory_size_text(uint64_t bytes);
 inline constexpr uint64_t kImageBytesPerPixel = 32;
 uint64_t image_memory_bytes(int width, int height);
 
+// How the caller sets the limit, named in the refusal's way out: the C++
+// API's "rsl::api::set_memory_limit" unless the front end says otherwise
+// when it starts (the program: "--memory-limit"; Python:
+// "rsl.set_memory_limit"). `name` must outlive every refusal: a literal.
+void set_memory_limit_setter(const char* name);
+
 // Throws rsl::Error naming `file` when `estimate_bytes` passes the limit;
 // `what` says what needs the memory ("2,890,000 vertices in 10,000 parts").
 void check_memory_estimate(uint64_t estimate_bytes, const std::filesystem::path& file, const std::string& what);
