@@ -264,7 +264,7 @@ RegisterCommand render_command({"render",
                        "tone-mapped image alone)")->required();
         app.add_option("--background", args->background,
                        "What shows where no part covers a pixel: environment (the scene's environment map), or a "
-                       "colour R,G,B (default: black, alpha 0)");
+                       "colour R,G,B, each 0 to 1e15 (default: black, alpha 0)");
         app.add_option("--animation", args->animation,
                        "With --frames: also join the frames into FILE.png (an animated PNG, playing at the frames' "
                        "spacing in scene time) or FILE.mp4 (needs ffmpeg)")->needs(frames);
