@@ -66,8 +66,9 @@ TEST_CASE("an output that is an input is refused before any work, the input kept
     const fs::path env = dir / "env.exr", box = dir / "box.obj";
     const std::vector<fs::path> inputs = {scene, env, box, dir / "ground.obj"};
     require_refused("fit " + env.string() + " -k 2 -n 4 -o " + env.string(), env, env, inputs);
+    fs::create_symlink(env, dir / "env_link.png");  // a preview must end in .png: the map by a link
     require_refused("fit " + env.string() + " -k 2 -n 4 -o " + (dir / "l.json").string() + " --preview " +
-                        env.string(), env, env, inputs);
+                        (dir / "env_link.png").string(), dir / "env_link.png", env, inputs);
     require_refused("render " + scene.string() + " -q -k 2 -o " + env.string(), env, env, inputs);
     require_refused("render " + scene.string() + " -q -k 2 -o " + (dir / "out.exr").string() + " --vertex-out " +
                         scene.string(), scene, scene, inputs);
