@@ -1,5 +1,6 @@
 #pragma once
 // The module's classes, one file each (module.cpp calls them in order).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,18 @@ api::Pose pose_from(const std::vector<float>& translation, const std::vector<flo
 // A file or folder argument: a str or an os.PathLike. Anything else (123)
 // is refused, where str() would have made it a folder named "123".
 std::string path_argument(const py::object& value, const char* name);
+
+// Arguments that pybind's own casts refuse with "Unable to cast Python
+// instance to C++ type" (10**12 for an int, "red" for a float), read here so
+// that the error is an rsl.Error naming the argument and what it got.
+std::string type_name(const py::handle& value);
+// An int (not a bool) that fits in 64 bits; nullopt otherwise.
+std::optional<long long> int_argument(const py::handle& value);
+// An int within [lo, hi], else rsl.Error "WHAT VALUE: expected a whole number from LO to HI".
+int int_argument(const py::handle& value, const std::string& what, int lo, int hi);
+// A number or a sequence of numbers, else rsl.Error "WHAT: expected EXPECTED, got TYPE".
+std::vector<float> numbers_argument(const py::handle& value, const std::string& what,
+                                    const char* expected = "a number or 3 numbers");
 
 // compare()'s numbers as a dict, per part under "parts"; with_objects (the
 // colours carry the scene's parts: a renderer's compare) adds "objects" and

@@ -8,6 +8,7 @@
 
 #include "python/bindings.h"
 #include "python/numpy_convert.h"
+#include "src/core/memory_limit.h"  // set_memory_limit_setter: the one call past the public API
 
 namespace rsl::python {
 namespace {
@@ -45,10 +46,13 @@ void bind_files(py::module_& m) {
     m.def(
         "set_memory_limit",
         [](const py::object& limit) {
-            if (py::isinstance<py::str>(limit))
-                api::set_memory_limit(limit.cast<std::string>());
-            else
-                api::set_memory_limit(limit.cast<uint64_t>());
+            if (py::isinstance<py::str>(limit)) return api::set_memory_limit(limit.cast<std::string>());
+            const std::optional<long long> bytes = int_argument(limit);
+            if (!bytes || *bytes < 0)
+                throw Error(fmt::format("set_memory_limit {}: expected a number of bytes (0: none) or a size such as "
+                                        "'8G' or 'none'", py::isinstance<py::int_>(limit) ? std::string(py::str(limit))
+                                                                                          : type_name(limit)));
+            api::set_memory_limit(uint64_t(*bytes));
         },
         py::arg("limit"),
         "Set the memory limit: bytes (0: none) or a size such as '8G' or 'none'; shared with the rsl program's "
@@ -108,13 +112,15 @@ void bind_files(py::module_& m) {
         "`rsl compare` of two RGBA images ((H, W, 4)): over the pixels the reference covers");
     m.def("read_image", [](const std::string& path) { return image_to_numpy(api::read_image(path)); },
           py::arg("path"), "An .exr as an (H, W, 4) float32 array (row 0 at the top)");
-    m.def("write_image", [](const std::string& path, const FloatArray& image, float exposure) {
+    m.def("write_image",
+          [](const std::string& path, const FloatArray& image, float exposure, const std::vector<std::string>& inputs) {
               api::Image converted = image_from_numpy(image, "image");
               check_finite(image, path, "image", true);
-              api::write_image(path, std::move(converted), exposure);
+              api::write_image(path, std::move(converted), exposure, inputs);
           },
-          py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
-          "Writes an (H, W, 4) image as .exr and a tone-mapped .png beside it (exposure in stops, 0: automatic)");
+          py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f, py::arg("inputs") = std::vector<std::string>{},
+          "Writes an (H, W, 4) image as .exr and a tone-mapped .png beside it (exposure in stops, 0: automatic); "
+          "a path that is one of `inputs` (a scene's or renderer's input_files) is refused");
     m.def(
         "read_vertex_colors",
         [](const std::string& path) {
@@ -135,8 +141,34 @@ std::string path_argument(const py::object& value, const char* name) {
         const py::object path = value.attr("__fspath__")();
         if (py::isinstance<py::str>(path)) return path.cast<std::string>();
     }
-    throw Error(fmt::format("{}: expected a path (str or os.PathLike), got {}", name,
-                            py::str(py::type::of(value).attr("__name__")).cast<std::string>()));
+    throw Error(fmt::format("{}: expected a path (str or os.PathLike), got {}", name, type_name(value)));
+}
+
+std::string type_name(const py::handle& value) { return py::str(py::type::handle_of(value).attr("__name__")); }
+
+std::optional<long long> int_argument(const py::handle& value) {
+    if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value)) return std::nullopt;
+    int overflow = 0;
+    const long long number = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow != 0) return std::nullopt;
+    return number;
+}
+
+int int_argument(const py::handle& value, const std::string& what, int lo, int hi) {
+    const std::optional<long long> number = int_argument(value);
+    if (number && *number >= lo && *number <= hi) return int(*number);
+    const std::string shown = py::isinstance<py::int_>(value) ? std::string(py::str(value)) : type_name(value);
+    throw Error(fmt::format("{} {}: expected a whole number from {} to {}", what, shown, lo, hi));
+}
+
+std::vector<float> numbers_argument(const py::handle& value, const std::string& what, const char* expected) {
+    try {
+        if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) return {value.cast<float>()};
+        if (!py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value))
+            return value.cast<std::vector<float>>();
+    } catch (const py::cast_error&) {  // an int past a double's range, a list holding a str
+    }
+    throw Error(fmt::format("{}: expected {}, got {}", what, expected, type_name(value)));
 }
 
 py::dict error_dict(const api::VertexError& e, bool with_objects) {
@@ -162,6 +194,7 @@ PYBIND11_MODULE(rsl, m) {
     py::register_exception<rsl::Error>(m, "Error", PyExc_RuntimeError);
     py::register_exception<rsl::InternalError>(m, "InternalError", PyExc_RuntimeError);
     m.attr("__version__") = RSL_VERSION_STRING;
+    rsl::set_memory_limit_setter("rsl.set_memory_limit");  // the refusal's way out (src/core/memory_limit.h)
     bind_files(m);
     bind_scene(m);
     bind_renderer(m);

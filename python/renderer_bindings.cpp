@@ -14,8 +14,14 @@
 namespace rsl::python {
 namespace {
 
-int part_index(const std::vector<std::string>& names, const py::object& part) {
-    if (py::isinstance<py::int_>(part)) return part.cast<int>();
+int part_index(const std::vector<std::string>& names, const std::string& scene, const py::object& part) {
+    if (py::isinstance<py::int_>(part) && !py::isinstance<py::bool_>(part)) {
+        const std::optional<long long> index = int_argument(part);
+        if (index && *index >= 0 && *index < static_cast<long long>(names.size())) return int(*index);
+        throw Error(fmt::format("part {}: scene '{}' has {} parts", std::string(py::str(part)), scene, names.size()));
+    }
+    if (!py::isinstance<py::str>(part))
+        throw Error(fmt::format("part: expected an index or a name, got {}", type_name(part)));
     const std::string name = part.cast<std::string>();
     for (size_t p = 0; p < names.size(); ++p)
         if (names[p] == name) return int(p);
@@ -135,6 +141,9 @@ void bind_renderer(py::module_& m) {
         .def_property_readonly("device",
                                [](const PyRenderer& r) { return r.locked([](const auto& x) { return x.device(); }); })
         .def_property_readonly("part_names", [](const PyRenderer& r) { return r.part_names; })
+        .def_property_readonly("input_files",
+                               [](const PyRenderer& r) { return r.locked([](const auto& x) { return x.input_files(); }); },
+                               "The files its scene was read from, which no write may replace")
         .def_property_readonly("part_offsets", [](const PyRenderer& r) { return r.part_offsets; },
                                "Part p is rows part_offsets[p]:part_offsets[p + 1] of the colour arrays")
         .def_property_readonly("setup",
@@ -160,7 +169,7 @@ void bind_renderer(py::module_& m) {
                          for (int row = 0; row < 4; ++row) column_major[4 * c + row] = rows[4 * row + c];
                      pose = api::Pose::from_matrix(column_major);
                  }
-                 const int index = part_index(r.part_names, part);
+                 const int index = part_index(r.part_names, r.scene_name, part);
                  r.locked([&](auto& x) { x.set_part_pose(index, pose); });
              },
              py::arg("part"), py::arg("translation") = std::vector<float>{0, 0, 0},
@@ -170,7 +179,7 @@ void bind_renderer(py::module_& m) {
              "or a 4×4 matrix (numpy row-major, M @ [x, y, z, 1])")
         .def("part_transform",
              [](const PyRenderer& r, const py::object& part) {
-                 const int index = part_index(r.part_names, part);
+                 const int index = part_index(r.part_names, r.scene_name, part);
                  const std::array<float, 16> c = r.locked([&](const auto& x) { return x.part_transform(index); });
                  std::vector<float> rows(16);
                  for (int col = 0; col < 4; ++col)
@@ -222,9 +231,7 @@ void bind_renderer(py::module_& m) {
              py::arg("part"), py::arg("material"))
         .def("set_material_parameter",
              [](PyRenderer& r, const std::string& material, const std::string& key, const py::object& value) {
-                 const std::vector<float> values = py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)
-                                                       ? std::vector<float>{value.cast<float>()}
-                                                       : value.cast<std::vector<float>>();
+                 const std::vector<float> values = numbers_argument(value, fmt::format("set_material_parameter '{}'", key));
                  r.locked([&](auto& x) { x.set_material_parameter(material, key, values); });
              },
              py::arg("material"), py::arg("key"), py::arg("value"))
@@ -275,11 +282,12 @@ void bind_renderer(py::module_& m) {
                  c.scene_name = r.scene_name;
                  r.locked([&](const auto& x) {
                      c.time = x.time();
-                     api::write_vertex_colors(path, c);
+                     api::write_vertex_colors(path, c, x.input_files());
                  });
              },
              py::arg("path"), py::arg("colors"), py::arg("producer") = "python",
-             "Writes (N, 3) colours of this scene as an .rslv file (for rsl compare)");
+             "Writes (N, 3) colours of this scene as an .rslv file (for rsl compare); a path that is one of its "
+             "scene's input_files is refused");
 }
 
 }  // namespace rsl::python

@@ -1,4 +1,6 @@
 // rsl.Scene: load a scene file, or build one from numpy meshes.
+#include <limits>
+
 #include <pybind11/stl.h>
 
 #include <fmt/format.h>
@@ -22,10 +24,7 @@ std::map<std::string, std::vector<float>> parameters_from(const py::kwargs& kwar
     std::map<std::string, std::vector<float>> parameters;
     for (const auto& [key, value] : kwargs) {
         const std::string name = py::str(key);
-        if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))
-            parameters[name] = {value.cast<float>()};
-        else
-            parameters[name] = value.cast<std::vector<float>>();
+        parameters[name] = numbers_argument(value, fmt::format("material parameter '{}'", name));
     }
     return parameters;
 }
@@ -33,16 +32,23 @@ std::map<std::string, std::vector<float>> parameters_from(const py::kwargs& kwar
 api::Precompute precompute_from(const py::kwargs& kwargs, api::Precompute p) {
     for (const auto& [key, value] : kwargs) {
         const std::string name = py::str(key);
-        if (name == "svdf_resolution") p.svdf_resolution = value.cast<int>();
-        else if (name == "svdf_clusters") p.svdf_clusters = value.cast<int>();
-        else if (name == "svdf_vectors") p.svdf_vectors = value.cast<int>();
-        else if (name == "svdf_supersampling") p.svdf_supersampling = value.cast<int>();
-        else if (name == "ovdf_shells") p.ovdf_shells = value.cast<int>();
-        else if (name == "ovdf_inner_radius") p.ovdf_inner_radius = value.cast<float>();
-        else if (name == "ovdf_outer_radius") p.ovdf_outer_radius = value.cast<float>();
-        else if (name == "ovdf_cube_resolution") p.ovdf_cube_resolution = value.cast<int>();
-        else if (name == "ovdf_vdt_resolution") p.ovdf_vdt_resolution = value.cast<int>();
-        else if (name == "ovdf_vectors") p.ovdf_vectors = value.cast<int>();
+        const std::string what = "set_precompute " + name;
+        const auto setting = [&] { return int_argument(value, what, 0, std::numeric_limits<int>::max()); };
+        const auto radius = [&] {
+            const std::vector<float> r = numbers_argument(value, what, "a number");
+            if (r.size() != 1) throw Error(fmt::format("{}: expected a number, got {} numbers", what, r.size()));
+            return r[0];
+        };
+        if (name == "svdf_resolution") p.svdf_resolution = setting();
+        else if (name == "svdf_clusters") p.svdf_clusters = setting();
+        else if (name == "svdf_vectors") p.svdf_vectors = setting();
+        else if (name == "svdf_supersampling") p.svdf_supersampling = setting();
+        else if (name == "ovdf_shells") p.ovdf_shells = setting();
+        else if (name == "ovdf_inner_radius") p.ovdf_inner_radius = radius();
+        else if (name == "ovdf_outer_radius") p.ovdf_outer_radius = radius();
+        else if (name == "ovdf_cube_resolution") p.ovdf_cube_resolution = setting();
+        else if (name == "ovdf_vdt_resolution") p.ovdf_vdt_resolution = setting();
+        else if (name == "ovdf_vectors") p.ovdf_vectors = setting();
         else throw Error(fmt::format("set_precompute: unknown setting '{}'", name));
     }
     return p;
@@ -119,6 +125,8 @@ void bind_scene(py::module_& m) {
         .def_property_readonly("precompute", [](const api::Scene& s) { return precompute_dict(s.precompute()); })
         .def_property_readonly("name", &api::Scene::name)
         .def_property_readonly("part_names", &api::Scene::part_names)
+        .def_property_readonly("input_files", &api::Scene::input_files,
+                               "The files it was read from (scene file, meshes, maps), which no write may replace")
         .def_property_readonly("material_names", &api::Scene::material_names)
         .def_property_readonly("part_vertex_counts", &api::Scene::part_vertex_counts)
         .def_property_readonly("vertex_count", &api::Scene::vertex_count)

@@ -144,6 +144,9 @@ public:
     Precompute precompute() const;
     std::string environment_file() const;
     int environment_resolution() const;
+    // Every file the scene was read from (its file, meshes, maps, textures):
+    // the files a write must not replace (write_image, write_vertex_colors).
+    std::vector<std::string> input_files() const;
 
     // The library's scene, for rsl's own code (src/api).
     const rsl::Scene& internal() const { return *scene_; }
@@ -245,6 +248,7 @@ public:
     std::string device() const;   // where it runs ("GPU: EGL surfaceless: OpenGL 4.5 …")
     SetupReport setup() const;
     std::vector<std::string> part_names() const;
+    std::vector<std::string> input_files() const;  // its scene's (Scene::input_files)
     // The part's world transform at the current frame (column-major 4×4),
     // to draw Scene::part_mesh with.
     std::array<float, 16> part_transform(int part) const;
@@ -344,9 +348,13 @@ ImageError compare(const Image& result, const Image& reference);
 
 // Files, as the program writes them: `.exr` (and a tone-mapped `.png` beside
 // it; exposure in stops, 0: automatic as `rsl render`), `.rslv` vertex colours.
-void write_image(const std::string& exr_path, const Image& image, float exposure = 0);
+// `inputs` (a scene's input_files()): a path that is one of them (by any
+// spelling or link) is refused with rsl::Error naming both, nothing written.
+void write_image(const std::string& exr_path, const Image& image, float exposure = 0,
+                 const std::vector<std::string>& inputs = {});
 Image read_image(const std::string& exr_path);
-void write_vertex_colors(const std::string& rslv_path, const VertexColors& colors);
+void write_vertex_colors(const std::string& rslv_path, const VertexColors& colors,
+                         const std::vector<std::string>& inputs = {});
 VertexColors read_vertex_colors(const std::string& rslv_path);
 
 // The memory limit that loading and rendering a scene check their estimate

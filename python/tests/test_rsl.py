@@ -347,6 +347,75 @@ class ModuleTest(unittest.TestCase):
         with self.assertRaisesRegex(rsl.Error, re.escape("local light 0: radiance power / (4π² radius²)")):
             r.set_sphere_lights(one, np.array([1e-9], dtype=np.float32), np.full((1, 3), 100, dtype=np.float32))
 
+    def test_arguments_pybind_cannot_cast_are_rsl_errors_naming_them(self):
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        for part in (10**12, 2**70, -1):  # pybind's "Unable to cast Python instance to C++ type" for the first two
+            with self.assertRaisesRegex(rsl.Error, re.escape(f"part {part}: scene 'python-test' has 2 parts")):
+                r.set_part_pose(part)
+        with self.assertRaisesRegex(rsl.Error, re.escape("part: expected an index or a name, got float")):
+            r.part_transform(1.5)
+        for value, got in (("red", "str"), (["a", 1, 2], "list"), (10**400, "int"), (None, "NoneType")):
+            with self.assertRaisesRegex(rsl.Error, re.escape(f"set_material_parameter 'albedo': expected a number "
+                                                             f"or 3 numbers, got {got}")):
+                r.set_material_parameter("floor", "albedo", value)
+        for limit, shown in ((-1, "-1"), (2**70, str(2**70)), (1.5, "float")):
+            with self.assertRaisesRegex(rsl.Error, re.escape(f"set_memory_limit {shown}: expected a number of bytes")):
+                rsl.set_memory_limit(limit)
+        with self.assertRaisesRegex(rsl.Error, re.escape("set_precompute svdf_resolution 1000000000000: expected a "
+                                                         "whole number from 0 to 2147483647")):
+            rsl.Scene.load(self.scene_file).set_precompute(svdf_resolution=10**12)
+        # A scale whose determinant is Inf or 0 in float: refused here, not later by the ray scene, unnamed.
+        before = r.part_transform("orb")
+        for scale in ((1e20, 1e20, 1e20), (1e-30, 1, 1)):
+            with self.assertRaisesRegex(rsl.Error, re.escape("part 'orb' pose scale: ") + ".*makes a singular transform"):
+                r.set_part_pose("orb", scale=scale)
+        np.testing.assert_array_equal(r.part_transform("orb"), before)  # unchanged
+
+    def test_writes_never_replace_the_scenes_inputs(self):
+        folder = tempfile.mkdtemp(prefix="rsl_py_inputs_")
+        self.addCleanup(shutil.rmtree, folder, ignore_errors=True)
+        scene_file = write_scene(folder, "scene.json")
+        mesh = os.path.join(folder, "floor.obj")
+        with open(mesh, "rb") as f:
+            before = f.read()
+        r = rsl.Renderer(rsl.Scene.load(scene_file), lights=4)
+        self.assertIn(os.path.realpath(mesh), [os.path.realpath(p) for p in r.input_files])
+        # By another spelling of the same file: the check compares files, not strings.
+        spelled = os.path.join(folder, ".", "floor.obj")
+        with self.assertRaisesRegex(rsl.Error, re.escape(spelled + ": this output is the input ") + ".*floor.obj"):
+            r.write_vertex_colors(spelled, r.shade())
+        with open(mesh, "rb") as f:
+            self.assertEqual(f.read(), before)  # was replaced by the colours
+        # The free function knows a scene's inputs only when given them.
+        environment = os.path.join(folder, "sky.exr")
+        shutil.copy(SUNSKY, environment)
+        with open(environment, "rb") as f:
+            sky = f.read()
+        built = rsl.Scene("built")
+        built.set_environment(environment, 8)
+        with self.assertRaisesRegex(rsl.Error, re.escape(environment + ": this output is the input " + environment)):
+            rsl.write_image(environment, np.ones((2, 3, 4), dtype=np.float32), inputs=built.input_files)
+        with open(environment, "rb") as f:
+            self.assertEqual(f.read(), sky)
+        self.assertFalse(os.path.exists(os.path.join(folder, "sky.png")))
+
+    def test_the_memory_refusal_names_pythons_way_out(self):
+        limit = rsl.memory_limit()
+        self.addCleanup(rsl.set_memory_limit, limit)
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        rsl.set_memory_limit("100M")
+        # 16384² pixels at 32 bytes: 8.6 GB, refused before the image is allocated.
+        with self.assertRaisesRegex(rsl.Error, re.escape("16384×16384 image), over rsl's limit of 105 MB") +
+                                    ".*raise the limit with rsl.set_memory_limit or RSL_MEMORY_LIMIT"):
+            r.render_image(width=16384, height=16384)
+        rsl.set_memory_limit("20M")  # below even the scene's own estimate
+        with self.assertRaisesRegex(rsl.Error, re.escape(self.scene_file + ": needs about ") +
+                                    ".*raise the limit with rsl.set_memory_limit or RSL_MEMORY_LIMIT"):
+            rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        with self.assertRaises(rsl.Error) as refused:
+            rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        self.assertNotIn("--memory-limit", str(refused.exception))  # the program's flag, not Python's
+
     def test_non_finite_values_are_refused_before_anything_is_formed_or_written(self):
         colors = self.renderer.shade().copy()
         colors[3, 1] = np.nan

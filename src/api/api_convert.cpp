@@ -2,10 +2,21 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <mutex>
 
+#include "src/core/scene_limits.h"
+
 namespace rsl::api {
+
+std::vector<std::string> input_files(const ::rsl::Scene& scene) {
+    std::vector<std::string> files;
+    for (const std::filesystem::path& file : scene.input_files) files.push_back(file.string());
+    for (const std::filesystem::path& map : {scene.environment.file, scene.environment.second_file})
+        if (!map.empty()) files.push_back(map.string());
+    return files;
+}
 
 Transform to_transform(const Pose& pose, const std::string& what) {
     Transform t;
@@ -20,6 +31,12 @@ Transform to_transform(const Pose& pose, const std::string& what) {
     if (!std::isfinite(norm) || norm < 1e-6f)
         throw_error("{} rotation: quaternion ({}, {}, {}, {}) is not a rotation", what, q[0], q[1], q[2], q[3]);
     t.rotation = rotation;  // Transform::matrix() normalizes it, as it does a file's
+    // As a scene file's part: the ray scene cannot invert a scale of 1e20 (det Inf) or 1e-30 (det 0).
+    if (!invertible_transform(t.matrix()))
+        throw_error("{} scale: ({:g}, {:g}, {:g}) makes a singular transform (determinant {:g}); expected a product of "
+                    "the scales from {:g} to {:g}", what, t.scale.x, t.scale.y, t.scale.z,
+                    double(t.scale.x) * t.scale.y * t.scale.z, kMinTransformDeterminant,
+                    std::numeric_limits<float>::max());
     return t;
 }
 

@@ -37,6 +37,10 @@ VertexColors to_api(const ::rsl::VertexColors& colors);
 Image to_api(const ::rsl::Image& image);
 ::rsl::Image to_internal(const Image& image, const std::string& what);
 
+// Scene::input_files(): the files it was read from, and the environment
+// maps a scene built in code names.
+std::vector<std::string> input_files(const ::rsl::Scene& scene);
+
 // A callback that passes at most ~10 calls a second per step (and every end,
 // fraction 1) on to `progress`, one call at a time; empty when it is.
 Progress throttled(Progress progress);

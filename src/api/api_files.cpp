@@ -15,6 +15,7 @@
 #include "src/image/error_metrics.h"
 #include "src/render/part_fields.h"
 #include "src/render/cpu_renderer.h"
+#include "src/core/atomic_file.h"
 #include "src/core/memory_limit.h"
 #include "src/version/build_info.h"
 
@@ -97,15 +98,28 @@ ImageError compare(const Image& result, const Image& reference) {
     return {report.pixels.relative_l2(), report.relative_h1(), report.pixels.max_error, report.covered, report.total};
 }
 
-void write_image(const std::string& exr_path, const Image& image, float exposure) {
+namespace {
+
+// check_outputs_apart (src/core/atomic_file.h) with the API's strings.
+void check_apart(const std::vector<std::filesystem::path>& outputs, const std::vector<std::string>& inputs) {
+    check_outputs_apart(outputs, std::vector<std::filesystem::path>(inputs.begin(), inputs.end()));
+}
+
+}  // namespace
+
+void write_image(const std::string& exr_path, const Image& image, float exposure,
+                 const std::vector<std::string>& inputs) {
     if (std::filesystem::path(exr_path).extension() != ".exr")
         throw_error("{}: expected an .exr path (a .png preview is written beside it)", exr_path);
+    check_apart({exr_path, std::filesystem::path(exr_path).replace_extension(".png")}, inputs);
     write_exr_and_png(exr_path, to_internal(image, exr_path), ToneMap{exposure, exposure == 0.0f});
 }
 
 Image read_image(const std::string& exr_path) { return to_api(read_exr(exr_path)); }
 
-void write_vertex_colors(const std::string& rslv_path, const VertexColors& colors) {
+void write_vertex_colors(const std::string& rslv_path, const VertexColors& colors,
+                         const std::vector<std::string>& inputs) {
+    check_apart({rslv_path}, inputs);
     ::rsl::write_vertex_colors(rslv_path, to_internal(colors, rslv_path));
 }
 

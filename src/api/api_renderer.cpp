@@ -8,6 +8,7 @@
 #include "src/api/renderer_state.h"
 #include "src/core/scene_limits.h"
 #include "src/image/image_formation.h"
+#include "src/render/memory_estimate.h"
 #include "src/trace/ground_truth.h"
 
 namespace rsl::api {
@@ -76,6 +77,8 @@ std::vector<std::string> Renderer::part_names() const {
     for (const Part& part : state_->scene().parts) names.push_back(part.name);
     return names;
 }
+
+std::vector<std::string> Renderer::input_files() const { return ::rsl::api::input_files(state_->scene()); }
 
 std::array<float, 16> Renderer::part_transform(int part) const {
     state_->check_part(part);
@@ -206,8 +209,13 @@ std::pair<int, int> Renderer::State::image_size(const ImageSettings& settings) c
     if (settings.width < 0 || settings.height < 0 || settings.width > kMaxImageSide || settings.height > kMaxImageSide)
         throw_error("image size {}×{}: expected 1 to {} pixels a side (or 0: the camera's)", settings.width,
                     settings.height, kMaxImageSide);
-    return {settings.width > 0 ? settings.width : scene().camera.width,
-            settings.height > 0 ? settings.height : scene().camera.height};
+    const int width = settings.width > 0 ? settings.width : scene().camera.width;
+    const int height = settings.height > 0 ? settings.height : scene().camera.height;
+    if (std::pair(width, height) != memory_checked_size) {  // the estimate walks the scene: once per size
+        check_render_memory(scene(), options.self_visibility, options.occluders, width, height);
+        memory_checked_size = {width, height};
+    }
+    return {width, height};
 }
 
 // Any colours (the caller's, edited or blended): their image alone, with

@@ -186,4 +186,6 @@ Precompute Scene::precompute() const {
 std::string Scene::environment_file() const { return scene_->environment.file.string(); }
 int Scene::environment_resolution() const { return scene_->environment.resolution; }
 
+std::vector<std::string> Scene::input_files() const { return ::rsl::api::input_files(*scene_); }
+
 }  // namespace rsl::api

@@ -21,6 +21,7 @@ struct Renderer::State {
     bool frame_stale = true;          // the renderer is not posed at `time` with the latest edits
     std::vector<int> posed_node;      // per part: its node from set_part_pose, or −1
     mutable std::unique_ptr<PosedScene> posed;  // image formation, made at the first image
+    mutable std::pair<int, int> memory_checked_size{0, 0};  // the image size last found within the memory limit
 
     rsl::Scene& scene() { return session->scene(); }
     const rsl::Scene& scene() const { return session->scene(); }

@@ -1,5 +1,6 @@
 #include "src/core/memory_limit.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -18,6 +19,7 @@ namespace {
 
 constexpr uint64_t kUnset = ~uint64_t(0);
 std::atomic<uint64_t> g_limit{kUnset};
+std::atomic<const char*> g_setter{"rsl::api::set_memory_limit"};
 
 std::optional<uint64_t> meminfo_total() {
     std::ifstream in("/proc/meminfo");
@@ -68,6 +70,8 @@ uint64_t memory_limit() {
 
 void set_memory_limit(uint64_t bytes) { g_limit.store(bytes); }
 
+void set_memory_limit_setter(const char* name) { g_setter.store(name); }
+
 uint64_t parse_memory_size(const std::string& text, const std::string& what) {
     if (text == "none" || text == "0") return 0;
     std::istringstream in(text);
@@ -97,14 +101,18 @@ std::string memory_size_text(uint64_t bytes) {
     return fmt::format("{} bytes", bytes);
 }
 
+uint64_t image_memory_bytes(int width, int height) {
+    return kImageBytesPerPixel * uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0));
+}
+
 void check_memory_estimate(uint64_t estimate_bytes, const std::filesystem::path& file, const std::string& what) {
     const uint64_t limit = memory_limit();
     if (limit == 0 || estimate_bytes <= limit) return;
     throw_file_error(file,
                      "needs about {} of memory ({}), over rsl's limit of {}: make the scene smaller (fewer parts "
-                     "or vertices, a coarser subdivision or fields), or raise the limit with --memory-limit or "
+                     "or vertices, a coarser subdivision or fields, a smaller image), or raise the limit with {} or "
                      "RSL_MEMORY_LIMIT (docs/SCENE_FORMAT.md, \"Memory\")",
-                     memory_size_text(estimate_bytes), what, memory_size_text(limit));
+                     memory_size_text(estimate_bytes), what, memory_size_text(limit), g_setter.load());
 }
 
 }  // namespace rsl

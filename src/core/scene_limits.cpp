@@ -39,16 +39,28 @@ void check_light_limits(const Scene& scene, const std::filesystem::path& path) {
     }
 }
 
+bool invertible_transform(const Mat4& part_to_world) {
+    const float det = glm::determinant(Mat3(part_to_world));
+    return std::isfinite(det) && std::abs(det) >= kMinTransformDeterminant;
+}
+
 // At the start only: a glTF may key a scale to 0 to hide a part for a while,
-// and a frame posed there is refused when it is rendered.
+// and a frame posed there is refused when it is posed (check_part_pose).
 void check_part_transforms(const Scene& scene, const std::filesystem::path& path) {
     for (const Part& part : scene.parts) {
-        const float det = glm::determinant(Mat3(scene.node_world_at(part.node, scene.animation.start)));
-        if (!(std::abs(det) >= kMinTransformDeterminant))
+        const Mat4 m = scene.node_world_at(part.node, scene.animation.start);
+        if (!invertible_transform(m))
             throw_file_error(path, "part '{}': its transform at the scene's start (t = {:g} s) is singular "
-                             "(determinant {:g}; a zero scale?), so the part has no shape to render", part.name,
-                             scene.animation.start, det);
+                             "(determinant {:g}; a zero or huge scale?), so the part has no shape to render",
+                             part.name, scene.animation.start, glm::determinant(Mat3(m)));
     }
+}
+
+void check_part_pose(const Scene& scene, int part, float t, const Mat4& part_to_world) {
+    if (invertible_transform(part_to_world)) return;
+    throw_file_error(scene.source, "part '{}': its transform at t = {:g} s is singular (determinant {:g}; an "
+                     "animated scale reaching 0?), so the part has no shape to render at that time",
+                     scene.parts[size_t(part)].name, t, glm::determinant(Mat3(part_to_world)));
 }
 
 }  // namespace rsl

@@ -30,10 +30,14 @@ inline constexpr int kMaxPixelSamplesPerSide = 16;
 
 // Throws rsl::Error naming `path` and the part unless every part's
 // part-to-world transform at the scene's start is invertible (finite,
-// |det| ≥ kMinTransformDeterminant, as the ray scene requires): a zero scale
-// in a glTF node otherwise fails in the ray scene, after the fit and the
-// bake, without the part's name.
+// |det| ≥ kMinTransformDeterminant, as the ray scene requires): a zero or
+// huge scale in a glTF node otherwise fails in the ray scene, after the fit
+// and the bake, without the part's name.
 inline constexpr float kMinTransformDeterminant = 1e-20f;
+bool invertible_transform(const Mat4& part_to_world);
 void check_part_transforms(const Scene& scene, const std::filesystem::path& path);
+// The same check for a frame posed at time t (an animated scale may reach 0
+// after the start): throws naming the scene's file, the part and t.
+void check_part_pose(const Scene& scene, int part, float t, const Mat4& part_to_world);
 
 }  // namespace rsl

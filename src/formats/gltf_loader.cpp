@@ -16,6 +16,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <map>
 
 #include <glm/gtx/matrix_decompose.hpp>
 
@@ -34,17 +35,27 @@ namespace {
 
 using gltf::AccessorReader;
 
+// What the file reader below saw: the files it read, and why a read failed
+// (by the path tinygltf asked for). tinygltf keeps an image's failure as a
+// warning only, so a material using the image knew no reason for it.
+struct FilesRead {
+    std::vector<std::filesystem::path> read;
+    std::map<std::string, std::string> failures;
+};
+
 // tinygltf reads files (the glTF itself, external buffers) with an ifstream
 // and takes tellg() for their size: a directory reports 2^63 − 1 bytes and
 // the allocation fails (std::bad_alloc, which `rsl` reported as an internal
 // error), and a FIFO blocks. This reader reads regular files only, bounded,
-// and records each in `files_read` (a std::vector<std::filesystem::path>).
+// and records each in `files_read` (a FilesRead).
 bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* files_read) {
+    FilesRead& files = *static_cast<FilesRead*>(files_read);
     try {
         const std::string bytes = read_bounded_file(path, kMaxGltfFileBytes, "a glTF file or buffer");
-        static_cast<std::vector<std::filesystem::path>*>(files_read)->push_back(path);
+        files.read.push_back(path);
         out->assign(bytes.begin(), bytes.end());
     } catch (const Error& e) {
+        files.failures[path] = e.what();
         if (err) *err += std::string(e.what()) + "\n";
         return false;
     }
@@ -107,7 +118,7 @@ LoadedGltf read_model(const std::filesystem::path& path) {
         throw_file_error(path, "mislabeled: the content is {} glTF but the name says {}",
                          binary_content ? "binary" : "text (JSON)", binary_name ? "binary (.glb)" : "text (.gltf)");
 
-    std::vector<std::filesystem::path> files_read;
+    FilesRead files_read;
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({&path_exists, &tinygltf::ExpandFilePath, &read_regular_file,
                            &tinygltf::WriteWholeFile, &files_read});
@@ -130,7 +141,15 @@ LoadedGltf read_model(const std::filesystem::path& path) {
         while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
         throw_file_error(path, "not a valid glTF 2.0 file: {}", error.empty() ? "unknown error" : echo_message(error));
     }
-    return LoadedGltf{std::move(model), std::move(image_errors), std::move(files_read)};
+    // An external image the reader refused: the material using it gives the reader's reason.
+    for (size_t i = 0; i < model.images.size(); ++i) {
+        const std::string& uri = model.images[i].uri;
+        if (!model.images[i].image.empty() || uri.empty() || uri.rfind("data:", 0) == 0) continue;
+        for (const auto& [file, reason] : files_read.failures)
+            if (file.size() >= uri.size() && file.compare(file.size() - uri.size(), uri.size(), uri) == 0)
+                image_errors.emplace(int(i), reason);
+    }
+    return LoadedGltf{std::move(model), std::move(image_errors), std::move(files_read.read)};
 }
 
 Transform rest_transform(const tinygltf::Node& node, const std::filesystem::path& path) {

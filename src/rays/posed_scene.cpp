@@ -1,6 +1,7 @@
 #include "src/rays/posed_scene.h"
 
 #include "src/core/error.h"
+#include "src/core/scene_limits.h"
 
 namespace rsl {
 
@@ -43,6 +44,7 @@ PosedScene::PosedScene(const Scene& scene, float t) : scene_(scene), rays_(/*ori
 void PosedScene::set_time(float t) {
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
         const Mat4 m = scene_.part_transform_at(int(p), t);
+        check_part_pose(scene_, int(p), t, m);
         transforms_[p] = m;
         linear_[p] = Mat3(m);
         normal_[p] = glm::transpose(glm::inverse(Mat3(m)));

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "src/core/error.h"
+#include "src/core/scene_limits.h"
 #include "src/lightfit/irradiance.h"
 
 namespace rsl {
@@ -62,6 +63,7 @@ void FrameSetup::update(const Scene& scene, const EnvironmentLights& environment
     for (size_t p = 0; p < poses_.size(); ++p) {
         PartPose& pose = poses_[p];
         pose.transform = scene.part_transform_at(int(p), t);
+        check_part_pose(scene, int(p), t, pose.transform);
         pose.linear = Mat3(pose.transform);
         pose.normal = glm::transpose(glm::inverse(pose.linear));
         pose.inverse = glm::inverse(pose.transform);

@@ -17,8 +17,8 @@ namespace {
 // 10,000 instanced parts: 340 bytes a vertex).
 constexpr uint64_t kRenderBytesPerVertex = 400;
 constexpr uint64_t kRenderBytesPerPart = 16 * 1024;
-// The program, Embree's and TBB's start-up, the image, and the tables every
-// render loads whatever the scene.
+// The program, Embree's and TBB's start-up, and the tables every render
+// loads whatever the scene.
 constexpr uint64_t kBaseBytes = 64ull << 20;
 // One BRDF table (96² × 64 views, src/brdf/brdf_table.h): about 15 MB.
 constexpr uint64_t kBrdfTableBytes = 16ull << 20;
@@ -33,7 +33,8 @@ uint64_t cpca_bytes(uint64_t samples, uint64_t dims, uint64_t clusters, uint64_t
 
 }  // namespace
 
-MemoryEstimate estimate_render_memory(const Scene& scene, bool self_visibility, bool occluders) {
+MemoryEstimate estimate_render_memory(const Scene& scene, bool self_visibility, bool occluders, int image_width,
+                                      int image_height) {
     uint64_t vertices = 0;
     for (const Part& part : scene.parts) vertices += part.mesh.vertex_count();
     uint64_t bytes = kBaseBytes + kRenderBytesPerVertex * vertices + kRenderBytesPerPart * scene.parts.size();
@@ -70,12 +71,17 @@ MemoryEstimate estimate_render_memory(const Scene& scene, bool self_visibility, 
         const uint64_t texels = 6ull * uint64_t(scene.environment.resolution) * uint64_t(scene.environment.resolution);
         bytes += kFitBytesPerTexel * texels * (scene.environment.second_file.empty() ? 1 : 2);
     }
-    return {bytes, fmt::format("{} vertices in {} parts, {} unique meshes' fields, {} materials", vertices,
-                               scene.parts.size(), unique.size(), materials.size())};
+    const int width = image_width > 0 ? image_width : scene.camera.width;
+    const int height = image_height > 0 ? image_height : scene.camera.height;
+    bytes += image_memory_bytes(width, height);
+    return {bytes, fmt::format("{} vertices in {} parts, {} unique meshes' fields, {} materials, a {}×{} image",
+                               vertices, scene.parts.size(), unique.size(), materials.size(), width, height)};
 }
 
-void check_render_memory(const Scene& scene, bool self_visibility, bool occluders) {
-    const MemoryEstimate estimate = estimate_render_memory(scene, self_visibility, occluders);
+void check_render_memory(const Scene& scene, bool self_visibility, bool occluders, int image_width,
+                         int image_height) {
+    const MemoryEstimate estimate =
+        estimate_render_memory(scene, self_visibility, occluders, image_width, image_height);
     check_memory_estimate(estimate.bytes, scene.source, estimate.what);
 }
 

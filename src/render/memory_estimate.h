@@ -17,10 +17,13 @@ struct MemoryEstimate {
 
 // The renderer's estimate: the parts' vertices (meshes, per-vertex state),
 // the fields of each unique mesh, resident and while baking, the BRDF
-// tables, and the light fit of the environment maps.
-MemoryEstimate estimate_render_memory(const Scene& scene, bool self_visibility, bool occluders);
+// tables, the light fit of the environment maps, and the image (a side of 0:
+// the scene camera's).
+MemoryEstimate estimate_render_memory(const Scene& scene, bool self_visibility, bool occluders, int image_width = 0,
+                                      int image_height = 0);
 
 // Throws rsl::Error naming the scene's file when the estimate passes the limit.
-void check_render_memory(const Scene& scene, bool self_visibility, bool occluders);
+void check_render_memory(const Scene& scene, bool self_visibility, bool occluders, int image_width = 0,
+                         int image_height = 0);
 
 }  // namespace rsl

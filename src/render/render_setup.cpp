@@ -34,7 +34,7 @@ RenderSetup prepare_render(std::shared_ptr<Scene> scene, const RenderOptions& op
     RenderSetup setup;
     setup.scene = std::move(scene);
     const Scene& s = *setup.scene;
-    check_render_memory(s, options.self_visibility, options.occluders);
+    check_render_memory(s, options.self_visibility, options.occluders, how.image_width, how.image_height);
     if (s.environment.present() && options.environment) {
         auto start = std::chrono::steady_clock::now();
         setup.environment = scene_environment_map(s, s.environment.resolution);

@@ -39,6 +39,8 @@ struct SetupOptions {
     // Field cache folder; empty: beside the scene file (a scene in memory
     // without one is baked in memory).
     std::filesystem::path field_cache;
+    // The largest image the run forms, for the memory estimate (a side of 0: the scene camera's).
+    int image_width = 0, image_height = 0;
 };
 
 // Loads the scene and its environment, fits options.environment_light_count RSLs,

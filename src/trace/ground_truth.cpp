@@ -63,16 +63,23 @@ EnvironmentSamples EnvironmentSamples::from_cube(const CubeMap& map, const Mat3&
 namespace {
 
 // The truth's memory (src/core/memory_limit.h), checked before Embree's scene
-// is built: the meshes, the posed copy and its BVH, and the colours, about
-// 300 bytes a vertex (the robot: 64 MB for 87,651 vertices), with start-up.
+// is built (check_truth_memory).
 const Scene& checked_for_truth(const Scene& scene) {
-    const uint64_t vertices = scene.vertex_count();
-    check_memory_estimate((96ull << 20) + 400 * vertices, scene.source,
-                          fmt::format("the truth of {} vertices in {} parts", vertices, scene.parts.size()));
+    check_truth_memory(scene);
     return scene;
 }
 
 }  // namespace
+
+// About 300 bytes a vertex (the robot: 64 MB for 87,651 vertices), with start-up.
+void check_truth_memory(const Scene& scene, int image_width, int image_height) {
+    const uint64_t vertices = scene.vertex_count();
+    const std::string image =
+        image_width > 0 && image_height > 0 ? fmt::format(" and a {}×{} image", image_width, image_height) : "";
+    check_memory_estimate((96ull << 20) + 400 * vertices + image_memory_bytes(image_width, image_height),
+                          scene.source,
+                          fmt::format("the truth of {} vertices in {} parts{}", vertices, scene.parts.size(), image));
+}
 
 GroundTruth::GroundTruth(const Scene& scene, const CubeMap& environment, float t, GroundTruthOptions options)
     : scene_(checked_for_truth(scene)), cube_(environment), options_(options), posed_(scene, t), lobes_(scene) {

@@ -65,6 +65,12 @@ struct EnvironmentSamples {
                                         float max_sample_share = 0.0f);
 };
 
+// The truth's memory (src/core/memory_limit.h): the meshes, the posed copy
+// and its BVH, the colours and a width × height image (0 × 0: none). Throws
+// rsl::Error naming the scene's file when it passes the limit; GroundTruth
+// checks it without the image, `rsl truth` with its image before any work.
+void check_truth_memory(const Scene& scene, int image_width = 0, int image_height = 0);
+
 class GroundTruth {
 public:
     // `scene` must outlive this object. Builds one BVH per part and one BRDF

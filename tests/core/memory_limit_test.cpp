@@ -98,8 +98,12 @@ TEST_CASE("a scene whose subdivided parts pass the memory limit is refused befor
     const std::string error = test::error_of([&] { subdivide_scene_parts(scene); });
     CHECK_THAT(error, Catch::Contains("parts.json") &&
                           Catch::Contains(fmt::format("{} vertices after subdivision in 200 parts", total)) &&
-                          Catch::Contains("--memory-limit") && Catch::Contains("RSL_MEMORY_LIMIT"));
+                          Catch::Contains("raise the limit with rsl::api::set_memory_limit or RSL_MEMORY_LIMIT"));
     CHECK(scene.parts[1].mesh.vertex_count() == 4);  // the instances were not copied
+    set_memory_limit_setter("--memory-limit");  // as the program says it
+    CHECK_THAT(test::error_of([&] { subdivide_scene_parts(scene); }),
+               Catch::Contains("raise the limit with --memory-limit or RSL_MEMORY_LIMIT"));
+    set_memory_limit_setter("rsl::api::set_memory_limit");
 
     Scene again = scene_of(std::vector<TriangleMesh>(200, quad(1)));
     set_memory_limit(needed);

@@ -60,6 +60,27 @@ TEST_CASE("A glTF buffer or image whose uri names a FIFO is refused at once, nam
     CHECK(error.find((dir / "model.gltf").string() + ": ") == 0);
     CHECK(error.find("buffer.bin: is a FIFO (named pipe), not a regular file") != std::string::npos);
     CHECK(seconds_since(start) < 2);
+
+    // A base colour image: the reader's reason, where the material said "could not be read (missing file?)".
+    const fs::path image = make_fifo(dir / "img.png");
+    const FifoRelease image_release(image);
+    std::string textured = hostile::gltf_triangle();
+    const std::string attributes = R"("attributes": {"POSITION": 0}})";
+    textured.replace(textured.find(attributes), attributes.size(),
+                     R"("attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0})");
+    const std::string accessor = R"("type": "VEC3"})";
+    textured.replace(textured.find(accessor), accessor.size(),
+                     R"("type": "VEC3"}, {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC2"})");
+    textured.insert(textured.rfind('}'), R"(, "materials": [{"name": "painted", "pbrMetallicRoughness":
+  {"baseColorTexture": {"index": 0}}}], "textures": [{"source": 0}], "images": [{"uri": "img.png"}])");
+    write_text(dir / "textured.gltf", textured);
+    const auto image_start = std::chrono::steady_clock::now();
+    const std::string image_error = error_of([&] { load_scene(dir / "textured.gltf"); });
+    INFO(image_error);
+    CHECK(image_error.find((dir / "textured.gltf").string() + ": ") == 0);
+    CHECK(image_error.find("base colour image 'img.png': " + image.string() +
+                           ": is a FIFO (named pipe), not a regular file") != std::string::npos);
+    CHECK(seconds_since(image_start) < 2);
 }
 
 TEST_CASE("Readers refuse a directory, a character device and a link to /dev/zero", "[bad-input][special-files]") {

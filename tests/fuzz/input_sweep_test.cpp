@@ -99,6 +99,8 @@ std::vector<PastLimit> past_limits() {
         {"roughness_inf.json", edited(R"("roughness": 1e-3)", R"("roughness": "inf")"), "roughness"},
         {"resolution.json", edited(R"("resolution": 512)", R"("resolution": 513)"), "resolution"},
         {"width.json", edited(R"("width": 16384)", R"("width": 16385)"), "width"},
+        {"huge_scale.json", edited("[1e19, 1e19, 3]", "[1e19, 1e19, 4]"), "part 'ball': its transform"},
+        {"tiny_scale.json", edited("[1e-10, 1e-10, 2]", "[1e-10, 1e-10, 0.5]"), "part 'plain': its transform"},
         {"deep.gltf", gltf, "JSON nested deeper than 256 levels"},
     };
 }

@@ -52,5 +52,16 @@ TEST_CASE("rsl fit writes K lights that keep the environment's energy, and a pre
     // Same-face with fewer lights than faces is refused, as is a missing file.
     CHECK(run(fmt::format("fit {} --lights 3 --same-face -o {}", env.string(), lights.string())) != 0);
     CHECK(run(fmt::format("fit {} --lights 3 -o {}", (dir / "missing.exr").string(), lights.string())) != 0);
+
+    // A preview path that is no .png (a PNG was written into scene.json) is refused before any work.
+    const fs::path scene = dir / "scene.json";
+    test::write_text(scene, "{}\n");
+    const auto [status, text] = test::run_rsl(fmt::format("fit {} --lights 12 --resolution 8 -o {} --preview {}",
+                                                          env.string(), (dir / "other.json").string(), scene.string()));
+    INFO(text);
+    CHECK(status == 1);
+    CHECK(text.find("rsl: error: --preview " + scene.string() + ": expected a .png path") != std::string::npos);
+    CHECK(test::read_bytes(scene) == "{}\n");
+    CHECK_FALSE(fs::exists(dir / "other.json"));
     fs::remove_all(dir);
 }

@@ -4,6 +4,7 @@
 // 1.5× of the estimate.
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <fstream>
 #include <regex>
 
@@ -105,4 +106,29 @@ TEST_CASE("an accepted render's peak memory is within 1.5x of its estimate", "[r
     INFO("peak " << peak / 1e6 << " MB, estimate " << estimate / 1e6 << " MB");
     CHECK(peak <= estimate * 3 / 2);
     CHECK(peak >= estimate / 4);  // an estimate that still measures something
+}
+
+TEST_CASE("an image too large for the memory limit is refused before any work, naming its size", "[render][memory]") {
+    const auto dir = test::scratch_dir("memory_image");
+    const auto scene = instanced_triangles(dir, 1);
+    for (const std::string command : {"render", "truth"}) {
+        const auto start = std::chrono::steady_clock::now();
+        const auto [status, output] = test::run_rsl(command + " " + scene.string() + " -q --width 16384 --height 16384 " +
+                                                    "--memory-limit 300M -o " + (dir / "big.exr").string());
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        INFO(command << " (" << seconds << " s)\n" << output);
+        CHECK(status == 1);
+        // 16384² × 32 bytes: 8.6 GB, whatever else the run needs.
+        CHECK_THAT(output, Catch::Contains(scene.string() + ": needs about 8.") && Catch::Contains("16384×16384 image") &&
+                               Catch::Contains("a smaller image") && Catch::Contains("over rsl's limit of 315 MB"));
+        CHECK(seconds < 20);  // before the fit, the bake and the image (minutes and 4 GB and more)
+        CHECK_FALSE(std::filesystem::exists(dir / "big.exr"));
+        CHECK_FALSE(std::filesystem::exists(dir / ".rsl-cache"));
+    }
+    for (const std::string command : {"render", "truth"}) {  // a small image of the same scene fits the same limit
+        const auto [small_status, small] = test::run_rsl(command + " " + scene.string() + " -q --width 64 --height 48 " +
+                                                         "--memory-limit 300M -o " + (dir / "small.exr").string());
+        INFO(small);
+        CHECK(small_status == 0);
+    }
 }

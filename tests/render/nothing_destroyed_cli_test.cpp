@@ -11,6 +11,7 @@
 
 #include "src/formats/image_file.h"
 #include "src/formats/vertex_colors.h"
+#include "tests/formats/gltf_builder.h"
 #include "tests/hostile_inputs.h"
 #include "tests/test_support.h"
 
@@ -65,8 +66,9 @@ TEST_CASE("an output that is an input is refused before any work, the input kept
     const fs::path env = dir / "env.exr", box = dir / "box.obj";
     const std::vector<fs::path> inputs = {scene, env, box, dir / "ground.obj"};
     require_refused("fit " + env.string() + " -k 2 -n 4 -o " + env.string(), env, env, inputs);
+    fs::create_symlink(env, dir / "env_link.png");  // a preview must end in .png: the map by a link
     require_refused("fit " + env.string() + " -k 2 -n 4 -o " + (dir / "l.json").string() + " --preview " +
-                        env.string(), env, env, inputs);
+                        (dir / "env_link.png").string(), dir / "env_link.png", env, inputs);
     require_refused("render " + scene.string() + " -q -k 2 -o " + env.string(), env, env, inputs);
     require_refused("render " + scene.string() + " -q -k 2 -o " + (dir / "out.exr").string() + " --vertex-out " +
                         scene.string(), scene, scene, inputs);
@@ -213,20 +215,62 @@ TEST_CASE("rsl truth refuses a NaN, infinite or negative background", "[cli][iss
 TEST_CASE("a part whose transform is singular is refused at load, naming the file and the part, before the bake",
           "[cli][issue-56]") {
     const fs::path dir = scratch_dir("nothing_destroyed_singular");
-    std::string gltf = hostile::gltf_triangle();
-    const std::string node = R"("nodes": [{"mesh": 0}])";
-    gltf.replace(gltf.find(node), node.size(), R"("nodes": [{"mesh": 0, "name": "flat", "scale": [0, 1, 1]}])");
-    write_text(dir / "flat.gltf", gltf);
-    for (const char* command : {"render", "truth"}) {
-        const auto [status, text] =
-            run_rsl(std::string(command) + " " + (dir / "flat.gltf").string() + " -q -o " + (dir / "out.exr").string());
-        INFO(command << "\n" << text);
-        CHECK(status == 1);
-        CHECK(contains(text, "rsl: error: " + (dir / "flat.gltf").string() +
-                                 ": part 'flat': its transform at the scene's start (t = 0 s) is singular"));
+    // A zero scale has determinant 0; 1e20 one of Inf in float.
+    for (const char* scale : {"[0, 1, 1]", "[1e20, 1e20, 1e20]"}) {
+        std::string gltf = hostile::gltf_triangle();
+        const std::string node = R"("nodes": [{"mesh": 0}])";
+        gltf.replace(gltf.find(node), node.size(), std::string(R"("nodes": [{"mesh": 0, "name": "flat", "scale": )") +
+                                                       scale + "}]");
+        write_text(dir / "flat.gltf", gltf);
+        for (const char* command : {"render", "truth"}) {
+            const auto [status, text] =
+                run_rsl(std::string(command) + " " + (dir / "flat.gltf").string() + " -q -o " + (dir / "out.exr").string());
+            INFO(command << " " << scale << "\n" << text);
+            CHECK(status == 1);
+            CHECK(contains(text, "rsl: error: " + (dir / "flat.gltf").string() +
+                                     ": part 'flat': its transform at the scene's start (t = 0 s) is singular"));
+        }
     }
+    // A scene file's part transform, as its glTF node's.
+    const fs::path huge = small_scene(dir, "huge.json");
+    std::string text = read_bytes(huge);
+    const std::string box = R"("material": "box" })";
+    text.replace(text.find(box), box.size(), R"("material": "box", "transform": { "scale": 1e20 } })");
+    write_text(huge, text);
+    const auto [status, out] = run_rsl("render " + huge.string() + " -q -o " + (dir / "out.exr").string());
+    INFO(out);
+    CHECK(status == 1);
+    CHECK(contains(out, "rsl: error: " + huge.string() + ": part 'box': its transform at the scene's start (t = 0 s) "
+                        "is singular (determinant inf"));
     CHECK_FALSE(fs::exists(dir / ".rsl-cache"));  // nothing was baked
     CHECK_FALSE(fs::exists(dir / "out.exr"));
+}
+
+TEST_CASE("a frame where an animated scale reaches 0 is refused naming the file, the part and the time",
+          "[cli][issue-56]") {
+    const fs::path dir = scratch_dir("nothing_destroyed_singular_frame");
+    GltfBuilder gltf;
+    gltf.mesh({0, 0, 0, 0.5f, 0, 0, 0, 0.5f, 0, 0, 0, 0.5f}, {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3});
+    const int node = gltf.node({{"mesh", 0}, {"name", "shrinking"}, {"translation", {0, 1, 0}}});
+    gltf.channel(node, "scale", "LINEAR", {0, 1}, {1, 1, 1, 0, 0, 0});
+    gltf.write_gltf(dir / "shrink.gltf");
+    const fs::path scene = small_scene(dir, "anim.json", R"("gltf": "shrink.gltf")");
+    const std::string singular = "rsl: error: " + scene.string() + ": part 'shrinking': its transform at t = 1 s is singular";
+    {
+        const auto [status, text] =
+            run_rsl("render " + scene.string() + " -q --frames 0:1:0.5 -o " + (dir / "frame.exr").string());
+        INFO(text);
+        CHECK(status == 1);
+        CHECK(contains(text, singular));
+        CHECK(fs::exists(dir / "frame.0000.exr"));  // the frames before it are whole
+    }
+    {
+        const auto [status, text] = run_rsl("truth " + scene.string() + " -q --time 1 -o " + (dir / "t.exr").string());
+        INFO(text);
+        CHECK(status == 1);
+        CHECK(contains(text, singular));
+        CHECK_FALSE(fs::exists(dir / "t.exr"));
+    }
 }
 
 TEST_CASE("errors never echo a data: URI's payload, and cut any quoted value to 80 bytes", "[cli][issue-56][gltf]") {

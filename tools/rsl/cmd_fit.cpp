@@ -43,6 +43,8 @@ void run_fit(const FitArgs& args) {
     if (!options.cross_face && options.lights < 6)
         throw_error("--lights {} with --same-face: regions never cross a cube face, so at least 6", options.lights);
 
+    if (!args.preview.empty() && std::filesystem::path(args.preview).extension() != ".png")
+        throw_error("--preview {}: expected a .png path (the preview is a PNG image)", args.preview);
     check_outputs_apart({args.output, args.preview}, {args.environment});
     const CubeMap map = load_environment(args.environment, args.resolution);
     const auto start = std::chrono::steady_clock::now();
@@ -86,7 +88,7 @@ RegisterCommand fit_command({"fit",
         app.add_option("--max-error", args->max_error,
                        "Stop before a merge whose fit error (relative to |map energy|^2) exceeds this; 0: off")
             ->capture_default_str();
-        app.add_option("--preview", args->preview, "PNG: map | regions | reconstruction, like the paper's Figure 6");
+        app.add_option("--preview", args->preview, "FILE.png: map | regions | reconstruction, like the paper's Figure 6");
         app.add_option("--preview-width", args->preview_width, "Width of each preview panel")->capture_default_str();
         app.callback([args] { run_fit(*args); });
     }});

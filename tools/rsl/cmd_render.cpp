@@ -211,6 +211,7 @@ void run_render(const RenderArgs& args) {
     ProgressDisplay display(!args.quiet);
     SetupOptions how;
     how.progress = [&display](const std::string& what, double fraction) { display(what, fraction); };
+    how.image_width = args.width.value_or(0), how.image_height = args.height.value_or(0);
     // Every backend shades the same per-vertex sum and forms the same image.
     RenderSession session(scene, options, backend, how);
     const RenderSetup& setup = session.setup();
@@ -264,7 +265,7 @@ RegisterCommand render_command({"render",
                        "tone-mapped image alone)")->required();
         app.add_option("--background", args->background,
                        "What shows where no part covers a pixel: environment (the scene's environment map), or a "
-                       "colour R,G,B (default: black, alpha 0)");
+                       "colour R,G,B, each 0 to 1e15 (default: black, alpha 0)");
         app.add_option("--animation", args->animation,
                        "With --frames: also join the frames into FILE.png (an animated PNG, playing at the frames' "
                        "spacing in scene time) or FILE.mp4 (needs ffmpeg)")->needs(frames);

@@ -140,6 +140,7 @@ void run_truth(const TruthArgs& args) {
     FrameOutput output(args.output, times.size(), times.size() > 1 ? double(times[1]) - double(times[0]) : 1.0,
                        args.exposure, args.animation);
     const Scene scene = load_scene(args.scene);
+    check_truth_memory(scene, args.width.value_or(scene.camera.width), args.height.value_or(scene.camera.height));
     // Per frame, the vertex file (empty: none).
     std::vector<std::filesystem::path> vertex_paths(times.size());
     if (!args.per_pixel || !args.vertex_output.empty()) {

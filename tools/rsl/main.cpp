@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     }, "Print the version, commit, build type and library versions, and exit");
     // One memory limit for every subcommand (src/core/memory_limit.h), given
     // before or after the subcommand's own arguments.
+    rsl::set_memory_limit_setter("--memory-limit");
     app.add_option_function<std::string>(
            "--memory-limit", [](const std::string& text) { rsl::set_memory_limit(rsl::parse_memory_size(text, "--memory-limit")); },
            "Refuse work whose estimated memory passes SIZE (such as 8G; none or 0: no limit). Default: RSL_MEMORY_LIMIT, "
