@@ -71,15 +71,21 @@ struct Skin {
     std::vector<Mat4> inverse_bind;
 };
 
+// A vertex blends up to eight joints: glTF's JOINTS_0/WEIGHTS_0 and, when
+// present, JOINTS_1/WEIGHTS_1. Unused slots have weight 0.
+inline constexpr int kJointsPerVertex = 8;
+using JointIndices = std::array<uint16_t, kJointsPerVertex>;
+using JointWeights = std::array<float, kJointsPerVertex>;
+
 // A segment of a skinned mesh (docs/design/SKINNING.md): the part's mesh is
 // its bind-pose geometry in its joint's frame, and each vertex blends up to
-// four of the skin's joints (linear blend skinning, src/core/skinning.h).
+// eight of the skin's joints (linear blend skinning, src/core/skinning.h).
 struct PartSkin {
     int skin = -1;   // index into Scene::skins
     int joint = -1;  // the segment's joint (index into the skin's joints); the part's node is its node
     std::string mesh;  // the skinned glTF mesh's name (`rsl info`)
-    std::vector<std::array<uint16_t, 4>> joints;  // per vertex: indices into the skin's joints
-    std::vector<Vec4> weights;                    // per vertex: sum 1
+    std::vector<JointIndices> joints;  // per vertex: indices into the skin's joints
+    std::vector<JointWeights> weights; // per vertex: sum 1, by decreasing weight
 };
 
 struct Part {

@@ -12,15 +12,16 @@ void normalize_skin_weights(SkinnedMesh& mesh, size_t joint_count, const std::fi
                             const std::string& what) {
     const size_t n = mesh.mesh.vertex_count();
     if (mesh.joints.size() != n || mesh.weights.size() != n)
-        throw_file_error(source, "{}: {} JOINTS_0 and {} WEIGHTS_0 values for {} vertices", what, mesh.joints.size(),
+        throw_file_error(source, "{}: {} joint and {} weight sets for {} vertices", what, mesh.joints.size(),
                          mesh.weights.size(), n);
     for (size_t v = 0; v < n; ++v) {
-        std::array<uint16_t, 4>& joints = mesh.joints[v];
-        Vec4& w = mesh.weights[v];
+        JointIndices& joints = mesh.joints[v];
+        JointWeights& w = mesh.weights[v];
         float sum = 0;
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < kJointsPerVertex; ++k) {
             if (!std::isfinite(w[k]) || w[k] < 0)
-                throw_file_error(source, "{}: vertex {} has weight {} (WEIGHTS_0 must be finite and ≥ 0)", what, v, w[k]);
+                throw_file_error(source, "{}: vertex {} has weight {} (WEIGHTS_{} must be finite and ≥ 0)", what, v, w[k],
+                                 k / 4);
             if (w[k] > 0 && joints[k] >= joint_count)
                 throw_file_error(source, "{}: vertex {} uses joint {}, out of range for its skin's {} joints", what, v,
                                  joints[k], joint_count);
@@ -28,13 +29,14 @@ void normalize_skin_weights(SkinnedMesh& mesh, size_t joint_count, const std::fi
         }
         if (!(sum > 0)) throw_file_error(source, "{}: vertex {} has all its WEIGHTS_0 zero", what, v);
         // Slots by decreasing weight (ties: lower joint first), so slot 0 is the vertex's segment.
-        std::array<int, 4> order{0, 1, 2, 3};
+        std::array<int, kJointsPerVertex> order;
+        std::iota(order.begin(), order.end(), 0);
         std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
             return w[a] != w[b] ? w[a] > w[b] : joints[a] < joints[b];
         });
-        const std::array<uint16_t, 4> old_joints = joints;
-        const Vec4 old_w = w;
-        for (int k = 0; k < 4; ++k) {
+        const JointIndices old_joints = joints;
+        const JointWeights old_w = w;
+        for (int k = 0; k < kJointsPerVertex; ++k) {
             w[k] = old_w[order[k]] / sum;
             joints[k] = w[k] > 0 ? old_joints[order[k]] : old_joints[order[0]];
         }
@@ -50,12 +52,12 @@ std::vector<SkinSegment> split_skinned_mesh(const SkinnedMesh& skinned, const Sk
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
         for (int c = 0; c < 3; ++c) {
             const uint32_t v = mesh.indices[3 * t + size_t(c)];
-            for (int k = 0; k < 4; ++k) sums[skinned.joints[v][k]] += skinned.weights[v][k];
+            for (int k = 0; k < kJointsPerVertex; ++k) sums[skinned.joints[v][k]] += skinned.weights[v][k];
         }
         int best = -1;
         for (int c = 0; c < 3; ++c) {
             const uint32_t v = mesh.indices[3 * t + size_t(c)];
-            for (int k = 0; k < 4; ++k) {
+            for (int k = 0; k < kJointsPerVertex; ++k) {
                 const int j = skinned.joints[v][k];
                 if (best < 0 || sums[j] > sums[best] || (sums[j] == sums[best] && j < best)) best = j;
             }
@@ -63,7 +65,7 @@ std::vector<SkinSegment> split_skinned_mesh(const SkinnedMesh& skinned, const Sk
         triangle_joint[t] = best;
         for (int c = 0; c < 3; ++c) {
             const uint32_t v = mesh.indices[3 * t + size_t(c)];
-            for (int k = 0; k < 4; ++k) sums[skinned.joints[v][k]] = 0.0f;
+            for (int k = 0; k < kJointsPerVertex; ++k) sums[skinned.joints[v][k]] = 0.0f;
         }
     }
 

@@ -24,8 +24,8 @@ namespace rsl {
 // A validated mesh in bind space with its skin attributes per vertex.
 struct SkinnedMesh {
     TriangleMesh mesh;
-    std::vector<std::array<uint16_t, 4>> joints;  // JOINTS_0
-    std::vector<Vec4> weights;                    // WEIGHTS_0
+    std::vector<JointIndices> joints;  // JOINTS_0 (and JOINTS_1)
+    std::vector<JointWeights> weights; // WEIGHTS_0 (and WEIGHTS_1)
 };
 
 struct SkinSegment {

@@ -34,8 +34,8 @@ void pose_skinned_vertices(const TriangleMesh& mesh, const PartSkin& skin, const
     out.tangents.resize(mesh.tangents.empty() ? 0 : n);
     const size_t segment = size_t(skin.joint);
     for (size_t v = 0; v < n; ++v) {
-        const std::array<uint16_t, 4>& joints = skin.joints[v];
-        const Vec4& w = skin.weights[v];
+        const JointIndices& joints = skin.joints[v];
+        const JointWeights& w = skin.weights[v];
         // A vertex on its own joint alone is rigid: kept bit for bit.
         if (w[0] == 1.0f && joints[0] == segment) {
             out.positions[v] = mesh.positions[v];
@@ -44,8 +44,7 @@ void pose_skinned_vertices(const TriangleMesh& mesh, const PartSkin& skin, const
             continue;
         }
         Mat4 blended(0.0f);
-        for (int k = 0; k < 4; ++k)
-            if (w[k] != 0.0f) blended += w[k] * single[joints[k]];
+        for (int k = 0; k < kJointsPerVertex && w[k] != 0.0f; ++k) blended += w[k] * single[joints[k]];
         const Mat3 linear(blended);
         out.positions[v] = Vec3(blended * Vec4(mesh.positions[v], 1.0f));
         const Vec3 normal = glm::transpose(glm::inverse(linear)) * mesh.normals[v];
@@ -93,7 +92,7 @@ std::vector<std::vector<int>> seam_partners(const Scene& scene) {
         out.assign(skin->joints.size(), -1);
         for (size_t v = 0; v < skin->joints.size(); ++v) {
             float best = 0.0f;
-            for (int i = 0; i < 4; ++i) {
+            for (int i = 0; i < kJointsPerVertex; ++i) {
                 const int joint = int(skin->joints[v][i]);
                 const float w = skin->weights[v][i];
                 if (joint == skin->joint || !(w > best)) continue;

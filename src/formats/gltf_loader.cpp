@@ -398,8 +398,8 @@ private:
     struct MaterialMesh {
         int material = -1;  // glTF material index, −1 for none
         TriangleMesh mesh;
-        std::vector<std::array<uint16_t, 4>> joints;  // with_skin: JOINTS_0 per vertex
-        std::vector<Vec4> weights;                    // with_skin: WEIGHTS_0 per vertex
+        std::vector<JointIndices> joints;  // with_skin: JOINTS_0 (and JOINTS_1) per vertex
+        std::vector<JointWeights> weights; // with_skin: WEIGHTS_0 (and WEIGHTS_1) per vertex
     };
     // A glTF mesh's triangle primitives merged into one validated mesh per
     // material, in the order the materials first appear.
@@ -422,7 +422,8 @@ private:
 
     // The given triangle primitives of a glTF mesh merged into one validated
     // mesh, with texture coordinates TEXCOORD_<texcoord_set> when it is ≥ 0.
-    // With `skin`, its joints and weights get JOINTS_0 and WEIGHTS_0 (required).
+    // With `skin`, its joints and weights get JOINTS_0 and WEIGHTS_0 (required)
+    // and JOINTS_1 and WEIGHTS_1 (optional, together).
     TriangleMesh merged_mesh(int mesh_index, const std::vector<size_t>& primitives, int texcoord_set,
                              MaterialMesh* skin = nullptr) {
         const tinygltf::Mesh& source = model_.meshes[mesh_index];
@@ -474,7 +475,7 @@ private:
                 for (size_t v = 0; v < count; ++v) mesh.texcoords.emplace_back(uv[2 * v], uv[2 * v + 1]);
             }
 
-            if (skin) read_skin_attributes(attribute("JOINTS_0"), attribute("WEIGHTS_0"), count, what, *skin);
+            if (skin) read_skin_attributes(primitive, count, what, *skin);
 
             std::vector<uint32_t> corners;
             if (primitive.indices >= 0) {
@@ -506,26 +507,41 @@ private:
         return mesh;
     }
 
-    void read_skin_attributes(int joints_accessor, int weights_accessor, size_t count, const std::string& what,
+    // Up to eight influences a vertex: sets 0 and 1 of JOINTS_n/WEIGHTS_n
+    // (glTF 2.0 §3.7.3.3); a set 2 would be dropped, so it is refused.
+    void read_skin_attributes(const tinygltf::Primitive& primitive, size_t count, const std::string& what,
                               MaterialMesh& skin) const {
-        if (joints_accessor < 0 || weights_accessor < 0)
-            throw_file_error(path_, "{}: its node has a skin but the primitive has no {}", what,
-                             joints_accessor < 0 ? "JOINTS_0" : "WEIGHTS_0");
-        const std::vector<float> joints = reader_.floats(joints_accessor, TINYGLTF_TYPE_VEC4, what + " JOINTS_0");
-        const std::vector<float> weights = reader_.floats(weights_accessor, TINYGLTF_TYPE_VEC4, what + " WEIGHTS_0");
-        if (joints.size() != 4 * count || weights.size() != 4 * count)
-            throw_file_error(path_, "{}: {} JOINTS_0 and {} WEIGHTS_0 values for {} positions", what, joints.size() / 4,
-                             weights.size() / 4, count);
-        for (size_t v = 0; v < count; ++v) {
-            std::array<uint16_t, 4> j{};
-            for (int k = 0; k < 4; ++k) {
-                const float value = joints[4 * v + size_t(k)];
-                if (!(value >= 0 && value <= 65535 && value == std::floor(value)))
-                    throw_file_error(path_, "{}: JOINTS_0 of vertex {} is {}, not a joint index", what, v, value);
-                j[size_t(k)] = uint16_t(value);
-            }
-            skin.joints.push_back(j);
-            skin.weights.emplace_back(weights[4 * v], weights[4 * v + 1], weights[4 * v + 2], weights[4 * v + 3]);
+        auto attribute = [&](const std::string& name) {
+            const auto it = primitive.attributes.find(name);
+            return it == primitive.attributes.end() ? -1 : it->second;
+        };
+        if (attribute("JOINTS_2") >= 0 || attribute("WEIGHTS_2") >= 0)
+            throw_file_error(path_, "{}: JOINTS_2/WEIGHTS_2: a vertex blends more than eight joints, and rsl blends at most "
+                             "eight (JOINTS_0 and JOINTS_1)", what);
+        const size_t first = skin.joints.size();
+        skin.joints.resize(first + count, JointIndices{});
+        skin.weights.resize(first + count, JointWeights{});
+        for (int set = 0; set < kJointsPerVertex / 4; ++set) {
+            const std::string joints_name = fmt::format("JOINTS_{}", set), weights_name = fmt::format("WEIGHTS_{}", set);
+            const int joints_accessor = attribute(joints_name), weights_accessor = attribute(weights_name);
+            if (set > 0 && joints_accessor < 0 && weights_accessor < 0) break;
+            if (joints_accessor < 0 || weights_accessor < 0)
+                throw_file_error(path_, "{}: {}the primitive has no {}", what,
+                                 set == 0 ? "its node has a skin but " : fmt::format("it has {} but ", joints_accessor < 0 ? weights_name : joints_name),
+                                 joints_accessor < 0 ? joints_name : weights_name);
+            const std::vector<float> joints = reader_.floats(joints_accessor, TINYGLTF_TYPE_VEC4, what + " " + joints_name);
+            const std::vector<float> weights = reader_.floats(weights_accessor, TINYGLTF_TYPE_VEC4, what + " " + weights_name);
+            if (joints.size() != 4 * count || weights.size() != 4 * count)
+                throw_file_error(path_, "{}: {} {} and {} {} values for {} positions", what, joints.size() / 4, joints_name,
+                                 weights.size() / 4, weights_name, count);
+            for (size_t v = 0; v < count; ++v)
+                for (int k = 0; k < 4; ++k) {
+                    const float value = joints[4 * v + size_t(k)];
+                    if (!(value >= 0 && value <= 65535 && value == std::floor(value)))
+                        throw_file_error(path_, "{}: {} of vertex {} is {}, not a joint index", what, joints_name, v, value);
+                    skin.joints[first + v][size_t(4 * set + k)] = uint16_t(value);
+                    skin.weights[first + v][size_t(4 * set + k)] = weights[4 * v + size_t(k)];
+                }
         }
     }
 

@@ -89,29 +89,12 @@ ShadedAgainstTruth shade_against_truth(const Scene& scene, float t) {
     return out;
 }
 
-}  // namespace
-
-TEST_CASE("Skinned vertices equal the glTF's matrices applied by brute force", "[render][skin]") {
-    assets::TubeOptions options;
-    options.joints = 3;
-    options.spacing = 0.05f;
-    options.turn_degrees = 35;
-    options.position = Vec3(0.3f, 0.1f, -0.2f);
-    const assets::GeneratedModel model = assets::make_bending_tube(options);
+// Every posed vertex of every segment, and the truth's, against Σ w_j · W_j ·
+// IBM_j · p_bind from the generator's own vertex. Returns how many vertices
+// blend k joints at t = 0, k = 1..8.
+std::array<size_t, kJointsPerVertex + 1> check_against_brute_force(const assets::GeneratedModel& model, const Scene& scene) {
     const assets::GeneratedSkin& source = model.skins[0];
-    std::vector<std::string> warnings;
-    const Scene scene = load_written(model, "brute_force", &warnings);
-    for (const std::string& w : warnings) CHECK(w.find("bind pose") == std::string::npos);
-    REQUIRE(scene.skins.size() == 1);
-    REQUIRE(scene.parts.size() == 3);  // one segment per joint
-    size_t blended = 0, vertices = 0;
-    for (size_t p = 0; p < scene.parts.size(); ++p) {
-        REQUIRE(scene.parts[p].skin);
-        CHECK(scene.parts[p].name == fmt::format("tube/tube_joint{}", p));
-        vertices += scene.parts[p].mesh.vertex_count();
-    }
-    CHECK(vertices >= source.mesh.vertex_count());  // every vertex, corners across a joint in both segments
-
+    std::array<size_t, kJointsPerVertex + 1> blending{};
     for (float t : {0.0f, 0.45f, 1.0f, 1.6f}) {
         PosedScene truth(scene, t);
         for (size_t p = 0; p < scene.parts.size(); ++p) {
@@ -122,19 +105,19 @@ TEST_CASE("Skinned vertices equal the glTF's matrices applied by brute force", "
             const Mat3 normal_matrix = glm::transpose(glm::inverse(Mat3(transform)));
             const glm::dmat4 to_bind = glm::inverse(glm::dmat4(source.inverse_bind[size_t(part.skin->joint)]));
             for (size_t v = 0; v < part.mesh.vertex_count(); ++v) {
-                // Brute force from the generator's own vertex: Σ w_j · W_j · IBM_j · p_bind.
                 const size_t g = nearest_vertex(source.mesh, to_bind * glm::dvec4(part.mesh.positions[v], 1.0));
                 glm::dmat4 blend(0.0);
-                float wsum = 0;
-                for (int k = 0; k < 4; ++k) wsum += source.weights[g][k];
-                for (int k = 0; k < 4; ++k) {
+                double wsum = 0;
+                int used = 0;
+                for (float w : source.weights[g]) wsum += w, used += w > 0;
+                for (int k = 0; k < kJointsPerVertex; ++k) {
                     const size_t j = source.joints[g][size_t(k)];
-                    const double w = source.weights[g][k] / wsum;
+                    const double w = source.weights[g][size_t(k)] / wsum;
                     if (w == 0) continue;
                     blend += w * glm::dmat4(scene.node_world_at(source.joint_nodes[j], t)) *
                              glm::dmat4(source.inverse_bind[j]);
                 }
-                blended += t == 0.0f && source.weights[g][1] > 0;
+                if (t == 0.0f) ++blending[size_t(used)];
                 const glm::dvec3 expected(blend * glm::dvec4(source.mesh.positions[g], 1.0));
                 const glm::dvec3 expected_normal = glm::normalize(
                     glm::transpose(glm::inverse(glm::dmat3(blend))) * glm::dvec3(source.mesh.normals[g]));
@@ -152,14 +135,73 @@ TEST_CASE("Skinned vertices equal the glTF's matrices applied by brute force", "
             }
         }
     }
-    CHECK(blended > 20);  // the ramps across the joints are exercised
+    return blending;
+}
+
+}  // namespace
+
+TEST_CASE("Skinned vertices equal the glTF's matrices applied by brute force", "[render][skin]") {
+    assets::TubeOptions options;
+    options.joints = 3;
+    options.spacing = 0.05f;
+    options.turn_degrees = 35;
+    options.position = Vec3(0.3f, 0.1f, -0.2f);
+    const assets::GeneratedModel model = assets::make_bending_tube(options);
+    std::vector<std::string> warnings;
+    const Scene scene = load_written(model, "brute_force", &warnings);
+    for (const std::string& w : warnings) CHECK(w.find("bind pose") == std::string::npos);
+    REQUIRE(scene.skins.size() == 1);
+    REQUIRE(scene.parts.size() == 3);  // one segment per joint
+    size_t vertices = 0;
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        REQUIRE(scene.parts[p].skin);
+        CHECK(scene.parts[p].name == fmt::format("tube/tube_joint{}", p));
+        vertices += scene.parts[p].mesh.vertex_count();
+    }
+    CHECK(vertices >= model.skins[0].mesh.vertex_count());  // every vertex, corners across a joint in both segments
+    const auto blending = check_against_brute_force(model, scene);
+    CHECK(blending[2] > 20);  // the ramps across the joints are exercised
+}
+
+TEST_CASE("Vertices blending up to eight joints (JOINTS_1 and WEIGHTS_1) equal the brute force", "[render][skin]") {
+    assets::TubeOptions options;
+    options.joints = 6;
+    options.spacing = 0.05f;
+    options.turn_degrees = 25;
+    assets::GeneratedModel model = assets::make_bending_tube(options);
+    assets::GeneratedSkin& skin = model.skins[0];
+    // Every joint's weight falls off with the distance from its segment's middle,
+    // so a vertex blends three to six joints.
+    const float step = options.length / float(options.joints);
+    for (size_t v = 0; v < skin.mesh.vertex_count(); ++v) {
+        const float y = skin.mesh.positions[v].y;
+        JointIndices joints{};
+        JointWeights weights{};
+        int used = 0;
+        for (int j = 0; j < options.joints; ++j) {
+            const float d = (y - (float(j) + 0.5f) * step) / (1.2f * step);
+            const float w = std::exp(-d * d);
+            if (w < 0.05f) continue;
+            joints[size_t(used)] = uint16_t(j);
+            weights[size_t(used)] = w;
+            ++used;
+        }
+        skin.joints[v] = joints;
+        skin.weights[v] = weights;
+    }
+    const Scene scene = load_written(model, "eight_joints", nullptr);
+    const auto blending = check_against_brute_force(model, scene);
+    size_t over_four = 0;
+    for (int k = 5; k <= kJointsPerVertex; ++k) over_four += blending[size_t(k)];
+    CHECK(over_four > 50);  // WEIGHTS_1 carries weight: dropping it would move these vertices
+    CHECK(blending[0] == 0);
 }
 
 TEST_CASE("Skin weights: bad JOINTS_0 and WEIGHTS_0 are refused naming the file", "[render][skin]") {
     assets::TubeOptions options;
     options.spacing = 0.08f;
     assets::GeneratedModel model = assets::make_bending_tube(options);
-    model.skins[0].weights[3] = Vec4(0.0f);
+    model.skins[0].weights[3] = JointWeights{};
     CHECK_THROWS_WITH(load_written(model, "zero_weights", nullptr),
                       Catch::Contains("zero_weights.glb") && Catch::Contains("vertex 3 has all its WEIGHTS_0 zero"));
     model = assets::make_bending_tube(options);

@@ -227,9 +227,21 @@ void add_skin(GltfBuilder& builder, tinygltf::Model& model, tinygltf::Scene& roo
     part.mesh = skin.mesh;
     add_mesh(builder, model, part, material);
     tinygltf::Primitive& primitive = model.meshes.back().primitives.back();
-    primitive.attributes["JOINTS_0"] = builder.add_joints(skin.joints);
-    primitive.attributes["WEIGHTS_0"] =
-        builder.add_floats(&skin.weights[0].x, n, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    // Set 1 only when some vertex blends more than four joints.
+    const bool two_sets = std::any_of(skin.weights.begin(), skin.weights.end(),
+                                      [](const JointWeights& w) { return std::any_of(w.begin() + 4, w.end(), [](float x) { return x != 0; }); });
+    for (int set = 0; set < (two_sets ? 2 : 1); ++set) {
+        std::vector<std::array<uint16_t, 4>> joints(n);
+        std::vector<float> weights(4 * n);
+        for (size_t v = 0; v < n; ++v)
+            for (size_t k = 0; k < 4; ++k) {
+                joints[v][k] = skin.joints[v][size_t(4 * set) + k];
+                weights[4 * v + k] = skin.weights[v][size_t(4 * set) + k];
+            }
+        primitive.attributes[fmt::format("JOINTS_{}", set)] = builder.add_joints(joints);
+        primitive.attributes[fmt::format("WEIGHTS_{}", set)] =
+            builder.add_floats(weights.data(), n, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    }
     tinygltf::Skin s;
     s.name = skin.name;
     s.joints = skin.joint_nodes;

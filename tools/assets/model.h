@@ -15,12 +15,13 @@
 namespace rsl::assets {
 
 // A skinned mesh of a generated model: bind-pose geometry on a node of its
-// own, whose vertices blend up to four joints (glTF JOINTS_0 / WEIGHTS_0).
+// own, whose vertices blend up to eight joints (glTF JOINTS_0 / WEIGHTS_0, and
+// JOINTS_1 / WEIGHTS_1 when a vertex uses more than four).
 struct GeneratedSkin {
     std::string name;  // the mesh's and its node's
     TriangleMesh mesh;  // bind space (normals and tangents required)
-    std::vector<std::array<uint16_t, 4>> joints;  // per vertex: indices into joint_nodes
-    std::vector<Vec4> weights;                    // per vertex
+    std::vector<JointIndices> joints;  // per vertex: indices into joint_nodes
+    std::vector<JointWeights> weights; // per vertex
     std::vector<int> joint_nodes;                 // scene nodes
     std::vector<Mat4> inverse_bind;               // per joint: bind space → joint frame
     int material = -1;                            // scene material, or −1

@@ -51,12 +51,12 @@ void add_bending_tube(GeneratedModel& model, const TubeOptions& o) {
         // The nearest joint above the first, and the ramp across it.
         const int k = std::clamp(int(std::lround(y / step)), 1, std::max(1, o.joints - 1));
         const float x = (y - step * float(k) + o.blend) / (2.0f * o.blend);
-        std::array<uint16_t, 4> joints{uint16_t(segment), 0, 0, 0};
-        Vec4 weights(1, 0, 0, 0);
+        JointIndices joints{uint16_t(segment)};
+        JointWeights weights{1.0f};
         if (o.joints > 1 && x > 0 && x < 1) {
             const float s = x * x * (3 - 2 * x);
-            joints = {uint16_t(k), uint16_t(k - 1), 0, 0};
-            weights = Vec4(s, 1 - s, 0, 0);
+            joints = {uint16_t(k), uint16_t(k - 1)};
+            weights = {s, 1 - s};
         }
         skin.joints.push_back(joints);
         skin.weights.push_back(weights);

@@ -137,7 +137,7 @@ void print_parts(const Scene& scene) {
         if (part.skin) {
             const Skin& skin = scene.skins.at(size_t(part.skin->skin));
             size_t blended = 0;
-            for (const Vec4& w : part.skin->weights) blended += w[0] < 1.0f;
+            for (const JointWeights& w : part.skin->weights) blended += w[0] < 1.0f;
             fmt::print("      skin segment of mesh '{}' (skin '{}', joint '{}'): {} of its vertices blend several "
                        "joints (linear blend skinning)\n",
                        part.skin->mesh, skin.name, scene.nodes.at(size_t(part.node)).name, blended);
