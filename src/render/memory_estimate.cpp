@@ -17,6 +17,10 @@ namespace {
 // 10,000 instanced parts: 340 bytes a vertex).
 constexpr uint64_t kRenderBytesPerVertex = 400;
 constexpr uint64_t kRenderBytesPerPart = 16 * 1024;
+// A skinned vertex also carries its joints and weights (48 bytes) and is
+// posed every frame into positions, normals and tangents (40 bytes), by the
+// renderer and again by the posed scene that forms the image.
+constexpr uint64_t kSkinnedBytesPerVertex = sizeof(JointIndices) + sizeof(JointWeights) + 2 * 40;
 // The program, Embree's and TBB's start-up, and the tables every render
 // loads whatever the scene.
 constexpr uint64_t kBaseBytes = 64ull << 20;
@@ -35,9 +39,13 @@ uint64_t cpca_bytes(uint64_t samples, uint64_t dims, uint64_t clusters, uint64_t
 
 MemoryEstimate estimate_render_memory(const Scene& scene, bool self_visibility, bool occluders, int image_width,
                                       int image_height) {
-    uint64_t vertices = 0;
-    for (const Part& part : scene.parts) vertices += part.mesh.vertex_count();
-    uint64_t bytes = kBaseBytes + kRenderBytesPerVertex * vertices + kRenderBytesPerPart * scene.parts.size();
+    uint64_t vertices = 0, skinned = 0;
+    for (const Part& part : scene.parts) {
+        vertices += part.mesh.vertex_count();
+        if (part.skin) skinned += part.mesh.vertex_count();
+    }
+    uint64_t bytes = kBaseBytes + kRenderBytesPerVertex * vertices + kSkinnedBytesPerVertex * skinned +
+                     kRenderBytesPerPart * scene.parts.size();
 
     // Fields: every unique mesh's resident model, plus the largest bake's
     // working set (the traced tables before compression).
@@ -74,8 +82,10 @@ MemoryEstimate estimate_render_memory(const Scene& scene, bool self_visibility, 
     const int width = image_width > 0 ? image_width : scene.camera.width;
     const int height = image_height > 0 ? image_height : scene.camera.height;
     bytes += image_memory_bytes(width, height);
-    return {bytes, fmt::format("{} vertices in {} parts, {} unique meshes' fields, {} materials, a {}×{} image",
-                               vertices, scene.parts.size(), unique.size(), materials.size(), width, height)};
+    const std::string skinned_note = skinned ? fmt::format(" ({} skinned)", skinned) : std::string();
+    return {bytes, fmt::format("{} vertices{} in {} parts, {} unique meshes' fields, {} materials, a {}×{} image",
+                               vertices, skinned_note, scene.parts.size(), unique.size(), materials.size(), width,
+                               height)};
 }
 
 void check_render_memory(const Scene& scene, bool self_visibility, bool occluders, int image_width,

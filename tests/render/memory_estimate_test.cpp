@@ -132,3 +132,37 @@ TEST_CASE("an image too large for the memory limit is refused before any work, n
         CHECK(small_status == 0);
     }
 }
+
+TEST_CASE("a skinned character's estimate counts its posed vertices, and its render's peak stays within 1.5x",
+          "[render][memory][skin]") {
+    const auto dir = test::scratch_dir("memory_skinned");
+    test::write_text(dir / "scene.json", fmt::format(R"({{"gltf": "{0}/assets/generated/tube.glb",
+"environment": {{"file": "{0}/assets/generated/sunsky.exr", "resolution": 16}},
+"precompute": {{"svdf": {{"resolution": 8, "clusters": 16, "vectors": 4}},
+               "ovdf": {{"shells": 4, "cube_resolution": 8, "vdt_resolution": 8, "vectors": 4}}}}}})",
+                                                     RSL_SOURCE_DIR));
+    const std::string scene = (dir / "scene.json").string();
+    // The refusal's account names the skinned vertices.
+    const auto [refused_status, refused] = test::run_rsl("render " + scene + " -o " + (dir / "x.exr").string() +
+                                                         " --memory-limit 1M");
+    INFO(refused);
+    CHECK(refused_status == 1);
+    CHECK_THAT(refused, Catch::Matches(R"((.|\n)*[0-9]+ vertices \([0-9]+ skinned\) in [0-9]+ parts(.|\n)*)"));
+#ifdef RSL_TEST_UNDER_ASAN
+    WARN("SKIPPED: a sanitizer build's peak memory is not the program's");
+    return;
+#endif
+    const auto [info_status, info] = test::run_rsl("info " + scene);
+    INFO(info);
+    REQUIRE(info_status == 0);
+    const uint64_t estimate = estimate_of(info);
+    const auto [status, output] = test::run_rsl("render " + scene + " -q --frames 0:1:0.5 --width 64 --height 48 -o " +
+                                                (dir / "out.exr").string());
+    INFO(output);
+    REQUIRE(status == 0);
+    rusage usage{};
+    REQUIRE(getrusage(RUSAGE_CHILDREN, &usage) == 0);
+    const uint64_t peak = uint64_t(usage.ru_maxrss) * 1024;
+    INFO("peak " << peak / 1e6 << " MB, estimate " << estimate / 1e6 << " MB");
+    CHECK(peak <= estimate * 3 / 2);
+}

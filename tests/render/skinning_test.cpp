@@ -171,7 +171,7 @@ TEST_CASE("Vertices blending up to eight joints (JOINTS_1 and WEIGHTS_1) equal t
     assets::GeneratedModel model = assets::make_bending_tube(options);
     assets::GeneratedSkin& skin = model.skins[0];
     // Every joint's weight falls off with the distance from its segment's middle,
-    // so a vertex blends three to six joints.
+    // so a vertex blends four to six joints.
     const float step = options.length / float(options.joints);
     for (size_t v = 0; v < skin.mesh.vertex_count(); ++v) {
         const float y = skin.mesh.positions[v].y;
@@ -179,7 +179,7 @@ TEST_CASE("Vertices blending up to eight joints (JOINTS_1 and WEIGHTS_1) equal t
         JointWeights weights{};
         int used = 0;
         for (int j = 0; j < options.joints; ++j) {
-            const float d = (y - (float(j) + 0.5f) * step) / (1.2f * step);
+            const float d = (y - (float(j) + 0.5f) * step) / (2.0f * step);
             const float w = std::exp(-d * d);
             if (w < 0.05f) continue;
             joints[size_t(used)] = uint16_t(j);
