@@ -333,6 +333,36 @@ TEST_CASE("glTF skins move with their joints; morph targets render in the base s
     CHECK(w.find("mesh 'face' of node 'morphed' (morph targets) renders without its morph targets") != std::string::npos);
 }
 
+TEST_CASE("glTF skins: a second joint set needs both halves, and a third is refused, naming the file", "[gltf]") {
+    const auto dir = temp_dir("skin_sets");
+    const std::vector<float> zeros(4 * 4, 0.0f), weights{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+    const std::vector<float> identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const auto skinned_square = [&](const std::vector<std::string>& extra, const std::string& name) {
+        GltfBuilder b;
+        const int body = b.mesh(kSquare, kSquareIndices);
+        Json& attributes = b.doc()["meshes"][body]["primitives"][0]["attributes"];
+        attributes["JOINTS_0"] = b.floats(zeros, "VEC4");
+        attributes["WEIGHTS_0"] = b.floats(weights, "VEC4");
+        for (const std::string& a : extra) attributes[a] = b.floats(zeros, "VEC4");
+        const int bone = b.node({{"name", "bone"}});
+        const int skinned = b.node({{"name", "skinned"}, {"mesh", body}, {"skin", 0}});
+        b.doc()["skins"] = {{{"joints", {bone}}, {"inverseBindMatrices", b.floats(identity, "MAT4")}}};
+        b.doc()["scenes"] = {{{"nodes", {bone, skinned}}}};
+        b.write_glb(dir / name);
+        return dir / name;
+    };
+    // Both halves of set 1 (zero weights): it loads, the square on its one joint.
+    const Scene scene = load_scene(skinned_square({"JOINTS_1", "WEIGHTS_1"}, "two_sets.glb"));
+    REQUIRE(scene.parts.size() == 1);
+    REQUIRE(scene.parts[0].skin);
+    CHECK(scene.parts[0].skin->weights[0][0] == 1.0f);
+    CHECK_THROWS_WITH(load_scene(skinned_square({"JOINTS_1"}, "half_set.glb")),
+                      Catch::Contains("half_set.glb") && Catch::Contains("it has JOINTS_1 but the primitive has no WEIGHTS_1"));
+    CHECK_THROWS_WITH(load_scene(skinned_square({"JOINTS_1", "WEIGHTS_1", "JOINTS_2", "WEIGHTS_2"}, "three_sets.glb")),
+                      Catch::Contains("three_sets.glb") && Catch::Contains("JOINTS_2/WEIGHTS_2") &&
+                          Catch::Contains("at most eight"));
+}
+
 TEST_CASE("glTF sparse accessors: base values (or zeros) with the sparse values at their indices", "[gltf]") {
     const auto dir = temp_dir("sparse");
     // Base: the unit square; sparse: vertex 2 moves to (2, 2, 0), vertex 0 to (0, 0, 1).
