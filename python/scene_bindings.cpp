@@ -30,8 +30,9 @@ std::map<std::string, std::vector<float>> parameters_from(const py::kwargs& kwar
 }
 
 api::Precompute precompute_from(const py::kwargs& kwargs, api::Precompute p) {
-    for (const auto& [key, value] : kwargs) {
-        const std::string name = py::str(key);
+    for (const auto& item : kwargs) {
+        const py::handle value = item.second;  // a plain name: lambdas cannot capture structured bindings under Clang 14
+        const std::string name = py::str(item.first);
         const std::string what = "set_precompute " + name;
         const auto setting = [&] { return int_argument(value, what, 0, std::numeric_limits<int>::max()); };
         const auto radius = [&] {
