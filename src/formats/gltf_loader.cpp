@@ -238,7 +238,7 @@ public:
             }
         }
         materials.warn_ignored();
-        for (size_t a = 0; a < model_.animations.size(); ++a) import_animation(a, scene);
+        import_animations(scene);
         gltf::import_lights(model_, path_, nodes_, scene);
         gltf::import_camera(model_, path_, nodes_, scene);
         std::vector<bool> used(model_.meshes.size());
@@ -552,7 +552,30 @@ private:
         throw_file_error(path_, "{}: unknown interpolation '{}'", what, name);
     }
 
-    void import_animation(size_t animation_index, Scene& scene) {
+    // Animations that key different nodes play together (an exporter writes
+    // one per object); where two key the same node and path, the first keeps
+    // it and the file gets one warning naming the others.
+    void import_animations(Scene& scene) {
+        std::map<std::pair<int, std::string>, size_t> keyed_by;  // (glTF node, path) → animation
+        std::vector<std::string> overridden;
+        for (size_t a = 0; a < model_.animations.size(); ++a)
+            if (import_animation(a, scene, keyed_by)) overridden.push_back(animation_name(a));
+        if (!overridden.empty())
+            warn_file(path_,
+                      "animation{} {} key{} nodes an earlier animation keys ({} first); on each node rsl plays the "
+                      "earliest and leaves the later out",
+                      overridden.size() == 1 ? "" : "s", fmt::join(overridden, ", "), overridden.size() == 1 ? "s" : "",
+                      animation_name(0));
+    }
+    std::string animation_name(size_t a) const {
+        const std::string& name = model_.animations[a].name;
+        return name.empty() ? fmt::format("#{}", a) : fmt::format("'{}'", name);
+    }
+
+    // Imports one animation's channels; true when a channel was left out
+    // because an earlier animation keys the same node and path.
+    bool import_animation(size_t animation_index, Scene& scene, std::map<std::pair<int, std::string>, size_t>& keyed_by) {
+        bool left_out = false;
         const tinygltf::Animation& animation = model_.animations[animation_index];
         for (size_t c = 0; c < animation.channels.size(); ++c) {
             const tinygltf::AnimationChannel& channel = animation.channels[c];
@@ -573,6 +596,11 @@ private:
                     throw_file_error(path_, "{}: key time {} ({}) is not finite and increasing", what, k, times[k]);
             }
             const size_t expected = mode == Interpolation::CubicSpline ? 3 * times.size() : times.size();
+            const auto [keyed, first_here] = keyed_by.emplace(std::pair(channel.target_node, channel.target_path), animation_index);
+            if (!first_here && keyed->second != animation_index) {
+                left_out = true;
+                continue;
+            }
             SceneNode& node = scene.nodes[nodes_.scene_node[channel.target_node]];
             const bool is_rotation = channel.target_path == "rotation";
             if (!is_rotation && channel.target_path != "translation" && channel.target_path != "scale")
@@ -596,6 +624,7 @@ private:
                 (channel.target_path == "translation" ? node.translation : node.scale) = std::move(track);
             }
         }
+        return left_out;
     }
 
     const tinygltf::Model& model_;

@@ -121,6 +121,33 @@ TEST_CASE("glTF hierarchy and animation round trip (.gltf and .glb)", "[gltf]") 
     }
 }
 
+TEST_CASE("glTF animations on different nodes play together; on the same node the first plays, with a warning",
+          "[gltf]") {
+    const auto dir = temp_dir("several_animations");
+    GltfBuilder b = robot_arm();  // animation 0 moves the base to (2, 0, 0) at t = 2
+    b.doc()["animations"][0]["name"] = "First";
+    const int times = b.floats({0, 2}, "SCALAR");
+    const auto animation = [&](const char* name, int node, std::vector<float> values) {
+        b.doc()["animations"].push_back(
+            {{"name", name},
+             {"samplers", {{{"input", times}, {"output", b.floats(values, "VEC3")}, {"interpolation", "LINEAR"}}}},
+             {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}}}}});
+    };
+    animation("Second", 1, {0, 0, 0, 5, 0, 0});  // the base again: left out
+    animation("Third", 2, {0, 0, 0, 0, 0, 3});   // the empty node: plays
+    b.write_glb(dir / "several.glb");
+    test::WarningCapture warnings;
+    const Scene scene = load_scene(dir / "several.glb");
+    check_near(world_point(scene, part_named(scene, "base"), 2.0f, Vec3(0.0f)), {2, 0, 0});
+    const auto empty = std::find_if(scene.nodes.begin(), scene.nodes.end(), [](const SceneNode& n) { return n.name == "empty"; });
+    REQUIRE(empty != scene.nodes.end());
+    check_near(empty->local_at(2.0f).translation, {0, 0, 3});
+    REQUIRE(warnings.messages().size() == 1);
+    INFO(warnings.messages()[0]);
+    CHECK_THAT(warnings.messages()[0], Catch::Contains("several.glb") && Catch::Contains("animation 'Second' keys") &&
+                                           Catch::Contains("'First' first") && !Catch::Contains("Third"));
+}
+
 TEST_CASE("glTF meshes without normals get computed normals and tangents", "[gltf]") {
     const auto dir = temp_dir("normals");
     robot_arm().write_glb(dir / "arm.glb");
