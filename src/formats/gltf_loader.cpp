@@ -17,6 +17,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include <glm/gtx/matrix_decompose.hpp>
 
@@ -516,21 +517,28 @@ private:
             return it == primitive.attributes.end() ? -1 : it->second;
         };
         if (attribute("JOINTS_2") >= 0 || attribute("WEIGHTS_2") >= 0)
-            throw_file_error(path_, "{}: JOINTS_2/WEIGHTS_2: a vertex blends more than eight joints, and rsl blends at most "
-                             "eight (JOINTS_0 and JOINTS_1)", what);
+            throw_file_error(path_,
+                             "{}: JOINTS_2/WEIGHTS_2: a vertex blends more than eight joints, and rsl blends at most "
+                             "eight (JOINTS_0 and JOINTS_1)",
+                             what);
         const size_t first = skin.joints.size();
         skin.joints.resize(first + count, JointIndices{});
         skin.weights.resize(first + count, JointWeights{});
         for (int set = 0; set < kJointsPerVertex / 4; ++set) {
-            const std::string joints_name = fmt::format("JOINTS_{}", set), weights_name = fmt::format("WEIGHTS_{}", set);
+            const std::string joints_name = fmt::format("JOINTS_{}", set);
+            const std::string weights_name = fmt::format("WEIGHTS_{}", set);
             const int joints_accessor = attribute(joints_name), weights_accessor = attribute(weights_name);
             if (set > 0 && joints_accessor < 0 && weights_accessor < 0) break;
-            if (joints_accessor < 0 || weights_accessor < 0)
-                throw_file_error(path_, "{}: {}the primitive has no {}", what,
-                                 set == 0 ? "its node has a skin but " : fmt::format("it has {} but ", joints_accessor < 0 ? weights_name : joints_name),
-                                 joints_accessor < 0 ? joints_name : weights_name);
-            const std::vector<float> joints = reader_.floats(joints_accessor, TINYGLTF_TYPE_VEC4, what + " " + joints_name);
-            const std::vector<float> weights = reader_.floats(weights_accessor, TINYGLTF_TYPE_VEC4, what + " " + weights_name);
+            if (joints_accessor < 0 || weights_accessor < 0) {
+                const std::string& missing = joints_accessor < 0 ? joints_name : weights_name;
+                if (set == 0) throw_file_error(path_, "{}: its node has a skin but the primitive has no {}", what, missing);
+                throw_file_error(path_, "{}: it has {} but the primitive has no {}", what,
+                                 joints_accessor < 0 ? weights_name : joints_name, missing);
+            }
+            const std::vector<float> joints =
+                reader_.floats(joints_accessor, TINYGLTF_TYPE_VEC4, what + " " + joints_name);
+            const std::vector<float> weights =
+                reader_.floats(weights_accessor, TINYGLTF_TYPE_VEC4, what + " " + weights_name);
             if (joints.size() != 4 * count || weights.size() != 4 * count)
                 throw_file_error(path_, "{}: {} {} and {} {} values for {} positions", what, joints.size() / 4, joints_name,
                                  weights.size() / 4, weights_name, count);
@@ -538,7 +546,8 @@ private:
                 for (int k = 0; k < 4; ++k) {
                     const float value = joints[4 * v + size_t(k)];
                     if (!(value >= 0 && value <= 65535 && value == std::floor(value)))
-                        throw_file_error(path_, "{}: {} of vertex {} is {}, not a joint index", what, joints_name, v, value);
+                        throw_file_error(path_, "{}: {} of vertex {} is {}, not a joint index", what, joints_name, v,
+                                         value);
                     skin.joints[first + v][size_t(4 * set + k)] = uint16_t(value);
                     skin.weights[first + v][size_t(4 * set + k)] = weights[4 * v + size_t(k)];
                 }
@@ -555,27 +564,32 @@ private:
     // Animations that key different nodes play together (an exporter writes
     // one per object); where two key the same node and path, the first keeps
     // it and the file gets one warning naming the others.
+    using KeyedBy = std::map<std::pair<int, std::string>, size_t>;  // (glTF node, path) → the animation keying it
     void import_animations(Scene& scene) {
-        std::map<std::pair<int, std::string>, size_t> keyed_by;  // (glTF node, path) → animation
+        KeyedBy keyed_by;
         std::vector<std::string> overridden;
+        size_t earliest_kept = model_.animations.size();
         for (size_t a = 0; a < model_.animations.size(); ++a)
-            if (import_animation(a, scene, keyed_by)) overridden.push_back(animation_name(a));
+            if (const std::optional<size_t> kept = import_animation(a, scene, keyed_by)) {
+                overridden.push_back(animation_name(a));
+                earliest_kept = std::min(earliest_kept, *kept);
+            }
         if (!overridden.empty())
             warn_file(path_,
                       "animation{} {} key{} nodes an earlier animation keys ({} first); on each node rsl plays the "
                       "earliest and leaves the later out",
                       overridden.size() == 1 ? "" : "s", fmt::join(overridden, ", "), overridden.size() == 1 ? "s" : "",
-                      animation_name(0));
+                      animation_name(earliest_kept));
     }
     std::string animation_name(size_t a) const {
         const std::string& name = model_.animations[a].name;
         return name.empty() ? fmt::format("#{}", a) : fmt::format("'{}'", name);
     }
 
-    // Imports one animation's channels; true when a channel was left out
-    // because an earlier animation keys the same node and path.
-    bool import_animation(size_t animation_index, Scene& scene, std::map<std::pair<int, std::string>, size_t>& keyed_by) {
-        bool left_out = false;
+    // Imports one animation's channels. When a channel is left out because an
+    // earlier animation keys the same node and path, returns that animation.
+    std::optional<size_t> import_animation(size_t animation_index, Scene& scene, KeyedBy& keyed_by) {
+        std::optional<size_t> kept;
         const tinygltf::Animation& animation = model_.animations[animation_index];
         for (size_t c = 0; c < animation.channels.size(); ++c) {
             const tinygltf::AnimationChannel& channel = animation.channels[c];
@@ -596,9 +610,10 @@ private:
                     throw_file_error(path_, "{}: key time {} ({}) is not finite and increasing", what, k, times[k]);
             }
             const size_t expected = mode == Interpolation::CubicSpline ? 3 * times.size() : times.size();
-            const auto [keyed, first_here] = keyed_by.emplace(std::pair(channel.target_node, channel.target_path), animation_index);
+            const auto [keyed, first_here] =
+                keyed_by.emplace(std::pair(channel.target_node, channel.target_path), animation_index);
             if (!first_here && keyed->second != animation_index) {
-                left_out = true;
+                kept = std::min(kept.value_or(keyed->second), keyed->second);
                 continue;
             }
             SceneNode& node = scene.nodes[nodes_.scene_node[channel.target_node]];
@@ -624,7 +639,7 @@ private:
                 (channel.target_path == "translation" ? node.translation : node.scale) = std::move(track);
             }
         }
-        return left_out;
+        return kept;
     }
 
     const tinygltf::Model& model_;

@@ -228,8 +228,10 @@ void add_skin(GltfBuilder& builder, tinygltf::Model& model, tinygltf::Scene& roo
     add_mesh(builder, model, part, material);
     tinygltf::Primitive& primitive = model.meshes.back().primitives.back();
     // Set 1 only when some vertex blends more than four joints.
-    const bool two_sets = std::any_of(skin.weights.begin(), skin.weights.end(),
-                                      [](const JointWeights& w) { return std::any_of(w.begin() + 4, w.end(), [](float x) { return x != 0; }); });
+    const auto uses_set_1 = [](const JointWeights& w) {
+        return std::any_of(w.begin() + 4, w.end(), [](float x) { return x != 0; });
+    };
+    const bool two_sets = std::any_of(skin.weights.begin(), skin.weights.end(), uses_set_1);
     for (int set = 0; set < (two_sets ? 2 : 1); ++set) {
         std::vector<std::array<uint16_t, 4>> joints(n);
         std::vector<float> weights(4 * n);
