@@ -66,10 +66,22 @@ int GltfMaterials::checked_index(int material) const {
 
 int GltfMaterials::texcoord_set(int material) const {
     if (material < 0) return -1;
-    const tinygltf::TextureInfo& info = model_.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture;
-    if (info.index < 0) return -1;
-    if (info.texCoord < 0) throw_file_error(path_, "material '{}': texCoord {} is negative", name(material), info.texCoord);
-    return info.texCoord;
+    const tinygltf::PbrMetallicRoughness& pbr = model_.materials[size_t(material)].pbrMetallicRoughness;
+    const std::pair<const tinygltf::TextureInfo*, const char*> textures[] = {
+        {&pbr.baseColorTexture, "baseColorTexture"}, {&pbr.metallicRoughnessTexture, "metallicRoughnessTexture"}};
+    int set = -1;
+    const char* first = nullptr;
+    for (const auto& [info, key] : textures) {
+        if (info->index < 0) continue;
+        if (info->texCoord < 0)
+            throw_file_error(path_, "material '{}': {} texCoord {} is negative", name(material), key, info->texCoord);
+        if (first && info->texCoord != set)
+            throw_file_error(path_, "material '{}': {} reads TEXCOORD_{} and {} TEXCOORD_{}; rsl reads one set of "
+                             "texture coordinates per material", name(material), first, set, key, info->texCoord);
+        set = info->texCoord;
+        first = key;
+    }
+    return set;
 }
 
 std::string GltfMaterials::name(int material) const {
@@ -114,11 +126,14 @@ MaterialDesc GltfMaterials::convert(int material) {
                                  unit(pbr.baseColorFactor[2], "baseColorFactor")};
     desc.params["metallic"] = {unit(pbr.metallicFactor, "metallicFactor")};
     desc.params["roughness"] = {unit(pbr.roughnessFactor, "roughnessFactor")};
-    if (pbr.baseColorTexture.index >= 0) desc.base_color_texture = texture(pbr.baseColorTexture.index, what);
+    if (pbr.baseColorTexture.index >= 0)
+        desc.base_color_texture = texture(pbr.baseColorTexture.index, what, "base colour", TextureEncoding::Srgb);
+    if (pbr.metallicRoughnessTexture.index >= 0)
+        desc.metallic_roughness_texture =
+            texture(pbr.metallicRoughnessTexture.index, what, "metallic-roughness", TextureEncoding::Linear);
 
-    if (pbr.metallicRoughnessTexture.index >= 0) ignored_.insert("metallicRoughnessTexture (the factors are used)");
     if (source.normalTexture.index >= 0) ignored_.insert("normalTexture");
-    if (source.occlusionTexture.index >= 0) ignored_.insert("occlusionTexture");
+    if (source.occlusionTexture.index >= 0) ignored_.insert("occlusionTexture (rsl computes the occlusion itself)");
     if (source.emissiveTexture.index >= 0 ||
         (source.emissiveFactor.size() == 3 &&
          (source.emissiveFactor[0] > 0 || source.emissiveFactor[1] > 0 || source.emissiveFactor[2] > 0)))
@@ -128,10 +143,12 @@ MaterialDesc GltfMaterials::convert(int material) {
     return desc;
 }
 
-std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const std::string& what) {
-    if (auto it = textures_.find(texture_index); it != textures_.end()) return it->second;
+std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const std::string& what, const char* role,
+                                                     TextureEncoding encoding) {
+    const std::pair<int, TextureEncoding> key{texture_index, encoding};
+    if (auto it = textures_.find(key); it != textures_.end()) return it->second;
     if (size_t(texture_index) >= model_.textures.size())
-        throw_file_error(path_, "{}: baseColorTexture index {} is out of range ({} textures)", what, texture_index,
+        throw_file_error(path_, "{}: {} texture index {} is out of range ({} textures)", what, role, texture_index,
                          model_.textures.size());
     const tinygltf::Texture& source = model_.textures[size_t(texture_index)];
     if (source.source < 0 || size_t(source.source) >= model_.images.size())
@@ -143,9 +160,9 @@ std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const s
                                        ? echo_value(image.uri)
                                        : fmt::format("image{}", source.source);
     if (auto e = image_errors_.find(source.source); e != image_errors_.end())
-        throw_file_error(path_, "{}: base colour image '{}': {}", what, image_name, echo_message(e->second));
+        throw_file_error(path_, "{}: {} image '{}': {}", what, role, image_name, echo_message(e->second));
     if (image.image.empty() || image.component != 4 || image.width < 1 || image.height < 1)
-        throw_file_error(path_, "{}: base colour image '{}' could not be read (missing file?)", what, image_name);
+        throw_file_error(path_, "{}: {} image '{}' could not be read (missing file?)", what, role, image_name);
 
     auto texture = std::make_shared<Texture>();
     texture->name = image_name;
@@ -155,21 +172,26 @@ std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const s
                              source.sampler, model_.samplers.size());
         texture->wrap_s = wrap_mode(model_.samplers[size_t(source.sampler)].wrapS);
         texture->wrap_t = wrap_mode(model_.samplers[size_t(source.sampler)].wrapT);
+        if (model_.samplers[size_t(source.sampler)].magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST)
+            texture->filter = TextureFilter::Nearest;
     }
-    // glTF base colour images are sRGB-encoded; the renderer works in linear RGB.
+    // glTF colour images are sRGB-encoded, data images (metallic-roughness)
+    // linear; the renderer works in linear RGB.
     std::array<float, 256> decoded;
-    for (int v = 0; v < 256; ++v) decoded[size_t(v)] = srgb_to_linear(float(v) / 255.0f);
+    for (int v = 0; v < 256; ++v)
+        decoded[size_t(v)] = encoding == TextureEncoding::Srgb ? srgb_to_linear(float(v) / 255.0f) : float(v) / 255.0f;
     texture->image = Image(image.width, image.height, 3);
     for (size_t p = 0; p < size_t(image.width) * size_t(image.height); ++p)
         for (int c = 0; c < 3; ++c) texture->image.pixels[3 * p + size_t(c)] = decoded[image.image[4 * p + size_t(c)]];
-    return textures_[texture_index] = std::move(texture);
+    return textures_[key] = std::move(texture);
 }
 
 void GltfMaterials::warn_ignored() const {
     if (ignored_.empty()) return;
     std::string list;
     for (const std::string& what : ignored_) list += (list.empty() ? "" : ", ") + what;
-    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness and baseColorTexture): {}", list);
+    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness, baseColorTexture and "
+              "metallicRoughnessTexture): {}", list);
 }
 
 }  // namespace rsl
