@@ -11,6 +11,7 @@
 #include "tools/bench/bench.h"
 #include "tools/bench/render_bench_cases.h"
 #include "src/backend/render_session.h"
+#include "src/formats/scene_file.h"
 #include "src/render/render_setup.h"
 #include "src/image/error_metrics.h"
 #include "src/trace/ground_truth.h"
@@ -156,6 +157,56 @@ void bench_case(const RenderBenchCase& c, const BenchOptions& options) {
     emit_case(c, *scene, setup, renderer.stats(), timings, error, objects);
 }
 
+// The cost of roughness and metallic varying per point (src/brdf/pbr_basis.h):
+// assets/scenes/pbr.json as it is, and with every gltf_pbr material given a
+// 1×1 white metallic-roughness texture (the same values, shaded from the
+// basis tables), timed alternately in one run.
+void bench_pbr_texture_cost(const BenchOptions& options) {
+    const fs::path file = options.scenes / "pbr.json";
+    if (!fs::exists(file)) return;
+    auto plain = std::make_shared<Scene>(load_scene(file));
+    plain->precompute = bench_precompute();
+    auto textured = std::make_shared<Scene>(*plain);
+    auto white = std::make_shared<Texture>();
+    white->name = "white";
+    white->image = Image(1, 1, 3);
+    white->image.set_rgb(0, 0, Color(1.0f));
+    int varying = 0;
+    for (MaterialDesc& m : textured->materials)
+        if (m.model == "gltf_pbr") m.metallic_roughness_texture = white, ++varying;
+    for (Part& part : textured->parts)
+        if (part.mesh.texcoords.size() != part.mesh.vertex_count())
+            part.mesh.texcoords.assign(part.mesh.vertex_count(), Vec2(0.5f));
+    RenderOptions render_options;
+    RenderSession a(plain, render_options, Backend::Cpu, {.progress = {}, .field_cache = options.field_cache});
+    RenderSession b(textured, render_options, Backend::Cpu, {.progress = {}, .field_cache = options.field_cache});
+    VertexColors ca = a.shade(0.0f, false), cb = b.shade(0.0f, false);  // warm-up
+    std::vector<double> plain_times, textured_times;
+    for (int i = 0; i < (options.quick ? 2 : 7); ++i) {
+        auto start = Clock::now();
+        a.renderer().shade(ca);
+        plain_times.push_back(since(start));
+        start = Clock::now();
+        b.renderer().shade(cb);
+        textured_times.push_back(since(start));
+    }
+    std::sort(plain_times.begin(), plain_times.end());
+    std::sort(textured_times.begin(), textured_times.end());
+    const double plain_seconds = plain_times[plain_times.size() / 2];
+    const double textured_seconds = textured_times[textured_times.size() / 2];
+    bench_emit({{"bench", "render"},
+                {"case", "pbr: metallic-roughness textures"},
+                {"vertices", a.renderer().stats().vertices},
+                {"varying_materials", varying},
+                {"shade_seconds_plain", plain_seconds},
+                {"shade_seconds_textured", textured_seconds},
+                {"textured_over_plain", textured_seconds / plain_seconds},
+                {"lookups_plain", a.renderer().stats().lookups},
+                {"lookups_textured", b.renderer().stats().lookups},
+                {"relative_l2_textured_vs_plain", compare_vertex_colors(cb.at_unit_texture(), ca.at_unit_texture())
+                                                      .total.relative_l2()}});
+}
+
 void bench_render(const BenchOptions& options) {
     for (const RenderBenchCase& c : render_speed_cases(options.quick)) bench_case(c, options);
 }
@@ -167,6 +218,10 @@ void bench_render_accuracy(const BenchOptions& options) {
     for (const AccuracyRow& row : render_accuracy_table(options, options.quick))
         bench_emit(accuracy_row_json(row));
 }
+
+RegisterBenchmark pbr_texture_benchmark({"render-pbr-texture",
+    "CPU shading with metallic-roughness textures (the basis tables) against the same materials untextured, pbr.json",
+    bench_pbr_texture_cost});
 
 RegisterBenchmark render_accuracy_benchmark({"render-accuracy",
     "Per-vertex relative L2 error of the RSL renderer vs the ground truth (docs/RESULTS.md); slow",
