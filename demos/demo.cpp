@@ -15,6 +15,7 @@ const std::vector<DemoInfo>& demo_list() {
         {"kitchen", "5 parts, two environment maps cross-faded, a moving local light (Fig. 16)", "kitchen/scene.json"},
         {"materials", "one object in 4 BRDFs, glossiness sweep rebuilding the tables (Fig. 15)", "materials/scene.json"},
         {"compare", "ground truth vs RSL with 10/30/100 lights, error images (Figs. 9, 10)", "compare/scene.json"},
+        {"walker", "a skinned, textured character walking round rigid parts, turning sun/sky", "walker/scene.json"},
     };
     return demos;
 }
@@ -24,6 +25,7 @@ DemoResult run_demo(const std::string& name, const DemoOptions& options) {
     if (name == "kitchen") return run_kitchen_demo(options);
     if (name == "materials") return run_materials_demo(options);
     if (name == "compare") return run_compare_demo(options);
+    if (name == "walker") return run_walker_demo(options);
     std::string names;
     for (const DemoInfo& demo : demo_list()) names += (names.empty() ? "" : ", ") + demo.name;
     throw_error("unknown demo '{}' (demos: {})", name, names);

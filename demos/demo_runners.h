@@ -8,6 +8,7 @@ DemoResult run_robot_demo(const DemoOptions& options);
 DemoResult run_kitchen_demo(const DemoOptions& options);
 DemoResult run_materials_demo(const DemoOptions& options);
 DemoResult run_compare_demo(const DemoOptions& options);
+DemoResult run_walker_demo(const DemoOptions& options);
 
 }  // namespace rsl::demos
 

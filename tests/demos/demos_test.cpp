@@ -112,6 +112,10 @@ TEST_CASE("robot demo renders a moving, non-blank sequence", "[demos][robot]") {
     check_animated(run_quick("robot"));
 }
 
+TEST_CASE("walker demo renders a moving, non-blank sequence", "[demos][walker]") {
+    check_animated(run_quick("walker"));
+}
+
 TEST_CASE("kitchen demo renders a moving, non-blank sequence", "[demos][kitchen]") {
     check_animated(run_quick("kitchen"));
 }

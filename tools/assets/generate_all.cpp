@@ -13,6 +13,7 @@
 #include "tools/assets/pbr_scene.h"
 #include "tools/assets/robot.h"
 #include "tools/assets/skinned_tube.h"
+#include "tools/assets/walker.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/formats/image_file.h"
@@ -22,7 +23,8 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> generated_file_names() {
     return {"robot.glb",   "ground.obj",  "orb.obj",      "kitchen.glb",  "sunsky.exr",  "sunsky.png",
-            "studio.exr",  "studio.png",  "overcast.exr", "overcast.png", "pbr.glb",     "teapot.obj",  "tube.glb"};
+            "studio.exr",  "studio.png",  "overcast.exr", "overcast.png", "pbr.glb",     "teapot.obj",  "tube.glb",
+            "walker.glb"};
 }
 
 namespace {
@@ -98,6 +100,11 @@ GenerateReport generate_assets(const fs::path& dir, bool force) {
             note(fmt::format("tube.glb: a skinned tube of {} joints bending {:g} deg in a {:g} s loop, {} vertices",
                              tube.skins[0].joint_nodes.size(), demo_tube_options().bend_degrees, tube.loop_seconds,
                              tube.skins[0].mesh.vertex_count()));
+            const GeneratedModel walker = make_walker();
+            write_glb(dir / "walker.glb", walker);
+            note(fmt::format("walker.glb: a skinned figure of {} joints walking a circle in a {:g} s loop, {} vertices, "
+                             "base colour and metallic-roughness textures",
+                             walker.skins[0].joint_nodes.size(), walker.loop_seconds, walker.skins[0].mesh.vertex_count()));
             const TriangleMesh teapot = make_teapot();
             write_obj(dir / "teapot.obj", teapot);
             note(fmt::format("teapot.obj: the kitchen's teapot (instanced and animated scenes), {} vertices, {} triangles",

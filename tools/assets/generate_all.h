@@ -9,7 +9,7 @@
 
 namespace rsl::assets {
 
-inline constexpr const char* kAssetsVersion = "rsl-assets 7";
+inline constexpr const char* kAssetsVersion = "rsl-assets 8";
 inline constexpr const char* kStampName = ".stamp";
 
 // The files generate_assets writes (names inside the output folder).

@@ -280,6 +280,9 @@ void append_mesh(TriangleMesh& dst, const TriangleMesh& src) {
     dst.positions.insert(dst.positions.end(), src.positions.begin(), src.positions.end());
     dst.normals.insert(dst.normals.end(), src.normals.begin(), src.normals.end());
     dst.tangents.insert(dst.tangents.end(), src.tangents.begin(), src.tangents.end());
+    // Texture coordinates go along when both meshes have them (or dst is empty).
+    if (base == 0 || dst.texcoords.size() == base)
+        dst.texcoords.insert(dst.texcoords.end(), src.texcoords.begin(), src.texcoords.end());
     for (uint32_t i : src.indices) dst.indices.push_back(base + i);
 }
 

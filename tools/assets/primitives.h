@@ -81,7 +81,8 @@ TriangleMesh grid_plane(float size_x, float size_z, int cells_x, int cells_z);
 // Applies an affine transform: positions by m, normals by its inverse
 // transpose, tangents by m (re-orthogonalized against the normal).
 void transform_mesh(TriangleMesh& mesh, const Mat4& m);
-// Appends src's vertices and triangles to dst (a part made of several solids).
+// Appends src's vertices and triangles to dst (a part made of several solids),
+// with their texture coordinates when every vertex so far has them.
 void append_mesh(TriangleMesh& dst, const TriangleMesh& src);
 // Sets tangents from the normals: the part's +X axis projected into each
 // tangent plane (+Z where the normal is nearly ±X), handedness +1.
