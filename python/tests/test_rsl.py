@@ -210,6 +210,29 @@ class ModuleTest(unittest.TestCase):
         np.testing.assert_allclose(r.part_transform("orb"), matrix, atol=1e-6)
         np.testing.assert_allclose(r.shade(), after, rtol=1e-5, atol=1e-6)
 
+    def test_a_textured_materials_factors_are_edited_as_any_material(self):
+        """The generated walker's material has a metallic-roughness texture; its roughness factor scales it."""
+        scene = {"name": "walker", "gltf": os.path.join(GENERATED, "walker.glb"),
+                 "environment": {"file": SUNSKY, "resolution": 12},
+                 "camera": {"position": [0.5, 1.6, 3.0], "target": [1, 0.8, 0], "up": [0, 1, 0], "fov_degrees": 40,
+                            "width": 96, "height": 72},
+                 "subdivision": False,
+                 "precompute": {"svdf": {"resolution": 8, "clusters": 16, "vectors": 4, "supersampling": 1},
+                                "ovdf": {"shells": 4, "inner_radius": 0.4, "outer_radius": 6.0,
+                                         "cube_resolution": 6, "vdt_resolution": 8, "vectors": 4}}}
+        path = os.path.join(self.folder, "walker.json")
+        with open(path, "w") as f:
+            json.dump(scene, f)
+        r = rsl.Renderer(rsl.Scene.load(path), lights=12)
+        before = r.shade()
+        r.set_material_parameter("walker", "roughness", 0.4)
+        edited = r.shade()
+        self.assertGreater(rsl.compare(edited, before)["relative_l2"], 0.01)
+        r.set_material_parameter("walker", "roughness", 1.0)
+        np.testing.assert_array_equal(r.shade(), before)  # the edit undone: the frame it was
+        with self.assertRaisesRegex(rsl.Error, "roughness"):
+            r.set_material_parameter("walker", "roughness", 1.5)
+
     def test_long_calls_release_the_gil(self):
         # The main thread counts while a worker runs the truth (T seconds).
         # Holding the GIL, the call would let it count for a thread switch
