@@ -179,6 +179,21 @@ TEST_CASE("A scene file's gltf_animations chooses the glTF's animations that pla
     CHECK_THROWS_WITH(load_scene(dir / "none.json"), Catch::Contains("gltf_animations"));
 }
 
+TEST_CASE("A glTF material whose textures read two TEXCOORD sets is refused, naming both", "[gltf]") {
+    const auto dir = temp_dir("two_texcoord_sets");
+    GltfBuilder b = robot_arm();
+    b.doc()["materials"] = {{{"name", "painted"},
+                             {"pbrMetallicRoughness",
+                              {{"baseColorTexture", {{"index", 0}}},
+                               {"metallicRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}}}}};
+    b.doc()["meshes"][0]["primitives"][0]["material"] = 0;
+    b.write_glb(dir / "two_sets.glb");
+    CHECK_THROWS_WITH(load_scene(dir / "two_sets.glb"),
+                      Catch::Contains("two_sets.glb") && Catch::Contains("painted") &&
+                          Catch::Contains("baseColorTexture reads TEXCOORD_0") &&
+                          Catch::Contains("metallicRoughnessTexture TEXCOORD_1"));
+}
+
 TEST_CASE("glTF meshes without normals get computed normals and tangents", "[gltf]") {
     const auto dir = temp_dir("normals");
     robot_arm().write_glb(dir / "arm.glb");
