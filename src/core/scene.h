@@ -61,6 +61,11 @@ struct MaterialDesc {
     // glTF baseColorTexture (gltf_pbr only): multiplies the diffuse lobe per
     // pixel, read at the part's TEXCOORD_0 (docs/SCENE_FORMAT.md).
     std::shared_ptr<const Texture> base_color_texture;
+    // Emission (src/core/emission.h): radiance the surface gives off itself,
+    // emissive × emissive_texture(uv), added to what it reflects; it lights
+    // no other surface. glTF: emissiveFactor × KHR_materials_emissive_strength.
+    Color emissive{0};
+    std::shared_ptr<const Texture> emissive_texture;  // sRGB-decoded, read at the part's texture coordinates
 };
 
 // A glTF skin: its joints' scene nodes and inverse bind matrices (mesh

@@ -19,7 +19,9 @@
 
 #include <fmt/format.h>
 
+#include "src/core/emission.h"
 #include "src/core/error.h"
+#include "src/core/scene_limits.h"
 #include "src/formats/file_reading.h"
 
 namespace rsl {
@@ -46,6 +48,8 @@ bool decode_gltf_image(tinygltf::Image* image, int image_index, std::string*, st
 
 namespace {
 
+constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+
 TextureWrap wrap_mode(int gl_wrap) {
     if (gl_wrap == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::ClampToEdge;
     if (gl_wrap == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::MirroredRepeat;
@@ -66,10 +70,21 @@ int GltfMaterials::checked_index(int material) const {
 
 int GltfMaterials::texcoord_set(int material) const {
     if (material < 0) return -1;
-    const tinygltf::TextureInfo& info = model_.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture;
-    if (info.index < 0) return -1;
-    if (info.texCoord < 0) throw_file_error(path_, "material '{}': texCoord {} is negative", name(material), info.texCoord);
-    return info.texCoord;
+    const tinygltf::Material& source = model_.materials[size_t(material)];
+    // A part holds one set of texture coordinates: the material's textures share it.
+    int set = -1;
+    const auto read = [&](const tinygltf::TextureInfo& info, const char* key) {
+        if (info.index < 0) return;
+        if (info.texCoord < 0)
+            throw_file_error(path_, "material '{}': {} texCoord {} is negative", name(material), key, info.texCoord);
+        if (set >= 0 && info.texCoord != set)
+            throw_file_error(path_, "material '{}': {} reads TEXCOORD_{}, its other textures TEXCOORD_{} (rsl reads "
+                             "one set of texture coordinates per material)", name(material), key, info.texCoord, set);
+        set = info.texCoord;
+    };
+    read(source.pbrMetallicRoughness.baseColorTexture, "baseColorTexture");
+    read(source.emissiveTexture, "emissiveTexture");
+    return set;
 }
 
 std::string GltfMaterials::name(int material) const {
@@ -115,23 +130,55 @@ MaterialDesc GltfMaterials::convert(int material) {
     desc.params["metallic"] = {unit(pbr.metallicFactor, "metallicFactor")};
     desc.params["roughness"] = {unit(pbr.roughnessFactor, "roughnessFactor")};
     if (pbr.baseColorTexture.index >= 0) desc.base_color_texture = texture(pbr.baseColorTexture.index, what);
+    read_emission(source, what, desc);
 
     if (pbr.metallicRoughnessTexture.index >= 0) ignored_.insert("metallicRoughnessTexture (the factors are used)");
     if (source.normalTexture.index >= 0) ignored_.insert("normalTexture");
     if (source.occlusionTexture.index >= 0) ignored_.insert("occlusionTexture");
-    if (source.emissiveTexture.index >= 0 ||
-        (source.emissiveFactor.size() == 3 &&
-         (source.emissiveFactor[0] > 0 || source.emissiveFactor[1] > 0 || source.emissiveFactor[2] > 0)))
-        ignored_.insert("emission");
     if (source.alphaMode == "BLEND" || source.alphaMode == "MASK") ignored_.insert("alphaMode " + source.alphaMode);
-    for (const auto& [extension, value] : source.extensions) ignored_.insert(extension);
+    for (const auto& [extension, value] : source.extensions)
+        if (extension != kEmissiveStrength) ignored_.insert(extension);
     return desc;
 }
 
-std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const std::string& what) {
+// emissiveFactor × KHR_materials_emissive_strength, and the emissiveTexture
+// (sRGB-encoded, as base colour images are).
+void GltfMaterials::read_emission(const tinygltf::Material& source, const std::string& what, MaterialDesc& desc) {
+    // tinygltf fills glTF's default (0, 0, 0) when the file leaves it out.
+    if (source.emissiveFactor.size() != 3)
+        throw_file_error(path_, "{}: emissiveFactor has {} values, not 3", what, source.emissiveFactor.size());
+    Color factor;
+    for (int c = 0; c < 3; ++c) {
+        const double x = source.emissiveFactor[size_t(c)];
+        if (!(x >= 0.0 && x <= 1.0)) throw_file_error(path_, "{}: emissiveFactor must be in [0, 1] (got {})", what, x);
+        factor[c] = float(x);
+    }
+    double strength = 1.0;
+    if (auto it = source.extensions.find(kEmissiveStrength); it != source.extensions.end()) {
+        const tinygltf::Value& extension = it->second;
+        if (!extension.IsObject())
+            throw_file_error(path_, "{}: {} is not an object", what, kEmissiveStrength);
+        if (extension.Has("emissiveStrength")) {
+            const tinygltf::Value& value = extension.Get("emissiveStrength");
+            if (!value.IsNumber())
+                throw_file_error(path_, "{}: {}.emissiveStrength is not a number", what, kEmissiveStrength);
+            strength = value.GetNumberAsDouble();
+        }
+        if (!(strength >= 0.0 && strength <= double(kMaxEmission)))
+            throw_file_error(path_, "{}: {}.emissiveStrength {} is not in [0, {:g}]", what, kEmissiveStrength,
+                             strength, kMaxEmission);
+    }
+    desc.emissive = factor * float(strength);
+    if (const std::string problem = emission_problem(desc.emissive); !problem.empty())
+        throw_file_error(path_, "{}: emissiveFactor × emissiveStrength: {}", what, problem);
+    if (source.emissiveTexture.index >= 0)
+        desc.emissive_texture = texture(source.emissiveTexture.index, what, "emissiveTexture");
+}
+
+std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const std::string& what, const char* slot) {
     if (auto it = textures_.find(texture_index); it != textures_.end()) return it->second;
     if (size_t(texture_index) >= model_.textures.size())
-        throw_file_error(path_, "{}: baseColorTexture index {} is out of range ({} textures)", what, texture_index,
+        throw_file_error(path_, "{}: {} index {} is out of range ({} textures)", what, slot, texture_index,
                          model_.textures.size());
     const tinygltf::Texture& source = model_.textures[size_t(texture_index)];
     if (source.source < 0 || size_t(source.source) >= model_.images.size())
@@ -143,9 +190,9 @@ std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const s
                                        ? echo_value(image.uri)
                                        : fmt::format("image{}", source.source);
     if (auto e = image_errors_.find(source.source); e != image_errors_.end())
-        throw_file_error(path_, "{}: base colour image '{}': {}", what, image_name, echo_message(e->second));
+        throw_file_error(path_, "{}: {} image '{}': {}", what, slot, image_name, echo_message(e->second));
     if (image.image.empty() || image.component != 4 || image.width < 1 || image.height < 1)
-        throw_file_error(path_, "{}: base colour image '{}' could not be read (missing file?)", what, image_name);
+        throw_file_error(path_, "{}: {} image '{}' could not be read (missing file?)", what, slot, image_name);
 
     auto texture = std::make_shared<Texture>();
     texture->name = image_name;
@@ -156,7 +203,7 @@ std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const s
         texture->wrap_s = wrap_mode(model_.samplers[size_t(source.sampler)].wrapS);
         texture->wrap_t = wrap_mode(model_.samplers[size_t(source.sampler)].wrapT);
     }
-    // glTF base colour images are sRGB-encoded; the renderer works in linear RGB.
+    // glTF base colour and emissive images are sRGB-encoded; the renderer works in linear RGB.
     std::array<float, 256> decoded;
     for (int v = 0; v < 256; ++v) decoded[size_t(v)] = srgb_to_linear(float(v) / 255.0f);
     texture->image = Image(image.width, image.height, 3);
@@ -169,7 +216,8 @@ void GltfMaterials::warn_ignored() const {
     if (ignored_.empty()) return;
     std::string list;
     for (const std::string& what : ignored_) list += (list.empty() ? "" : ", ") + what;
-    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness and baseColorTexture): {}", list);
+    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness, baseColorTexture and "
+              "emission): {}", list);
 }
 
 }  // namespace rsl

@@ -1,7 +1,8 @@
 #pragma once
 // glTF 2.0 materials → scene materials (docs/SCENE_FORMAT.md, "glTF
 // materials"): pbrMetallicRoughness becomes a gltf_pbr material, its
-// baseColorTexture a Texture (decoded with Debian's stb_image, sRGB → linear).
+// baseColorTexture a Texture (decoded with Debian's stb_image, sRGB → linear),
+// and the emission (emissiveFactor, emissiveTexture, emissive strength) its emissive.
 // Internal to the glTF loader (gltf_loader.cpp), which includes tiny_gltf.h
 // before this header.
 #include <filesystem>
@@ -16,6 +17,7 @@
 namespace tinygltf {
 class Model;
 struct Image;
+struct Material;
 }  // namespace tinygltf
 
 namespace rsl {
@@ -35,7 +37,8 @@ public:
 
     // `material` if it is −1 or a valid glTF material index; throws otherwise.
     int checked_index(int material) const;
-    // The TEXCOORD set a glTF material's base colour texture reads, −1 if it has none.
+    // The TEXCOORD set a glTF material's textures (base colour, emissive)
+    // read, −1 if it has none; throws when they read different sets.
     int texcoord_set(int material) const;
     // The material's name ("material3" when unnamed; "default" for −1).
     std::string name(int material) const;
@@ -47,7 +50,10 @@ public:
 
 private:
     MaterialDesc convert(int material);
-    std::shared_ptr<const Texture> texture(int texture_index, const std::string& what);
+    void read_emission(const tinygltf::Material& source, const std::string& what, MaterialDesc& desc);
+    // `slot`: the material's key that names the texture, for messages.
+    std::shared_ptr<const Texture> texture(int texture_index, const std::string& what,
+                                           const char* slot = "baseColorTexture");
 
     const tinygltf::Model& model_;
     const GltfImageErrors& image_errors_;

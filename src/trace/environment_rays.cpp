@@ -211,11 +211,12 @@ void EnvironmentRays::shade_light(const SurfacePoint& x, const Vec3& origin, con
 Color EnvironmentRays::shade_hit(const RayHit& hit, const Vec3& ray_direction, uint64_t pixel_stream) const {
     const SurfacePoint x = posed_.hit_point(hit, ray_direction);
     const uint64_t stream = pixel_stream | kPixelStreamBit;
+    const Color emission = hit_emission(scene_, hit);
     const Brdf* specular = part_specular_brdf(hit.instance);
-    if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance), stream);
+    if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance), stream) + emission;
     const Texture& texture = *scene_.materials[size_t(scene_.parts[size_t(hit.instance)].material)].base_color_texture;
     return shade(x, -ray_direction, part_brdf(hit.instance), stream) * texture.sample(interpolate_texcoords(scene_, hit)) +
-           shade(x, -ray_direction, *specular, specular_stream(stream));
+           shade(x, -ray_direction, *specular, specular_stream(stream)) + emission;
 }
 
 HitShader EnvironmentRays::hit_shader() const {

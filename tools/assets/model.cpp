@@ -135,7 +135,7 @@ private:
 
 std::vector<double> as_doubles(const float* v, int n) { return std::vector<double>(v, v + n); }
 
-// A linear-RGB texture as the sRGB PNG bytes a glTF base colour image holds.
+// A linear-RGB texture as the sRGB PNG bytes a glTF base colour or emissive image holds.
 std::vector<unsigned char> png_bytes(const Texture& texture) {
     const Image& image = texture.image;
     std::vector<unsigned char> pixels(size_t(image.width) * image.height * 3);
@@ -170,24 +170,37 @@ int add_material(GltfBuilder& builder, tinygltf::Model& model, const MaterialDes
     m.pbrMetallicRoughness.baseColorFactor = {base[0], base[base.size() == 3 ? 1 : 0], base[base.size() == 3 ? 2 : 0], 1.0};
     m.pbrMetallicRoughness.metallicFactor = param("metallic", 1.0f)[0];
     m.pbrMetallicRoughness.roughnessFactor = param("roughness", 1.0f)[0];
-    if (desc.base_color_texture) {
+    const auto add_texture = [&](const Texture& source) {
         tinygltf::Image image;
-        image.name = desc.base_color_texture->name;
+        image.name = source.name;
         image.mimeType = "image/png";
-        image.bufferView = builder.add_bytes(png_bytes(*desc.base_color_texture));
+        image.bufferView = builder.add_bytes(png_bytes(source));
         model.images.push_back(image);
         tinygltf::Sampler sampler;
         sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
         sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-        sampler.wrapS = gl_wrap(desc.base_color_texture->wrap_s);
-        sampler.wrapT = gl_wrap(desc.base_color_texture->wrap_t);
+        sampler.wrapS = gl_wrap(source.wrap_s);
+        sampler.wrapT = gl_wrap(source.wrap_t);
         model.samplers.push_back(sampler);
         tinygltf::Texture texture;
         texture.source = int(model.images.size()) - 1;
         texture.sampler = int(model.samplers.size()) - 1;
         model.textures.push_back(texture);
-        m.pbrMetallicRoughness.baseColorTexture.index = int(model.textures.size()) - 1;
+        return int(model.textures.size()) - 1;
+    };
+    if (desc.base_color_texture) m.pbrMetallicRoughness.baseColorTexture.index = add_texture(*desc.base_color_texture);
+    // Emission past 1 as glTF writes it: a factor in [0, 1] times KHR_materials_emissive_strength.
+    const float strength = std::max({1.0f, desc.emissive.r, desc.emissive.g, desc.emissive.b});
+    m.emissiveFactor = {desc.emissive.r / strength, desc.emissive.g / strength, desc.emissive.b / strength};
+    if (strength > 1.0f) {
+        tinygltf::Value::Object extension;
+        extension["emissiveStrength"] = tinygltf::Value(double(strength));
+        m.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(extension);
+        if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_materials_emissive_strength") ==
+            model.extensionsUsed.end())
+            model.extensionsUsed.push_back("KHR_materials_emissive_strength");
     }
+    if (desc.emissive_texture) m.emissiveTexture.index = add_texture(*desc.emissive_texture);
     model.materials.push_back(m);
     return int(model.materials.size()) - 1;
 }
