@@ -9,15 +9,15 @@
 
 namespace rsl {
 
-Color emission_at(const MaterialDesc& m, const Vec2& uv) {
-    return m.emissive_texture ? m.emissive * m.emissive_texture->sample(uv) : m.emissive;
+Color emission_at(const Color& emissive, const Texture* texture, const Vec2& uv) {
+    return texture ? emissive * texture->sample(uv) : emissive;
 }
 
-std::vector<Color> vertex_emission(const MaterialDesc& m, const TriangleMesh& mesh) {
-    std::vector<Color> emission(mesh.vertex_count(), m.emissive);
-    if (m.emissive_texture) {
+std::vector<Color> vertex_emission(const Color& emissive, const Texture* texture, const TriangleMesh& mesh) {
+    std::vector<Color> emission(mesh.vertex_count(), emissive);
+    if (texture) {
         RSL_CHECK_EQ(mesh.texcoords.size(), mesh.vertex_count());
-        for (size_t v = 0; v < emission.size(); ++v) emission[v] = emission_at(m, mesh.texcoords[v]);
+        for (size_t v = 0; v < emission.size(); ++v) emission[v] = emission_at(emissive, texture, mesh.texcoords[v]);
     }
     return emission;
 }

@@ -12,17 +12,24 @@
 
 namespace rsl {
 
-// Whether the material gives off any light.
-inline bool emits(const MaterialDesc& m) { return m.emissive.r > 0.0f || m.emissive.g > 0.0f || m.emissive.b > 0.0f; }
+// Whether an emission gives off any light.
+inline bool emits(const Color& emissive) { return emissive.r > 0.0f || emissive.g > 0.0f || emissive.b > 0.0f; }
+inline bool emits(const MaterialDesc& m) { return emits(m.emissive); }
 // Whether its emission varies over a surface (a texture), so that a pixel
 // needs its own value rather than its vertices' blend.
 inline bool emission_varies(const MaterialDesc& m) { return emits(m) && m.emissive_texture != nullptr; }
 
-// emissive × texture(uv); the texture counts as 1 when absent.
-Color emission_at(const MaterialDesc& m, const Vec2& uv);
-// The emission at each vertex of `mesh` (texture coordinates needed when
-// the material has an emissive texture; the caller checks, see below).
-std::vector<Color> vertex_emission(const MaterialDesc& m, const TriangleMesh& mesh);
+// emissive × texture(uv); the texture counts as 1 when absent (null).
+Color emission_at(const Color& emissive, const Texture* texture, const Vec2& uv);
+inline Color emission_at(const MaterialDesc& m, const Vec2& uv) {
+    return emission_at(m.emissive, m.emissive_texture.get(), uv);
+}
+// The emission at each vertex of `mesh` (texture coordinates needed with a
+// texture; the caller checks, see emission_fits).
+std::vector<Color> vertex_emission(const Color& emissive, const Texture* texture, const TriangleMesh& mesh);
+inline std::vector<Color> vertex_emission(const MaterialDesc& m, const TriangleMesh& mesh) {
+    return vertex_emission(m.emissive, m.emissive_texture.get(), mesh);
+}
 // Whether a part can show the material's emission: its mesh has texture
 // coordinates when the emission is textured.
 bool emission_fits(const MaterialDesc& m, const TriangleMesh& mesh);

@@ -185,14 +185,15 @@ std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const s
         throw_file_error(path_, "{}: texture {} has no image in range (source {}, {} images)", what, texture_index,
                          source.source, model_.images.size());
     const tinygltf::Image& image = model_.images[size_t(source.source)];
+    const char* image_kind = std::string(slot) == "emissiveTexture" ? "emissive" : "base colour";
     const std::string image_name = !image.name.empty() ? echo_value(image.name)
                                    : !image.uri.empty() && image.uri.substr(0, 5) != "data:"
                                        ? echo_value(image.uri)
                                        : fmt::format("image{}", source.source);
     if (auto e = image_errors_.find(source.source); e != image_errors_.end())
-        throw_file_error(path_, "{}: {} image '{}': {}", what, slot, image_name, echo_message(e->second));
+        throw_file_error(path_, "{}: {} image '{}': {}", what, image_kind, image_name, echo_message(e->second));
     if (image.image.empty() || image.component != 4 || image.width < 1 || image.height < 1)
-        throw_file_error(path_, "{}: {} image '{}' could not be read (missing file?)", what, slot, image_name);
+        throw_file_error(path_, "{}: {} image '{}' could not be read (missing file?)", what, image_kind, image_name);
 
     auto texture = std::make_shared<Texture>();
     texture->name = image_name;

@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "src/core/emission.h"
 #include "src/core/error.h"
 
 namespace rsl {
@@ -225,14 +226,10 @@ Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, 
 
 namespace {
 
-bool emits(const VertexColors::PartEmission& e) { return e.emissive.r > 0.0f || e.emissive.g > 0.0f || e.emissive.b > 0.0f; }
-
-Color emission_at(const VertexColors::PartEmission& e, const Vec2& uv) {
-    return e.texture ? e.emissive * e.texture->sample(uv) : e.emissive;
-}
+bool emits(const VertexColors::PartEmission& e) { return rsl::emits(e.emissive); }
 
 Color emission_at_hit(const Scene& scene, const VertexColors::PartEmission& e, const RayHit& hit) {
-    return e.texture ? emission_at(e, interpolate_texcoords(scene, hit)) : e.emissive;
+    return e.texture ? emission_at(e.emissive, e.texture.get(), interpolate_texcoords(scene, hit)) : e.emissive;
 }
 
 }  // namespace
@@ -261,11 +258,10 @@ VertexColors reflected_colors(const Scene& scene, const VertexColors& colors) {
     VertexColors reflected = colors;
     for (size_t p = 0; p < emission.size() && p < colors.parts.size(); ++p) {
         if (!emits(emission[p])) continue;
-        const TriangleMesh& mesh = scene.parts[p].mesh;
         std::vector<Color>& layer = colors.layered(p) ? reflected.specular[p] : reflected.parts[p];
-        RSL_CHECK_EQ(layer.size(), mesh.vertex_count());
-        for (size_t v = 0; v < layer.size(); ++v)
-            layer[v] -= emission[p].texture ? emission_at(emission[p], mesh.texcoords[v]) : emission[p].emissive;
+        const std::vector<Color> vertices = vertex_emission(emission[p].emissive, emission[p].texture.get(), scene.parts[p].mesh);
+        RSL_CHECK_EQ(layer.size(), vertices.size());
+        for (size_t v = 0; v < layer.size(); ++v) layer[v] -= vertices[v];
     }
     reflected.emission.assign(colors.parts.size(), {});
     return reflected;
