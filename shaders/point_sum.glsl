@@ -74,8 +74,8 @@ vec3 environment_irradiance(vec3 world_normal) {
 
 // The exact diffuse light's gain g at a point (CpuRenderer::diffuse_light_gains):
 // a·(E(n) / Σ_l I_l c_l − 1) over the environment's squares; 0 without it.
-vec3 diffuse_light_gain_at(int part, LocalFrame frame) {
-    vec3 a = part_texel(part, kSlotDiffuseLight).rgb;
+// `a`: the part's constant term (kSlotDiffuseLight), or a point's own (pbr_basis.h).
+vec3 diffuse_light_gain_at(vec3 a, LocalFrame frame) {
     if (u_irradiance_resolution == 0 || !u_environment_enabled || a == vec3(0.0) || u_environment_lights == 0)
         return vec3(0.0);
     vec3 squares = vec3(0.0);
@@ -146,6 +146,26 @@ void final_share(int l, vec3 integral, vec3 brdf, vec3 specular_brdf, float lit)
     g_visibility[l] = -1.0;
 }
 
+// A part whose roughness and metallic vary per point (src/shading/pbr_basis.h):
+// the point's (roughness, metallic), which the pass sets before light_shares.
+vec2 g_pbr_point = vec2(0.0);
+
+// The basis blend at a point (CpuRenderer::pbr_averages): D into `brdf`, the
+// specular lobes into `specular_brdf` when the part is layered, else into `brdf`.
+void pbr_brdf_average(PbrWeights w, vec2 square, float h, vec3 wo, bool layered, out vec3 brdf,
+                      out vec3 specular_brdf) {
+    brdf = w.diffuse * brdf_average(u_pbr_basis[0], square, h, wo);
+    vec3 lobes = vec3(0.0);
+    for (int j = w.level; j <= w.level + 1; ++j) {
+        float level = pbr_level_weight(w.level, w.upper, j);
+        if (level == 0.0) continue;
+        lobes += (level * w.dielectric) * brdf_average(u_pbr_basis[1 + j], square, h, wo);
+        if (w.metal != vec3(0.0)) lobes += (level * w.metal) * brdf_average(u_pbr_basis[1 + kPbrLevels + j], square, h, wo);
+    }
+    specular_brdf = layered ? lobes : vec3(0.0);
+    if (!layered) brdf += lobes;
+}
+
 // Every light's share and self-visibility at the point (g_share,
 // g_visibility); `live`: the lights with a share and some light left.
 void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORDS]) {
@@ -165,7 +185,11 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
     vec3 wo = frame_to_local(frame, normalize(u_camera - p));
     if (!(wo.z > 0.0)) return;
     vec2 alignment = view_alignment(wo);
-    vec3 gain = diffuse_light_gain_at(part, frame);
+    vec4 pbr = part_texel(part, kSlotPbr);
+    bool varies = pbr.w > 0.5;
+    PbrWeights weights = pbr_weights(pbr.rgb, g_pbr_point.y, g_pbr_point.x);
+    vec3 gain = diffuse_light_gain_at(varies ? weights.diffuse * (1.0 / kPi) : part_texel(part, kSlotDiffuseLight).rgb,
+                                      frame);
     int first = u_environment_enabled ? 0 : u_environment_lights;
     int last = u_local_enabled ? u_light_count : u_environment_lights;
     // The lights whose square reaches the vertex's hemisphere first, then
@@ -185,13 +209,18 @@ void light_shares(int part, vec3 p, LocalFrame frame, inout uint live[LIGHT_WORD
         vec3 local = frame_to_local(frame, light.direction);
         vec2 lp = hemisphere_to_plane(local);
         vec2 square = isotropic ? to_view_aligned(lp, alignment) : lp;
-        vec3 brdf = brdf_average(material, square, light.h, wo);
-        if (l < u_environment_lights) brdf += gain * square_average_cosine(lp, light.h);
+        vec3 brdf, specular_brdf;
+        if (varies) {
+            pbr_brdf_average(weights, square, light.h, wo, layered, brdf, specular_brdf);
+        } else {
+            brdf = brdf_average(material, square, light.h, wo);
 #if LAYERED
-        vec3 specular_brdf = layered ? brdf_average(specular_material, square, light.h, wo) : vec3(0.0);
+            specular_brdf = layered ? brdf_average(specular_material, square, light.h, wo) : vec3(0.0);
 #else
-        vec3 specular_brdf = vec3(0.0);
+            specular_brdf = vec3(0.0);
 #endif
+        }
+        if (l < u_environment_lights) brdf += gain * square_average_cosine(lp, light.h);
 #if SHADOW_MAPPED
         if (u_shadow_maps && l < u_environment_lights) {  // the baseline's visibility, in place of the fields'
             final_share(l, light.integral, brdf, specular_brdf,

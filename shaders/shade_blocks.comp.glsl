@@ -127,6 +127,7 @@ void main() {
         vec4 position = texelFetch(u_positions, texel, 0);
         vec4 normal = texelFetch(u_normals, texel, 0);
         vec4 tangent_texel = texelFetch(u_tangents, texel, 0);
+        g_pbr_point = texelFetch(u_pbr_points, texel, 0).xy;  // (roughness, metallic) where the material varies
         vec3 tangent = tangent_texel.xyz;
         // The seam partner (w = enclosed + 2(partner + 1), gpu_layout.cpp): its OVDF is left out.
         seam_partner = int(tangent_texel.w * 0.5) - 1;

@@ -29,6 +29,7 @@ uniform bool u_textured;  // the diffuse sum times the base colour texture, plus
 uniform vec3 u_emissive;   // the part's emission, added at the pixel's texture coordinates (src/core/emission.h)
 uniform bool u_emissive_textured;  // times u_emissive_texture
 uniform bool u_depth_only;  // the depth pre-pass: each pixel is then shaded once, by its nearest part
+uniform vec2 u_pbr_factors;  // a material varying per point: its (roughness, metallic) factors (u_metallic_roughness)
 layout(location = 0) out vec4 o_color;
 
 // The triangle's corners for self_visibility (g_self_corners = 3).
@@ -90,6 +91,9 @@ void main() {
     if (u_corners) set_corners();
     LocalFrame frame = frame_from_normal_tangent(n, v_tangent);
     vec3 p = v_position;
+    // A material varying per point: the texture at the pixel (pbr_point, src/brdf/pbr_basis.h).
+    if (part_texel(u_part, kSlotPbr).w > 0.5)
+        g_pbr_point = clamp(u_pbr_factors * texture(u_metallic_roughness, v_texcoord).gb, 0.0, 1.0);
     uint live[LIGHT_WORDS];
     light_shares(u_part, p, frame, live);
     // The part's candidate occluders (pack_block_candidates), each with the

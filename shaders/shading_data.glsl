@@ -47,6 +47,8 @@ uniform int u_light_count;
 uniform bool u_environment_enabled;  // RenderOptions::environment
 uniform bool u_local_enabled;        // RenderOptions::local_lights
 uniform int u_brdf_resolution;     // N
+uniform int u_brdf_tiles;          // slices stacked along y per depth layer (GlRenderer::upload_all_tables)
+uniform vec4 u_pbr_basis[kPbrBasisRecords];  // the basis tables' records (src/shading/pbr_basis.h), 0: not built
 uniform vec3 u_camera;
 uniform bool u_self_visibility;
 uniform vec3 u_face_normal[kCubeFaces];  // the OVDF cube faces (as Ovdf::prepare)
@@ -119,12 +121,15 @@ vec3 brdf_average(vec4 material, vec2 c, float h, vec3 view) {
     ivec4 column = t.ax + t.texels * (u_brdf_resolution + 1);  // the texels sit beside the corner sums
     for (int k = 0; k < MAX_SLICES && k < slices; ++k) {
         vec3 fa = vec3(0.0f), fb = vec3(0.0f), sa = vec3(0.0f), sb = vec3(0.0f);
+        // Slice s lies in depth layer s / tiles, tile s % tiles along y.
+        int layer = slice[k] / u_brdf_tiles, tile_row = (slice[k] - layer * u_brdf_tiles) * (u_brdf_resolution + 1);
         for (int m = 0; m < 4; ++m) {
             float w = weight[k] * t.wy[m];
-            fa += w * texelFetch(u_brdf, ivec3(column[0], t.by[m], slice[k]), 0).rgb;
-            fb += w * texelFetch(u_brdf, ivec3(column[1], t.by[m], slice[k]), 0).rgb;
-            sa += w * texelFetch(u_brdf, ivec3(column[2], t.by[m], slice[k]), 0).rgb;
-            sb += w * texelFetch(u_brdf, ivec3(column[3], t.by[m], slice[k]), 0).rgb;
+            int row = t.by[m] + tile_row;
+            fa += w * texelFetch(u_brdf, ivec3(column[0], row, layer), 0).rgb;
+            fb += w * texelFetch(u_brdf, ivec3(column[1], row, layer), 0).rgb;
+            sa += w * texelFetch(u_brdf, ivec3(column[2], row, layer), 0).rgb;
+            sb += w * texelFetch(u_brdf, ivec3(column[3], row, layer), 0).rgb;
         }
         first_a += fa;
         first_b += fb;

@@ -60,8 +60,29 @@ std::shared_ptr<const MaterialLibrary::Shared> MaterialLibrary::obtain(const Mat
     return shared;
 }
 
+void MaterialLibrary::require_pbr_basis(const MaterialDesc& desc) {
+    if (!rsl::varies_per_point(desc)) return;
+    const PbrLevelRange range = pbr_level_range(desc);
+    last_build_seconds_ += pbr_basis_.require(range, options_);
+    // The sharpest lobes its texture reaches, as for an untextured material
+    // (sharp_material_warning): the smoothest level the tables resolve.
+    const auto peak = [&](int j) {
+        return table_peak_error(*pbr_basis_.dielectric[size_t(j)], *pbr_specular_lobe(shading::kPbrDielectricF0, j));
+    };
+    const TablePeakError sharpest = peak(range.first);
+    if (!(sharpest.relative_error > kTablePeakErrorLimit)) return;
+    int resolved = range.first + 1;
+    while (resolved <= range.last && peak(resolved).relative_error > kTablePeakErrorLimit) ++resolved;
+    warn("material '{}' (gltf_pbr): its metallic-roughness texture reaches roughness {:g}, a highlight sharper than "
+         "the BRDF table resolves ({}² texels): under a small light such as a sun, points smoother than roughness {:g} "
+         "are off by up to {:.0f}% (docs/design/BRDF.md, \"Table resolution\")",
+         desc.name, shading::pbr_level_roughness(range.first), pbr_basis_.dielectric[size_t(range.first)]->grid().n,
+         shading::pbr_level_roughness(std::min(resolved, kPbrLevels - 1)), 100 * sharpest.relative_error);
+}
+
 int MaterialLibrary::add(const MaterialDesc& desc) {
     auto shared = obtain(desc);
+    require_pbr_basis(desc);
     materials_.push_back(Material{desc, std::move(shared), next_revision_++});
     return material_count() - 1;
 }
@@ -90,6 +111,7 @@ void MaterialLibrary::set_parameter(int material, const std::string& key, const 
 void MaterialLibrary::replace(int material, MaterialDesc desc) {
     desc.name = at(material).desc.name;
     auto shared = obtain(desc);  // may throw: the material keeps its old state
+    require_pbr_basis(desc);
     Material& m = materials_[material];
     m.desc = std::move(desc);
     m.shared = std::move(shared);
@@ -121,7 +143,7 @@ int MaterialLibrary::distinct_table_count() const {
         tables.insert(m.shared->table.get());
         if (m.shared->specular_table) tables.insert(m.shared->specular_table.get());
     }
-    return static_cast<int>(tables.size());
+    return static_cast<int>(tables.size()) + pbr_basis_.table_count();
 }
 
 }  // namespace rsl

@@ -21,6 +21,7 @@
 
 #include "src/brdf/brdf.h"
 #include "src/brdf/brdf_table.h"
+#include "src/brdf/pbr_basis.h"
 #include "src/core/scene.h"
 
 namespace rsl {
@@ -47,6 +48,11 @@ public:
     }
     const std::shared_ptr<const Texture>& texture(int material) const { return at(material).desc.base_color_texture; }
     uint64_t revision(int material) const { return at(material).revision; }
+    // A material with a metallic-roughness texture (varies_per_point) is
+    // shaded from the scene's basis tables, which the library builds as its
+    // materials need them (src/brdf/pbr_basis.h).
+    bool varies_per_point(int material) const { return rsl::varies_per_point(at(material).desc); }
+    const PbrBasisTables& pbr_basis() const { return pbr_basis_; }
 
     // Live editing: one parameter (scalars as 1-vectors, RGB as 3-vectors), or
     // the whole material (model included). The name is kept. "emissive" (RGB,
@@ -63,7 +69,7 @@ public:
     const BrdfTable* part_specular_table(int part) const { return specular_table(part_material(part)).get(); }
     const std::shared_ptr<const Texture>& part_texture(int part) const { return texture(part_material(part)); }
 
-    // Distinct tables alive in the library (shared ones counted once).
+    // Distinct tables alive in the library (shared ones counted once, the basis tables included).
     int distinct_table_count() const;
     // Seconds spent building the most recent table (0 when it was shared).
     double last_build_seconds() const { return last_build_seconds_; }
@@ -84,11 +90,13 @@ private:
     // alive, built otherwise. Throws (before any change) on invalid parameters.
     std::shared_ptr<const Shared> obtain(const MaterialDesc& desc);
     static std::string identity(const MaterialDesc& desc);
+    void require_pbr_basis(const MaterialDesc& desc);
 
     BrdfTableOptions options_;
     std::vector<Material> materials_;
     std::vector<int> part_materials_;
     std::map<std::string, std::weak_ptr<const Shared>> by_identity_;
+    PbrBasisTables pbr_basis_;
     uint64_t next_revision_ = 1;
     double last_build_seconds_ = 0;
 };

@@ -10,7 +10,7 @@
 namespace rsl {
 
 Color emission_at(const Color& emissive, const Texture* texture, const Vec2& uv) {
-    return texture ? emissive * texture->sample(uv) : emissive;
+    return texture ? emissive * texture->lookup(uv) : emissive;  // the sampler's filter, as the GL passes
 }
 
 std::vector<Color> vertex_emission(const Color& emissive, const Texture* texture, const TriangleMesh& mesh) {

@@ -19,7 +19,7 @@ inline bool emits(const MaterialDesc& m) { return emits(m.emissive); }
 // needs its own value rather than its vertices' blend.
 inline bool emission_varies(const MaterialDesc& m) { return emits(m) && m.emissive_texture != nullptr; }
 
-// emissive × texture(uv); the texture counts as 1 when absent (null).
+// emissive × texture(uv) (Texture::lookup: its sampler's filter); the texture counts as 1 when absent (null).
 Color emission_at(const Color& emissive, const Texture* texture, const Vec2& uv);
 inline Color emission_at(const MaterialDesc& m, const Vec2& uv) {
     return emission_at(m.emissive, m.emissive_texture.get(), uv);

@@ -61,6 +61,10 @@ struct MaterialDesc {
     // glTF baseColorTexture (gltf_pbr only): multiplies the diffuse lobe per
     // pixel, read at the part's TEXCOORD_0 (docs/SCENE_FORMAT.md).
     std::shared_ptr<const Texture> base_color_texture;
+    // glTF metallicRoughnessTexture (gltf_pbr only; linear, G = roughness,
+    // B = metallic, times the factors): both vary per vertex, read at the
+    // same texture coordinates (docs/design/BRDF.md "Textured roughness and metallic").
+    std::shared_ptr<const Texture> metallic_roughness_texture;
     // Emission (src/core/emission.h): radiance the surface gives off itself,
     // emissive × emissive_texture(uv), added to what it reflects; it lights
     // no other surface. glTF: emissiveFactor × KHR_materials_emissive_strength.

@@ -37,6 +37,13 @@ Color Texture::sample(const Vec2& uv) const {
     return glm::mix(top, bottom, wy);
 }
 
+Color Texture::sample_nearest(const Vec2& uv) const {
+    const double x = std::floor(double(uv.x) * image.width), y = std::floor(double(uv.y) * image.height);
+    const int i = wrap_texel(int(std::fmod(x, 2.0 * image.width)), image.width, wrap_s);
+    const int j = wrap_texel(int(std::fmod(y, 2.0 * image.height)), image.height, wrap_t);
+    return image.rgb(i, j);
+}
+
 float srgb_to_linear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }

@@ -570,7 +570,8 @@ private:
         std::vector<std::string> overridden;
         size_t earliest_kept = model_.animations.size();
         for (size_t a = 0; a < model_.animations.size(); ++a)
-            if (const std::optional<size_t> kept = import_animation(a, scene, keyed_by)) {
+            if (!played_.empty() && !played_[a]) continue;
+            else if (const std::optional<size_t> kept = import_animation(a, scene, keyed_by)) {
                 overridden.push_back(animation_name(a));
                 earliest_kept = std::min(earliest_kept, *kept);
             }
@@ -581,6 +582,27 @@ private:
                       overridden.size() == 1 ? "" : "s", fmt::join(overridden, ", "), overridden.size() == 1 ? "s" : "",
                       animation_name(earliest_kept));
     }
+public:
+    // Only the animations named (a scene file's `gltf_animations`); none: all.
+    void select_animations(const std::vector<std::string>& names) {
+        played_.clear();
+        if (names.empty()) return;
+        played_.assign(model_.animations.size(), false);
+        for (const std::string& name : names) {
+            bool found = false;
+            for (size_t a = 0; a < model_.animations.size(); ++a)
+                if (model_.animations[a].name == name || fmt::format("#{}", a) == name) played_[a] = found = true;
+            if (!found) {
+                std::vector<std::string> known;
+                for (size_t a = 0; a < model_.animations.size(); ++a) known.push_back(animation_name(a));
+                throw_file_error(path_, "no animation '{}' (the file has {})", echo_value(name),
+                                 known.empty() ? std::string("none") : fmt::format("{}", fmt::join(known, ", ")));
+            }
+        }
+    }
+
+private:
+    std::vector<bool> played_;  // per animation: whether it plays (empty: all)
     std::string animation_name(size_t a) const {
         const std::string& name = model_.animations[a].name;
         return name.empty() ? fmt::format("#{}", a) : fmt::format("'{}'", name);
@@ -653,9 +675,12 @@ private:
 
 }  // namespace
 
-void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material, GltfMaterialUse use) {
+void load_gltf_into(const std::filesystem::path& path, Scene& scene, int default_material, GltfMaterialUse use,
+                    const std::vector<std::string>& animations) {
     const LoadedGltf loaded = read_model(path);
-    GltfImporter(loaded, path).import_into(scene, default_material, use);
+    GltfImporter importer(loaded, path);
+    importer.select_animations(animations);
+    importer.import_into(scene, default_material, use);
     scene.input_files.push_back(path);
     scene.input_files.insert(scene.input_files.end(), loaded.files_read.begin(), loaded.files_read.end());
 }

@@ -71,19 +71,23 @@ int GltfMaterials::checked_index(int material) const {
 int GltfMaterials::texcoord_set(int material) const {
     if (material < 0) return -1;
     const tinygltf::Material& source = model_.materials[size_t(material)];
-    // A part holds one set of texture coordinates: the material's textures share it.
+    const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+    const std::pair<const tinygltf::TextureInfo*, const char*> textures[] = {
+        {&pbr.baseColorTexture, "baseColorTexture"},
+        {&pbr.metallicRoughnessTexture, "metallicRoughnessTexture"},
+        {&source.emissiveTexture, "emissiveTexture"}};
     int set = -1;
-    const auto read = [&](const tinygltf::TextureInfo& info, const char* key) {
-        if (info.index < 0) return;
-        if (info.texCoord < 0)
-            throw_file_error(path_, "material '{}': {} texCoord {} is negative", name(material), key, info.texCoord);
-        if (set >= 0 && info.texCoord != set)
-            throw_file_error(path_, "material '{}': {} reads TEXCOORD_{}, its other textures TEXCOORD_{} (rsl reads "
-                             "one set of texture coordinates per material)", name(material), key, info.texCoord, set);
-        set = info.texCoord;
-    };
-    read(source.pbrMetallicRoughness.baseColorTexture, "baseColorTexture");
-    read(source.emissiveTexture, "emissiveTexture");
+    const char* first = nullptr;
+    for (const auto& [info, key] : textures) {
+        if (info->index < 0) continue;
+        if (info->texCoord < 0)
+            throw_file_error(path_, "material '{}': {} texCoord {} is negative", name(material), key, info->texCoord);
+        if (first && info->texCoord != set)
+            throw_file_error(path_, "material '{}': {} reads TEXCOORD_{} and {} TEXCOORD_{}; rsl reads one set of "
+                             "texture coordinates per material", name(material), first, set, key, info->texCoord);
+        set = info->texCoord;
+        first = key;
+    }
     return set;
 }
 
@@ -129,12 +133,15 @@ MaterialDesc GltfMaterials::convert(int material) {
                                  unit(pbr.baseColorFactor[2], "baseColorFactor")};
     desc.params["metallic"] = {unit(pbr.metallicFactor, "metallicFactor")};
     desc.params["roughness"] = {unit(pbr.roughnessFactor, "roughnessFactor")};
-    if (pbr.baseColorTexture.index >= 0) desc.base_color_texture = texture(pbr.baseColorTexture.index, what);
+    if (pbr.baseColorTexture.index >= 0)
+        desc.base_color_texture = texture(pbr.baseColorTexture.index, what, "base colour", TextureEncoding::Srgb);
+    if (pbr.metallicRoughnessTexture.index >= 0)
+        desc.metallic_roughness_texture =
+            texture(pbr.metallicRoughnessTexture.index, what, "metallic-roughness", TextureEncoding::Linear);
     read_emission(source, what, desc);
 
-    if (pbr.metallicRoughnessTexture.index >= 0) ignored_.insert("metallicRoughnessTexture (the factors are used)");
     if (source.normalTexture.index >= 0) ignored_.insert("normalTexture");
-    if (source.occlusionTexture.index >= 0) ignored_.insert("occlusionTexture");
+    if (source.occlusionTexture.index >= 0) ignored_.insert("occlusionTexture (rsl computes the occlusion itself)");
     if (source.alphaMode == "BLEND" || source.alphaMode == "MASK") ignored_.insert("alphaMode " + source.alphaMode);
     for (const auto& [extension, value] : source.extensions)
         if (extension != kEmissiveStrength) ignored_.insert(extension);
@@ -172,28 +179,29 @@ void GltfMaterials::read_emission(const tinygltf::Material& source, const std::s
     if (const std::string problem = emission_problem(desc.emissive); !problem.empty())
         throw_file_error(path_, "{}: emissiveFactor × emissiveStrength: {}", what, problem);
     if (source.emissiveTexture.index >= 0)
-        desc.emissive_texture = texture(source.emissiveTexture.index, what, "emissiveTexture");
+        desc.emissive_texture = texture(source.emissiveTexture.index, what, "emissive", TextureEncoding::Srgb);
 }
 
-std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const std::string& what, const char* slot) {
-    if (auto it = textures_.find(texture_index); it != textures_.end()) return it->second;
+std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const std::string& what, const char* role,
+                                                     TextureEncoding encoding) {
+    const std::pair<int, TextureEncoding> key{texture_index, encoding};
+    if (auto it = textures_.find(key); it != textures_.end()) return it->second;
     if (size_t(texture_index) >= model_.textures.size())
-        throw_file_error(path_, "{}: {} index {} is out of range ({} textures)", what, slot, texture_index,
+        throw_file_error(path_, "{}: {} texture index {} is out of range ({} textures)", what, role, texture_index,
                          model_.textures.size());
     const tinygltf::Texture& source = model_.textures[size_t(texture_index)];
     if (source.source < 0 || size_t(source.source) >= model_.images.size())
         throw_file_error(path_, "{}: texture {} has no image in range (source {}, {} images)", what, texture_index,
                          source.source, model_.images.size());
     const tinygltf::Image& image = model_.images[size_t(source.source)];
-    const char* image_kind = std::string(slot) == "emissiveTexture" ? "emissive" : "base colour";
     const std::string image_name = !image.name.empty() ? echo_value(image.name)
                                    : !image.uri.empty() && image.uri.substr(0, 5) != "data:"
                                        ? echo_value(image.uri)
                                        : fmt::format("image{}", source.source);
     if (auto e = image_errors_.find(source.source); e != image_errors_.end())
-        throw_file_error(path_, "{}: {} image '{}': {}", what, image_kind, image_name, echo_message(e->second));
+        throw_file_error(path_, "{}: {} image '{}': {}", what, role, image_name, echo_message(e->second));
     if (image.image.empty() || image.component != 4 || image.width < 1 || image.height < 1)
-        throw_file_error(path_, "{}: {} image '{}' could not be read (missing file?)", what, image_kind, image_name);
+        throw_file_error(path_, "{}: {} image '{}' could not be read (missing file?)", what, role, image_name);
 
     auto texture = std::make_shared<Texture>();
     texture->name = image_name;
@@ -203,22 +211,26 @@ std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const s
                              source.sampler, model_.samplers.size());
         texture->wrap_s = wrap_mode(model_.samplers[size_t(source.sampler)].wrapS);
         texture->wrap_t = wrap_mode(model_.samplers[size_t(source.sampler)].wrapT);
+        if (model_.samplers[size_t(source.sampler)].magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST)
+            texture->filter = TextureFilter::Nearest;
     }
-    // glTF base colour and emissive images are sRGB-encoded; the renderer works in linear RGB.
+    // glTF colour images (base colour, emissive) are sRGB-encoded, data images (metallic-roughness)
+    // linear; the renderer works in linear RGB.
     std::array<float, 256> decoded;
-    for (int v = 0; v < 256; ++v) decoded[size_t(v)] = srgb_to_linear(float(v) / 255.0f);
+    for (int v = 0; v < 256; ++v)
+        decoded[size_t(v)] = encoding == TextureEncoding::Srgb ? srgb_to_linear(float(v) / 255.0f) : float(v) / 255.0f;
     texture->image = Image(image.width, image.height, 3);
     for (size_t p = 0; p < size_t(image.width) * size_t(image.height); ++p)
         for (int c = 0; c < 3; ++c) texture->image.pixels[3 * p + size_t(c)] = decoded[image.image[4 * p + size_t(c)]];
-    return textures_[texture_index] = std::move(texture);
+    return textures_[key] = std::move(texture);
 }
 
 void GltfMaterials::warn_ignored() const {
     if (ignored_.empty()) return;
     std::string list;
     for (const std::string& what : ignored_) list += (list.empty() ? "" : ", ") + what;
-    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness, baseColorTexture and "
-              "emission): {}", list);
+    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness, baseColorTexture, "
+              "metallicRoughnessTexture and emission): {}", list);
 }
 
 }  // namespace rsl

@@ -37,8 +37,8 @@ public:
 
     // `material` if it is −1 or a valid glTF material index; throws otherwise.
     int checked_index(int material) const;
-    // The TEXCOORD set a glTF material's textures (base colour, emissive)
-    // read, −1 if it has none; throws when they read different sets.
+    // The TEXCOORD set a glTF material's textures read, −1 if it has none;
+    // throws when two of its textures read different sets.
     int texcoord_set(int material) const;
     // The material's name ("material3" when unnamed; "default" for −1).
     std::string name(int material) const;
@@ -50,16 +50,17 @@ public:
 
 private:
     MaterialDesc convert(int material);
+    enum class TextureEncoding { Srgb, Linear };
     void read_emission(const tinygltf::Material& source, const std::string& what, MaterialDesc& desc);
-    // `slot`: the material's key that names the texture, for messages.
-    std::shared_ptr<const Texture> texture(int texture_index, const std::string& what,
-                                           const char* slot = "baseColorTexture");
+    // A decoded texture (`role` names it in errors: "base colour").
+    std::shared_ptr<const Texture> texture(int texture_index, const std::string& what, const char* role,
+                                           TextureEncoding encoding);
 
     const tinygltf::Model& model_;
     const GltfImageErrors& image_errors_;
     const std::filesystem::path& path_;
     std::map<int, int> scene_index_;                        // glTF material → scene material
-    std::map<int, std::shared_ptr<const Texture>> textures_;  // glTF texture → decoded texture
+    std::map<std::pair<int, TextureEncoding>, std::shared_ptr<const Texture>> textures_;  // glTF texture → decoded
     std::set<std::string> ignored_;                         // what warn_ignored reports
 };
 

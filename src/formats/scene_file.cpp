@@ -121,8 +121,8 @@ public:
     Scene read() {
         const Json root = parse_file();
         if (!root.is_object()) fail("", "the top level must be a JSON object");
-        check_keys(root, "", {"name", "gltf", "parts", "materials", "part_materials", "environment", "lights",
-                              "light_radii", "camera", "animation", "precompute", "subdivision"});
+        check_keys(root, "", {"name", "gltf", "gltf_animations", "parts", "materials", "part_materials", "environment",
+                              "lights", "light_radii", "camera", "animation", "precompute", "subdivision"});
         scene_.source = path_;
         scene_.name = root.contains("name") ? string_at(root, "name", "name") : path_.stem().string();
         read_materials(root);
@@ -135,8 +135,11 @@ public:
         if (root.contains("gltf")) {
             const size_t first = scene_.parts.size();
             const std::filesystem::path file = existing_file(root["gltf"], "gltf");
-            nested([&] { load_gltf_into(file, scene_, default_material_, gltf_material_use_); }, "gltf");
+            const std::vector<std::string> clips = gltf_animations(root, "gltf_animations");
+            nested([&] { load_gltf_into(file, scene_, default_material_, gltf_material_use_, clips); }, "gltf");
             assign_materials(first, part_materials);
+        } else if (root.contains("gltf_animations")) {
+            fail("gltf_animations", "names animations of the top-level `gltf`, and the scene has none");
         }
         if (root.contains("parts")) read_parts(root["parts"], part_materials);
         if (scene_.parts.empty()) fail("", "the scene has no parts (give `gltf` or `parts`)");
@@ -347,13 +350,31 @@ private:
         return t;
     }
 
+    // `gltf_animations`: one animation name or a list of them (the glTF's
+    // animations that play); absent: every animation.
+    std::vector<std::string> gltf_animations(const Json& object, const std::string& where) {
+        if (!object.contains("gltf_animations")) return {};
+        const Json& value = object["gltf_animations"];
+        if (value.is_string()) return {value.get<std::string>()};
+        if (!value.is_array() || value.empty())
+            fail(where, "expected an animation name or a non-empty list of them");
+        std::vector<std::string> names;
+        for (size_t i = 0; i < value.size(); ++i) {
+            if (!value[i].is_string()) fail(fmt::format("{}[{}]", where, i), "expected an animation name (a string)");
+            names.push_back(value[i].get<std::string>());
+        }
+        return names;
+    }
+
     void read_parts(const Json& parts, const Json& part_materials) {
         if (!parts.is_array()) fail("parts", fmt::format("expected an array, got {}", parts.type_name()));
         for (size_t i = 0; i < parts.size(); ++i) {
             const std::string where = fmt::format("parts[{}]", i);
             const Json& entry = expect_object(parts[i], where);
-            check_keys(entry, where, {"name", "obj", "gltf", "transform", "animation", "material"});
+            check_keys(entry, where, {"name", "obj", "gltf", "gltf_animations", "transform", "animation", "material"});
             if (entry.contains("obj") == entry.contains("gltf")) fail(where, "give exactly one of `obj` and `gltf`");
+            if (entry.contains("gltf_animations") && !entry.contains("gltf"))
+                fail(where + ".gltf_animations", "names animations of the entry's `gltf`, and it has none");
             // The entry's static transform is a node; the file's nodes hang below it.
             SceneNode holder;
             holder.rest = entry.contains("transform") ? read_transform(entry["transform"], where + ".transform") : Transform{};
@@ -382,7 +403,9 @@ private:
                 holder.name = name.empty() ? file.stem().string() : name;
                 scene_.nodes.push_back(holder);
                 const size_t first_node = scene_.nodes.size();
-                nested([&] { load_gltf_into(file, scene_, default_material_, gltf_material_use_); }, where + ".gltf");
+                const std::vector<std::string> clips = gltf_animations(entry, where + ".gltf_animations");
+                nested([&] { load_gltf_into(file, scene_, default_material_, gltf_material_use_, clips); },
+                       where + ".gltf");
                 for (size_t n = first_node; n < scene_.nodes.size(); ++n)
                     if (scene_.nodes[n].parent < 0) scene_.nodes[n].parent = holder_index;
                 // A named entry names its part; several parts get "name/node".

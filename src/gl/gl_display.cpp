@@ -7,6 +7,7 @@
 
 #include "src/core/emission.h"
 #include "src/core/error.h"
+#include "src/brdf/pbr_basis.h"
 #include "src/gl/gl_renderer.h"
 #include "src/gl/gl_renderer_units.h"
 
@@ -48,14 +49,13 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
     };
 
     // Emission (src/core/emission.h): the colour buffer holds none, each
-    // pixel adds the part's at its texture coordinates. Before the base
-    // colour is bound: an upload binds its texture on that unit.
+    // pixel adds the part's at its texture coordinates.
     auto bind_emission = [&](const Program& program, size_t p, int unit) {
         const MaterialDesc& m = library_.desc(library_.part_material(int(p)));
         const bool textured = emits(m) && m.emissive_texture;
         glUniform3f(uniform(program, "u_emissive"), m.emissive.r, m.emissive.g, m.emissive.b);
         glUniform1i(uniform(program, "u_emissive_textured"), textured ? 1 : 0);
-        if (textured) bind_texture(unit, GL_TEXTURE_2D, base_color_texture(m.emissive_texture));
+        if (textured) bind_texture(unit, GL_TEXTURE_2D, uploaded_texture(m.emissive_texture, unit));
     };
 
     // The vertex colours' blend.
@@ -103,6 +103,7 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
         const GLint pixel_textured = uniform(pixel_program_, "u_textured");
         const GLint corners = uniform(pixel_program_, "u_corners");
         const GLint first_index = uniform(pixel_program_, "u_first_index");
+        const GLint pbr_factor_uniform = uniform(pixel_program_, "u_pbr_factors");
         // A depth pre-pass first, so that the costly shading runs once per
         // pixel, for the nearest part (the robot's parts overlap on screen).
         const GLint depth_only = uniform(pixel_program_, "u_depth_only");
@@ -126,6 +127,14 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
             const GLuint texture = layered_texture(p);
             glUniform1i(pixel_textured, texture ? 1 : 0);
             if (texture) bind_texture(kUnitBaseColor, GL_TEXTURE_2D, texture);
+            // A material varying per point: its texture at the pixel, times the factors.
+            const MaterialDesc& material = library_.desc(library_.part_material(int(p)));
+            if (varies_per_point(material)) {
+                bind_texture(kUnitMetallicRoughness, GL_TEXTURE_2D,
+                             uploaded_texture(material.metallic_roughness_texture, kUnitMetallicRoughness));
+                const PbrPoint factors = pbr_factors(material);
+                glUniform2f(pbr_factor_uniform, factors.roughness, factors.metallic);
+            }
             draw_elements(p);
         }
         glDepthFunc(depth_test);
@@ -255,22 +264,28 @@ Image GlRenderer::backend_image(const VertexColors& colors, const PinholeCamera&
 }
 
 GLuint GlRenderer::base_color_texture(const std::shared_ptr<const rsl::Texture>& texture) {
+    return uploaded_texture(texture, kUnitBaseColor);
+}
+
+GLuint GlRenderer::uploaded_texture(const std::shared_ptr<const rsl::Texture>& texture, int unit) {
     for (const auto& [source, uploaded] : base_colors_)
         if (source == texture) return uploaded.id();
     // Linear RGB(A) floats, row 0 at v = 0 as GL's first row; GL_LINEAR
-    // without mipmaps is Texture::sample's bilinear between texel centers.
+    // without mipmaps is Texture::sample's bilinear between texel centers
+    // (GL_NEAREST: sample_nearest).
     const Image& image = texture->image;
     RSL_CHECK(image.channels == 3 || image.channels == 4);  // the glTF loader decodes to RGB
-    // Uploaded on the base colour's own unit: binding it on whichever unit is
+    // Uploaded on the texture's own unit: binding it on whichever unit is
     // active would replace that unit's texture (the per-pixel pass's inputs).
-    glActiveTexture(GL_TEXTURE0 + kUnitBaseColor);
+    glActiveTexture(GLenum(GL_TEXTURE0 + unit));
     Texture uploaded = make_texture();
     glBindTexture(GL_TEXTURE_2D, uploaded.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, image.channels == 4 ? GL_RGBA32F : GL_RGB32F, image.width, image.height, 0,
                  image.channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT, image.pixels.data());
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    const GLint filter = texture->filter == TextureFilter::Nearest ? GL_NEAREST : GL_LINEAR;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
     auto wrap = [](TextureWrap w) {
         return w == TextureWrap::ClampToEdge ? GL_CLAMP_TO_EDGE
@@ -278,7 +293,7 @@ GLuint GlRenderer::base_color_texture(const std::shared_ptr<const rsl::Texture>&
     };
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap(texture->wrap_s));
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap(texture->wrap_t));
-    check_gl("uploading a base colour texture");
+    check_gl("uploading a texture");
     base_colors_.emplace_back(texture, std::move(uploaded));
     return base_colors_.back().second.id();
 }

@@ -416,12 +416,15 @@ void GlRenderer::bind_shading_inputs(const Program& program) {
     bind_texture(kUnitOvdfTables, GL_TEXTURE_2D, ovdf_tables_.texture.id());
     bind_texture(kUnitOvdfCoefficients, GL_TEXTURE_2D, ovdf_coefficients_.texture.id());
     bind_texture(kUnitOvdfFrames, GL_TEXTURE_2D, ovdf_frames_.texture.id());
+    bind_texture(kUnitPbrPoints, GL_TEXTURE_2D, pbr_points_.texture.id());
     glUniform1i(uniform(program, "u_environment_lights"), int(frame_.environment_squares().size()));
     glUniform1i(uniform(program, "u_light_count"), int(stats_.lights));
     glUniform1i(uniform(program, "u_environment_enabled"), options_.environment ? 1 : 0);
     glUniform1i(uniform(program, "u_local_enabled"), options_.local_lights ? 1 : 0);
     glUniform1i(uniform(program, "u_self_visibility"), options_.self_visibility ? 1 : 0);
     glUniform1i(uniform(program, "u_brdf_resolution"), materials_.resolution);
+    glUniform1i(uniform(program, "u_brdf_tiles"), brdf_tiles_);
+    glUniform4fv(uniform(program, "u_pbr_basis"), kPbrBasisRecords, &pbr_basis_records_[0].x);
     const bool irradiance = irradiance_first_ >= 0;
     glUniform1i(uniform(program, "u_irradiance_resolution"), irradiance ? environment_.first.irradiance->resolution : 0);
     glUniform1i(uniform(program, "u_irradiance_first"), irradiance_first_);

@@ -198,8 +198,17 @@ private:
     // What the BRDF texture holds: per part its table then per part its
     // specular table (wanted_tables() order), per distinct table its slices
     // (first, count); layered_: some part has a specular table.
+    // Then the basis tables of materials varying per point (kPbrBasisRecords,
+    // null where not built), whose records go to u_pbr_basis.
     std::vector<std::shared_ptr<const BrdfTable>> part_tables_;
     bool layered_ = false;
+    std::vector<Vec4> pbr_basis_records_;
+    // Per vertex (roughness, metallic) of the parts whose material varies per
+    // point (src/brdf/pbr_basis.h), written when a part's material changes.
+    ArrayTexture pbr_points_;
+    void upload_pbr_points();
+    int brdf_tiles_ = 1;  // BRDF slices per depth layer of brdf_, stacked along y
+    void upload_brdf_slices(int first, int count, const float* data);
     struct TableSlot {
         std::shared_ptr<const BrdfTable> table;
         int first_slice = 0, slices = 0;
@@ -254,6 +263,8 @@ private:
     // Base colour and emissive textures of the display and per-pixel passes, uploaded at their first draw.
     std::vector<std::pair<std::shared_ptr<const rsl::Texture>, Texture>> base_colors_;
     GLuint base_color_texture(const std::shared_ptr<const rsl::Texture>& texture);
+    // A material texture on the GPU (uploaded on `unit` at its first use, kept in base_colors_).
+    GLuint uploaded_texture(const std::shared_ptr<const rsl::Texture>& texture, int unit);
     std::vector<size_t> first_index_;  // per part, into display_indices_, and the total
     std::unique_ptr<ShadowMaps> shadow_maps_;  // made when first enabled
     std::unique_ptr<RayTracedVisibility> rays_;  // made when options_.gpu_rays is first enabled

@@ -67,7 +67,8 @@ inline constexpr GlslConstant kStorageBindings[] = {
 enum Unit : int {
     kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitBrdf,
     kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
-    kUnitOvdfFrames, kUnitShadowMaps, kUnitBaseColor, kUnitIndices, kUnitEmissive, kUnitCount,
+    kUnitOvdfFrames, kUnitShadowMaps, kUnitBaseColor, kUnitIndices, kUnitPbrPoints, kUnitMetallicRoughness,
+    kUnitEmissive, kUnitCount,
     // A unit no pass reads: where a texture is made and filled without
     // replacing one a pass has bound.
     kUnitUpload = kUnitCount,
@@ -102,6 +103,8 @@ inline constexpr Sampler kShadingSamplers[] = {
     {kUnitShadowMaps, "sampler2DArray", "u_shadow_depths", "the shadow maps, layer l = environment light l"},
     {kUnitBaseColor, "sampler2D", "u_base_color", "the per-pixel pass's base colour texture"},
     {kUnitIndices, "usampler2D", "u_indices", "every part's triangle indices (part-local vertices)"},
+    {kUnitPbrPoints, "sampler2D", "u_pbr_points", "vertex rectangle: (roughness, metallic) where the material varies per point"},
+    {kUnitMetallicRoughness, "sampler2D", "u_metallic_roughness", "the per-pixel pass's metallic-roughness texture"},
     {kUnitEmissive, "sampler2D", "u_emissive_texture", "the per-pixel pass's emissive texture"},
 };
 static_assert(std::size(kShadingSamplers) == kUnitCount);

@@ -296,7 +296,9 @@ Vec4 material_record(const BrdfTable& table, int first_slice, bool specular) {
 }
 
 PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable>>& part_tables,
-                               const std::vector<std::shared_ptr<const BrdfTable>>& part_specular_tables) {
+                               const std::vector<std::shared_ptr<const BrdfTable>>& part_specular_tables,
+                               const std::vector<std::shared_ptr<const BrdfTable>>& pbr_basis_tables) {
+    RSL_CHECK(pbr_basis_tables.empty() || pbr_basis_tables.size() == size_t(kPbrBasisRecords));
     RSL_CHECK(part_specular_tables.empty() || part_specular_tables.size() == part_tables.size());
     PackedMaterials out;
     std::map<const BrdfTable*, int> first_slice;
@@ -326,6 +328,9 @@ PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable
             throw Error("GL renderer: a specular table and its diffuse table differ in isotropy");
         out.part_specular.push_back(specular ? material_record(*specular, place(*specular), true) : Vec4(0.0f));
     }
+    out.pbr_basis.assign(size_t(kPbrBasisRecords), Vec4(0.0f));
+    for (size_t i = 0; i < pbr_basis_tables.size(); ++i)
+        if (const BrdfTable* table = pbr_basis_tables[i].get()) out.pbr_basis[i] = material_record(*table, place(*table), false);
     return out;
 }
 

@@ -42,6 +42,7 @@
 #include "src/render/frame_setup.h"
 #include "src/render/part_fields.h"
 #include "src/render/vertex_blocks.h"
+#include "src/shading/pbr_basis.h"
 #include "src/shading/shapes.h"
 
 namespace rsl::gl {
@@ -52,7 +53,7 @@ inline constexpr int kArrayTextureWidth = 2048;
 inline constexpr int kArrayTextureShift = 11;
 static_assert(1 << kArrayTextureShift == kArrayTextureWidth);
 
-inline constexpr int kPartStride = 29;
+inline constexpr int kPartStride = 30;
 // Texel slots inside a part record.
 enum PartSlot : int {
     kSlotTransform = 0,   // 4 columns
@@ -78,8 +79,12 @@ enum PartSlot : int {
     kSlotShapeLow = 26,
     kSlotShapeHigh = 27,
     kSlotDiffuseLight = 28,  // (the BRDF's constant term a, 0): the exact diffuse light (src/shading/diffuse_light.h)
+    kSlotPbr = 29,  // (base colour factor, 1) for a material varying per point (src/shading/pbr_basis.h), else 0
 };
-static_assert(kSlotDiffuseLight < kPartStride);
+static_assert(kSlotPbr < kPartStride);
+// The basis tables of materials varying per point (PbrBasisTables): D, then
+// S(0.04, level j), then S(1, level j); the shader's u_pbr_basis.
+inline constexpr int kPbrBasisRecords = 1 + 2 * shading::kPbrLevels;
 
 inline constexpr int kLightTexels = 3;        // per light in the lights texture
 // The vertex pass's storage buffers (shaders/shade_blocks.comp.glsl).
@@ -130,6 +135,8 @@ inline constexpr GlslConstant kShaderIntConstants[] = {
     {"kSlotShapeLow", kSlotShapeLow},
     {"kSlotShapeHigh", kSlotShapeHigh},
     {"kSlotDiffuseLight", kSlotDiffuseLight},
+    {"kSlotPbr", kSlotPbr},
+    {"kPbrBasisRecords", kPbrBasisRecords},
     {"kLightTexels", kLightTexels},
     {"kShadeBlock", kShadeBlock},
     {"kCandidateHeader", kCandidateHeader},
@@ -193,6 +200,7 @@ struct PackedMaterials {
     std::vector<Vec4> offsets;   // per slice
     std::vector<Vec4> part_material;  // per part: (first slice, isotropic, V, 0)
     std::vector<Vec4> part_specular;  // per part: (first slice, isotropic, V, 1), or 0 without a specular table
+    std::vector<Vec4> pbr_basis;      // kPbrBasisRecords: each basis table's record, or 0 where not built
 };
 
 // A table's slices as the BRDF texture holds them: per slice N+1 rows of
@@ -209,7 +217,8 @@ Vec4 material_record(const BrdfTable& table, int first_slice, bool specular);
 // table, and its specular table where `part_specular_tables` (empty, or one
 // per part, null for untextured parts) has one.
 PackedMaterials pack_materials(const std::vector<std::shared_ptr<const BrdfTable>>& part_tables,
-                               const std::vector<std::shared_ptr<const BrdfTable>>& part_specular_tables = {});
+                               const std::vector<std::shared_ptr<const BrdfTable>>& part_specular_tables = {},
+                               const std::vector<std::shared_ptr<const BrdfTable>>& pbr_basis_tables = {});
 
 // The pose slots of one part record.
 void write_pose(const Mat4& transform, const Mat3& normal, const Mat4& inverse, Vec4* record);

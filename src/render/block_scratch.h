@@ -126,6 +126,18 @@ struct CpuRenderer::BlockScratch {
     // a seam vertex's neighbour (CpuRenderer::seam_partners_); -1 at pixels.
     alignas(64) int32_t partner[kShadeBlock];
     bool any_partner = false;  // some point of the block has one
+    // A part whose roughness and metallic vary per point (pbr_basis.h): per
+    // point its weights on D, S(0.04, ·) and S(1, ·) and its two roughness
+    // levels; the levels any point uses; one basis table's averages.
+    bool pbr = false;
+    alignas(64) float pbr_dr[kShadeBlock], pbr_dg[kShadeBlock], pbr_db[kShadeBlock];
+    alignas(64) float pbr_er[kShadeBlock], pbr_eg[kShadeBlock], pbr_eb[kShadeBlock];
+    alignas(64) float pbr_mr[kShadeBlock], pbr_mg[kShadeBlock], pbr_mb[kShadeBlock];
+    alignas(64) int32_t pbr_level[kShadeBlock];
+    alignas(64) float pbr_upper[kShadeBlock];
+    int pbr_first = 0, pbr_last = -1;
+    bool pbr_metal = false;
+    alignas(64) float tr[kShadeBlock], tg[kShadeBlock], tb[kShadeBlock];
     // Compacted queries.
     int index[kShadeBlock];
     int query_vertex[kShadeBlock];  // the vertex of each query (shade_block)

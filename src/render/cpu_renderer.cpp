@@ -56,6 +56,8 @@ CpuRenderer::CpuRenderer(const Scene& scene, EnvironmentLights environment_light
     part_tables_.assign(parts, nullptr);
     part_specular_tables_.assign(parts, nullptr);
     part_constant_terms_.assign(parts, Color(0));
+    part_pbr_points_.assign(parts, {});
+    part_pbr_base_.assign(parts, Color(0));
     synced_material_.assign(parts, -1);
     sync_materials();
     start();
@@ -81,6 +83,9 @@ void CpuRenderer::sync_materials() {
             part_tables_[p] = &library_.part_table(int(p));
             part_specular_tables_[p] = library_.part_specular_table(int(p));
             part_constant_terms_[p] = library_.brdf(m).constant_part();
+            const MaterialDesc& desc = library_.desc(m);
+            part_pbr_points_[p] = varies_per_point(desc) ? pbr_points(desc, scene_.parts[p].mesh) : std::vector<PbrPoint>{};
+            part_pbr_base_[p] = varies_per_point(desc) ? pbr_base_color(desc) : Color(0);
             synced_material_[p] = m;
         }
     }

@@ -113,6 +113,12 @@ private:
     // the ones in front blends them).
     int brdf_queries(BlockScratch& s, const BrdfTable& table, const BrdfTable* specular, int n,
                      const float* view_floor = nullptr) const;
+    // Parts whose roughness and metallic vary per point (src/brdf/pbr_basis.h):
+    // the n points' weights on the basis tables (s.pbr), and the averages
+    // brdf_queries takes from them in place of the part's table.
+    void load_block_pbr(BlockScratch& s, int part, int n) const;
+    void set_pbr_point(BlockScratch& s, int k, const Color& base, const PbrPoint& point) const;
+    void pbr_averages(BlockScratch& s, const SquareQueries& queries, int m, bool layered) const;
     void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, int part, size_t light, int n,
                              int m, RenderStats& counts) const;
     void shadow_by_occluders(BlockScratch& s, const BoundingSphere& block_sphere, std::span<const int> occluders,
@@ -149,6 +155,10 @@ private:
     std::vector<const BrdfTable*> part_tables_;
     std::vector<const BrdfTable*> part_specular_tables_;  // null for untextured parts
     std::vector<Color> part_constant_terms_;  // per part: its (diffuse) BRDF's constant_part()
+    // Per part whose material varies per point: each vertex's roughness and
+    // metallic, and the base colour factor (empty, 0 for the others).
+    std::vector<std::vector<PbrPoint>> part_pbr_points_;
+    std::vector<Color> part_pbr_base_;
     std::vector<int> synced_material_;
     std::vector<uint64_t> synced_revision_;
     std::vector<Block> blocks_;

@@ -3,6 +3,7 @@
 // the environment's squares per block, before its lights are looked up.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "src/render/block_scratch.h"
 #include "src/render/cpu_renderer.h"
@@ -10,12 +11,17 @@
 
 namespace rsl {
 
+namespace {
+// The constant part of the basis's D (kd = 1, f0 = 0): 1/π.
+constexpr float kInvPbrPi = std::numbers::inv_pi_v<float>;
+}  // namespace
+
 // Each point's gain g = a·(E(n) / Σ_l I_l c_l − 1) over the environment's
 // squares (shading/diffuse_light.h): brdf_queries adds g·c_l to light l's
 // BRDF average, so the constant term a sees the exact irradiance E.
 void CpuRenderer::diffuse_light_gains(BlockScratch& s, int part, int n) const {
     const Color a = part_constant_terms_[size_t(part)];
-    s.gains = options_.exact_diffuse_light && options_.environment && a != Color(0) &&
+    s.gains = options_.exact_diffuse_light && options_.environment && (a != Color(0) || s.pbr) &&
               !environment_squares_.empty() && has_irradiance(environment_);
     if (!s.gains) return;
     const size_t lights = environment_squares_.size();
@@ -58,9 +64,11 @@ void CpuRenderer::diffuse_light_gains(BlockScratch& s, int part, int n) const {
             continue;
         }
         const Color e = environment_irradiance(environment_, frame_, Vec3(s.zx[k], s.zy[k], s.zz[k]));
-        s.gain_r[k] = shading::diffuse_light_gain(a.r, e.r, s.gain_r[k]);
-        s.gain_g[k] = shading::diffuse_light_gain(a.g, e.g, s.gain_g[k]);
-        s.gain_b[k] = shading::diffuse_light_gain(a.b, e.b, s.gain_b[k]);
+        // A part varying per point: its point's constant term, w_D on D's (1/π).
+        const Color ak = s.pbr ? Color(s.pbr_dr[k], s.pbr_dg[k], s.pbr_db[k]) * kInvPbrPi : a;
+        s.gain_r[k] = shading::diffuse_light_gain(ak.r, e.r, s.gain_r[k]);
+        s.gain_g[k] = shading::diffuse_light_gain(ak.g, e.g, s.gain_g[k]);
+        s.gain_b[k] = shading::diffuse_light_gain(ak.b, e.b, s.gain_b[k]);
     }
 }
 

@@ -1,11 +1,13 @@
 #include "src/render/memory_estimate.h"
 
 #include <algorithm>
+#include <array>
 #include <set>
 #include <thread>
 
 #include <fmt/format.h>
 
+#include "src/brdf/pbr_basis.h"
 #include "src/core/memory_limit.h"
 #include "src/fields/field_cache.h"
 
@@ -74,6 +76,21 @@ MemoryEstimate estimate_render_memory(const Scene& scene, bool self_visibility, 
     std::set<int> materials;
     for (const Part& part : scene.parts) materials.insert(part.material);
     bytes += kBrdfTableBytes * materials.size();
+    // Materials varying per point share the basis tables (src/brdf/pbr_basis.h)
+    // of the roughness levels their textures reach.
+    std::array<bool, kPbrLevels> dielectric{}, metal{};
+    bool any_varying = false;
+    for (const int m : materials) {
+        if (m < 0 || size_t(m) >= scene.materials.size() || !varies_per_point(scene.materials[size_t(m)])) continue;
+        const PbrLevelRange range = pbr_level_range(scene.materials[size_t(m)]);
+        any_varying = true;
+        for (int j = range.first; j <= range.last; ++j) dielectric[size_t(j)] = true, metal[size_t(j)] |= range.metal;
+    }
+    if (any_varying) {
+        uint64_t basis = 1;
+        for (int j = 0; j < kPbrLevels; ++j) basis += (dielectric[size_t(j)] ? 1 : 0) + (metal[size_t(j)] ? 1 : 0);
+        bytes += kBrdfTableBytes * basis;
+    }
 
     if (scene.environment.present()) {
         const uint64_t texels = 6ull * uint64_t(scene.environment.resolution) * uint64_t(scene.environment.resolution);

@@ -346,6 +346,15 @@ Color CpuRenderer::pixel_highlights(BlockScratch& s, PixelOccluders& o, size_t p
     const PixelTerms& terms = pixel_terms_[part];
     RSL_CHECK(lights <= size_t(kShadeBlock));  // CpuRenderer::shade keeps no highlight terms for more
     set_lights_at_point(s, lights);
+    // A part varying per point: the texture's roughness and metallic at the pixel.
+    s.pbr = !part_pbr_points_[part].empty();
+    if (s.pbr) {
+        const std::vector<Vec2>& uv = scene_.parts[part].mesh.texcoords;
+        const PbrPoint point = pbr_point(library_.desc(library_.part_material(int(part))),
+                                         w[0] * uv[corner[0]] + w[1] * uv[corner[1]] + w[2] * uv[corner[2]]);
+        s.pbr_first = kPbrLevels, s.pbr_last = -1, s.pbr_metal = false;
+        for (size_t l = 0; l < lights; ++l) set_pbr_point(s, int(l), part_pbr_base_[part], point);
+    }
     diffuse_light_gains(s, int(part), 1);  // every slot holds the pixel's point
     for (size_t l = 1; l < lights; ++l)
         s.gain_r[l] = s.gain_r[0], s.gain_g[l] = s.gain_g[0], s.gain_b[l] = s.gain_b[0];

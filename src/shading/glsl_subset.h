@@ -9,7 +9,7 @@
 //
 // Rules of the shared part, so that it compiles as both languages:
 //  * glm type names (vec2, vec3, vec4, ivec4, uvec2, uint, mat3, mat4), functions of both
-//    libraries (min, max, clamp, abs, sqrt, log, sin, tan, dot, length,
+//    libraries (min, max, clamp, mix, abs, sqrt, log, sin, tan, dot, length,
 //    normalize, cross), no swizzles (vec3(v) takes a vec4's first three);
 //  * results are small structs filled member by member (GLSL has no
 //    aggregate initializers; C++ has no `out` parameters): no references,
@@ -43,6 +43,7 @@ using glm::dot;
 using glm::length;
 using glm::max;
 using glm::min;
+using glm::mix;
 using glm::normalize;
 using std::abs;
 using std::log;

@@ -24,6 +24,7 @@
 #include "src/shading/diffuse_light.h"
 #include "src/shading/vdt.h"
 #include "src/shading/brdf_sat.h"
+#include "src/shading/pbr_basis.h"
 #include "src/shading/ovdf_tables.h"
 #include "src/shading/ovdf_small_occluder.h"
 #include "src/shading/ovdf_inside.h"

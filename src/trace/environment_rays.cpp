@@ -97,14 +97,15 @@ private:
     uint32_t dimension_;
 };
 
-Color EnvironmentRays::shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf& brdf, uint64_t stream) const {
+Color EnvironmentRays::shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf& brdf, uint64_t stream,
+                             const Brdf* proposal) const {
     const Vec3 wo = x.frame.to_local(wo_world);
     // ρ is zero for a view below the shading horizon (Brdf contract): no rays.
     if (!(wo.z > 0.0f)) return Color(0);
     const Vec3 origin = x.ray_origin();
     ShadowBatch batch(posed_.rays(), origin);
     if (options_.environment) {
-        shade_environment(x, wo, brdf, stream, batch);
+        shade_environment(x, wo, brdf, brdf_sampler(proposal ? *proposal : brdf), stream, batch);
         shade_suns(x, wo, brdf, batch);
     }
     if (options_.local_lights)
@@ -121,10 +122,9 @@ Color EnvironmentRays::shade(const SurfacePoint& x, const Vec3& wo_world, const 
 
 // The map's integral: N samples, ⌈c_b·N − ξ⌉ of them from the BRDF (the
 // first ones), the rest from the map, each weighted by the balance heuristic.
-void EnvironmentRays::shade_environment(const SurfacePoint& x, const Vec3& wo, const Brdf& brdf, uint64_t stream,
-                                        ShadowBatch& batch) const {
+void EnvironmentRays::shade_environment(const SurfacePoint& x, const Vec3& wo, const Brdf& brdf,
+                                        const BrdfSampler& sampler, uint64_t stream, ShadowBatch& batch) const {
     if (environment_.empty()) return;  // a black map: nothing to integrate
-    const BrdfSampler& sampler = brdf_sampler(brdf);
     const float brdf_share = sampler.empty() ? 0.0f : options_.brdf_sampling_share;
     const float environment_share = 1.0f - brdf_share;
     const BrdfSampler::View view = sampler.empty() ? BrdfSampler::View{} : sampler.view(wo);
@@ -213,6 +213,16 @@ Color EnvironmentRays::shade_hit(const RayHit& hit, const Vec3& ray_direction, u
     const uint64_t stream = pixel_stream | kPixelStreamBit;
     const Color emission = hit_emission(scene_, hit);
     const Brdf* specular = part_specular_brdf(hit.instance);
+    const int material = scene_.parts[size_t(hit.instance)].material;
+    if (lobes_.varies[size_t(material)]) {  // roughness and metallic at the hit
+        const Vec2 uv = interpolate_texcoords(scene_, hit);
+        const Color reflected =
+            shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, false), stream, &part_brdf(hit.instance));
+        if (!specular) return reflected + emission;
+        return reflected * scene_.materials[size_t(material)].base_color_texture->sample(uv) +
+               shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, true), specular_stream(stream), specular) +
+               emission;
+    }
     if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance), stream) + emission;
     const Texture& texture = *scene_.materials[size_t(scene_.parts[size_t(hit.instance)].material)].base_color_texture;
     return shade(x, -ray_direction, part_brdf(hit.instance), stream) * texture.sample(interpolate_texcoords(scene_, hit)) +
@@ -230,6 +240,11 @@ VertexColors EnvironmentRays::shade_vertices(const ProgressCallback& progress) c
         const SurfacePoint x = posed_.vertex(part, vertex);
         const Vec3 wo = glm::normalize(camera_ - x.position);
         const uint64_t stream = vertex_stream(part, vertex);
+        if (const int m = scene_.parts[size_t(part)].material; lobes_.varies[size_t(m)]) {
+            const Vec2 uv = scene_.parts[size_t(part)].mesh.texcoords[size_t(vertex)];
+            return shade(x, wo, *lobes_.at_point(scene_, m, uv, specular), specular ? specular_stream(stream) : stream,
+                         specular ? part_specular_brdf(part) : &part_brdf(part));
+        }
         return specular ? shade(x, wo, *part_specular_brdf(part), specular_stream(stream))
                         : shade(x, wo, part_brdf(part), stream);
     }, progress);

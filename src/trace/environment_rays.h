@@ -87,8 +87,12 @@ public:
     const BrdfSampler& brdf_sampler(const Brdf& brdf) const;
 
     // Outgoing radiance at x towards wo_world (unit, world space); `brdf` one
-    // of the scene's lobes. `stream` seeds the point's random numbers.
-    Color shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf& brdf, uint64_t stream) const;
+    // of the scene's lobes, or a point's own (a material varying per point)
+    // with `proposal`, the scene's lobe whose sampling tables draw its BRDF
+    // samples (MIS stays unbiased: the weights use the tables' own density).
+    // `stream` seeds the point's random numbers.
+    Color shade(const SurfacePoint& x, const Vec3& wo_world, const Brdf& brdf, uint64_t stream,
+                const Brdf* proposal = nullptr) const;
     // Every vertex of every part, towards the camera; all cores. Textured
     // parts are layered (VertexColors), as the truth's.
     VertexColors shade_vertices(const ProgressCallback& progress = {}) const;
@@ -108,8 +112,8 @@ public:
     static uint64_t specular_stream(uint64_t stream) { return stream ^ (1ull << 63); }
 
 private:
-    void shade_environment(const SurfacePoint& x, const Vec3& wo, const Brdf& brdf, uint64_t stream,
-                           ShadowBatch& batch) const;
+    void shade_environment(const SurfacePoint& x, const Vec3& wo, const Brdf& brdf, const BrdfSampler& sampler,
+                           uint64_t stream, ShadowBatch& batch) const;
     void shade_suns(const SurfacePoint& x, const Vec3& wo, const Brdf& brdf, ShadowBatch& batch) const;
     void shade_light(const SurfacePoint& x, const Vec3& origin, const Vec3& wo, const Brdf& brdf, size_t light,
                      const Color& radiance, uint64_t stream, ShadowBatch& batch) const;

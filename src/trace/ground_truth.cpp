@@ -201,6 +201,14 @@ Color GroundTruth::shade_hit(const RayHit& hit, const Vec3& ray_direction) const
     const SurfacePoint x = posed_.hit_point(hit, ray_direction);
     const Color emission = hit_emission(scene_, hit);
     const Brdf* specular = part_specular_brdf(hit.instance);
+    const int material = scene_.parts[size_t(hit.instance)].material;
+    if (lobes_.varies[size_t(material)]) {  // roughness and metallic at the hit
+        const Vec2 uv = interpolate_texcoords(scene_, hit);
+        const Color reflected = shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, false));
+        if (!specular) return reflected + emission;
+        return reflected * part_texture(hit.instance)->sample(uv) +
+               shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, true)) + emission;
+    }
     if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance)) + emission;
     const Vec2 uv = interpolate_texcoords(scene_, hit);
     return shade(x, -ray_direction, part_brdf(hit.instance)) * part_texture(hit.instance)->sample(uv) +
@@ -211,6 +219,9 @@ VertexColors GroundTruth::shade_vertices(const ProgressCallback& progress) const
     return shade_every_vertex(scene_, lobes_, "truth", time(), 64, [&](int part, int vertex, bool specular) {
         const SurfacePoint x = posed_.vertex(part, vertex);
         const Vec3 wo = glm::normalize(camera_ - x.position);
+        if (const int m = scene_.parts[size_t(part)].material; lobes_.varies[size_t(m)])
+            return shade(x, wo, *lobes_.at_point(scene_, m, scene_.parts[size_t(part)].mesh.texcoords[size_t(vertex)],
+                                                 specular));
         return shade(x, wo, specular ? *part_specular_brdf(part) : part_brdf(part));
     }, progress);
 }

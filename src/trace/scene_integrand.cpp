@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "src/brdf/pbr_basis.h"
 #include "src/core/emission.h"
 #include "src/core/error.h"
 #include "src/core/sphere_light.h"
@@ -22,7 +23,13 @@ SceneLobes::SceneLobes(const Scene& scene) {
             lobe[m] = std::move(lobes.diffuse);
             specular[m] = std::move(lobes.specular);
         }
+    varies.assign(lobe.size(), 0);
+    for (size_t m = 0; m < scene.materials.size(); ++m) varies[m] = varies_per_point(scene.materials[m]) ? 1 : 0;
     for (const Part& part : scene.parts) {
+        if (part.material >= 0 && part.material < int(lobe.size()) && varies[size_t(part.material)] &&
+            part.mesh.texcoords.size() != part.mesh.positions.size())
+            throw_file_error(scene.source, "part '{}': its material has a metallic-roughness texture, the part no "
+                             "texture coordinates", part.name);
         if (part.material < 0 || part.material >= int(lobe.size()))
             throw_file_error(scene.source, "part '{}' has material index {} of {}", part.name, part.material,
                              lobe.size());
@@ -38,6 +45,15 @@ SceneLobes::SceneLobes(const Scene& scene) {
     }
     for (const LocalLight& light : scene.lights)
         if (!(light.radius > 0.0f)) throw_file_error(scene.source, "local light with radius {}", light.radius);
+}
+
+std::shared_ptr<const Brdf> SceneLobes::at_point(const Scene& scene, int material, const Vec2& uv,
+                                                 bool specular_lobe) const {
+    const MaterialDesc& desc = scene.materials[size_t(material)];
+    const MaterialDesc at = material_at_point(desc, pbr_point(desc, uv));
+    if (!desc.base_color_texture) return make_brdf(at);
+    BrdfLobes lobes = make_brdf_lobes(at);
+    return specular_lobe ? lobes.specular : lobes.diffuse;
 }
 
 void PosedLights::set(const Scene& scene, float t) {

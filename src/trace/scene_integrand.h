@@ -20,6 +20,12 @@ struct SceneLobes {
     std::vector<std::shared_ptr<const Brdf>> lobe;
     std::vector<std::shared_ptr<const Brdf>> whole;     // make_brdf's: both lobes at unit texture
     std::vector<std::shared_ptr<const Brdf>> specular;  // a textured material's specular lobe, else null
+    // Per material: whether its roughness and metallic vary per point
+    // (src/brdf/pbr_basis.h); then `at_point` gives the BRDF of a point.
+    std::vector<uint8_t> varies;
+    // The lobe (whole, or a layered material's diffuse or specular lobe) of
+    // `material` at texture coordinates uv.
+    std::shared_ptr<const Brdf> at_point(const Scene& scene, int material, const Vec2& uv, bool specular_lobe) const;
 
     // Throws rsl::Error naming the scene file where a part's material index,
     // normals or (textured) texture coordinates, or a light's radius, is wrong.

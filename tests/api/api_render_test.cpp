@@ -12,6 +12,9 @@
 #include "rsl/rsl.h"
 #include "src/core/math.h"
 #include "tests/api/api_test_scene.h"
+#include "tools/assets/model.h"
+#include "tools/assets/pbr_scene.h"
+#include "tools/assets/primitives.h"
 
 namespace rsl {
 namespace {
@@ -234,6 +237,65 @@ TEST_CASE("the API's errors carry the message rsl prints", "[api]") {
     CHECK(test::error_of([&] { renderer.gl_color_buffer(); }).find("gl-current") != std::string::npos);
     CHECK(test::error_of([&] { renderer.set_part_pose(0, api::Pose{{0, 0, 0}, {1, 0, 0, 0}, {1, -1, 1}}); })
               .find("must be positive") != std::string::npos);
+}
+
+}  // namespace
+}  // namespace rsl
+
+namespace rsl {
+namespace {
+
+// A .glb of a floor and a ball whose gltf_pbr material "mr" has a
+// metallic-roughness texture, its roughness factor `roughness`, and a scene
+// file naming it.
+std::filesystem::path write_textured_scene(const std::filesystem::path& folder, const std::string& name,
+                                           float roughness) {
+    assets::GeneratedModel model;
+    MaterialDesc m = assets::gltf_pbr_material("mr", Color(0.9f, 0.7f, 0.4f), 1.0f, roughness);
+    auto texture = std::make_shared<Texture>();
+    texture->name = "mr.png";
+    texture->image = Image(4, 4, 3);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) texture->image.set_rgb(i, j, Color(1.0f, 0.3f + 0.2f * float(i), float(j % 2)));
+    m.metallic_roughness_texture = texture;
+    model.scene.materials = {m};
+    TriangleMesh floor = assets::grid_plane(1.6f, 1.6f, 16, 16);
+    for (const Vec3& p : floor.positions) floor.texcoords.emplace_back(p.x / 1.6f + 0.5f, p.z / 1.6f + 0.5f);
+    model.add_node("floor", -1, Vec3(0), floor);
+    TriangleMesh ball = assets::sphere(0.25f, 0.05f);
+    for (const Vec3& p : ball.positions) ball.texcoords.emplace_back(p.x * 2 + 0.5f, p.y * 2 + 0.5f);
+    model.add_node("ball", -1, Vec3(0, 0.3f, 0), ball);
+    for (Part& part : model.scene.parts) {
+        part.material = 0;
+        validate_and_complete(part.mesh, name + ".glb");
+    }
+    assets::write_glb(folder / (name + ".glb"), model);
+    const std::string generated = std::string(RSL_SOURCE_DIR) + "/assets/generated";
+    const auto path = folder / (name + ".json");
+    test::write_text(path, fmt::format(R"({{
+  "name": "{1}", "gltf": "{1}.glb",
+  "environment": {{ "file": "{0}/sunsky.exr", "resolution": 12 }},
+  "camera": {{ "position": [0.9, 0.75, 1.3], "target": [0, 0.2, 0], "up": [0, 1, 0], "fov_degrees": 36, "width": 96, "height": 72 }},
+  "subdivision": false,
+  "precompute": {{
+    "svdf": {{ "resolution": 8, "clusters": 16, "vectors": 4, "supersampling": 1 }},
+    "ovdf": {{ "shells": 4, "inner_radius": 0.4, "outer_radius": 6.0, "cube_resolution": 6, "vdt_resolution": 8, "vectors": 4 }}
+  }}
+}}
+)", generated, name));
+    return path;
+}
+
+TEST_CASE("the API edits a material with a metallic-roughness texture as any other", "[api]") {
+    const auto folder = test::scratch_dir("api-metallic-roughness");
+    Renderer renderer(Scene::load(write_textured_scene(folder, "rough", 1.0f).string()));
+    Renderer expected(Scene::load(write_textured_scene(folder, "half", 0.5f).string()));
+    const api::VertexColors before = renderer.shade();
+    renderer.set_material_parameter("mr", "roughness", {0.5f});
+    const api::VertexColors colors = renderer.shade();
+    CHECK(api::compare(before, colors).relative_l2 > 0.01);  // the texture's roughness halved
+    require_same_colors(colors, expected.shade());
+    require_same_colors(renderer.truth(), expected.truth());
 }
 
 }  // namespace

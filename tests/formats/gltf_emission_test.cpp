@@ -129,11 +129,11 @@ TEST_CASE("glTF emission: bad values are refused, naming the file and the materi
         {"strength not a number", {{"emissiveFactor", {1, 1, 1}}, {"extensions", strength("bright")}},
          "emissiveStrength is not a number"},
         {"texture out of range", {{"emissiveFactor", {1, 1, 1}}, {"emissiveTexture", {{"index", 4}}}},
-         "emissiveTexture index 4 is out of range (0 textures)"},
+         "emissive texture index 4 is out of range (0 textures)"},
         {"two texture coordinate sets",
          {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"texCoord", 0}}}}},
           {"emissiveFactor", {1, 1, 1}}, {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}}},
-         "emissiveTexture reads TEXCOORD_1, its other textures TEXCOORD_0"},
+         "baseColorTexture reads TEXCOORD_0 and emissiveTexture TEXCOORD_1"},
     };
     for (const Case& c : cases) {
         Json material = c.material;

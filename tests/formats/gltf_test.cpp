@@ -148,6 +148,37 @@ TEST_CASE("glTF animations on different nodes play together; on the same node th
                                            Catch::Contains("'First' first") && !Catch::Contains("Third"));
 }
 
+TEST_CASE("A scene file's gltf_animations chooses the glTF's animations that play", "[gltf]") {
+    const auto dir = temp_dir("chosen_animations");
+    GltfBuilder b = robot_arm();  // animation 0 moves the base to (2, 0, 0) at t = 2
+    b.doc()["animations"][0]["name"] = "First";
+    const int times = b.floats({0, 2}, "SCALAR");
+    b.doc()["animations"].push_back(
+        {{"name", "Second"},
+         {"samplers", {{{"input", times}, {"output", b.floats({0, 0, 0, 5, 0, 0}, "VEC3")}, {"interpolation", "LINEAR"}}}},
+         {"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}}});
+    b.write_glb(dir / "clips.glb");
+    const auto base_at_2 = [&](const std::string& keys) {
+        test::write_text(dir / "scene.json", R"({ "gltf": "clips.glb", )" + keys + " }");
+        const Scene scene = load_scene(dir / "scene.json");
+        return world_point(scene, part_named(scene, "base"), 2.0f, Vec3(0.0f));
+    };
+    check_near(base_at_2(R"("gltf_animations": "Second")"), {5, 0, 0});  // the later clip, no warning needed
+    check_near(base_at_2(R"("gltf_animations": ["First"])"), {2, 0, 0});
+    check_near(base_at_2(R"("gltf_animations": ["#1"])"), {5, 0, 0});
+    // A part entry's glTF too.
+    test::write_text(dir / "entry.json", R"({ "parts": [ { "gltf": "clips.glb", "gltf_animations": "Second" } ] })");
+    const Scene entry = load_scene(dir / "entry.json");
+    check_near(world_point(entry, part_named(entry, "base"), 2.0f, Vec3(0.0f)), {5, 0, 0});
+    // A name the file lacks is an error naming the file and what it has.
+    CHECK_THROWS_WITH(base_at_2(R"("gltf_animations": "Walk")"),
+                      Catch::Contains("clips.glb") && Catch::Contains("no animation 'Walk'") &&
+                          Catch::Contains("'First', 'Second'"));
+    CHECK_THROWS_WITH(base_at_2(R"("gltf_animations": [])"), Catch::Contains("gltf_animations"));
+    test::write_text(dir / "none.json", R"({ "gltf_animations": "First", "parts": [ { "gltf": "clips.glb" } ] })");
+    CHECK_THROWS_WITH(load_scene(dir / "none.json"), Catch::Contains("gltf_animations"));
+}
+
 TEST_CASE("glTF meshes without normals get computed normals and tangents", "[gltf]") {
     const auto dir = temp_dir("normals");
     robot_arm().write_glb(dir / "arm.glb");

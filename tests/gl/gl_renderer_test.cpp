@@ -214,6 +214,40 @@ TEST_CASE("GL adds emission as the CPU does: exactly its radiance at each vertex
     CHECK(emitting > 100);
 }
 
+TEST_CASE("GL shades a material whose roughness and metallic vary per point as the CPU does", "[gl-renderer]") {
+    // The ground's gltf_pbr material gets a metallic-roughness texture
+    // (src/brdf/pbr_basis.h): roughness 0.15–0.95 and metallic 0–1 vary per
+    // vertex, shaded from the basis tables; alone, then with a base colour
+    // texture (two layers), then after an edit of its roughness factor.
+    Scene scene = moving_scene();
+    auto texture = std::make_shared<Texture>();
+    texture->name = "metallic_roughness";
+    texture->image = Image(4, 4, 3);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) texture->image.set_rgb(i, j, Color(1.0f, 0.15f + 0.25f * float(i), float(j) / 3.0f));
+    scene.materials[0].params["roughness"] = {1.0f};
+    scene.materials[0].params["metallic"] = {1.0f};
+    scene.materials[0].metallic_roughness_texture = texture;
+    TriangleMesh& ground = scene.parts[0].mesh;
+    for (const Vec3& p : ground.positions) ground.texcoords.emplace_back(p.x / 3.0f + 0.5f, p.z / 3.0f + 0.5f);
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    check_against_cpu(scene, test::random_rsls(16, 3), fields, RenderOptions{}, {0.0f, 1.0f});
+    scene.materials[0].base_color_texture = assets::make_tile_texture(4, 4);
+    check_against_cpu(scene, test::random_rsls(16, 3), fields, RenderOptions{}, {0.5f});
+
+    test::gl_context();
+    const RslSet lights = test::random_rsls(8, 5);
+    CpuRenderer cpu(scene, lights, fields, RenderOptions{});
+    gl::GlRenderer gpu(scene, lights, fields, RenderOptions{});
+    for (VertexRenderer* r : {static_cast<VertexRenderer*>(&cpu), static_cast<VertexRenderer*>(&gpu)})
+        r->set_material_parameter(scene.materials[0].name, "roughness", {0.5f});
+    for (const bool specular : {false, true}) {
+        const test::ColorDifference d = test::compare_colors(gpu.shade(), cpu.shade(), kTolerance, specular);
+        INFO("after the edit" << (specular ? ", specular layer" : "") << ": relative L2 " << d.relative_l2);
+        CHECK(d.relative_l2 < 1e-5);
+    }
+}
+
 TEST_CASE("GL matches the CPU with hundreds of parts (occluder lists, no part limit)", "[gl-renderer]") {
     // 200 small spheres on a ground, one shared field: far beyond the 32
     // parts that bit masks once allowed, with lists of varying length.

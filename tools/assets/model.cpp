@@ -1,6 +1,7 @@
 #include "tools/assets/model.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -135,11 +136,14 @@ private:
 
 std::vector<double> as_doubles(const float* v, int n) { return std::vector<double>(v, v + n); }
 
-// A linear-RGB texture as the sRGB PNG bytes a glTF base colour or emissive image holds.
-std::vector<unsigned char> png_bytes(const Texture& texture) {
+// A linear-RGB texture as the PNG bytes a glTF image holds: sRGB-encoded
+// (colour textures: base colour, emissive) or linear (data textures: metallic-roughness).
+std::vector<unsigned char> png_bytes(const Texture& texture, bool srgb) {
     const Image& image = texture.image;
     std::vector<unsigned char> pixels(size_t(image.width) * image.height * 3);
-    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = linear_to_srgb8(image.pixels[i]);
+    for (size_t i = 0; i < pixels.size(); ++i)
+        pixels[i] = srgb ? linear_to_srgb8(image.pixels[i])
+                         : static_cast<unsigned char>(std::lround(std::clamp(image.pixels[i], 0.0f, 1.0f) * 255.0f));
     std::vector<unsigned char> png;
     const auto append = [](void* context, void* data, int size) {
         auto* out = static_cast<std::vector<unsigned char>*>(context);
@@ -156,6 +160,27 @@ int gl_wrap(TextureWrap wrap) {
     return TINYGLTF_TEXTURE_WRAP_REPEAT;
 }
 
+// A texture as an embedded PNG with its sampler; returns its index.
+int add_texture(GltfBuilder& builder, tinygltf::Model& model, const Texture& source, bool srgb) {
+    tinygltf::Image image;
+    image.name = source.name;
+    image.mimeType = "image/png";
+    image.bufferView = builder.add_bytes(png_bytes(source, srgb));
+    model.images.push_back(image);
+    tinygltf::Sampler sampler;
+    sampler.magFilter =
+        source.filter == TextureFilter::Nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = sampler.magFilter;
+    sampler.wrapS = gl_wrap(source.wrap_s);
+    sampler.wrapT = gl_wrap(source.wrap_t);
+    model.samplers.push_back(sampler);
+    tinygltf::Texture texture;
+    texture.source = int(model.images.size()) - 1;
+    texture.sampler = int(model.samplers.size()) - 1;
+    model.textures.push_back(texture);
+    return int(model.textures.size()) - 1;
+}
+
 // A gltf_pbr scene material as a glTF material (its texture as an embedded
 // PNG, as Blender's .glb export writes it); −1 for other models.
 int add_material(GltfBuilder& builder, tinygltf::Model& model, const MaterialDesc& desc) {
@@ -170,25 +195,11 @@ int add_material(GltfBuilder& builder, tinygltf::Model& model, const MaterialDes
     m.pbrMetallicRoughness.baseColorFactor = {base[0], base[base.size() == 3 ? 1 : 0], base[base.size() == 3 ? 2 : 0], 1.0};
     m.pbrMetallicRoughness.metallicFactor = param("metallic", 1.0f)[0];
     m.pbrMetallicRoughness.roughnessFactor = param("roughness", 1.0f)[0];
-    const auto add_texture = [&](const Texture& source) {
-        tinygltf::Image image;
-        image.name = source.name;
-        image.mimeType = "image/png";
-        image.bufferView = builder.add_bytes(png_bytes(source));
-        model.images.push_back(image);
-        tinygltf::Sampler sampler;
-        sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-        sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-        sampler.wrapS = gl_wrap(source.wrap_s);
-        sampler.wrapT = gl_wrap(source.wrap_t);
-        model.samplers.push_back(sampler);
-        tinygltf::Texture texture;
-        texture.source = int(model.images.size()) - 1;
-        texture.sampler = int(model.samplers.size()) - 1;
-        model.textures.push_back(texture);
-        return int(model.textures.size()) - 1;
-    };
-    if (desc.base_color_texture) m.pbrMetallicRoughness.baseColorTexture.index = add_texture(*desc.base_color_texture);
+    if (desc.base_color_texture)
+        m.pbrMetallicRoughness.baseColorTexture.index = add_texture(builder, model, *desc.base_color_texture, true);
+    if (desc.metallic_roughness_texture)
+        m.pbrMetallicRoughness.metallicRoughnessTexture.index =
+            add_texture(builder, model, *desc.metallic_roughness_texture, false);
     // Emission past 1 as glTF writes it: a factor in [0, 1] times KHR_materials_emissive_strength.
     const float strength = std::max({1.0f, desc.emissive.r, desc.emissive.g, desc.emissive.b});
     m.emissiveFactor = {desc.emissive.r / strength, desc.emissive.g / strength, desc.emissive.b / strength};
@@ -200,7 +211,7 @@ int add_material(GltfBuilder& builder, tinygltf::Model& model, const MaterialDes
             model.extensionsUsed.end())
             model.extensionsUsed.push_back("KHR_materials_emissive_strength");
     }
-    if (desc.emissive_texture) m.emissiveTexture.index = add_texture(*desc.emissive_texture);
+    if (desc.emissive_texture) m.emissiveTexture.index = add_texture(builder, model, *desc.emissive_texture, true);
     model.materials.push_back(m);
     return int(model.materials.size()) - 1;
 }

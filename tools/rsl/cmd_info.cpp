@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "src/brdf/brdf.h"
+#include "src/brdf/pbr_basis.h"
 #include "tools/rsl/command.h"
 #include "tools/rsl/info.h"
 #include "tools/rsl/unique_meshes.h"
@@ -218,6 +219,17 @@ void print_materials(const Scene& scene) {
             params += fmt::format(" emissive={},{},{}{}", m.emissive.r, m.emissive.g, m.emissive.b,
                                   m.emissive_texture ? fmt::format(" × texture '{}'", m.emissive_texture->name) : "");
         fmt::print("    {:<16} {}{}{}\n", m.name, m.model, params, m.file.empty() ? "" : " file " + m.file.string());
+        if (const Texture* t = m.base_color_texture.get())
+            fmt::print("    {:<16} base colour texture '{}' {}×{}\n", "", t->name, t->image.width, t->image.height);
+        if (const Texture* t = m.metallic_roughness_texture.get()) {
+            // What the renderers read per point (src/brdf/pbr_basis.h).
+            const PbrLevelRange levels = pbr_level_range(m);
+            fmt::print("    {:<16} metallic-roughness texture '{}' {}×{} ({}): roughness levels {:g} to {:g}{}\n", "",
+                       t->name, t->image.width, t->image.height,
+                       t->filter == TextureFilter::Nearest ? "nearest" : "bilinear",
+                       shading::pbr_level_roughness(levels.first), shading::pbr_level_roughness(levels.last),
+                       levels.metal ? ", metallic" : ", not metallic");
+        }
     }
 }
 
