@@ -22,10 +22,12 @@ in vec2 v_texcoord;
 uniform int u_part;
 uniform bool u_corners;     // the corners' SVDF blend (glossy parts)
 uniform int u_first_index;  // the part's first entry of u_indices
-// The samplers u_indices and u_base_color: the host's (src/gl/gpu_interface.h kShadingSamplers).
+// The samplers u_indices, u_base_color and u_emissive_texture: the host's (src/gl/gpu_interface.h kShadingSamplers).
 uniform float u_exposure;
 uniform bool u_linear;    // linear radiance (images read back); else exposure and sRGB (the screen)
 uniform bool u_textured;  // the diffuse sum times the base colour texture, plus the specular sum
+uniform vec3 u_emissive;   // the part's emission, added at the pixel's texture coordinates (src/core/emission.h)
+uniform bool u_emissive_textured;  // times u_emissive_texture
 uniform bool u_depth_only;  // the depth pre-pass: each pixel is then shaded once, by its nearest part
 uniform vec2 u_pbr_factors;  // a material varying per point: its (roughness, metallic) factors (u_metallic_roughness)
 layout(location = 0) out vec4 o_color;
@@ -122,5 +124,6 @@ void main() {
     vec3 specular;
     vec3 diffuse = point_sum(specular);
     vec3 color = u_textured ? diffuse * texture(u_base_color, v_texcoord).rgb + specular : diffuse;
+    color += u_emissive_textured ? u_emissive * texture(u_emissive_texture, v_texcoord).rgb : u_emissive;
     o_color = u_linear ? vec4(color, 1.0) : vec4(srgb(color * u_exposure), 1.0);
 }

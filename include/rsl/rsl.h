@@ -59,7 +59,8 @@ struct Mesh {
 
 // A BRDF by model name and parameters, as in a scene file's "materials"
 // (docs/SCENE_FORMAT.md, docs/design/BRDF.md): e.g. {"floor", "lambert",
-// {{"albedo", {0.5, 0.5, 0.5}}}}; `file` for measured (MERL) BRDFs.
+// {{"albedo", {0.5, 0.5, 0.5}}}}; `file` for measured (MERL) BRDFs. Any
+// model takes "emissive" (RGB, or one value): radiance the surface gives off itself.
 struct Material {
     std::string name;
     std::string model = "lambert";
@@ -271,8 +272,9 @@ public:
     void set_environment_lights(const std::vector<SquareLight>& lights);
     std::vector<SquareLight> environment_lights() const;
     // Materials: swap a part's material for another of the scene's, or edit
-    // one parameter (the BRDF table is rebuilt at the next frame). Errors name
-    // the part, material and parameter and change nothing.
+    // one parameter (the BRDF table is rebuilt at the next frame; "emissive",
+    // the radiance the surface gives off itself, rebuilds none: docs/SCENE_FORMAT.md).
+    // Errors name the part, material and parameter and change nothing.
     void set_part_material(const std::string& part, const std::string& material);
     void set_material_parameter(const std::string& material, const std::string& key, const std::vector<float>& value);
 

@@ -320,6 +320,23 @@ class ModuleTest(unittest.TestCase):
         self.assertLess(rsl.compare(colors, r.truth())["relative_l2"], 0.02)
         self.assertEqual(r.render_image().shape, (24, 32, 4))
 
+    def test_emissive_parameter_adds_exactly_its_radiance(self):
+        r = rsl.Renderer(rsl.Scene.load(self.scene_file), lights=12)
+        r.set_time(0.25)
+        before = r.shade()
+        r.set_material_parameter("floor", "emissive", (0.5, 0.25, 2.0))
+        after = r.shade()
+        floor = slice(r.part_offsets[1], r.part_offsets[2])
+        np.testing.assert_allclose(after[floor] - before[floor], np.broadcast_to([0.5, 0.25, 2.0], after[floor].shape),
+                                   rtol=1e-6, atol=1e-6 * float(after[floor].max()))
+        np.testing.assert_array_equal(after[: r.part_offsets[1]], before[: r.part_offsets[1]])  # the orb: unchanged
+        for value in (-1.0, (1e30, 0, 0)):
+            with self.assertRaisesRegex(rsl.Error, re.escape("material 'floor': parameter 'emissive'")):
+                r.set_material_parameter("floor", "emissive", value)
+        with self.assertRaisesRegex(rsl.Error, "emissive"):
+            r.set_material_parameter("floor", "emissive", float("nan"))
+        np.testing.assert_array_equal(r.shade(), after)  # a refused edit changes nothing
+
     def test_build_info(self):
         info = rsl.build_info()
         self.assertEqual(info["version"], rsl.__version__)

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "src/api/api_convert.h"
+#include "src/core/emission.h"
 #include "src/core/envmap.h"
 #include "src/core/mesh.h"
 #include "src/core/precompute_limits.h"
@@ -70,6 +71,10 @@ int Scene::add_material(const Material& material) {
     desc.model = material.model;
     desc.params = material.parameters;
     desc.file = material.file;
+    if (auto it = desc.params.find("emissive"); it != desc.params.end()) {  // not a BRDF parameter (src/core/emission.h)
+        desc.emissive = checked_emission(desc.name, it->second);
+        desc.params.erase(it);
+    }
     scene_->materials.push_back(std::move(desc));
     return int(scene_->materials.size()) - 1;
 }

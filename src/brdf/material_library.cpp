@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "src/brdf/table_resolution.h"
+#include "src/core/emission.h"
 #include "src/core/error.h"
 
 namespace rsl {
@@ -32,6 +33,8 @@ std::string MaterialLibrary::identity(const MaterialDesc& desc) {
 }
 
 std::shared_ptr<const MaterialLibrary::Shared> MaterialLibrary::obtain(const MaterialDesc& desc) {
+    if (const std::string problem = emission_problem(desc.emissive); !problem.empty())
+        throw_error("material '{}': emissive {}", desc.name, problem);
     const std::string key = identity(desc);
     if (auto it = by_identity_.find(key); it != by_identity_.end())
         if (auto alive = it->second.lock()) {
@@ -98,7 +101,10 @@ const MaterialLibrary::Material& MaterialLibrary::at(int material) const {
 
 void MaterialLibrary::set_parameter(int material, const std::string& key, const std::vector<float>& value) {
     MaterialDesc desc = at(material).desc;
-    desc.params[key] = value;
+    if (key == "emissive")  // not the BRDF's: the table stays (src/core/emission.h)
+        desc.emissive = checked_emission(desc.name, value);
+    else
+        desc.params[key] = value;
     replace(material, std::move(desc));
 }
 

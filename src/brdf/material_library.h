@@ -55,7 +55,8 @@ public:
     const PbrBasisTables& pbr_basis() const { return pbr_basis_; }
 
     // Live editing: one parameter (scalars as 1-vectors, RGB as 3-vectors), or
-    // the whole material (model included). The name is kept.
+    // the whole material (model included). The name is kept. "emissive" (RGB,
+    // or one number) sets MaterialDesc::emissive and rebuilds no table.
     void set_parameter(int material, const std::string& key, const std::vector<float>& value);
     void replace(int material, MaterialDesc desc);
 

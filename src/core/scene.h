@@ -65,6 +65,11 @@ struct MaterialDesc {
     // B = metallic, times the factors): both vary per vertex, read at the
     // same texture coordinates (docs/design/BRDF.md "Textured roughness and metallic").
     std::shared_ptr<const Texture> metallic_roughness_texture;
+    // Emission (src/core/emission.h): radiance the surface gives off itself,
+    // emissive × emissive_texture(uv), added to what it reflects; it lights
+    // no other surface. glTF: emissiveFactor × KHR_materials_emissive_strength.
+    Color emissive{0};
+    std::shared_ptr<const Texture> emissive_texture;  // sRGB-decoded, read at the part's texture coordinates
 };
 
 // A glTF skin: its joints' scene nodes and inverse bind matrices (mesh

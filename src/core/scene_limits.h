@@ -14,6 +14,8 @@ namespace rsl {
 inline constexpr float kMaxLightPower = 1e12f;     // W
 inline constexpr float kMaxLightRadiance = 1e13f;  // power / (4π² radius²)
 inline constexpr float kMaxSunIrradiance = 1e12f;  // a glTF sun's intensity × colour
+// A material's emission per channel (radiance: emissive × emissive strength).
+inline constexpr float kMaxEmission = 1e13f;
 
 // What is wrong with a light against the limits above, as a key's tail
 // (".power: 3e+38 W is past the limit; …"), or empty.

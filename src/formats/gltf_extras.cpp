@@ -22,7 +22,7 @@ struct ExtensionSupport {
 constexpr ExtensionSupport kExtensions[] = {
     {"KHR_lights_punctual", true, "point and spot lights become sphere lights; directional lights become suns in the environment map"},
     {"KHR_mesh_quantization", true, "integer and normalized vertex attributes are read"},
-    {"KHR_materials_emissive_strength", false, "materials come from the scene file"},
+    {"KHR_materials_emissive_strength", true, "emissiveStrength scales the material's emission"},
     {"KHR_texture_transform", false, "textures are not read"},
     {"KHR_texture_basisu", false, "textures are not read"},
     {"EXT_texture_webp", false, "textures are not read"},

@@ -468,7 +468,7 @@ private:
                 const std::string name = fmt::format("TEXCOORD_{}", texcoord_set);
                 const int a = attribute(name.c_str());
                 if (a < 0)
-                    throw_file_error(path_, "{}: its material has a base colour texture but the primitive has no {}",
+                    throw_file_error(path_, "{}: its material has a texture but the primitive has no {}",
                                      what, name);
                 const std::vector<float> uv = reader_.floats(a, TINYGLTF_TYPE_VEC2, what + " " + name);
                 if (uv.size() / 2 != count)

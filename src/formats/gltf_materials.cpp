@@ -19,7 +19,9 @@
 
 #include <fmt/format.h>
 
+#include "src/core/emission.h"
 #include "src/core/error.h"
+#include "src/core/scene_limits.h"
 #include "src/formats/file_reading.h"
 
 namespace rsl {
@@ -46,6 +48,8 @@ bool decode_gltf_image(tinygltf::Image* image, int image_index, std::string*, st
 
 namespace {
 
+constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+
 TextureWrap wrap_mode(int gl_wrap) {
     if (gl_wrap == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::ClampToEdge;
     if (gl_wrap == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::MirroredRepeat;
@@ -66,9 +70,12 @@ int GltfMaterials::checked_index(int material) const {
 
 int GltfMaterials::texcoord_set(int material) const {
     if (material < 0) return -1;
-    const tinygltf::PbrMetallicRoughness& pbr = model_.materials[size_t(material)].pbrMetallicRoughness;
+    const tinygltf::Material& source = model_.materials[size_t(material)];
+    const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
     const std::pair<const tinygltf::TextureInfo*, const char*> textures[] = {
-        {&pbr.baseColorTexture, "baseColorTexture"}, {&pbr.metallicRoughnessTexture, "metallicRoughnessTexture"}};
+        {&pbr.baseColorTexture, "baseColorTexture"},
+        {&pbr.metallicRoughnessTexture, "metallicRoughnessTexture"},
+        {&source.emissiveTexture, "emissiveTexture"}};
     int set = -1;
     const char* first = nullptr;
     for (const auto& [info, key] : textures) {
@@ -131,16 +138,48 @@ MaterialDesc GltfMaterials::convert(int material) {
     if (pbr.metallicRoughnessTexture.index >= 0)
         desc.metallic_roughness_texture =
             texture(pbr.metallicRoughnessTexture.index, what, "metallic-roughness", TextureEncoding::Linear);
+    read_emission(source, what, desc);
 
     if (source.normalTexture.index >= 0) ignored_.insert("normalTexture");
     if (source.occlusionTexture.index >= 0) ignored_.insert("occlusionTexture (rsl computes the occlusion itself)");
-    if (source.emissiveTexture.index >= 0 ||
-        (source.emissiveFactor.size() == 3 &&
-         (source.emissiveFactor[0] > 0 || source.emissiveFactor[1] > 0 || source.emissiveFactor[2] > 0)))
-        ignored_.insert("emission");
     if (source.alphaMode == "BLEND" || source.alphaMode == "MASK") ignored_.insert("alphaMode " + source.alphaMode);
-    for (const auto& [extension, value] : source.extensions) ignored_.insert(extension);
+    for (const auto& [extension, value] : source.extensions)
+        if (extension != kEmissiveStrength) ignored_.insert(extension);
     return desc;
+}
+
+// emissiveFactor × KHR_materials_emissive_strength, and the emissiveTexture
+// (sRGB-encoded, as base colour images are).
+void GltfMaterials::read_emission(const tinygltf::Material& source, const std::string& what, MaterialDesc& desc) {
+    // tinygltf fills glTF's default (0, 0, 0) when the file leaves it out.
+    if (source.emissiveFactor.size() != 3)
+        throw_file_error(path_, "{}: emissiveFactor has {} values, not 3", what, source.emissiveFactor.size());
+    Color factor;
+    for (int c = 0; c < 3; ++c) {
+        const double x = source.emissiveFactor[size_t(c)];
+        if (!(x >= 0.0 && x <= 1.0)) throw_file_error(path_, "{}: emissiveFactor must be in [0, 1] (got {})", what, x);
+        factor[c] = float(x);
+    }
+    double strength = 1.0;
+    if (auto it = source.extensions.find(kEmissiveStrength); it != source.extensions.end()) {
+        const tinygltf::Value& extension = it->second;
+        if (!extension.IsObject())
+            throw_file_error(path_, "{}: {} is not an object", what, kEmissiveStrength);
+        if (extension.Has("emissiveStrength")) {
+            const tinygltf::Value& value = extension.Get("emissiveStrength");
+            if (!value.IsNumber())
+                throw_file_error(path_, "{}: {}.emissiveStrength is not a number", what, kEmissiveStrength);
+            strength = value.GetNumberAsDouble();
+        }
+        if (!(strength >= 0.0 && strength <= double(kMaxEmission)))
+            throw_file_error(path_, "{}: {}.emissiveStrength {} is not in [0, {:g}]", what, kEmissiveStrength,
+                             strength, kMaxEmission);
+    }
+    desc.emissive = factor * float(strength);
+    if (const std::string problem = emission_problem(desc.emissive); !problem.empty())
+        throw_file_error(path_, "{}: emissiveFactor × emissiveStrength: {}", what, problem);
+    if (source.emissiveTexture.index >= 0)
+        desc.emissive_texture = texture(source.emissiveTexture.index, what, "emissive", TextureEncoding::Srgb);
 }
 
 std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const std::string& what, const char* role,
@@ -175,7 +214,7 @@ std::shared_ptr<const Texture> GltfMaterials::texture(int texture_index, const s
         if (model_.samplers[size_t(source.sampler)].magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST)
             texture->filter = TextureFilter::Nearest;
     }
-    // glTF colour images are sRGB-encoded, data images (metallic-roughness)
+    // glTF colour images (base colour, emissive) are sRGB-encoded, data images (metallic-roughness)
     // linear; the renderer works in linear RGB.
     std::array<float, 256> decoded;
     for (int v = 0; v < 256; ++v)
@@ -190,8 +229,8 @@ void GltfMaterials::warn_ignored() const {
     if (ignored_.empty()) return;
     std::string list;
     for (const std::string& what : ignored_) list += (list.empty() ? "" : ", ") + what;
-    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness, baseColorTexture and "
-              "metallicRoughnessTexture): {}", list);
+    warn_file(path_, "materials: ignored (rsl honours base colour, metallic, roughness, baseColorTexture, "
+              "metallicRoughnessTexture and emission): {}", list);
 }
 
 }  // namespace rsl

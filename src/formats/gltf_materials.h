@@ -1,7 +1,8 @@
 #pragma once
 // glTF 2.0 materials → scene materials (docs/SCENE_FORMAT.md, "glTF
 // materials"): pbrMetallicRoughness becomes a gltf_pbr material, its
-// baseColorTexture a Texture (decoded with Debian's stb_image, sRGB → linear).
+// baseColorTexture a Texture (decoded with Debian's stb_image, sRGB → linear),
+// and the emission (emissiveFactor, emissiveTexture, emissive strength) its emissive.
 // Internal to the glTF loader (gltf_loader.cpp), which includes tiny_gltf.h
 // before this header.
 #include <filesystem>
@@ -16,6 +17,7 @@
 namespace tinygltf {
 class Model;
 struct Image;
+struct Material;
 }  // namespace tinygltf
 
 namespace rsl {
@@ -49,6 +51,7 @@ public:
 private:
     MaterialDesc convert(int material);
     enum class TextureEncoding { Srgb, Linear };
+    void read_emission(const tinygltf::Material& source, const std::string& what, MaterialDesc& desc);
     // A decoded texture (`role` names it in errors: "base colour").
     std::shared_ptr<const Texture> texture(int texture_index, const std::string& what, const char* role,
                                            TextureEncoding encoding);

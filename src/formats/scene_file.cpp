@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/core/envmap.h"
+#include "src/core/emission.h"
 #include "src/core/error.h"
 #include "src/formats/file_reading.h"
 #include "src/formats/gltf_camera.h"
@@ -277,6 +278,13 @@ private:
                     m.model = string_at(entry, "model", join(where, key));
                 } else if (key == "file") {
                     m.file = existing_file(value, join(where, key));
+                } else if (key == "emissive") {  // any model's; not a BRDF parameter (src/core/emission.h)
+                    const std::vector<float> rgb = numbers(value, join(where, key));
+                    if (rgb.size() != 1 && rgb.size() != 3)
+                        fail(join(where, key), fmt::format("expected an RGB triple or one number, got {} values", rgb.size()));
+                    m.emissive = rgb.size() == 1 ? Color(rgb[0]) : Color(rgb[0], rgb[1], rgb[2]);
+                    if (const std::string problem = emission_problem(m.emissive); !problem.empty())
+                        fail(join(where, key), problem);
                 } else {
                     m.params[key] = numbers(value, join(where, key));
                 }

@@ -33,6 +33,12 @@ void VertexColors::add_part(const std::string& name, size_t vertices, std::share
     textures.back() = std::move(texture);
 }
 
+void VertexColors::add_emission(size_t part, const std::vector<Color>& emission) {
+    std::vector<Color>& layer = layered(part) ? specular[part] : parts[part];
+    RSL_CHECK_EQ(layer.size(), emission.size());
+    for (size_t v = 0; v < layer.size(); ++v) layer[v] += emission[v];
+}
+
 VertexColors VertexColors::at_unit_texture() const {
     VertexColors folded = *this;
     for (size_t p = 0; p < parts.size(); ++p)

@@ -45,11 +45,23 @@ struct VertexColors {
     // The base colour texture of each layered part, for image formation (not
     // stored in .rslv files: form_image then takes the scene's).
     std::vector<std::shared_ptr<const Texture>> textures;
+    // The emission each part's colours include (the specular layer's, for a
+    // layered part), for image formation, which takes a textured emission per
+    // pixel (docs/design/RENDERER.md "Emission"). Not stored in .rslv files:
+    // empty, form_image takes the scene's materials'.
+    struct PartEmission {
+        Color emissive{0};
+        std::shared_ptr<const Texture> texture;
+    };
+    std::vector<PartEmission> emission;
 
     size_t vertex_count() const;
     bool layered(size_t part) const { return part < specular.size() && !specular[part].empty(); }
     // Adds a part of `vertices` black vertices, layered when `texture` is set.
     void add_part(const std::string& name, size_t vertices, std::shared_ptr<const Texture> texture = nullptr);
+    // Adds one emission a vertex to part `part`: to its specular layer when
+    // layered (the base colour texture does not scale emission), else to its colours.
+    void add_emission(size_t part, const std::vector<Color>& emission);
     // The colours at unit texture: each layered part's diffuse + specular, no layers.
     VertexColors at_unit_texture() const;
 };

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cmath>
 
+#include "src/core/emission.h"
 #include "src/core/error.h"
 #include "src/brdf/pbr_basis.h"
 #include "src/gl/gl_renderer.h"
@@ -47,6 +48,16 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
         return texture && part_tables_[parts + p] != nullptr ? base_color_texture(texture) : 0;
     };
 
+    // Emission (src/core/emission.h): the colour buffer holds none, each
+    // pixel adds the part's at its texture coordinates.
+    auto bind_emission = [&](const Program& program, size_t p, int unit) {
+        const MaterialDesc& m = library_.desc(library_.part_material(int(p)));
+        const bool textured = emits(m) && m.emissive_texture;
+        glUniform3f(uniform(program, "u_emissive"), m.emissive.r, m.emissive.g, m.emissive.b);
+        glUniform1i(uniform(program, "u_emissive_textured"), textured ? 1 : 0);
+        if (textured) bind_texture(unit, GL_TEXTURE_2D, uploaded_texture(m.emissive_texture, unit));
+    };
+
     // The vertex colours' blend.
     glUseProgram(display_program_.id());
     glUniformMatrix4fv(uniform(display_program_, "u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
@@ -55,6 +66,7 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
     const GLint model = uniform(display_program_, "u_model");
     const GLint textured = uniform(display_program_, "u_textured");
     glUniform1i(uniform(display_program_, "u_base_color"), kUnitDisplayBaseColor);
+    glUniform1i(uniform(display_program_, "u_emissive_texture"), kUnitDisplayEmissive);
     bool any_per_pixel = false;
     for (size_t p = 0; p < parts; ++p) {
         if (per_pixel_part(p)) {
@@ -62,6 +74,7 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
             continue;
         }
         glUniformMatrix4fv(model, 1, GL_FALSE, &poses[p].transform[0][0]);
+        bind_emission(display_program_, p, kUnitDisplayEmissive);
         const GLuint texture = layered_texture(p);
         glUniform1i(textured, texture ? 1 : 0);
         if (texture) bind_texture(kUnitDisplayBaseColor, GL_TEXTURE_2D, texture);
@@ -110,6 +123,7 @@ void GlRenderer::draw_parts(const Mat4& view_projection, float exposure, bool li
             // A rectangle cannot shadow itself; a glossy curved part blends its corners' SVDFs.
             glUniform1i(corners, rectangle_parts_[p] ? 0 : 1);
             glUniform1i(first_index, int(first_index_[p]));
+            bind_emission(pixel_program_, p, kUnitEmissive);
             const GLuint texture = layered_texture(p);
             glUniform1i(pixel_textured, texture ? 1 : 0);
             if (texture) bind_texture(kUnitBaseColor, GL_TEXTURE_2D, texture);

@@ -555,6 +555,8 @@ void GlRenderer::read_colors(VertexColors& out) const {
         for (size_t v = 0; v < out.specular[p].size(); ++v)
             out.specular[p][v] = Color(texels[size_t(vertex_count_ + first_vertex_[p]) + v]);
     }
+    // The device's colours hold no emission: the display pass adds it per pixel.
+    add_emission(library_, scene_, out);
 }
 
 }  // namespace rsl::gl

@@ -260,7 +260,7 @@ private:
     size_t layer_bytes_ = 0;  // one vertex rectangle of RGBA32F
     VertexArray empty_vao_, display_vao_;
     Buffer display_positions_, display_texcoords_, display_indices_;
-    // Base colour textures of the display pass, uploaded at their first draw.
+    // Base colour and emissive textures of the display and per-pixel passes, uploaded at their first draw.
     std::vector<std::pair<std::shared_ptr<const rsl::Texture>, Texture>> base_colors_;
     GLuint base_color_texture(const std::shared_ptr<const rsl::Texture>& texture);
     // A material texture on the GPU (uploaded on `unit` at its first use, kept in base_colors_).

@@ -61,17 +61,19 @@ inline constexpr GlslConstant kStorageBindings[] = {
 };
 
 // Texture units of the shading inputs (the vertex pass and the per-pixel
-// pass bind the same), then the per-pixel pass's base colour texture and
-// triangle indices; the display and skybox passes, programs of their own,
+// pass bind the same), then the per-pixel pass's base colour texture,
+// triangle indices and emissive texture; the display and skybox passes, programs of their own,
 // use the first units again.
 enum Unit : int {
     kUnitPositions, kUnitNormals, kUnitTangents, kUnitParts, kUnitLights, kUnitBrdf,
     kUnitBrdfOffsets, kUnitSvdfTables, kUnitSvdfCoefficients, kUnitOvdfTables, kUnitOvdfCoefficients,
-    kUnitOvdfFrames, kUnitShadowMaps, kUnitBaseColor, kUnitIndices, kUnitPbrPoints, kUnitMetallicRoughness, kUnitCount,
+    kUnitOvdfFrames, kUnitShadowMaps, kUnitBaseColor, kUnitIndices, kUnitPbrPoints, kUnitMetallicRoughness,
+    kUnitEmissive, kUnitCount,
     // A unit no pass reads: where a texture is made and filled without
     // replacing one a pass has bound.
     kUnitUpload = kUnitCount,
     kUnitDisplayBaseColor = 0,  // display.frag.glsl's u_base_color
+    kUnitDisplayEmissive = 1,   // display.frag.glsl's u_emissive_texture
     kUnitSkyFirst = 0,          // skybox.frag.glsl's u_first and u_second
     kUnitSkySecond = 1,
 };
@@ -103,6 +105,7 @@ inline constexpr Sampler kShadingSamplers[] = {
     {kUnitIndices, "usampler2D", "u_indices", "every part's triangle indices (part-local vertices)"},
     {kUnitPbrPoints, "sampler2D", "u_pbr_points", "vertex rectangle: (roughness, metallic) where the material varies per point"},
     {kUnitMetallicRoughness, "sampler2D", "u_metallic_roughness", "the per-pixel pass's metallic-roughness texture"},
+    {kUnitEmissive, "sampler2D", "u_emissive_texture", "the per-pixel pass's emissive texture"},
 };
 static_assert(std::size(kShadingSamplers) == kUnitCount);
 

@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "src/core/emission.h"
 #include "src/core/error.h"
 
 namespace rsl {
@@ -223,6 +224,54 @@ Color interpolate_vertex_colors(const Scene& scene, const VertexColors& colors, 
     return blend_vertex_colors(scene, colors, hit);
 }
 
+namespace {
+
+bool emits(const VertexColors::PartEmission& e) { return rsl::emits(e.emissive); }
+
+Color emission_at_hit(const Scene& scene, const VertexColors::PartEmission& e, const RayHit& hit) {
+    return e.texture ? emission_at(e.emissive, e.texture.get(), interpolate_texcoords(scene, hit)) : e.emissive;
+}
+
+}  // namespace
+
+std::vector<VertexColors::PartEmission> colors_emission(const Scene& scene, const VertexColors& colors) {
+    std::vector<VertexColors::PartEmission> emission(scene.parts.size());
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        const MaterialDesc& material = scene.materials[size_t(scene.parts[p].material)];
+        emission[p] = p < colors.emission.size() ? colors.emission[p]
+                                                 : VertexColors::PartEmission{material.emissive, material.emissive_texture};
+        const TriangleMesh& mesh = scene.parts[p].mesh;
+        if (emits(emission[p]) && emission[p].texture && mesh.texcoords.size() != mesh.vertex_count())
+            throw_error("vertex colours of '{}': part '{}' has an emissive texture, the scene's part no texture "
+                        "coordinates", colors.scene_name, scene.parts[p].name);
+    }
+    return emission;
+}
+
+bool any_emission(const Scene& scene, const VertexColors& colors) {
+    const std::vector<VertexColors::PartEmission> emission = colors_emission(scene, colors);
+    return std::any_of(emission.begin(), emission.end(), [](const auto& e) { return emits(e); });
+}
+
+VertexColors reflected_colors(const Scene& scene, const VertexColors& colors) {
+    const std::vector<VertexColors::PartEmission> emission = colors_emission(scene, colors);
+    VertexColors reflected = colors;
+    for (size_t p = 0; p < emission.size() && p < colors.parts.size(); ++p) {
+        if (!emits(emission[p])) continue;
+        std::vector<Color>& layer = colors.layered(p) ? reflected.specular[p] : reflected.parts[p];
+        const std::vector<Color> vertices = vertex_emission(emission[p].emissive, emission[p].texture.get(), scene.parts[p].mesh);
+        RSL_CHECK_EQ(layer.size(), vertices.size());
+        for (size_t v = 0; v < layer.size(); ++v) layer[v] -= vertices[v];
+    }
+    reflected.emission.assign(colors.parts.size(), {});
+    return reflected;
+}
+
+Color hit_emission(const Scene& scene, const RayHit& hit) {
+    const MaterialDesc& material = scene.materials[size_t(scene.parts[size_t(hit.instance)].material)];
+    return emission_at_hit(scene, {material.emissive, material.emissive_texture}, hit);
+}
+
 Image form_image(const PosedScene& scene, const PinholeCamera& camera, const VertexColors& colors,
                  const ImageFormationOptions& options, const PartShaders& part_shaders) {
     const Scene& s = scene.scene();
@@ -251,15 +300,23 @@ Image form_image(const PosedScene& scene, const PinholeCamera& camera, const Ver
         const size_t p = size_t(hit.instance);
         return p < part_shaders.size() && part_shaders[p] ? &part_shaders[p] : nullptr;
     };
+    // Emitting parts: what they reflect is blended, their emission taken at each sample.
+    const std::vector<VertexColors::PartEmission> emission = colors_emission(s, colors);
+    const bool emitting = std::any_of(emission.begin(), emission.end(), [](const auto& e) { return emits(e); });
+    const VertexColors reflected = emitting ? reflected_colors(s, colors) : VertexColors{};
+    const VertexColors& blended = emitting ? reflected : colors;
     // Barycentric interpolation needs no geometric normal.
-    if (!any_layered && part_shaders.empty())
+    if (!any_layered && !emitting && part_shaders.empty())
         return trace_tiles<false>(scene, camera, options, [&](const RayHit& hit, const Vec3&) {
             return blend_vertex_colors(s, colors, hit);
         }, {});
     return trace_tiles<false>(scene, camera, options, [&](const RayHit& hit, const Vec3& direction) {
-        if (const HitShader* shader = shader_of(hit)) return (*shader)(hit, direction);
-        if (const Texture* texture = textures[hit.instance]) return interpolate_layered_colors(s, colors, *texture, hit);
-        return blend_vertex_colors(s, colors, hit);
+        const VertexColors::PartEmission& e = emission[size_t(hit.instance)];
+        const Color emitted = emits(e) ? emission_at_hit(s, e, hit) : Color(0);
+        if (const HitShader* shader = shader_of(hit)) return (*shader)(hit, direction) + emitted;
+        if (const Texture* texture = textures[hit.instance])
+            return interpolate_layered_colors(s, blended, *texture, hit) + emitted;
+        return blend_vertex_colors(s, blended, hit) + emitted;
     }, {});
 }
 

@@ -79,11 +79,30 @@ Color interpolate_layered_colors(const Scene& scene, const VertexColors& colors,
 // material's (null: neither).
 const Texture* layer_texture(const Scene& scene, const VertexColors& colors, size_t part);
 
+// Emission (src/core/emission.h) in images: vertex colours include each
+// vertex's emission, and a pixel takes the emission at its own texture
+// coordinates in place of its vertices' blend of it (docs/design/RENDERER.md
+// "Emission"), as base colour textures are taken per pixel.
+//
+// The emission each part's colours include: the colours' record
+// (VertexColors::emission), else the part's scene material's. Throws when a
+// textured emission meets a part without texture coordinates.
+std::vector<VertexColors::PartEmission> colors_emission(const Scene& scene, const VertexColors& colors);
+// Whether any part of `colors` emits.
+bool any_emission(const Scene& scene, const VertexColors& colors);
+// The colours with that emission taken out of each vertex (what the surfaces reflect).
+VertexColors reflected_colors(const Scene& scene, const VertexColors& colors);
+// The emission of the part's material at a primary-ray hit (its texture at the
+// hit's interpolated texture coordinates): what the per-pixel truth adds.
+Color hit_emission(const Scene& scene, const RayHit& hit);
+
 // The image of per-vertex colours (the like-for-like image of a vertex result).
 // `colors` must describe `scene`'s parts (checked). A layered (textured) part
 // is diffuse × texture(uv) + specular at each sample, the texture sampled at
 // the interpolated texture coordinates (Texture::sample). Parts with a shader
-// in `part_shaders` take their colour from it.
+// in `part_shaders` take their colour from it; the shader sees what the
+// surface reflects (reflected_colors). An emitting part adds its emission at
+// each sample, its vertices' emission taken out of the blend.
 Image form_image(const PosedScene& scene, const PinholeCamera& camera, const VertexColors& colors,
                  const ImageFormationOptions& options = {}, const PartShaders& part_shaders = {});
 

@@ -135,6 +135,7 @@ void CpuRenderer::shade(VertexColors& out) {
     stats_.lookups = lookups.load();
     stats_.vertices = vertices.load();
     stats_.lights = environment_squares_.size() + local_lights_.size();
+    add_emission(library_, scene_, out);
 }
 
 }  // namespace rsl

@@ -57,6 +57,7 @@ public:
     // The shaders of the parts shaded per pixel, from `colors` (the last
     // shade()'s, with keep_image_terms on) for form_image at `posed` (the
     // scene posed at time()): what form_image() uses (pixel_shading.cpp).
+    // They give what the surface reflects: form_image adds the emission.
     PartShaders pixel_shading(const VertexColors& colors, const PosedScene& posed) const;
     // Block b's (of blocks(), the GPU's too) candidate occluders'
     // lights after the block-level culling tests at the current frame: per

@@ -120,8 +120,13 @@ Image CpuRenderer::backend_image(const VertexColors& colors, const PinholeCamera
     return rsl::form_image(*posed_, camera, colors, options, pixel_shading(colors, *posed_));
 }
 
-PartShaders CpuRenderer::pixel_shading(const VertexColors& colors, const PosedScene& posed) const {
-    RSL_CHECK_EQ(colors.parts.size(), scene_.parts.size());
+PartShaders CpuRenderer::pixel_shading(const VertexColors& emitting_colors, const PosedScene& posed) const {
+    RSL_CHECK_EQ(emitting_colors.parts.size(), scene_.parts.size());
+    // The shaders sum what the surfaces reflect; form_image adds the emission at each pixel.
+    std::shared_ptr<const VertexColors> reflected;
+    if (any_emission(scene_, emitting_colors))
+        reflected = std::make_shared<const VertexColors>(reflected_colors(scene_, emitting_colors));
+    const VertexColors& colors = reflected ? *reflected : emitting_colors;
     PartShaders shaders(scene_.parts.size());
     const size_t lights = environment_squares_.size() + light_positions_.size();
     for (size_t p = 0; p < scene_.parts.size(); ++p) {
@@ -143,8 +148,9 @@ PartShaders CpuRenderer::pixel_shading(const VertexColors& colors, const PosedSc
             cache->occluders = std::make_unique<TriangleLights::PackedOccluders[]>(triangles);
         }
         if (!cache && (layered || terms.self_visibility.size() != pairs)) continue;
-        shaders[p] = [this, &colors, &posed, cache](const RayHit& hit, const Vec3& direction) {
-            return shade_pixel(colors, posed, cache.get(), hit, direction);
+        const VertexColors* source = &colors;  // `reflected`, held by the shader, or the caller's
+        shaders[p] = [this, source, reflected, &posed, cache](const RayHit& hit, const Vec3& direction) {
+            return shade_pixel(*source, posed, cache.get(), hit, direction);
         };
     }
     return shaders;

@@ -1,5 +1,6 @@
 #include "src/render/vertex_renderer.h"
 
+#include "src/core/emission.h"
 #include "src/core/error.h"
 #include "src/core/scene_limits.h"
 
@@ -25,6 +26,21 @@ void match_layers(const MaterialLibrary& library, const Scene& scene, VertexColo
                              "texture coordinates", scene.parts[p].name, library.desc(library.part_material(int(p))).name);
         if (bool(texture) != out.layered(p)) out.specular[p].assign(texture ? out.parts[p].size() : 0, Color(0));
         out.textures[p] = texture;
+        const MaterialDesc& material = library.desc(library.part_material(int(p)));
+        if (!emission_fits(material, scene.parts[p].mesh))
+            throw_file_error(scene.source, "part '{}': material '{}' has an emissive texture but the part has no "
+                             "texture coordinates", scene.parts[p].name, material.name);
+    }
+}
+
+void add_emission(const MaterialLibrary& library, const Scene& scene, VertexColors& out) {
+    RSL_CHECK_EQ(out.parts.size(), scene.parts.size());
+    out.emission.assign(out.parts.size(), {});
+    for (size_t p = 0; p < out.parts.size(); ++p) {
+        const MaterialDesc& material = library.desc(library.part_material(int(p)));
+        if (!emits(material)) continue;
+        out.emission[p] = {material.emissive, material.emissive_texture};
+        out.add_emission(p, vertex_emission(material, scene.parts[p].mesh));
     }
 }
 

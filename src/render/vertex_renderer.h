@@ -149,8 +149,15 @@ private:
 // material has a base colour texture gets a specular layer and the texture
 // (VertexColors), others none. Allocates only where a part's layering
 // changes; both renderers call it in shade(). Throws when a textured
-// material is on a part without texture coordinates.
+// material (base colour or emission) is on a part without texture coordinates.
 void match_layers(const MaterialLibrary& library, const Scene& scene, VertexColors& out);
+
+// Adds each part's emission at its vertices (src/core/emission.h) to what a
+// backend shaded: to a layered part's specular layer (the texture does not
+// scale it), else to its colours; records it in `out.emission` for image
+// formation. Both renderers call it last in shade(), so their vertex colours
+// take emission from this one place.
+void add_emission(const MaterialLibrary& library, const Scene& scene, VertexColors& out);
 
 // A scene's material library with the options' per-part overrides applied
 // (RenderOptions::material_override); errors name the scene file.

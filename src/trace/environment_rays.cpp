@@ -211,20 +211,22 @@ void EnvironmentRays::shade_light(const SurfacePoint& x, const Vec3& origin, con
 Color EnvironmentRays::shade_hit(const RayHit& hit, const Vec3& ray_direction, uint64_t pixel_stream) const {
     const SurfacePoint x = posed_.hit_point(hit, ray_direction);
     const uint64_t stream = pixel_stream | kPixelStreamBit;
+    const Color emission = hit_emission(scene_, hit);
     const Brdf* specular = part_specular_brdf(hit.instance);
     const int material = scene_.parts[size_t(hit.instance)].material;
     if (lobes_.varies[size_t(material)]) {  // roughness and metallic at the hit
         const Vec2 uv = interpolate_texcoords(scene_, hit);
         const Color reflected =
             shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, false), stream, &part_brdf(hit.instance));
-        if (!specular) return reflected;
+        if (!specular) return reflected + emission;
         return reflected * scene_.materials[size_t(material)].base_color_texture->sample(uv) +
-               shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, true), specular_stream(stream), specular);
+               shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, true), specular_stream(stream), specular) +
+               emission;
     }
-    if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance), stream);
+    if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance), stream) + emission;
     const Texture& texture = *scene_.materials[size_t(scene_.parts[size_t(hit.instance)].material)].base_color_texture;
     return shade(x, -ray_direction, part_brdf(hit.instance), stream) * texture.sample(interpolate_texcoords(scene_, hit)) +
-           shade(x, -ray_direction, *specular, specular_stream(stream));
+           shade(x, -ray_direction, *specular, specular_stream(stream)) + emission;
 }
 
 HitShader EnvironmentRays::hit_shader() const {

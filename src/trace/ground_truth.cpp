@@ -199,19 +199,20 @@ Color GroundTruth::shade_light(const SurfacePoint& x, const Vec3& origin, const 
 
 Color GroundTruth::shade_hit(const RayHit& hit, const Vec3& ray_direction) const {
     const SurfacePoint x = posed_.hit_point(hit, ray_direction);
+    const Color emission = hit_emission(scene_, hit);
     const Brdf* specular = part_specular_brdf(hit.instance);
     const int material = scene_.parts[size_t(hit.instance)].material;
     if (lobes_.varies[size_t(material)]) {  // roughness and metallic at the hit
         const Vec2 uv = interpolate_texcoords(scene_, hit);
         const Color reflected = shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, false));
-        if (!specular) return reflected;
+        if (!specular) return reflected + emission;
         return reflected * part_texture(hit.instance)->sample(uv) +
-               shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, true));
+               shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, true)) + emission;
     }
-    if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance));
+    if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance)) + emission;
     const Vec2 uv = interpolate_texcoords(scene_, hit);
     return shade(x, -ray_direction, part_brdf(hit.instance)) * part_texture(hit.instance)->sample(uv) +
-           shade(x, -ray_direction, *specular);
+           shade(x, -ray_direction, *specular) + emission;
 }
 
 VertexColors GroundTruth::shade_vertices(const ProgressCallback& progress) const {

@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "src/brdf/pbr_basis.h"
+#include "src/core/emission.h"
 #include "src/core/error.h"
 #include "src/core/sphere_light.h"
 
@@ -35,6 +36,9 @@ SceneLobes::SceneLobes(const Scene& scene) {
         if (specular[size_t(part.material)] && part.mesh.texcoords.size() != part.mesh.positions.size())
             throw_file_error(scene.source, "part '{}': its material has a base colour texture, the part no "
                              "texture coordinates", part.name);
+        if (!emission_fits(scene.materials[size_t(part.material)], part.mesh))
+            throw_file_error(scene.source, "part '{}': its material has an emissive texture, the part no texture "
+                             "coordinates", part.name);
         if (part.mesh.normals.size() != part.mesh.positions.size())
             throw_file_error(scene.source, "part '{}' has {} normals for {} vertices", part.name,
                              part.mesh.normals.size(), part.mesh.positions.size());
@@ -89,6 +93,14 @@ VertexColors shade_every_vertex(const Scene& scene, const SceneLobes& lobes, con
         const size_t now = done.fetch_add(range.size()) + range.size();
         if (progress) progress(now, total);
     });
+    // What a surface gives off itself, as the renderers add it (add_emission, src/render/vertex_renderer.h).
+    colors.emission.assign(scene.parts.size(), {});
+    for (size_t p = 0; p < scene.parts.size(); ++p) {
+        const MaterialDesc& material = scene.materials[size_t(scene.parts[p].material)];
+        if (!emits(material)) continue;
+        colors.emission[p] = {material.emissive, material.emissive_texture};
+        colors.add_emission(p, vertex_emission(material, scene.parts[p].mesh));
+    }
     return colors;
 }
 

@@ -41,7 +41,8 @@ struct PosedLights {
 
 // The colours of every vertex of every part, in parallel (grain vertices a
 // task): shade(part, vertex, specular) gives a vertex's colour, of its
-// specular lobe when `specular` (layered parts, SceneLobes::specular).
+// specular lobe when `specular` (layered parts, SceneLobes::specular). Each
+// part's emission at its vertices is added after (src/core/emission.h).
 VertexColors shade_every_vertex(const Scene& scene, const SceneLobes& lobes, const std::string& producer, float time,
                                 size_t grain, const std::function<Color(int part, int vertex, bool specular)>& shade,
                                 const ProgressCallback& progress);

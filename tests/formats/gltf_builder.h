@@ -108,7 +108,7 @@ public:
 
 private:
     static size_t components(const std::string& type) {
-        return type == "SCALAR" ? 1 : type == "VEC3" ? 3 : type == "MAT4" ? 16 : 4;
+        return type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : type == "MAT4" ? 16 : 4;
     }
 
     int view(const void* data, size_t bytes) {

@@ -226,5 +226,56 @@ TEST_CASE("Both backends form the same image through VertexRenderer::form_image"
     CHECK_THROWS_WITH(gpu.form_image(gpu_colors, camera), Catch::Contains("shade() of the current frame"));
 }
 
+TEST_CASE("Both backends take an emissive texture per pixel in their images", "[gl-renderer][emission]") {
+    // The textured coarse ground with an emissive texture over it, brighter
+    // than what it reflects: the display pass (vertex blend) and the
+    // per-pixel pass (the ground's pixel shadows) each add the emission at
+    // the pixel's texture coordinates, as the CPU's image formation does.
+    test::gl_context();
+    const Scene plain = test::box_over_coarse_ground(true);
+    Scene glow = plain;
+    auto texture = assets::make_tile_texture(2, 3);
+    glow.materials[1].emissive = Color(1.5f, 2.0f, 2.5f);
+    glow.materials[1].emissive_texture = texture;
+    const RslSet lights = test::random_rsls(8, 3);
+    const PinholeCamera camera = PinholeCamera::at_time(glow.camera, 0.0f, 80, 60);
+    const PosedScene posed(glow, 0.0f);
+    for (const bool per_pixel : {false, true}) {
+        RenderOptions options;
+        if (!per_pixel) options.pixel_shadows = PixelShadows::Off, options.pixel_highlights = false;
+        CpuRenderer cpu(glow, lights, {}, options);
+        gl::GlRenderer gpu(glow, lights, {}, options), bare(plain, lights, {}, options);
+        for (VertexRenderer* r : {static_cast<VertexRenderer*>(&cpu), static_cast<VertexRenderer*>(&gpu),
+                                  static_cast<VertexRenderer*>(&bare)})
+            r->keep_image_terms(true);
+        REQUIRE(gpu.per_pixel_part(0) == per_pixel);
+        const Image cpu_image = cpu.form_image(cpu.shade(), camera);
+        const Image gpu_image = gpu.form_image(gpu.shade(), camera);
+        const Image bare_image = bare.form_image(bare.shade(), camera);
+        const double apart = compare_images(gpu_image, cpu_image).pixels.relative_l2();
+        // The GPU's own emission: with − without, at each ground pixel, the
+        // texture at the pixel's texture coordinates (the GPU filters with
+        // 8-bit weights: 1% and a little).
+        int ground = 0, off = 0;
+        for (int y = 0; y < camera.height; ++y)
+            for (int x = 0; x < camera.width; ++x) {
+                const RayHit hit = posed.rays().intersect(camera.eye, camera.direction(float(x) + 0.5f, float(y) + 0.5f));
+                if (!hit.hit || hit.instance != 0) continue;
+                ++ground;
+                const Color expected = glow.materials[1].emissive * texture->sample(interpolate_texcoords(glow, hit));
+                for (int c = 0; c < 3; ++c)
+                    if (std::abs(gpu_image.at(x, y)[c] - bare_image.at(x, y)[c] - expected[c]) > 0.01f * expected[c] + 2e-3f) {
+                        ++off;
+                        break;
+                    }
+            }
+        INFO((per_pixel ? "per-pixel pass" : "display pass") << ": GPU vs CPU " << apart << "; " << off << " of "
+             << ground << " ground pixels off the emission");
+        CHECK(apart < 0.01);
+        CHECK(ground > camera.width * camera.height / 4);
+        CHECK(off <= ground / 50);  // the rasterizer's and the rays' edges
+    }
+}
+
 }  // namespace
 }  // namespace rsl

@@ -177,6 +177,43 @@ TEST_CASE("GL shades a textured part in two layers as the CPU does", "[gl-render
     CHECK_THROWS_WITH(bare.shade(), Catch::Contains("ground"));
 }
 
+TEST_CASE("GL adds emission as the CPU does: exactly its radiance at each vertex", "[gl-renderer]") {
+    // A textured ground with an emissive texture (its emission in the
+    // specular layer) and an evenly glowing glossy sphere.
+    Scene scene = moving_scene();
+    scene.materials[0].base_color_texture = assets::make_tile_texture(4, 4);
+    TriangleMesh& ground = scene.parts[0].mesh;
+    for (const Vec3& p : ground.positions) ground.texcoords.emplace_back(p.x / 3.0f + 0.5f, p.z / 3.0f + 0.5f);
+    Scene glow = scene;
+    glow.materials[0].emissive = Color(0.4f, 0.7f, 1.1f);
+    glow.materials[0].emissive_texture = assets::make_tile_texture(2, 3);
+    glow.materials[1].emissive = Color(0.3f, 0.1f, 0.05f);
+    const PartFields fields = bake_part_fields(scene, FieldBakeOptions{});
+    const RslSet lights = test::random_rsls(16, 3);
+    check_against_cpu(glow, lights, fields, RenderOptions{}, {0.0f, 1.0f});
+    test::gl_context();
+    gl::GlRenderer with(glow, lights, fields, RenderOptions{}), without(scene, lights, fields, RenderOptions{});
+    const VertexColors a = with.shade(), b = without.shade();
+    int emitting = 0;
+    for (size_t p = 0; p < glow.parts.size(); ++p) {
+        const MaterialDesc& m = glow.materials[size_t(glow.parts[p].material)];
+        const TriangleMesh& mesh = glow.parts[p].mesh;
+        for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+            // Written out here: the texture's bilinear sample at the vertex (Texture::sample, tested on its own).
+            const Color expected = m.emissive_texture ? m.emissive * m.emissive_texture->sample(mesh.texcoords[v]) : m.emissive;
+            const bool layered = a.layered(p);
+            const Color total = layered ? a.specular[p][v] : a.parts[p][v];
+            const Color added = total - (layered ? b.specular[p][v] : b.parts[p][v]);
+            for (int c = 0; c < 3; ++c) {
+                INFO("part " << p << " vertex " << v << " channel " << c);
+                REQUIRE(std::abs(added[c] - expected[c]) <= 1e-6f * std::max(1.0f, total[c]));
+            }
+            emitting += expected != Color(0);
+        }
+    }
+    CHECK(emitting > 100);
+}
+
 TEST_CASE("GL shades a material whose roughness and metallic vary per point as the CPU does", "[gl-renderer]") {
     // The ground's gltf_pbr material gets a metallic-roughness texture
     // (src/brdf/pbr_basis.h): roughness 0.15–0.95 and metallic 0–1 vary per

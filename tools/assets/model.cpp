@@ -136,8 +136,8 @@ private:
 
 std::vector<double> as_doubles(const float* v, int n) { return std::vector<double>(v, v + n); }
 
-// A linear-RGB texture as the sRGB PNG bytes a glTF base colour image holds.
-// sRGB-encoded (colour textures) or linear (data textures: metallic-roughness).
+// A linear-RGB texture as the PNG bytes a glTF image holds: sRGB-encoded
+// (colour textures: base colour, emissive) or linear (data textures: metallic-roughness).
 std::vector<unsigned char> png_bytes(const Texture& texture, bool srgb) {
     const Image& image = texture.image;
     std::vector<unsigned char> pixels(size_t(image.width) * image.height * 3);
@@ -200,6 +200,18 @@ int add_material(GltfBuilder& builder, tinygltf::Model& model, const MaterialDes
     if (desc.metallic_roughness_texture)
         m.pbrMetallicRoughness.metallicRoughnessTexture.index =
             add_texture(builder, model, *desc.metallic_roughness_texture, false);
+    // Emission past 1 as glTF writes it: a factor in [0, 1] times KHR_materials_emissive_strength.
+    const float strength = std::max({1.0f, desc.emissive.r, desc.emissive.g, desc.emissive.b});
+    m.emissiveFactor = {desc.emissive.r / strength, desc.emissive.g / strength, desc.emissive.b / strength};
+    if (strength > 1.0f) {
+        tinygltf::Value::Object extension;
+        extension["emissiveStrength"] = tinygltf::Value(double(strength));
+        m.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(extension);
+        if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_materials_emissive_strength") ==
+            model.extensionsUsed.end())
+            model.extensionsUsed.push_back("KHR_materials_emissive_strength");
+    }
+    if (desc.emissive_texture) m.emissiveTexture.index = add_texture(builder, model, *desc.emissive_texture, true);
     model.materials.push_back(m);
     return int(model.materials.size()) - 1;
 }

@@ -10,6 +10,7 @@
 #include "tools/rsl/command.h"
 #include "tools/rsl/info.h"
 #include "tools/rsl/unique_meshes.h"
+#include "src/core/emission.h"
 #include "src/core/envmap.h"
 #include "src/core/error.h"
 #include "src/formats/environment_file.h"
@@ -207,12 +208,16 @@ void print_environment_of(const Scene& scene) {
                    vec3_text(sun.irradiance));
 }
 
-void print_scene_body(const Scene& scene) {
-    print_parts(scene);
+void print_materials(const Scene& scene) {
     fmt::print("  materials:         {}\n", scene.materials.size());
     for (const MaterialDesc& m : scene.materials) {
         std::string params;
         for (const auto& [key, values] : m.params) params += fmt::format(" {}={}", key, fmt::join(values, ","));
+        if (m.base_color_texture) params += fmt::format(" base colour texture '{}'", m.base_color_texture->name);
+        // Emission: radiance the surface gives off itself (src/core/emission.h).
+        if (emits(m))
+            params += fmt::format(" emissive={},{},{}{}", m.emissive.r, m.emissive.g, m.emissive.b,
+                                  m.emissive_texture ? fmt::format(" × texture '{}'", m.emissive_texture->name) : "");
         fmt::print("    {:<16} {}{}{}\n", m.name, m.model, params, m.file.empty() ? "" : " file " + m.file.string());
         if (const Texture* t = m.base_color_texture.get())
             fmt::print("    {:<16} base colour texture '{}' {}×{}\n", "", t->name, t->image.width, t->image.height);
@@ -226,6 +231,11 @@ void print_scene_body(const Scene& scene) {
                        levels.metal ? ", metallic" : ", not metallic");
         }
     }
+}
+
+void print_scene_body(const Scene& scene) {
+    print_parts(scene);
+    print_materials(scene);
     print_environment_of(scene);
     print_lights(scene);
     print_camera(scene);
@@ -239,6 +249,7 @@ void print_mesh_file(const std::filesystem::path& path) {
     const Scene scene = load_scene(path);  // .obj: one part; glTF: one part per mesh node
     fmt::print("  nodes:             {}{}\n", scene.nodes.size(), scene.gltf_files.empty() ? "" : " (the default scene's)");
     print_parts(scene);
+    print_materials(scene);
     if (scene.animation.end > scene.animation.start)
         fmt::print("  animation:         {} .. {} s\n", scene.animation.start, scene.animation.end);
     print_environment_of(scene);  // the bare file's default sky, and its suns

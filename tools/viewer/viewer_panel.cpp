@@ -43,6 +43,15 @@ void material_editor(ViewerState& state, int material) {
                 }
             }
         }
+        // Emission, any model's (src/core/emission.h): radiance added to what the surface reflects.
+        Color emissive = desc.emissive;
+        if (ImGui::ColorEdit3("emissive", &emissive[0], ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+            try {
+                library.set_parameter(material, "emissive", {emissive.r, emissive.g, emissive.b});
+            } catch (const Error&) {
+                // Negative or past the limit: the library kept the old value.
+            }
+        }
         ImGui::TreePop();
     }
     ImGui::PopID();
