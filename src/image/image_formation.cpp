@@ -205,7 +205,7 @@ Color interpolate_layered_colors(const Scene& scene, const VertexColors& colors,
     const uint32_t* tri = &mesh.indices[3 * size_t(hit.triangle)];
     const float w0 = 1.0f - hit.u - hit.v;
     const Color* specular = colors.specular[hit.instance].data();
-    return blend_vertex_colors(scene, colors, hit) * texture.sample(interpolate_texcoords(scene, hit)) +
+    return blend_vertex_colors(scene, colors, hit) * texture.lookup(interpolate_texcoords(scene, hit)) +
            (w0 * specular[tri[0]] + hit.u * specular[tri[1]] + hit.v * specular[tri[2]]);
 }
 

@@ -413,7 +413,7 @@ Color CpuRenderer::pixel_shadows(BlockScratch& s, PixelOccluders& o, const Pixel
         sum += (w[0] * u[0] + w[1] * u[1] + w[2] * u[2]) * occlusion;
         specular_sum += (w[0] * v[0] + w[1] * v[1] + w[2] * v[2]) * occlusion;
     }
-    if (texture) return sum * texture->sample(interpolate_texcoords(scene_, hit)) + specular_sum;
+    if (texture) return sum * texture->lookup(interpolate_texcoords(scene_, hit)) + specular_sum;
     return sum;
 }
 

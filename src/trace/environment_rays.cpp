@@ -219,13 +219,13 @@ Color EnvironmentRays::shade_hit(const RayHit& hit, const Vec3& ray_direction, u
         const Color reflected =
             shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, false), stream, &part_brdf(hit.instance));
         if (!specular) return reflected + emission;
-        return reflected * scene_.materials[size_t(material)].base_color_texture->sample(uv) +
+        return reflected * scene_.materials[size_t(material)].base_color_texture->lookup(uv) +
                shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, true), specular_stream(stream), specular) +
                emission;
     }
     if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance), stream) + emission;
     const Texture& texture = *scene_.materials[size_t(scene_.parts[size_t(hit.instance)].material)].base_color_texture;
-    return shade(x, -ray_direction, part_brdf(hit.instance), stream) * texture.sample(interpolate_texcoords(scene_, hit)) +
+    return shade(x, -ray_direction, part_brdf(hit.instance), stream) * texture.lookup(interpolate_texcoords(scene_, hit)) +
            shade(x, -ray_direction, *specular, specular_stream(stream)) + emission;
 }
 

@@ -206,12 +206,12 @@ Color GroundTruth::shade_hit(const RayHit& hit, const Vec3& ray_direction) const
         const Vec2 uv = interpolate_texcoords(scene_, hit);
         const Color reflected = shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, false));
         if (!specular) return reflected + emission;
-        return reflected * part_texture(hit.instance)->sample(uv) +
+        return reflected * part_texture(hit.instance)->lookup(uv) +
                shade(x, -ray_direction, *lobes_.at_point(scene_, material, uv, true)) + emission;
     }
     if (!specular) return shade(x, -ray_direction, part_brdf(hit.instance)) + emission;
     const Vec2 uv = interpolate_texcoords(scene_, hit);
-    return shade(x, -ray_direction, part_brdf(hit.instance)) * part_texture(hit.instance)->sample(uv) +
+    return shade(x, -ray_direction, part_brdf(hit.instance)) * part_texture(hit.instance)->lookup(uv) +
            shade(x, -ray_direction, *specular) + emission;
 }
 
