@@ -213,7 +213,6 @@ void print_materials(const Scene& scene) {
     for (const MaterialDesc& m : scene.materials) {
         std::string params;
         for (const auto& [key, values] : m.params) params += fmt::format(" {}={}", key, fmt::join(values, ","));
-        if (m.base_color_texture) params += fmt::format(" base colour texture '{}'", m.base_color_texture->name);
         // Emission: radiance the surface gives off itself (src/core/emission.h).
         if (emits(m))
             params += fmt::format(" emissive={},{},{}{}", m.emissive.r, m.emissive.g, m.emissive.b,
