@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "demos/contact_sheet.h"
+#include "tools/rsl/progress_display.h"
 #include "src/core/atomic_file.h"
 #include "src/core/error.h"
 #include "src/formats/image_file.h"
@@ -208,6 +209,24 @@ void render_sequence(const SequenceSpec& spec, const DemoOptions& options, Rende
     // Real time: the frames span the animation range.
     const float length = scene.animation.end - scene.animation.start;
     sequence.finish(result, length > 0 ? float(frames) / length : 12.0f);
+}
+
+DemoResult run_scene_sequence(const DemoOptions& options, const std::string& name, const std::string& relative_path,
+                              const std::function<std::string(const Scene& scene, int lights)>& note) {
+    DemoResult result;
+    result.name = name;
+    const auto start = std::chrono::steady_clock::now();
+    std::shared_ptr<Scene> scene = load_demo_scene(options, relative_path);
+    RenderOptions render;
+    if (options.quick) render.environment_light_count = kQuickLights;
+    RenderSession session(scene, render, Backend::Cpu,
+                          {.progress = cli::drawn_progress(options.progress), .field_cache = options.field_cache});
+    result.setup_seconds = seconds_between(start, std::chrono::steady_clock::now());
+    SequenceSpec spec;
+    spec.name = result.name;
+    render_sequence(spec, options, session, result);
+    result.notes.push_back(note(*scene, int(session.renderer().stats().lights)));
+    return result;
 }
 
 }  // namespace rsl::demos

@@ -98,4 +98,10 @@ struct SequenceSpec {
 void render_sequence(const SequenceSpec& spec, const DemoOptions& options, RenderSession& session,
                      DemoResult& result);
 
+// A demo that plays its scene's own animation (robot, walker): the scene at
+// `relative_path`, its CPU session at the demo's light count (the setup
+// timed), render_sequence, and one note from `note` (the scene, the lights).
+DemoResult run_scene_sequence(const DemoOptions& options, const std::string& name, const std::string& relative_path,
+                              const std::function<std::string(const Scene& scene, int lights)>& note);
+
 }  // namespace rsl::demos
